@@ -1,0 +1,101 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file vpLaserConicSolvers.h
+  \brief Pure Eigen core of the circular-laser attitude and altitude estimators (Boutteau, Sturm,
+  Vasseur, Demonceaux, JMIV 2018), free of ViSP types and of the RANSAC loop.
+
+  Conventions shared by every function here:
+  - everything lives in the camera frame, in \b normalized image coordinates: the camera is
+    \f$ P = [I\,|\,0] \f$ (pixels are mapped through \f$ K^{-1} \f$ by the facade);
+  - the laser is a cone of half opening angle \f$ \theta \f$ whose apex is at \e apex and whose axis
+    is the third column of \f$ {}^c\mathbf{R}_l \f$ (laser frame: apex at the origin, axis +Z);
+  - a plane is \f$ \boldsymbol{\pi} = (\mathbf{n}, d) \f$ with \f$ \mathbf{n}^T\mathbf{X} + d = 0 \f$;
+    a ground plane is returned with \f$ \|\mathbf{n}\| = 1 \f$ and \f$ d > 0 \f$, i.e. its normal
+    points from the plane towards the camera and \f$ d \f$ is the altitude of the camera centre;
+  - conics are symmetric 3x3 matrices c with \f$ \mathbf{x}^T c\, \mathbf{x} = 0 \f$;
+  - no function allocates on the heap or throws: validation belongs to the facade.
+*/
+#ifndef VP_LASER_CONIC_SOLVERS_H
+#define VP_LASER_CONIC_SOLVERS_H
+
+#include <Eigen/Core>
+
+#include <visp3/core/vpConfig.h>
+
+namespace vpLaserSolvers
+{
+//! The laser cone in the camera frame.
+struct LaserCone
+{
+  Eigen::Matrix3d cRl = Eigen::Matrix3d::Identity(); //!< orientation of the laser frame (axis = third column)
+  Eigen::Vector3d apex = Eigen::Vector3d::Zero();    //!< cone apex (laser centre) in the camera frame
+  double halfAngle = 0.0;                             //!< half opening angle theta, in (0, pi/2)
+};
+
+//! Cone quadric D (4x4, paper eq. 8-9) of the laser in the camera frame.
+Eigen::Matrix4d laserConeQuadric(const LaserCone &cone);
+
+//! Cone quadric C = P^T c P (eq. 10) spanned by the camera centre and an image conic (normalized coordinates).
+Eigen::Matrix4d cameraConeQuadric(const Eigen::Matrix3d &c);
+
+/*!
+  Plane-pair solution (Sec. 4): finds the double root of det(C + x D), splits the rank-2 member
+  into its two planes and keeps the one with both optical centres on the same side.
+  \return true and the ground plane (unit normal towards the camera, d > 0) on success.
+*/
+bool planePair(const Eigen::Matrix3d &c, const LaserCone &cone, Eigen::Vector4d &plane);
+
+/*!
+  Conic through n >= 5 points (least squares, DLT on Hartley-normalised coordinates, eq. 29-31).
+  With exactly 5 points it is the minimal interpolating conic. \return false when degenerate.
+*/
+bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c);
+
+//! The camera-image epipole and the two epipolar lines tangent to every image of the laser trace (Sec. 5.2).
+struct EpipolarTangents
+{
+  Eigen::Vector3d epipole = Eigen::Vector3d::Zero(); //!< image of the laser centre (homogeneous)
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();       //!< first tangent line (homogeneous)
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();       //!< second tangent line (homogeneous)
+};
+
+//! Computes the epipolar tangents of the laser cone. \return false if the camera centre lies inside the cone or on its apex.
+bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents);
+
+/*!
+  PP-3 minimal solver (Sec. 5.2): conics through 3 points tangent to the two epipolar lines, via
+  the canonical homography and the quartic (eq. 53). Only ellipses are returned.
+  \return number of conics written (0 to 4).
+*/
+int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents, Eigen::Matrix3d conics[4]);
+
+/*!
+  GP-3 minimal solver (Sec. 5.3): intersects the three rays with the laser cone (eq. 57) and forms
+  the planes through one intersection per ray, keeping those with both optical centres on the same
+  side. \return number of planes written (0 to 8), each normalised as a ground plane.
+*/
+int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vector4d planes[8]);
+
+//! Image conic (normalized coordinates) of the trace of the laser cone on a ground plane.
+Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone);
+
+//! First-order geometric (Sampson) distance of an image point to a conic, in the units of the point.
+double sampsonDistance(const Eigen::Matrix3d &c, const Eigen::Vector2d &p);
+
+//! True when the conic is a real ellipse (upper-left 2x2 block definite, and real points).
+bool isEllipse(const Eigen::Matrix3d &c);
+
+/*!
+  Altitude, roll and pitch of the camera from a ground plane (unit normal towards the camera).
+  With \f$ \mathbf{g} = -\mathbf{n} \f$ the downward direction in the camera frame, the attitude is
+  \f$ \mathbf{g} = R_x(\mathrm{roll})\, R_y(\mathrm{pitch})\, \mathbf{e}_z \f$: roll about the camera
+  x axis, pitch about the camera y axis, both zero when the optical axis is perpendicular to the
+  ground. roll = atan2(-g_y, g_z), pitch = asin(g_x).
+*/
+void altitudeRollPitch(const Eigen::Vector4d &plane, double &altitude, double &roll, double &pitch);
+} // namespace vpLaserSolvers
+
+#endif
