@@ -1,0 +1,61 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file vpPngPlot.h
+  \brief A small headless line/scatter plot written to PNG with ViSP's drawing and font tools,
+  used by the examples and tutorials (vpPlot needs a display; these programs run headless).
+*/
+#ifndef VP_PNG_PLOT_H
+#define VP_PNG_PLOT_H
+
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpColor.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpRGBa.h>
+
+/*!
+  \brief Headless 2D plot: axes with ticks, curves or point clouds, a legend, written as PNG.
+*/
+class vpPngPlot
+{
+public:
+  //! A plot with a title and axis labels, rendered at width x height pixels.
+  vpPngPlot(const std::string &title, const std::string &xLabel, const std::string &yLabel, unsigned int width = 900,
+            unsigned int height = 560);
+  //! Adds a polyline through (x[i], y[i]); non-finite samples break the line.
+  void addCurve(const std::string &name, const std::vector<double> &x, const std::vector<double> &y,
+                const vpColor &color);
+  //! Adds markers at (x[i], y[i]).
+  void addPoints(const std::string &name, const std::vector<double> &x, const std::vector<double> &y,
+                 const vpColor &color);
+  //! Fixes the x range instead of fitting the data.
+  void setXRange(double xmin, double xmax);
+  //! Fixes the y range instead of fitting the data.
+  void setYRange(double ymin, double ymax);
+  //! Renders the plot.
+  void render(vpImage<vpRGBa> &I) const;
+  //! Renders and writes the plot to a PNG file (throws vpException if it cannot be written).
+  void write(const std::string &filename) const;
+
+private:
+  struct Series
+  {
+    std::string name;
+    std::vector<double> x, y;
+    vpColor color;
+    bool markers;
+  };
+  void dataRange(double &x0, double &x1, double &y0, double &y1) const;
+
+  std::string m_title, m_xLabel, m_yLabel;
+  unsigned int m_width, m_height;
+  std::vector<Series> m_series;
+  bool m_fixedX, m_fixedY;
+  double m_xmin, m_xmax, m_ymin, m_ymax;
+};
+
+#endif
