@@ -1,0 +1,324 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+#include "vpLaserRigIo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include <visp3/core/vpIoTools.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/core/vpXmlParserCamera.h>
+
+namespace
+{
+const char *const kGroundTruthHeader = "frame,image,altitude_m,roll_rad,pitch_rad,nx,ny,nz,d";
+
+//! Next line that is neither blank nor a '#' comment; false at the end of the stream.
+bool nextContentLine(std::istream &in, std::string &line, unsigned int &lineNumber)
+{
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    const std::string::size_type first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#') {
+      return true;
+    }
+  }
+  return false;
+}
+
+//! Parses exactly \e count finite numbers from \e line.
+bool parseNumbers(const std::string &line, unsigned int count, double *values)
+{
+  std::istringstream ss(line);
+  for (unsigned int i = 0; i < count; ++i) {
+    if (!(ss >> values[i]) || !std::isfinite(values[i])) {
+      return false;
+    }
+  }
+  std::string rest;
+  return !(ss >> rest);
+}
+
+//! Parses a full-field double; rejects trailing characters and non-finite values.
+bool parseDouble(const std::string &text, double &value)
+{
+  char *end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && *end == '\0' && std::isfinite(value);
+}
+
+std::vector<std::string> splitCsv(const std::string &line)
+{
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream ss(line);
+  while (std::getline(ss, field, ',')) {
+    fields.push_back(field);
+  }
+  if (!line.empty() && line.back() == ',') {
+    fields.push_back(std::string());
+  }
+  return fields;
+}
+
+std::string stripCarriageReturn(std::string line)
+{
+  if (!line.empty() && line.back() == '\r') {
+    line.pop_back();
+  }
+  return line;
+}
+} // namespace
+
+bool vpLaserRigIo::readLaserCalibration(const std::string &file, double &openingAngleRad, vpHomogeneousMatrix &cMl,
+                                        std::string &error)
+{
+  std::ifstream in(file.c_str());
+  if (!in) {
+    error = "cannot open laser calibration file '" + file + "'";
+    return false;
+  }
+  const std::string where = "laser calibration '" + file + "'";
+  std::string line;
+  unsigned int lineNumber = 0;
+
+  if (!nextContentLine(in, line, lineNumber)) {
+    error = where + ": empty file, expected 'opening_angle_deg <value>'";
+    return false;
+  }
+  std::istringstream angleLine(line);
+  std::string keyword;
+  double angleDeg = 0.0;
+  std::string rest;
+  if (!(angleLine >> keyword) || keyword != "opening_angle_deg" || !(angleLine >> angleDeg) || (angleLine >> rest)) {
+    error = where + " line " + std::to_string(lineNumber) + ": expected 'opening_angle_deg <value>'";
+    return false;
+  }
+  if (!std::isfinite(angleDeg) || angleDeg <= 0.0 || angleDeg >= 180.0) {
+    error = where + " line " + std::to_string(lineNumber) + ": opening angle must be in (0, 180) degrees";
+    return false;
+  }
+
+  if (!nextContentLine(in, line, lineNumber)) {
+    error = where + ": missing 'cMl' after the opening angle";
+    return false;
+  }
+  std::istringstream cMlLine(line);
+  if (!(cMlLine >> keyword) || keyword != "cMl" || (cMlLine >> rest)) {
+    error = where + " line " + std::to_string(lineNumber) + ": expected the keyword 'cMl'";
+    return false;
+  }
+
+  vpHomogeneousMatrix M;
+  for (unsigned int r = 0; r < 4; ++r) {
+    double row[4];
+    if (!nextContentLine(in, line, lineNumber)) {
+      error = where + ": cMl has " + std::to_string(r) + " rows, expected 4";
+      return false;
+    }
+    if (!parseNumbers(line, 4, row)) {
+      error = where + " line " + std::to_string(lineNumber) + ": expected 4 finite numbers";
+      return false;
+    }
+    for (unsigned int c = 0; c < 4; ++c) {
+      M[r][c] = row[c];
+    }
+  }
+  if (std::fabs(M[3][0]) > 0.0 || std::fabs(M[3][1]) > 0.0 || std::fabs(M[3][2]) > 0.0 || M[3][3] != 1.0) {
+    error = where + ": the last row of cMl must be '0 0 0 1'";
+    return false;
+  }
+  const vpRotationMatrix R = M.getRotationMatrix();
+  vpMatrix RtR = vpMatrix(R.t()) * vpMatrix(R);
+  double orthogonalityError = 0.0;
+  for (unsigned int r = 0; r < 3; ++r) {
+    for (unsigned int c = 0; c < 3; ++c) {
+      orthogonalityError = std::max(orthogonalityError, std::fabs(RtR[r][c] - (r == c ? 1.0 : 0.0)));
+    }
+  }
+  if (orthogonalityError > 1e-6 || vpMatrix(R).det() < 0.0) {
+    error = where + ": the 3x3 block of cMl is not a rotation matrix";
+    return false;
+  }
+  if (nextContentLine(in, line, lineNumber)) {
+    error = where + " line " + std::to_string(lineNumber) + ": unexpected content after cMl";
+    return false;
+  }
+
+  openingAngleRad = vpMath::rad(angleDeg);
+  cMl = M;
+  return true;
+}
+
+bool vpLaserRigIo::writeLaserCalibration(const std::string &file, double openingAngleRad,
+                                         const vpHomogeneousMatrix &cMl, std::string &error)
+{
+  std::ofstream out(file.c_str());
+  if (!out) {
+    error = "cannot write laser calibration file '" + file + "'";
+    return false;
+  }
+  out << "# laser calibration: full opening angle and pose of the laser frame in the camera frame\n";
+  out << std::setprecision(std::numeric_limits<double>::max_digits10);
+  out << "opening_angle_deg " << vpMath::deg(openingAngleRad) << "\n";
+  out << "cMl\n";
+  for (unsigned int r = 0; r < 4; ++r) {
+    for (unsigned int c = 0; c < 4; ++c) {
+      out << (c ? " " : "") << cMl[r][c];
+    }
+    out << "\n";
+  }
+  if (!out) {
+    error = "error while writing '" + file + "'";
+    return false;
+  }
+  return true;
+}
+
+bool vpLaserRigIo::readGroundTruth(const std::string &file, std::vector<vpLaserGroundTruthFrame> &frames,
+                                   std::string &error)
+{
+  std::ifstream in(file.c_str());
+  if (!in) {
+    error = "cannot open ground truth file '" + file + "'";
+    return false;
+  }
+  std::string line;
+  if (!std::getline(in, line) || stripCarriageReturn(line) != kGroundTruthHeader) {
+    error = "ground truth '" + file + "': first line must be '" + std::string(kGroundTruthHeader) + "'";
+    return false;
+  }
+  std::vector<vpLaserGroundTruthFrame> result;
+  unsigned int lineNumber = 1;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    line = stripCarriageReturn(line);
+    if (line.empty()) {
+      continue;
+    }
+    const std::string where = "ground truth '" + file + "' line " + std::to_string(lineNumber);
+    const std::vector<std::string> fields = splitCsv(line);
+    if (fields.size() != 9) {
+      error = where + ": expected 9 comma-separated fields, got " + std::to_string(fields.size());
+      return false;
+    }
+    double values[9];
+    for (unsigned int i = 0; i < 9; ++i) {
+      if (i != 1 && !parseDouble(fields[i], values[i])) {
+        error = where + ": field " + std::to_string(i + 1) + " ('" + fields[i] + "') is not a finite number";
+        return false;
+      }
+    }
+    if (values[0] < 0.0 || values[0] != std::floor(values[0])) {
+      error = where + ": the frame index must be a non-negative integer";
+      return false;
+    }
+    if (fields[1].empty()) {
+      error = where + ": empty image name";
+      return false;
+    }
+    const double normalNorm = std::sqrt(values[5] * values[5] + values[6] * values[6] + values[7] * values[7]);
+    if (std::fabs(normalNorm - 1.0) > 1e-6) {
+      error = where + ": the plane normal (nx, ny, nz) is not a unit vector";
+      return false;
+    }
+    vpLaserGroundTruthFrame frame;
+    frame.frame = static_cast<unsigned int>(values[0]);
+    frame.image = fields[1];
+    frame.altitude = values[2];
+    frame.roll = values[3];
+    frame.pitch = values[4];
+    frame.plane = vpPlane(values[5], values[6], values[7], values[8]);
+    result.push_back(frame);
+  }
+  if (result.empty()) {
+    error = "ground truth '" + file + "': no frame";
+    return false;
+  }
+  frames.swap(result);
+  return true;
+}
+
+bool vpLaserRigIo::writeGroundTruth(const std::string &file, const std::vector<vpLaserGroundTruthFrame> &frames,
+                                    std::string &error)
+{
+  std::ofstream out(file.c_str());
+  if (!out) {
+    error = "cannot write ground truth file '" + file + "'";
+    return false;
+  }
+  out << kGroundTruthHeader << "\n";
+  out << std::setprecision(std::numeric_limits<double>::max_digits10);
+  for (const vpLaserGroundTruthFrame &f : frames) {
+    out << f.frame << "," << f.image << "," << f.altitude << "," << f.roll << "," << f.pitch << "," << f.plane.getA()
+        << "," << f.plane.getB() << "," << f.plane.getC() << "," << f.plane.getD() << "\n";
+  }
+  if (!out) {
+    error = "error while writing '" + file + "'";
+    return false;
+  }
+  return true;
+}
+
+bool vpLaserRigIo::readCamera(const std::string &file, vpCameraParameters &cam, unsigned int &width,
+                              unsigned int &height, std::string &error)
+{
+  if (!vpIoTools::checkFilename(file)) {
+    error = "cannot open camera file '" + file + "'";
+    return false;
+  }
+  vpXmlParserCamera parser;
+  vpCameraParameters parsed;
+  if (parser.parse(parsed, file, "Camera", vpCameraParameters::perspectiveProjWithoutDistortion) !=
+      vpXmlParserCamera::SEQUENCE_OK) {
+    error = "camera file '" + file + "': no camera named 'Camera' with a perspective projection without distortion";
+    return false;
+  }
+  if (parser.getWidth() == 0 || parser.getHeight() == 0) {
+    error = "camera file '" + file + "': image_width and image_height are missing";
+    return false;
+  }
+  cam = parsed;
+  width = parser.getWidth();
+  height = parser.getHeight();
+  return true;
+}
+
+bool vpLaserRigIo::writeCamera(const std::string &file, const vpCameraParameters &cam, unsigned int width,
+                               unsigned int height, std::string &error)
+{
+  // vpXmlParserCamera::save() adds to an existing file and refuses a duplicate name: start afresh.
+  std::remove(file.c_str());
+  vpXmlParserCamera parser;
+  if (parser.save(cam, file, "Camera", width, height) != vpXmlParserCamera::SEQUENCE_OK) {
+    error = "cannot write camera file '" + file + "'";
+    return false;
+  }
+  return true;
+}
+
+bool vpLaserRigIo::readDataset(const std::string &directory, vpLaserDataset &dataset, std::string &error)
+{
+  vpLaserDataset result;
+  result.directory = directory;
+  if (!vpIoTools::checkDirectory(directory)) {
+    error = "dataset directory '" + directory + "' does not exist";
+    return false;
+  }
+  if (!readCamera(directory + "/camera.xml", result.cam, result.width, result.height, error) ||
+      !readLaserCalibration(directory + "/laser.txt", result.openingAngle, result.cMl, error) ||
+      !readGroundTruth(directory + "/groundtruth.csv", result.frames, error)) {
+    return false;
+  }
+  dataset = result;
+  return true;
+}

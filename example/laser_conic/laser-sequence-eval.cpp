@@ -1,0 +1,287 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \example laser-sequence-eval.cpp
+  Runs the red-trace detector and the PP5, PP3 and GP3 estimators over the simulated hand-held
+  sequence of data/laser_sequence and prints the errors against the ground truth in the layout of
+  Table 2 of Boutteau et al. (JMIV 2018): altitude (mm), pitch and roll (deg), mean +- standard
+  deviation per method. Per-frame results go to a CSV file and the altitude / attitude curves to PNG.
+*/
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpIoTools.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/laser_conic/vpLaserConicDetector.h>
+#include <visp3/laser_conic/vpLaserConicPose.h>
+
+#include "vpLaserRigIo.h"
+#include "vpPngPlot.h"
+
+namespace
+{
+struct Options
+{
+  std::string data = std::string(VSP_DATA_DIR) + "/laser_sequence";
+  std::string output = "laser-sequence-results";
+  double threshold = 2.0;
+  int ransacTrials = 1000;
+  bool check = false;
+};
+
+struct Method
+{
+  vpLaserConicPose::vpLaserConicMethod id;
+  std::string name;
+  vpColor color;
+};
+
+const std::vector<Method> &methods()
+{
+  static const std::vector<Method> list = {{vpLaserConicPose::PP5, "PP-5", vpColor::red},
+                                           {vpLaserConicPose::PP3, "PP-3", vpColor::blue},
+                                           {vpLaserConicPose::GP3, "GP-3", vpColor::darkGreen}};
+  return list;
+}
+
+//! Absolute errors of one method over the sequence (successful frames only), and its estimates.
+struct MethodResult
+{
+  std::vector<double> altitudeMm, pitchDeg, rollDeg;
+  std::vector<double> estAltitude, estRoll, estPitch; //!< per frame, NaN on failure
+  int failures = 0;
+};
+
+struct MeanStd
+{
+  double mean = 0.0, std = 0.0;
+};
+
+MeanStd meanStd(const std::vector<double> &v)
+{
+  MeanStd m;
+  if (v.empty()) {
+    m.mean = m.std = std::nan("");
+    return m;
+  }
+  for (double x : v) {
+    m.mean += x;
+  }
+  m.mean /= v.size();
+  for (double x : v) {
+    m.std += (x - m.mean) * (x - m.mean);
+  }
+  m.std = v.size() > 1 ? std::sqrt(m.std / (v.size() - 1)) : 0.0;
+  return m;
+}
+
+std::string cell(const std::vector<double> &v)
+{
+  const MeanStd m = meanStd(v);
+  std::ostringstream ss;
+  ss << std::fixed << std::setprecision(2) << m.mean << " ± " << m.std;
+  return ss.str();
+}
+
+double angleDifference(double a, double b) { return std::fabs(std::remainder(a - b, 2.0 * M_PI)); }
+
+void usage(const char *argv0)
+{
+  std::cout << "Usage: " << argv0 << " [--data DIR] [--output DIR] [--threshold PX] [--check] [--help]\n\n"
+            << "Detection + PP-5 / PP-3 / GP-3 over a laser sequence, errors in the layout of Table 2.\n"
+               "  --data DIR       dataset directory (default " VSP_DATA_DIR "/laser_sequence)\n"
+               "  --output DIR     per-frame CSV and PNG curves (default laser-sequence-results)\n"
+               "  --threshold PX   RANSAC threshold in pixels (default 2)\n"
+               "  --check          exit non-zero when an error exceeds the bounds justified in the source\n";
+}
+
+bool parseOptions(int argc, char **argv, Options &opt)
+{
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--help" || arg == "-h") {
+      usage(argv[0]);
+      std::exit(EXIT_SUCCESS);
+    } else if (arg == "--data" && hasValue) {
+      opt.data = argv[++i];
+    } else if (arg == "--output" && hasValue) {
+      opt.output = argv[++i];
+    } else if (arg == "--threshold" && hasValue) {
+      opt.threshold = std::atof(argv[++i]);
+    } else if (arg == "--check") {
+      opt.check = true;
+    } else {
+      std::cerr << "Unknown or incomplete option '" << arg << "'\n";
+      usage(argv[0]);
+      return false;
+    }
+  }
+  if (!(opt.threshold > 0.0)) {
+    std::cerr << "--threshold must be positive\n";
+    return false;
+  }
+  return true;
+}
+
+void writeResults(const Options &opt, const vpLaserDataset &dataset, const std::vector<MethodResult> &results,
+                  const std::vector<unsigned int> &detected)
+{
+  std::ofstream out((opt.output + "/sequence.csv").c_str());
+  out << "frame,detected_points,gt_altitude_m,gt_roll_deg,gt_pitch_deg";
+  for (const Method &m : methods()) {
+    out << "," << m.name << "_altitude_m," << m.name << "_roll_deg," << m.name << "_pitch_deg";
+  }
+  out << "\n" << std::setprecision(10);
+  std::vector<double> frameIndex, gtAltitude, gtRoll, gtPitch;
+  for (size_t k = 0; k < dataset.frames.size(); ++k) {
+    const vpLaserGroundTruthFrame &f = dataset.frames[k];
+    out << f.frame << "," << detected[k] << "," << f.altitude << "," << vpMath::deg(f.roll) << ","
+        << vpMath::deg(f.pitch);
+    for (const MethodResult &r : results) {
+      out << "," << r.estAltitude[k] << "," << vpMath::deg(r.estRoll[k]) << "," << vpMath::deg(r.estPitch[k]);
+    }
+    out << "\n";
+    frameIndex.push_back(f.frame);
+    gtAltitude.push_back(f.altitude);
+    gtRoll.push_back(vpMath::deg(f.roll));
+    gtPitch.push_back(vpMath::deg(f.pitch));
+  }
+
+  const char *names[] = {"altitude", "roll", "pitch"};
+  const char *units[] = {"altitude (m)", "roll (deg)", "pitch (deg)"};
+  const std::vector<double> *truth[] = {&gtAltitude, &gtRoll, &gtPitch};
+  for (int q = 0; q < 3; ++q) {
+    vpPngPlot plot(std::string("Simulated hand-held sequence: ") + names[q], "frame", units[q]);
+    plot.addCurve("ground truth", frameIndex, *truth[q], vpColor::black);
+    for (size_t i = 0; i < methods().size(); ++i) {
+      std::vector<double> ys = q == 0 ? results[i].estAltitude : (q == 1 ? results[i].estRoll : results[i].estPitch);
+      if (q > 0) {
+        for (double &y : ys) {
+          y = vpMath::deg(y);
+        }
+      }
+      plot.addPoints(methods()[i].name, frameIndex, ys, methods()[i].color);
+    }
+    plot.write(opt.output + "/sequence_" + names[q] + ".png");
+  }
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Options opt;
+  if (!parseOptions(argc, argv, opt)) {
+    return EXIT_FAILURE;
+  }
+  vpLaserDataset dataset;
+  std::string error;
+  if (!vpLaserRigIo::readDataset(opt.data, dataset, error)) {
+    std::cerr << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  std::vector<MethodResult> results(methods().size());
+  std::vector<unsigned int> detected;
+  try {
+    vpIoTools::makeDirectory(opt.output);
+    vpLaserConicDetector detector;
+    vpLaserConicPose estimator;
+    estimator.setCameraParameters(dataset.cam);
+    estimator.setLaser(dataset.openingAngle, dataset.cMl);
+    estimator.setRansacThreshold(opt.threshold);
+    estimator.setRansacMaxTrials(opt.ransacTrials);
+
+    for (const vpLaserGroundTruthFrame &f : dataset.frames) {
+      vpImage<vpRGBa> I;
+      vpImageIo::read(I, dataset.imagePath(f));
+      const std::vector<vpImagePoint> points = detector.detect(I);
+      detected.push_back(static_cast<unsigned int>(points.size()));
+      for (size_t i = 0; i < methods().size(); ++i) {
+        MethodResult &r = results[i];
+        estimator.setRansacSeed(f.frame);
+        vpPlane plane;
+        bool ok = false;
+        try {
+          ok = estimator.computePlane(points, methods()[i].id, plane);
+        } catch (const vpException &e) {
+          std::cerr << "frame " << f.frame << " " << methods()[i].name << ": " << e.getMessage() << std::endl;
+        }
+        if (!ok) {
+          ++r.failures;
+          r.estAltitude.push_back(std::nan(""));
+          r.estRoll.push_back(std::nan(""));
+          r.estPitch.push_back(std::nan(""));
+          continue;
+        }
+        r.estAltitude.push_back(estimator.getAltitude());
+        r.estRoll.push_back(estimator.getRoll());
+        r.estPitch.push_back(estimator.getPitch());
+        r.altitudeMm.push_back(1e3 * std::fabs(estimator.getAltitude() - f.altitude));
+        r.rollDeg.push_back(vpMath::deg(angleDifference(estimator.getRoll(), f.roll)));
+        r.pitchDeg.push_back(vpMath::deg(angleDifference(estimator.getPitch(), f.pitch)));
+      }
+    }
+    writeResults(opt, dataset, results, detected);
+  } catch (const vpException &e) {
+    std::cerr << "Error: " << e.getMessage() << std::endl;
+    return EXIT_FAILURE;
+  }
+
+  const unsigned int minDetected = *std::min_element(detected.begin(), detected.end());
+  std::cout << dataset.frames.size() << " frames of " << opt.data << ", " << minDetected
+            << " to " << *std::max_element(detected.begin(), detected.end()) << " trace points detected per frame, "
+            << "RANSAC threshold " << opt.threshold << " px\n\n";
+  std::cout << "| | PP-5 | PP-3 | GP-3 |\n|---|---|---|---|\n";
+  std::cout << "| Altitude error (mm) | " << cell(results[0].altitudeMm) << " | " << cell(results[1].altitudeMm)
+            << " | " << cell(results[2].altitudeMm) << " |\n";
+  std::cout << "| Pitch error (deg) | " << cell(results[0].pitchDeg) << " | " << cell(results[1].pitchDeg) << " | "
+            << cell(results[2].pitchDeg) << " |\n";
+  std::cout << "| Roll error (deg) | " << cell(results[0].rollDeg) << " | " << cell(results[1].rollDeg) << " | "
+            << cell(results[2].rollDeg) << " |\n";
+  std::cout << "| Failed frames | " << results[0].failures << " | " << results[1].failures << " | "
+            << results[2].failures << " |\n\n";
+  std::cout << "Published (Table 2, real hand-held sequence of 106 frames):\n"
+               "| | PP-5 | PP-3 | GP-3 |\n|---|---|---|---|\n"
+               "| Altitude error (mm) | 11.28 ± 5.91 | 7.90 ± 4.51 | 7.52 ± 4.12 |\n"
+               "| Pitch error (deg) | 1.19 ± 0.86 | 0.67 ± 0.39 | 0.66 ± 0.37 |\n"
+               "| Roll error (deg) | 1.25 ± 0.89 | 0.78 ± 0.41 | 0.76 ± 0.36 |\n";
+
+  if (!opt.check) {
+    return EXIT_SUCCESS;
+  }
+  // Bounds. The rendered stripe (Gaussian profile, 0.7 px blur, 1 grey-level sensor noise, JPEG)
+  // is located by the detector to well below one pixel, so the point noise is under the 1 px level
+  // of the synthetic study, whose mean errors at 1 px (laser-synthetic-eval --only noise) are
+  // a few millimetres and about 0.1 deg for every method. The bounds below are those values with
+  // a safety factor of about 3, and well under the published errors of the real sequence: a
+  // detector bias, a convention error or a wrong estimator exceeds them.
+  const double maxMeanAltitudeMm = 10.0, maxMeanAngleDeg = 0.5;
+  int failed = 0;
+  auto expect = [&failed](bool condition, const std::string &what) {
+    std::cout << (condition ? "  [ok]   " : "  [FAIL] ") << what << std::endl;
+    failed += condition ? 0 : 1;
+  };
+  expect(minDetected >= 100, "at least 100 trace points detected in every frame (" + std::to_string(minDetected) + ")");
+  for (size_t i = 0; i < methods().size(); ++i) {
+    const MethodResult &r = results[i];
+    const std::string name = methods()[i].name;
+    expect(r.failures == 0, name + ": an estimate for every frame (" + std::to_string(r.failures) + " failures)");
+    expect(meanStd(r.altitudeMm).mean < maxMeanAltitudeMm,
+           name + ": mean altitude error " + cell(r.altitudeMm) + " mm < " + std::to_string(maxMeanAltitudeMm));
+    expect(meanStd(r.pitchDeg).mean < maxMeanAngleDeg && meanStd(r.rollDeg).mean < maxMeanAngleDeg,
+           name + ": mean pitch " + cell(r.pitchDeg) + " and roll " + cell(r.rollDeg) + " deg < " +
+               std::to_string(maxMeanAngleDeg));
+  }
+  std::cout << (failed ? "CHECK FAILED" : "All checks passed") << std::endl;
+  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}

@@ -1,0 +1,603 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \example laser-synthetic-eval.cpp
+  Synthetic evaluation of the circular-laser estimators PP-5, PP-3 and GP-3 (Sec. 7.1 of Boutteau et
+  al., JMIV 2018): mean altitude / roll / pitch errors versus image noise (Fig. 7), intrinsic noise
+  (Fig. 9), baseline noise (Fig. 10) and ground roughness (Fig. 11), and the outlier break-down
+  ratio of each method (Table 1). Curves are written as CSV and PNG in the output directory.
+
+  Each trial draws an altitude in [0.5, 1.5] m, roll and pitch in [-20, 20] deg and a yaw in
+  [-180, 180] deg, simulates the trace with vpLaserConicSimulator (see laserRigSetup.h for the rig),
+  perturbs one quantity, and runs the three estimators on the same points.
+*/
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpIoTools.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicSimulator.h>
+
+#include "laserRigSetup.h"
+#include "vpPngPlot.h"
+
+namespace
+{
+//! Command line settings.
+struct Options
+{
+  int trials = 1000;
+  int outlierTrials = 200;
+  unsigned int points = 360;
+  unsigned int seed = 1;
+  int ransacTrials = 1000;
+  std::string output = "laser-synthetic-results";
+  std::string only;
+  bool quick = false;
+  bool check = false;
+};
+
+//! The methods compared by the paper, with their minimal sample size and plot colour.
+struct Method
+{
+  vpLaserConicPose::vpLaserConicMethod id;
+  std::string name;
+  int sampleSize;
+  vpColor color;
+};
+
+const std::vector<Method> &methods()
+{
+  static const std::vector<Method> list = {{vpLaserConicPose::PP5, "PP5", 5, vpColor::red},
+                                           {vpLaserConicPose::PP3, "PP3", 3, vpColor::blue},
+                                           {vpLaserConicPose::GP3, "GP3", 3, vpColor::darkGreen}};
+  return list;
+}
+
+//! What the estimators are given in one trial.
+struct TrialInput
+{
+  std::vector<vpImagePoint> points;
+  vpCameraParameters cam;
+  vpHomogeneousMatrix cMl;
+  double threshold = 2.0; //!< RANSAC threshold, pixels
+};
+
+//! Errors of one estimate against the ground truth.
+struct TrialError
+{
+  bool success = false;
+  double altitude = 0.0; //!< metres, absolute
+  double roll = 0.0;     //!< radians, absolute
+  double pitch = 0.0;    //!< radians, absolute
+  double normal = 0.0;   //!< angle between the estimated and true normals, radians
+};
+
+//! Ground truth of one trial.
+struct Scenario
+{
+  vpPlane plane;
+  double altitude = 0.0, roll = 0.0, pitch = 0.0;
+};
+
+double angleDifference(double a, double b) { return std::fabs(std::remainder(a - b, 2.0 * M_PI)); }
+
+Scenario drawScenario(std::mt19937 &rng, vpLaserConicSimulator &sim)
+{
+  std::uniform_real_distribution<double> altitude(0.5, 1.5), tilt(vpMath::rad(-20.0), vpMath::rad(20.0)),
+      yaw(-M_PI, M_PI);
+  const double h = altitude(rng), roll = tilt(rng), pitch = tilt(rng);
+  sim.setGroundPose(vspLaserRig::groundPose(h, roll, pitch, yaw(rng)));
+  Scenario s;
+  s.plane = sim.getGroundPlane();
+  vpLaserConicPose::computeAltitudeRollPitch(s.plane, s.altitude, s.roll, s.pitch);
+  return s;
+}
+
+TrialError evaluate(const Method &method, const TrialInput &input, const Scenario &truth, int ransacTrials,
+                    unsigned int ransacSeed)
+{
+  TrialError e;
+  vpLaserConicPose estimator;
+  estimator.setCameraParameters(input.cam);
+  estimator.setLaser(vpMath::rad(vspLaserRig::kOpeningAngleDeg), input.cMl);
+  estimator.setRansacThreshold(input.threshold);
+  estimator.setRansacMaxTrials(ransacTrials);
+  estimator.setRansacSeed(ransacSeed);
+  vpPlane plane;
+  try {
+    if (!estimator.computePlane(input.points, method.id, plane)) {
+      return e;
+    }
+  } catch (const vpException &) {
+    return e; // e.g. too few points left in the image: counted as a failure
+  }
+  e.success = true;
+  e.altitude = std::fabs(estimator.getAltitude() - truth.altitude);
+  e.roll = angleDifference(estimator.getRoll(), truth.roll);
+  e.pitch = angleDifference(estimator.getPitch(), truth.pitch);
+  const double dot = plane.getA() * truth.plane.getA() + plane.getB() * truth.plane.getB() +
+                     plane.getC() * truth.plane.getC();
+  const double norm = std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
+  e.normal = std::acos(std::max(-1.0, std::min(1.0, dot / norm)));
+  return e;
+}
+
+//! Mean errors of one method at one level of a curve study.
+struct CurvePoint
+{
+  int trials = 0, failures = 0;
+  double altitudeMm = 0.0, rollDeg = 0.0, pitchDeg = 0.0;
+  double medianAltitudeMm = 0.0;
+};
+
+//! A curve study: the perturbation applied at each level, and the curves obtained.
+struct CurveStudy
+{
+  std::string name;   //!< noise, intrinsics, baseline, roughness
+  std::string figure; //!< paper figure
+  std::string xLabel;
+  std::vector<double> levels;
+  //! Builds the estimator input of a trial at the given level (the ground pose is already set).
+  std::function<TrialInput(double, vpLaserConicSimulator &, std::mt19937 &)> perturb;
+  std::map<std::string, std::vector<CurvePoint> > curves; //!< per method, one entry per level
+};
+
+TrialInput exactInput(vpLaserConicSimulator &sim, unsigned int points, double roughness = 0.0)
+{
+  TrialInput in;
+  in.points = sim.tracePoints(points, roughness);
+  in.cam = vspLaserRig::camera();
+  in.cMl = vspLaserRig::laserPose();
+  return in;
+}
+
+std::vector<double> range(double first, double last, double step)
+{
+  std::vector<double> v;
+  for (double x = first; x <= last + 1e-9; x += step) {
+    v.push_back(x);
+  }
+  return v;
+}
+
+std::vector<CurveStudy> curveStudies(const Options &opt)
+{
+  const unsigned int n = opt.points;
+  std::vector<CurveStudy> studies;
+
+  CurveStudy noise;
+  noise.name = "noise";
+  noise.figure = "Fig. 7";
+  noise.xLabel = "image noise sigma (px)";
+  noise.levels = opt.quick ? std::vector<double>{0.0, 1.0, 3.0} : range(0.0, 3.0, 0.5);
+  noise.perturb = [n](double sigma, vpLaserConicSimulator &sim, std::mt19937 &) {
+    TrialInput in = exactInput(sim, n);
+    in.points = sim.addNoise(in.points, sigma);
+    // Perpendicular residuals of Gaussian noise stay within 3 sigma 99.7 % of the time.
+    in.threshold = std::max(2.0, 3.0 * sigma);
+    return in;
+  };
+  studies.push_back(noise);
+
+  CurveStudy intrinsics;
+  intrinsics.name = "intrinsics";
+  intrinsics.figure = "Fig. 9";
+  intrinsics.xLabel = "sigma of fx, fy, u0, v0 errors (px)";
+  intrinsics.levels = opt.quick ? std::vector<double>{0.0, 5.0, 20.0} : range(0.0, 20.0, 2.5);
+  intrinsics.perturb = [n](double sigma, vpLaserConicSimulator &sim, std::mt19937 &rng) {
+    TrialInput in = exactInput(sim, n);
+    std::normal_distribution<double> err(0.0, 1.0);
+    in.cam = vpCameraParameters(in.cam.get_px() + sigma * err(rng), in.cam.get_py() + sigma * err(rng),
+                                in.cam.get_u0() + sigma * err(rng), in.cam.get_v0() + sigma * err(rng));
+    return in;
+  };
+  studies.push_back(intrinsics);
+
+  CurveStudy baseline;
+  baseline.name = "baseline";
+  baseline.figure = "Fig. 10";
+  baseline.xLabel = "sigma of the laser position error (mm)";
+  baseline.levels = opt.quick ? std::vector<double>{0.0, 2.0, 10.0} : range(0.0, 10.0, 1.0);
+  baseline.perturb = [n](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &rng) {
+    TrialInput in = exactInput(sim, n);
+    std::normal_distribution<double> err(0.0, sigmaMm * 1e-3);
+    const vpTranslationVector t = in.cMl.getTranslationVector();
+    in.cMl.buildFrom(vpTranslationVector(t[0] + err(rng), t[1] + err(rng), t[2] + err(rng)), in.cMl.getRotationMatrix());
+    return in;
+  };
+  studies.push_back(baseline);
+
+  CurveStudy roughness;
+  roughness.name = "roughness";
+  roughness.figure = "Fig. 11";
+  roughness.xLabel = "ground roughness sigma (mm)";
+  roughness.levels = opt.quick ? std::vector<double>{0.0, 5.0, 20.0} : range(0.0, 20.0, 2.5);
+  roughness.perturb = [n](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &) {
+    return exactInput(sim, n, sigmaMm * 1e-3);
+  };
+  studies.push_back(roughness);
+  return studies;
+}
+
+double median(std::vector<double> v)
+{
+  if (v.empty()) {
+    return std::nan("");
+  }
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+void runCurveStudy(CurveStudy &study, const Options &opt)
+{
+  vpLaserConicSimulator sim;
+  sim.setCamera(vspLaserRig::camera(), vspLaserRig::kWidth, vspLaserRig::kHeight);
+  sim.setLaser(vpMath::rad(vspLaserRig::kOpeningAngleDeg), vspLaserRig::laserPose());
+  for (size_t l = 0; l < study.levels.size(); ++l) {
+    // One seed per (study, level): any level can be reproduced alone.
+    const unsigned int levelSeed = opt.seed * 1000003u + static_cast<unsigned int>(l) * 7919u;
+    std::mt19937 rng(levelSeed);
+    sim.setSeed(levelSeed);
+    std::map<std::string, std::vector<TrialError> > errors;
+    for (int t = 0; t < opt.trials; ++t) {
+      const Scenario truth = drawScenario(rng, sim);
+      const TrialInput input = study.perturb(study.levels[l], sim, rng);
+      for (const Method &m : methods()) {
+        errors[m.name].push_back(evaluate(m, input, truth, opt.ransacTrials, levelSeed + static_cast<unsigned int>(t)));
+      }
+    }
+    for (const Method &m : methods()) {
+      CurvePoint p;
+      std::vector<double> altitudes;
+      for (const TrialError &e : errors[m.name]) {
+        ++p.trials;
+        if (!e.success) {
+          ++p.failures;
+          continue;
+        }
+        altitudes.push_back(e.altitude * 1e3);
+        p.altitudeMm += e.altitude * 1e3;
+        p.rollDeg += vpMath::deg(e.roll);
+        p.pitchDeg += vpMath::deg(e.pitch);
+      }
+      const double ok = static_cast<double>(std::max<size_t>(1, altitudes.size()));
+      p.altitudeMm /= ok;
+      p.rollDeg /= ok;
+      p.pitchDeg /= ok;
+      p.medianAltitudeMm = median(altitudes);
+      study.curves[m.name].push_back(p);
+    }
+    std::cout << "  " << study.name << " " << study.levels[l] << ":";
+    for (const Method &m : methods()) {
+      const CurvePoint &p = study.curves[m.name].back();
+      std::cout << "  " << m.name << " alt " << std::setprecision(3) << p.altitudeMm << " mm, roll " << p.rollDeg
+                << " deg, pitch " << p.pitchDeg << " deg, failures " << p.failures;
+    }
+    std::cout << std::endl;
+  }
+}
+
+void writeCurveStudy(const CurveStudy &study, const Options &opt)
+{
+  const std::string csv = opt.output + "/" + study.name + ".csv";
+  std::ofstream out(csv.c_str());
+  out << "level,method,trials,failures,mean_altitude_error_mm,mean_roll_error_deg,mean_pitch_error_deg,"
+         "median_altitude_error_mm\n";
+  for (size_t l = 0; l < study.levels.size(); ++l) {
+    for (const Method &m : methods()) {
+      const CurvePoint &p = study.curves.at(m.name)[l];
+      out << study.levels[l] << "," << m.name << "," << p.trials << "," << p.failures << "," << p.altitudeMm << ","
+          << p.rollDeg << "," << p.pitchDeg << "," << p.medianAltitudeMm << "\n";
+    }
+  }
+  const char *quantities[] = {"altitude", "roll", "pitch"};
+  const char *units[] = {"mean altitude error (mm)", "mean roll error (deg)", "mean pitch error (deg)"};
+  for (int q = 0; q < 3; ++q) {
+    vpPngPlot plot(study.figure + ": " + quantities[q] + " error vs " + study.name, study.xLabel, units[q]);
+    for (const Method &m : methods()) {
+      std::vector<double> ys;
+      for (const CurvePoint &p : study.curves.at(m.name)) {
+        ys.push_back(q == 0 ? p.altitudeMm : (q == 1 ? p.rollDeg : p.pitchDeg));
+      }
+      plot.addCurve(m.name, study.levels, ys, m.color);
+    }
+    plot.write(opt.output + "/" + study.name + "_" + quantities[q] + ".png");
+  }
+  std::cout << "  wrote " << csv << " and " << study.name << "_{altitude,roll,pitch}.png" << std::endl;
+}
+
+// ---- Outlier break-down (Table 1) -----------------------------------------------------------------
+
+//! Failure criterion of the break-down study (inliers are exact, so a correct estimate is exact).
+const double kMaxAltitudeError = 0.01;           // metres
+const double kMaxNormalError = M_PI / 180.0;     // 1 degree
+//! A method breaks down at the first outlier ratio where fewer than half of the trials succeed.
+const double kBreakdownSuccessRate = 0.5;
+
+struct OutlierStudy
+{
+  std::map<std::string, std::map<int, double> > successRate; //!< method -> outlier percent -> rate
+  std::map<std::string, int> breakdown;                     //!< method -> first percent below 50 %, -1 if none
+};
+
+double successRate(const Method &m, int percent, const Options &opt)
+{
+  vpLaserConicSimulator sim;
+  sim.setCamera(vspLaserRig::camera(), vspLaserRig::kWidth, vspLaserRig::kHeight);
+  sim.setLaser(vpMath::rad(vspLaserRig::kOpeningAngleDeg), vspLaserRig::laserPose());
+  // Same scenarios for every method at a given ratio.
+  const unsigned int seed = opt.seed * 2000003u + static_cast<unsigned int>(percent) * 104729u;
+  std::mt19937 rng(seed);
+  sim.setSeed(seed);
+  int successes = 0;
+  for (int t = 0; t < opt.outlierTrials; ++t) {
+    const Scenario truth = drawScenario(rng, sim);
+    TrialInput in = exactInput(sim, opt.points);
+    in.points = sim.addOutliers(in.points, percent / 100.0);
+    const TrialError e = evaluate(m, in, truth, opt.ransacTrials, seed + static_cast<unsigned int>(t));
+    if (e.success && e.altitude <= kMaxAltitudeError && e.normal <= kMaxNormalError) {
+      ++successes;
+    }
+  }
+  return successes / static_cast<double>(opt.outlierTrials);
+}
+
+/*! Success probability predicted when the budget is the only limit: at least one of N samples of s
+    points is outlier-free (a clean minimal sample gives the exact plane). */
+double predictedRate(int sampleSize, int percent, int budget)
+{
+  const double w = 1.0 - percent / 100.0;
+  return 1.0 - std::pow(1.0 - std::pow(w, sampleSize), budget);
+}
+
+OutlierStudy runOutlierStudy(const Options &opt)
+{
+  OutlierStudy study;
+  for (const Method &m : methods()) {
+    std::map<int, double> &rates = study.successRate[m.name];
+    int coarseBreak = -1;
+    for (int percent = 0; percent <= 95; percent += 5) {
+      rates[percent] = successRate(m, percent, opt);
+      std::cout << "  outliers " << percent << " %: " << m.name << " success " << rates[percent] << " (predicted "
+                << std::setprecision(3) << predictedRate(m.sampleSize, percent, opt.ransacTrials) << ")" << std::endl;
+      if (coarseBreak < 0 && rates[percent] < kBreakdownSuccessRate) {
+        coarseBreak = percent;
+      }
+    }
+    int breakdown = coarseBreak;
+    // Refine to 1 % inside the 5 % bracket where the success rate crosses 50 %.
+    if (coarseBreak > 0) {
+      for (int percent = coarseBreak - 4; percent < coarseBreak; ++percent) {
+        rates[percent] = successRate(m, percent, opt);
+        std::cout << "  outliers " << percent << " %: " << m.name << " success " << rates[percent] << std::endl;
+        if (rates[percent] < kBreakdownSuccessRate) {
+          breakdown = percent;
+          break;
+        }
+      }
+    }
+    study.breakdown[m.name] = breakdown;
+  }
+  return study;
+}
+
+void writeOutlierStudy(const OutlierStudy &study, const Options &opt)
+{
+  std::ofstream out((opt.output + "/outliers.csv").c_str());
+  out << "outlier_percent,method,success_rate,predicted_rate\n";
+  vpPngPlot plot("Table 1: success rate vs outlier ratio (" + std::to_string(opt.ransacTrials) + " samples)",
+                 "outlier ratio (%)", "success rate");
+  plot.setYRange(0.0, 1.05);
+  for (const Method &m : methods()) {
+    std::vector<double> xs, ys, predicted;
+    for (const auto &kv : study.successRate.at(m.name)) {
+      out << kv.first << "," << m.name << "," << kv.second << ","
+          << predictedRate(m.sampleSize, kv.first, opt.ransacTrials) << "\n";
+      xs.push_back(kv.first);
+      ys.push_back(kv.second);
+      predicted.push_back(predictedRate(m.sampleSize, kv.first, opt.ransacTrials));
+    }
+    plot.addCurve(m.name, xs, ys, m.color);
+    plot.addPoints(m.name + " predicted", xs, predicted, m.color);
+  }
+  plot.write(opt.output + "/outliers.png");
+
+  std::cout << "\nTable 1: outlier ratio at which each method starts failing\n"
+            << "(failure: no plane, altitude error > 1 cm or normal error > 1 deg; breakdown: first ratio whose\n"
+            << " success rate over " << opt.outlierTrials << " trials is below 50 %; " << opt.points
+            << " trace points, exact inliers, outliers uniform in the image,\n RANSAC budget " << opt.ransacTrials
+            << " samples with the adaptive stop at p = 0.99, threshold 2 px)\n\n";
+  std::cout << "| Method | Breakdown outlier ratio |\n|---|---|\n";
+  for (const Method &m : methods()) {
+    const int b = study.breakdown.at(m.name);
+    std::cout << "| " << m.name << " | " << (b < 0 ? std::string("> 95") : std::to_string(b)) << " % |\n";
+  }
+  std::cout << "\nPublished (Table 1 of the paper): PP-5 75 %, PP-3 86 %, GP-3 85 %." << std::endl;
+}
+
+// ---- Checks (--check) ----------------------------------------------------------------------------
+
+int checkFailures = 0;
+void expect(bool condition, const std::string &what)
+{
+  std::cout << (condition ? "  [ok]   " : "  [FAIL] ") << what << std::endl;
+  if (!condition) {
+    ++checkFailures;
+  }
+}
+
+std::string fmt(double x)
+{
+  std::ostringstream ss;
+  ss << std::setprecision(3) << x;
+  return ss.str();
+}
+
+void checkCurveStudy(const CurveStudy &study)
+{
+  for (const Method &m : methods()) {
+    const std::vector<CurvePoint> &c = study.curves.at(m.name);
+    // Level 0 is exact data with exact calibration: the solvers are exact up to rounding.
+    expect(c.front().failures == 0 && c.front().altitudeMm < 1e-3,
+           study.name + " " + m.name + ": exact at level 0 (" + fmt(c.front().altitudeMm) + " mm)");
+    // The error must grow with the perturbation: the last level is worse than the first non-zero one.
+    expect(c.back().altitudeMm > c[1].altitudeMm && c[1].altitudeMm > c.front().altitudeMm,
+           study.name + " " + m.name + ": altitude error increases (" + fmt(c.front().altitudeMm) + " < " +
+               fmt(c[1].altitudeMm) + " < " + fmt(c.back().altitudeMm) + " mm)");
+    expect(c.back().rollDeg + c.back().pitchDeg > c.front().rollDeg + c.front().pitchDeg,
+           study.name + " " + m.name + ": attitude error increases");
+  }
+  if (study.name == "noise") {
+    // At 1 px the paper's errors are a few mm and a fraction of a degree; 2 cm / 1 deg catches a broken solver.
+    for (const Method &m : methods()) {
+      const CurvePoint &p = study.curves.at(m.name)[1];
+      expect(p.altitudeMm < 20.0 && p.rollDeg < 1.0 && p.pitchDeg < 1.0,
+             "noise " + m.name + " at " + fmt(study.levels[1]) + " px: alt " + fmt(p.altitudeMm) + " mm < 20, roll " +
+                 fmt(p.rollDeg) + ", pitch " + fmt(p.pitchDeg) + " deg < 1");
+    }
+  }
+}
+
+void checkOutlierStudy(const OutlierStudy &study)
+{
+  for (const Method &m : methods()) {
+    expect(study.successRate.at(m.name).at(0) == 1.0, m.name + ": every trial succeeds without outliers");
+  }
+  // With 1000 samples a clean 3-point sample is drawn at 50 % outliers with probability 1 - 0.875^1000.
+  for (const std::string name : {"PP3", "GP3"}) {
+    const double rate = study.successRate.at(name).at(50);
+    expect(rate >= 0.9, name + " survives 50 % outliers (success " + fmt(rate) + " >= 0.9)");
+  }
+  // Needing 5 clean points, PP5 must break down before the 3-point methods.
+  expect(study.breakdown.at("PP5") >= 0 && study.breakdown.at("PP5") < study.breakdown.at("GP3") &&
+             study.breakdown.at("PP5") < study.breakdown.at("PP3"),
+         "PP5 breaks down before PP3 and GP3");
+}
+
+void usage(const char *argv0)
+{
+  std::cout << "Usage: " << argv0
+            << " [--trials N] [--outlier-trials N] [--points N] [--seed S] [--ransac-trials N] [--output DIR]\n"
+               "       [--only noise|outliers|intrinsics|baseline|roughness] [--quick] [--check] [--help]\n\n"
+               "Synthetic evaluation of PP5, PP3 and GP3 (Boutteau et al. 2018, Sec. 7.1).\n"
+               "  --trials N          trials per level of the error curves (default 1000)\n"
+               "  --outlier-trials N  trials per outlier ratio (default 200)\n"
+               "  --points N          laser rays per frame (default 360, one per degree)\n"
+               "  --seed S            random seed (default 1)\n"
+               "  --ransac-trials N   RANSAC sample budget (default 1000)\n"
+               "  --output DIR        directory of the CSV and PNG results (default laser-synthetic-results)\n"
+               "  --only STUDY        run one study\n"
+               "  --quick             30 trials per point, 3 levels per curve (for ctest)\n"
+               "  --check             exit non-zero when a sanity assertion fails\n";
+}
+
+bool parseOptions(int argc, char **argv, Options &opt)
+{
+  bool trialsGiven = false, outlierTrialsGiven = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--help" || arg == "-h") {
+      usage(argv[0]);
+      std::exit(EXIT_SUCCESS);
+    } else if (arg == "--trials" && hasValue) {
+      opt.trials = std::atoi(argv[++i]);
+      trialsGiven = true;
+    } else if (arg == "--outlier-trials" && hasValue) {
+      opt.outlierTrials = std::atoi(argv[++i]);
+      outlierTrialsGiven = true;
+    } else if (arg == "--points" && hasValue) {
+      opt.points = static_cast<unsigned int>(std::atoi(argv[++i]));
+    } else if (arg == "--seed" && hasValue) {
+      opt.seed = static_cast<unsigned int>(std::strtoul(argv[++i], nullptr, 10));
+    } else if (arg == "--ransac-trials" && hasValue) {
+      opt.ransacTrials = std::atoi(argv[++i]);
+    } else if (arg == "--output" && hasValue) {
+      opt.output = argv[++i];
+    } else if (arg == "--only" && hasValue) {
+      opt.only = argv[++i];
+    } else if (arg == "--quick") {
+      opt.quick = true;
+    } else if (arg == "--check") {
+      opt.check = true;
+    } else {
+      std::cerr << "Unknown or incomplete option '" << arg << "'\n";
+      usage(argv[0]);
+      return false;
+    }
+  }
+  if (opt.quick) {
+    opt.trials = trialsGiven ? opt.trials : 30;
+    opt.outlierTrials = outlierTrialsGiven ? opt.outlierTrials : 30;
+  }
+  const std::vector<std::string> studies = {"", "noise", "outliers", "intrinsics", "baseline", "roughness"};
+  if (std::find(studies.begin(), studies.end(), opt.only) == studies.end()) {
+    std::cerr << "--only expects noise, outliers, intrinsics, baseline or roughness\n";
+    return false;
+  }
+  if (opt.trials < 1 || opt.outlierTrials < 1 || opt.points < 20 || opt.ransacTrials < 1) {
+    std::cerr << "--trials, --outlier-trials and --ransac-trials must be >= 1, --points >= 20\n";
+    return false;
+  }
+  return true;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Options opt;
+  if (!parseOptions(argc, argv, opt)) {
+    return EXIT_FAILURE;
+  }
+  try {
+    vpIoTools::makeDirectory(opt.output);
+    std::cout << "Rig: " << vspLaserRig::kWidth << "x" << vspLaserRig::kHeight << " camera, f = " << vspLaserRig::kFocal
+              << " px; laser " << vspLaserRig::kOpeningAngleDeg << " deg, apex (0.15, 0.02, 0) m, axis tilted 8 deg;\n"
+              << "altitude U[0.5, 1.5] m, roll and pitch U[-20, 20] deg; " << opt.points << " rays per frame; "
+              << opt.trials << " trials per curve level; seed " << opt.seed << std::endl;
+
+    std::vector<CurveStudy> studies = curveStudies(opt);
+    for (CurveStudy &study : studies) {
+      if (!opt.only.empty() && opt.only != study.name) {
+        continue;
+      }
+      std::cout << "\n" << study.figure << ": " << study.name << std::endl;
+      runCurveStudy(study, opt);
+      writeCurveStudy(study, opt);
+      if (opt.check) {
+        checkCurveStudy(study);
+      }
+    }
+    if (opt.only.empty() || opt.only == "outliers") {
+      std::cout << "\nTable 1: outlier break-down" << std::endl;
+      const OutlierStudy study = runOutlierStudy(opt);
+      writeOutlierStudy(study, opt);
+      if (opt.check) {
+        checkOutlierStudy(study);
+      }
+    }
+  } catch (const vpException &e) {
+    std::cerr << "Error: " << e.getMessage() << std::endl;
+    return EXIT_FAILURE;
+  }
+  if (opt.check) {
+    std::cout << (checkFailures ? "\nCHECK FAILED: " : "\nAll checks passed (") << checkFailures
+              << (checkFailures ? " assertion(s)" : " failures)") << std::endl;
+    return checkFailures ? EXIT_FAILURE : EXIT_SUCCESS;
+  }
+  return EXIT_SUCCESS;
+}

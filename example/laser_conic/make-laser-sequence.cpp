@@ -1,0 +1,204 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \example make-laser-sequence.cpp
+  Generates data/laser_sequence, a simulated counterpart of the hand-held Vicon experiment of
+  Boutteau et al. (JMIV 2018, Sec. 7.2): a 1600x1200 camera and a 34 deg circular laser (rig of
+  laserRigSetup.h) moved along a smooth hand-held-like trajectory at 0.5-1.5 m with roll and pitch
+  within +-20 deg over a dark floor, rendered by vpLaserConicSimulator::render().
+
+  Writes camera.xml, laser.txt, groundtruth.csv and images/frame_XXX.jpg. The output depends only on
+  the seed and the options (deterministic).
+*/
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpIoTools.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicSimulator.h>
+
+#include "laserRigSetup.h"
+#include "vpLaserRigIo.h"
+
+namespace
+{
+struct Options
+{
+  std::string output = std::string(VSP_DATA_DIR) + "/laser_sequence";
+  unsigned int frames = 100;
+  unsigned int seed = 2018;
+  int quality = 80;
+  double sensorNoise = 1.0;
+  double stripeWidth = 3.0;
+};
+
+//! Attitude and position of the rig at one instant.
+struct RigState
+{
+  double altitude, roll, pitch, yaw, x, y;
+};
+
+/*!
+  A smooth signal: a slow sine plus a faster, smaller one standing for the hand's wobble, with seeded
+  random phases so that the trajectory is not a textbook curve.
+*/
+class SmoothSignal
+{
+public:
+  SmoothSignal(std::mt19937 &rng, double mean, double slowAmplitude, double slowCycles, double wobbleAmplitude,
+               double wobbleCycles)
+    : m_mean(mean), m_slowAmplitude(slowAmplitude), m_slowCycles(slowCycles), m_wobbleAmplitude(wobbleAmplitude),
+      m_wobbleCycles(wobbleCycles)
+  {
+    std::uniform_real_distribution<double> phase(0.0, 2.0 * M_PI);
+    m_slowPhase = phase(rng);
+    m_wobblePhase = phase(rng);
+  }
+  //! Value at normalised time \e t in [0, 1].
+  double operator()(double t) const
+  {
+    return m_mean + m_slowAmplitude * std::sin(2.0 * M_PI * m_slowCycles * t + m_slowPhase) +
+           m_wobbleAmplitude * std::sin(2.0 * M_PI * m_wobbleCycles * t + m_wobblePhase);
+  }
+
+private:
+  double m_mean, m_slowAmplitude, m_slowCycles, m_wobbleAmplitude, m_wobbleCycles;
+  double m_slowPhase = 0.0, m_wobblePhase = 0.0;
+};
+
+std::vector<RigState> trajectory(unsigned int frames, unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  // Amplitudes keep the altitude in [0.55, 1.45] m and the tilts within +-(15 + 3) deg.
+  const SmoothSignal altitude(rng, 1.0, 0.38, 1.3, 0.05, 5.0);
+  const SmoothSignal roll(rng, 0.0, vpMath::rad(15.0), 1.7, vpMath::rad(3.0), 6.5);
+  const SmoothSignal pitch(rng, 0.0, vpMath::rad(14.0), 1.1, vpMath::rad(3.0), 7.3);
+  const SmoothSignal yaw(rng, 0.0, vpMath::rad(40.0), 0.6, vpMath::rad(2.0), 4.0);
+  const SmoothSignal x(rng, 0.0, 1.0, 0.5, 0.02, 6.0);
+  const SmoothSignal y(rng, 0.0, 0.6, 0.8, 0.02, 5.5);
+  std::vector<RigState> states;
+  for (unsigned int k = 0; k < frames; ++k) {
+    const double t = frames > 1 ? k / static_cast<double>(frames - 1) : 0.0;
+    states.push_back({altitude(t), roll(t), pitch(t), yaw(t), x(t), y(t)});
+  }
+  return states;
+}
+
+void usage(const char *argv0)
+{
+  std::cout << "Usage: " << argv0
+            << " [--output DIR] [--frames N] [--seed S] [--quality Q] [--sensor-noise GREY] [--help]\n\n"
+               "Writes the simulated hand-held laser sequence (camera.xml, laser.txt, groundtruth.csv, images/).\n"
+               "  --output DIR          default " VSP_DATA_DIR "/laser_sequence\n"
+               "  --frames N            number of frames (default 100)\n"
+               "  --seed S              trajectory and rendering seed (default 2018)\n"
+               "  --quality Q           JPEG quality (default 80)\n"
+               "  --sensor-noise GREY   sensor noise standard deviation, grey levels (default 1)\n";
+}
+
+bool parseOptions(int argc, char **argv, Options &opt)
+{
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "--help" || arg == "-h") {
+      usage(argv[0]);
+      std::exit(EXIT_SUCCESS);
+    } else if (arg == "--output" && hasValue) {
+      opt.output = argv[++i];
+    } else if (arg == "--frames" && hasValue) {
+      opt.frames = static_cast<unsigned int>(std::atoi(argv[++i]));
+    } else if (arg == "--seed" && hasValue) {
+      opt.seed = static_cast<unsigned int>(std::strtoul(argv[++i], nullptr, 10));
+    } else if (arg == "--quality" && hasValue) {
+      opt.quality = std::atoi(argv[++i]);
+    } else if (arg == "--sensor-noise" && hasValue) {
+      opt.sensorNoise = std::atof(argv[++i]);
+    } else {
+      std::cerr << "Unknown or incomplete option '" << arg << "'\n";
+      usage(argv[0]);
+      return false;
+    }
+  }
+  if (opt.frames < 1 || opt.quality < 1 || opt.quality > 100 || !(opt.sensorNoise >= 0.0)) {
+    std::cerr << "--frames must be >= 1, --quality in [1, 100], --sensor-noise >= 0\n";
+    return false;
+  }
+  return true;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Options opt;
+  if (!parseOptions(argc, argv, opt)) {
+    return EXIT_FAILURE;
+  }
+  try {
+    vpIoTools::makeDirectory(opt.output + "/images");
+    const vpCameraParameters cam = vspLaserRig::camera();
+    const double openingAngle = vpMath::rad(vspLaserRig::kOpeningAngleDeg);
+    const vpHomogeneousMatrix cMl = vspLaserRig::laserPose();
+    std::string error;
+    if (!vpLaserRigIo::writeCamera(opt.output + "/camera.xml", cam, vspLaserRig::kWidth, vspLaserRig::kHeight,
+                                   error) ||
+        !vpLaserRigIo::writeLaserCalibration(opt.output + "/laser.txt", openingAngle, cMl, error)) {
+      std::cerr << error << std::endl;
+      return EXIT_FAILURE;
+    }
+
+    vpLaserConicSimulator sim;
+    sim.setCamera(cam, vspLaserRig::kWidth, vspLaserRig::kHeight);
+    sim.setLaser(openingAngle, cMl);
+    std::vector<vpLaserGroundTruthFrame> frames;
+    const std::vector<RigState> states = trajectory(opt.frames, opt.seed);
+    for (unsigned int k = 0; k < states.size(); ++k) {
+      const RigState &s = states[k];
+      sim.setGroundPose(vspLaserRig::groundPose(s.altitude, s.roll, s.pitch, s.yaw, s.x, s.y));
+      // Reseeding per frame makes each image reproducible on its own (and identical floor texture).
+      sim.setSeed(opt.seed + k);
+      vpImage<vpRGBa> I;
+      sim.render(I, vpImage<vpRGBa>(), opt.stripeWidth, opt.sensorNoise);
+
+      vpLaserGroundTruthFrame f;
+      f.frame = k;
+      std::ostringstream name;
+      name << "images/frame_" << std::setw(3) << std::setfill('0') << k << ".jpg";
+      f.image = name.str();
+      f.plane = sim.getGroundPlane();
+      vpLaserConicPose::computeAltitudeRollPitch(f.plane, f.altitude, f.roll, f.pitch);
+      // The trajectory is defined with the estimator's attitude convention: they must agree.
+      if (std::fabs(f.altitude - s.altitude) > 1e-9 || std::fabs(f.roll - s.roll) > 1e-9 ||
+          std::fabs(f.pitch - s.pitch) > 1e-9) {
+        std::cerr << "Frame " << k << ": the ground truth convention disagrees with vpLaserConicPose ("
+                  << f.altitude << ", " << f.roll << ", " << f.pitch << " vs " << s.altitude << ", " << s.roll << ", "
+                  << s.pitch << ")" << std::endl;
+        return EXIT_FAILURE;
+      }
+      vpImageIo::writeJPEG(I, opt.output + "/" + f.image, vpImageIo::IO_DEFAULT_BACKEND, opt.quality);
+      frames.push_back(f);
+      std::cout << f.image << ": altitude " << std::setprecision(4) << f.altitude << " m, roll "
+                << vpMath::deg(f.roll) << " deg, pitch " << vpMath::deg(f.pitch) << " deg" << std::endl;
+    }
+    if (!vpLaserRigIo::writeGroundTruth(opt.output + "/groundtruth.csv", frames, error)) {
+      std::cerr << error << std::endl;
+      return EXIT_FAILURE;
+    }
+    std::cout << "Wrote " << frames.size() << " frames to " << opt.output << std::endl;
+  } catch (const vpException &e) {
+    std::cerr << "Error: " << e.getMessage() << std::endl;
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}
