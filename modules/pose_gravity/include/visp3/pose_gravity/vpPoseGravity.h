@@ -29,10 +29,11 @@ public:
     badGravityError = 1,  //!< zero, non-finite or unset gravity vector
     notEnoughPointError,  //!< fewer points than the method needs
     badPointError,        //!< non-finite coordinates
-    degeneratePointsError //!< duplicate or collinear object points where the method cannot use them
+    degeneratePointsError, //!< duplicate or collinear object points where the method cannot use them
+    badParameterError      //!< a setting out of its range (threshold, probability, standard deviation, method)
   };
   //! Builds the exception with a code and a message.
-  vpPoseGravityException(int code, const std::string &msg) : vpException(code, msg) {}
+  vpPoseGravityException(int errorCode, const std::string &msg) : vpException(errorCode, msg) {}
 };
 
 /*!
@@ -157,7 +158,13 @@ public:
   static std::string getStatusMessage(vpPoseGravityStatus status);
 
 private:
-  void checkReady(unsigned int minPoints, const char *what) const;
+  // Throws unless both gravities are set, at least minPoints points exist and the first usedPoints
+  // points have finite coordinates and distinct object points.
+  void checkReady(unsigned int minPoints, unsigned int usedPoints, const char *what) const;
+  void forgetInliers();
+  bool computeP3P(vpHomogeneousMatrix &cMo);
+  bool computeLeastSquares(vpHomogeneousMatrix &cMo);
+  bool computeRansac(vpHomogeneousMatrix &cMo);
 
   std::vector<vpPoint> m_points;
   vpColVector m_gCam, m_gObj;
@@ -170,6 +177,7 @@ private:
   int m_ransacTrials;
   double m_imageStdDev, m_gravityStdDev;
   vpPoseGravityStatus m_status;
+  bool m_refineOnInliers; // refinePose() uses m_inlierIndex (set by a successful RANSAC)
 };
 
 #endif

@@ -1,0 +1,199 @@
+/* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
+/*
+  Closed-form least squares on n points with known vertical, and the translation of a pose of known
+  rotation.
+
+  With P_i = R X_i + t in the camera frame and (x_i, y_i) the normalized image point, the algebraic
+  residuals x_i P_z - P_x and y_i P_z - P_y are u^T P_i for u = (-1, 0, x_i) and (0, -1, y_i) (sign
+  irrelevant). Written in the upright frames, u^T P_i = v^T (Rz(alpha) Y_i + s) with v = wRc u,
+  Y_i = wRo X_i and s = wRc t, which is linear in z = (cos alpha, sin alpha, 1, s):
+      v^T Rz Y = cos (v_x Y_x + v_y Y_y) + sin (v_y Y_x - v_x Y_y) + v_z Y_z.
+  The cost z^T M z is minimised over s in closed form (Schur complement), leaving a quadratic form
+  q^T Q q in q = (cos, sin, 1) to be minimised on the unit circle. Its stationary points are the
+  roots of a quartic in tan(phi / 2); the cost is evaluated at each and the smallest kept.
+*/
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <unsupported/Eigen/Polynomials>
+
+#include "gravityGeometry.h"
+
+namespace vpGravitySolvers
+{
+namespace
+{
+// Indices of (cos, sin, 1) and of s in z = (cos, sin, s_x, s_y, s_z, 1).
+const int kQ[3] = {0, 1, 5};
+const int kS[3] = {2, 3, 4};
+
+// Adds the two algebraic equations of one point to the normal matrix M (upper triangle is enough
+// but the full matrix is cheap at this size).
+void accumulatePoint(const Eigen::Matrix3d &wRc, const Eigen::Vector3d &x, const Eigen::Vector3d &Y,
+                     Eigen::Matrix<double, 6, 6> &M)
+{
+  const double xn = x.x() / x.z(), yn = x.y() / x.z();
+  const Eigen::Vector3d v1 = wRc * Eigen::Vector3d(1.0, 0.0, -xn);
+  const Eigen::Vector3d v2 = wRc * Eigen::Vector3d(0.0, 1.0, -yn);
+  for (const Eigen::Vector3d *v : {&v1, &v2}) {
+    Eigen::Matrix<double, 6, 1> row;
+    row << v->x() * Y.x() + v->y() * Y.y(), v->y() * Y.x() - v->x() * Y.y(), v->x(), v->y(), v->z(), v->z() * Y.z();
+    M.noalias() += row * row.transpose();
+  }
+}
+
+// Cost q^T Q q at angle phi.
+double circleCost(const Eigen::Matrix3d &Q, double phi)
+{
+  const Eigen::Vector3d q(std::cos(phi), std::sin(phi), 1.0);
+  return q.dot(Q * q);
+}
+
+// Real parts of the roots of the polynomial sum_k coeffs[k] t^k, degree dropped while the leading
+// coefficient is negligible. Complex roots are returned too (their real part): the caller only
+// evaluates the cost there, which cannot hide the true minimiser. Returns the number written.
+int polynomialRootsRealPart(const double coeffs[5], double roots[4])
+{
+  double scale = 0.0;
+  for (int k = 0; k < 5; ++k)
+    scale = std::max(scale, std::abs(coeffs[k]));
+  if (!(scale > 0.0))
+    return 0;
+  int degree = 4;
+  while (degree > 0 && std::abs(coeffs[degree]) <= 1e-14 * scale)
+    --degree;
+  switch (degree) {
+  case 4: {
+    Eigen::PolynomialSolver<double, 4> solver;
+    solver.compute(Eigen::Matrix<double, 5, 1>(coeffs[0], coeffs[1], coeffs[2], coeffs[3], coeffs[4]));
+    for (int k = 0; k < 4; ++k)
+      roots[k] = solver.roots()[k].real();
+    return 4;
+  }
+  case 3: {
+    Eigen::PolynomialSolver<double, 3> solver;
+    solver.compute(Eigen::Vector4d(coeffs[0], coeffs[1], coeffs[2], coeffs[3]));
+    for (int k = 0; k < 3; ++k)
+      roots[k] = solver.roots()[k].real();
+    return 3;
+  }
+  case 2: {
+    Eigen::PolynomialSolver<double, 2> solver;
+    solver.compute(Eigen::Vector3d(coeffs[0], coeffs[1], coeffs[2]));
+    for (int k = 0; k < 2; ++k)
+      roots[k] = solver.roots()[k].real();
+    return 2;
+  }
+  case 1:
+    roots[0] = -coeffs[0] / coeffs[1];
+    return 1;
+  default:
+    return 0;
+  }
+}
+
+// Angle minimising q^T Q q on the unit circle, with q = (cos, sin, 1).
+double minimiseOnCircle(const Eigen::Matrix3d &Qin)
+{
+  // Reference angle: the unconstrained minimiser over (c, s). For exact data it is the solution,
+  // so after rotating by it the sought root of the half-angle quartic is near 0, far from the
+  // point at infinity (phi = pi) where tan(phi / 2) loses accuracy.
+  double theta0 = 0.0;
+  const Eigen::Matrix2d H = Qin.topLeftCorner<2, 2>();
+  const double detH = H.determinant();
+  if (std::abs(detH) > 1e-12 * H.squaredNorm()) {
+    const Eigen::Vector2d cs = -H.inverse() * Qin.topRightCorner<2, 1>();
+    theta0 = std::atan2(cs.y(), cs.x());
+  }
+  Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
+  T.topLeftCorner<2, 2>() << std::cos(theta0), -std::sin(theta0), std::sin(theta0), std::cos(theta0);
+  const Eigen::Matrix3d Q = T.transpose() * Qin * T;
+
+  // d cost / d phi = 0  <=>  (Q00 - Q11) c s + Q01 (s^2 - c^2) + Q02 s - Q12 c = 0, with
+  // c = (1 - t^2) / (1 + t^2), s = 2 t / (1 + t^2), multiplied by (1 + t^2)^2.
+  const double dQ = Q(0, 0) - Q(1, 1);
+  const double coeffs[5] = {-Q(0, 1) - Q(1, 2), 2.0 * dQ + 2.0 * Q(0, 2), 6.0 * Q(0, 1), -2.0 * dQ + 2.0 * Q(0, 2),
+                            Q(1, 2) - Q(0, 1)};
+  double roots[4];
+  const int count = polynomialRootsRealPart(coeffs, roots);
+
+  const double pi = 3.14159265358979323846;
+  double bestPhi = pi; // the stationary point lost by the half-angle substitution, if it is one
+  double bestCost = circleCost(Q, pi);
+  for (int k = 0; k < count; ++k) {
+    const double phi = 2.0 * std::atan(roots[k]);
+    const double cost = circleCost(Q, phi);
+    if (cost < bestCost) {
+      bestCost = cost;
+      bestPhi = phi;
+    }
+  }
+  return detail::wrapAngle(theta0 + bestPhi);
+}
+} // namespace
+
+bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
+                  const Eigen::Vector3d *X, int n, Pose &pose)
+{
+  if (n < 2 || !detail::allFinite(gCam) || !detail::allFinite(gObj))
+    return false;
+  const Eigen::Matrix3d wRc = uprightRotation(gCam);
+  const Eigen::Matrix3d wRo = uprightRotation(gObj);
+  Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int i = 0; i < n; ++i) {
+    if (!(x[i].z() > 0.0) || !detail::allFinite(x[i]) || !detail::allFinite(X[i]))
+      return false;
+    accumulatePoint(wRc, x[i], wRo * X[i], M);
+  }
+
+  Eigen::Matrix3d Mqq, Mqs, Mss;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      Mqq(r, c) = M(kQ[r], kQ[c]);
+      Mqs(r, c) = M(kQ[r], kS[c]);
+      Mss(r, c) = M(kS[r], kS[c]);
+    }
+  // Mss = sum v v^T spans the planes orthogonal to the rays: invertible iff two rays differ.
+  Eigen::Matrix3d MssInv;
+  bool invertible = false;
+  const double traceScale = Mss.trace() / 3.0;
+  Mss.computeInverseWithCheck(MssInv, invertible, 1e-14 * traceScale * traceScale * traceScale);
+  if (!invertible || !(traceScale > 0.0))
+    return false;
+  const Eigen::Matrix3d Q = Mqq - Mqs * MssInv * Mqs.transpose();
+
+  const double alpha = minimiseOnCircle(0.5 * (Q + Q.transpose()));
+  const Eigen::Vector3d q(std::cos(alpha), std::sin(alpha), 1.0);
+  const Eigen::Vector3d sUp = -MssInv * Mqs.transpose() * q;
+  pose.R = wRc.transpose() * detail::rotationZ(q.x(), q.y()) * wRo;
+  pose.t = wRc.transpose() * sUp;
+  return pose.R.allFinite() && pose.t.allFinite();
+}
+
+bool translationFromRotation(const Eigen::Matrix3d &R, const Eigen::Vector3d *x, const Eigen::Vector3d *X, int n,
+                             Eigen::Vector3d &t)
+{
+  // Point-to-ray least squares: sum_i || (I - f_i f_i^T)(R X_i + t) ||^2 with unit bearings f_i,
+  // i.e. the component of each transformed point orthogonal to its ray (the paper's eq. 14 uses
+  // one of these equations per point; all of them are used here).
+  if (n < 2)
+    return false;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d f = x[i].normalized();
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - f * f.transpose();
+    A += P;
+    b -= P * (R * X[i]);
+  }
+  Eigen::Matrix3d Ainv;
+  bool invertible = false;
+  const double traceScale = A.trace() / 3.0;
+  A.computeInverseWithCheck(Ainv, invertible, 1e-14 * traceScale * traceScale * traceScale);
+  if (!invertible || !b.allFinite())
+    return false;
+  t = Ainv * b;
+  return true;
+}
+} // namespace vpGravitySolvers
