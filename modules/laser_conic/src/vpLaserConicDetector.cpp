@@ -1,0 +1,190 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+#include <visp3/laser_conic/vpLaserConicDetector.h>
+
+#include <algorithm>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <visp3/core/vpException.h>
+
+namespace
+{
+// Run of mask pixels through (i, j) along one direction ((di, dj) = (1, 0) for a column, (0, 1) for a row):
+// its length (counting stops beyond maxLength, all the caller needs) and the largest weight on it.
+struct CrossRun
+{
+  int length;
+  int maxWeight;
+};
+CrossRun runThrough(const unsigned char *mask, const unsigned char *weight, int H, int W, int i, int j, int di, int dj,
+                    int maxLength)
+{
+  CrossRun run = {0, 0};
+  if (!mask[i * W + j])
+    return run;
+  run.length = 1;
+  run.maxWeight = weight[i * W + j];
+  for (int sign = -1; sign <= 1; sign += 2) {
+    for (int k = 1; k <= maxLength; ++k) {
+      const int ii = i + sign * k * di, jj = j + sign * k * dj;
+      if (ii < 0 || jj < 0 || ii >= H || jj >= W || !mask[ii * W + jj])
+        break;
+      ++run.length;
+      run.maxWeight = std::max<int>(run.maxWeight, weight[ii * W + jj]);
+    }
+  }
+  return run;
+}
+
+// Centre of a run that ended, kept if it is a stripe crossing measured by the better-suited scan direction.
+// alongRow: the run lies along row `line` (centre is a column) when true, along column `line` otherwise.
+void keepRun(const unsigned char *mask, const unsigned char *weight, int H, int W, bool alongRow, int line, int start,
+             int end, double sumW, double sumWk, int maxW, int lineLength, int maxWidth,
+             std::vector<vpImagePoint> &points)
+{
+  const int length = end - start;
+  if (length > maxWidth || start == 0 || end == lineLength)
+    return; // blob, or truncated by the image border
+  const double centre = sumWk / sumW;
+  const int c = static_cast<int>(centre + 0.5);
+  const CrossRun across = alongRow ? runThrough(mask, weight, H, W, line, c, 1, 0, maxWidth)
+                                   : runThrough(mask, weight, H, W, c, line, 0, 1, maxWidth);
+  // The other scan direction crosses the stripe more steeply here: it measures this part of the curve.
+  if (across.length < length)
+    return;
+  // A run along the dim edge of the stripe (mask flicker at the threshold, noise) is not a crossing: a
+  // crossing goes through the bright core, so its peak is about the peak of the run across it.
+  if (2 * maxW < across.maxWeight)
+    return;
+  points.push_back(alongRow ? vpImagePoint(line, centre) : vpImagePoint(centre, line));
+}
+
+// Stripe crossings along every step-th row.
+void scanRows(const unsigned char *mask, const unsigned char *weight, int H, int W, int step, int maxWidth,
+              std::vector<vpImagePoint> &points)
+{
+  for (int i = 0; i < H; i += step) {
+    const unsigned char *m = mask + i * W;
+    const unsigned char *w = weight + i * W;
+    int j = 0;
+    while (j < W) {
+      if (!m[j]) {
+        ++j;
+        continue;
+      }
+      const int start = j;
+      double sumW = 0.0, sumWj = 0.0;
+      int maxW = 0;
+      for (; j < W && m[j]; ++j) {
+        sumW += w[j];
+        sumWj += static_cast<double>(w[j]) * j;
+        maxW = std::max<int>(maxW, w[j]);
+      }
+      keepRun(mask, weight, H, W, true, i, start, j, sumW, sumWj, maxW, W, maxWidth, points);
+    }
+  }
+}
+
+// Stripe crossings along every step-th column, visited row by row (cache friendly) with one open run per column.
+void scanColumns(const unsigned char *mask, const unsigned char *weight, int H, int W, int step, int maxWidth,
+                 std::vector<vpImagePoint> &points)
+{
+  std::vector<int> start(W, -1), maxW(W, 0);
+  std::vector<double> sumW(W, 0.0), sumWi(W, 0.0);
+  for (int i = 0; i <= H; ++i) {
+    const unsigned char *m = mask + i * W;
+    const unsigned char *w = weight + i * W;
+    for (int j = 0; j < W; j += step) {
+      if (i < H && m[j]) {
+        if (start[j] < 0) {
+          start[j] = i;
+          sumW[j] = 0.0;
+          sumWi[j] = 0.0;
+          maxW[j] = 0;
+        }
+        sumW[j] += w[j];
+        sumWi[j] += static_cast<double>(w[j]) * i;
+        maxW[j] = std::max<int>(maxW[j], w[j]);
+      } else if (start[j] >= 0) {
+        keepRun(mask, weight, H, W, false, j, start[j], i, sumW[j], sumWi[j], maxW[j], H, maxWidth, points);
+        start[j] = -1;
+      }
+    }
+  }
+}
+} // namespace
+
+vpLaserConicDetector::vpLaserConicDetector()
+  : m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80), m_minValue(80), m_maxStripeWidth(25), m_step(1), m_mask()
+{
+}
+
+void vpLaserConicDetector::setHueRange(int maxHueLow, int minHueHigh)
+{
+  if (maxHueLow < 0 || maxHueLow > 179 || minHueHigh < 0 || minHueHigh > 179)
+    throw vpException(vpException::badValue, "vpLaserConicDetector: hue bounds must be in [0, 179] (OpenCV scale)");
+  m_maxHueLow = maxHueLow;
+  m_minHueHigh = minHueHigh;
+}
+
+void vpLaserConicDetector::setMinSaturationValue(int minSaturation, int minValue)
+{
+  if (minSaturation < 0 || minSaturation > 255 || minValue < 0 || minValue > 255)
+    throw vpException(vpException::badValue, "vpLaserConicDetector: saturation and value bounds must be in [0, 255]");
+  m_minSaturation = minSaturation;
+  m_minValue = minValue;
+}
+
+void vpLaserConicDetector::setMaxStripeWidth(unsigned int pixels)
+{
+  if (pixels == 0)
+    throw vpException(vpException::badValue, "vpLaserConicDetector: the maximum stripe width must be positive");
+  m_maxStripeWidth = pixels;
+}
+
+void vpLaserConicDetector::setSamplingStep(unsigned int step)
+{
+  if (step == 0)
+    throw vpException(vpException::badValue, "vpLaserConicDetector: the sampling step must be positive");
+  m_step = step;
+}
+
+std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
+{
+  std::vector<vpImagePoint> points;
+  const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
+  m_mask.resize(I.getHeight(), I.getWidth(), 0);
+  if (H == 0 || W == 0)
+    return points;
+
+  // vpRGBa is laid out as R, G, B, A bytes: wrap it without copy.
+  const cv::Mat rgba(H, W, CV_8UC4, const_cast<vpRGBa *>(I.bitmap));
+  cv::Mat rgb, hsv;
+  cv::cvtColor(rgba, rgb, cv::COLOR_RGBA2RGB);
+  cv::cvtColor(rgb, hsv, cv::COLOR_RGB2HSV);
+
+  // Mask and brightness weight of the trace pixels, in one pass.
+  cv::Mat weight(H, W, CV_8UC1);
+  unsigned char *mask = m_mask.bitmap;
+  for (int i = 0; i < H; ++i) {
+    const unsigned char *p = hsv.ptr<unsigned char>(i);
+    unsigned char *w = weight.ptr<unsigned char>(i);
+    unsigned char *m = mask + i * W;
+    for (int j = 0; j < W; ++j, p += 3) {
+      const int h = p[0], s = p[1], v = p[2];
+      const bool red = (h <= m_maxHueLow || h >= m_minHueHigh) && s >= m_minSaturation && v >= m_minValue;
+      m[j] = red ? 255 : 0;
+      // Brightness above the threshold (+1 so that no trace pixel weighs zero).
+      w[j] = red ? static_cast<unsigned char>(v - m_minValue + 1 > 255 ? 255 : v - m_minValue + 1) : 0;
+    }
+  }
+
+  const int step = static_cast<int>(m_step), maxWidth = static_cast<int>(m_maxStripeWidth);
+  scanRows(mask, weight.ptr<unsigned char>(0), H, W, step, maxWidth, points);
+  scanColumns(mask, weight.ptr<unsigned char>(0), H, W, step, maxWidth, points);
+  return points;
+}

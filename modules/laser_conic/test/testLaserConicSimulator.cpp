@@ -1,0 +1,352 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// Tests of vpLaserConicSimulator: exact trace geometry (checked against the implicit cone/plane conic,
+// not against the simulator's own ray casting), noise and outlier statistics, rendering, input validation.
+#include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicSimulator.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+
+#include <Eigen/Dense>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpPixelMeterConversion.h>
+
+namespace
+{
+const unsigned int kWidth = 1600, kHeight = 1200;
+const double kOpening = vpMath::rad(34.0);
+
+vpCameraParameters camera() { return vpCameraParameters(1500.0, 1500.0, 800.0, 600.0); }
+
+// Laser 10 cm beside the camera, axis tilted by a few degrees (a typical rig).
+vpHomogeneousMatrix laserPose()
+{
+  return vpHomogeneousMatrix(0.10, 0.02, 0.0, vpMath::rad(3.0), vpMath::rad(-5.0), vpMath::rad(10.0));
+}
+
+// Ground 1 m in front, tilted by (10, -8) degrees.
+vpHomogeneousMatrix groundPose() { return vpHomogeneousMatrix(0.05, -0.03, 1.0, vpMath::rad(10), vpMath::rad(-8), 0.3); }
+
+vpLaserConicSimulator makeSimulator(const vpHomogeneousMatrix &cMg = groundPose(), unsigned int seed = 7)
+{
+  vpLaserConicSimulator sim;
+  sim.setCamera(camera(), kWidth, kHeight);
+  sim.setLaser(kOpening, laserPose());
+  sim.setGroundPose(cMg);
+  sim.setSeed(seed);
+  return sim;
+}
+
+Eigen::Matrix3d rotation(const vpHomogeneousMatrix &M)
+{
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      R(i, j) = M[i][j];
+  return R;
+}
+
+// Image conic (pixels) of the intersection of the laser cone with the plane, from the implicit equations:
+// cone (X - t)^T M (X - t) = 0 with M = R diag(1, 1, -tan^2 h) R^T, plane n.X + D = 0, X = lambda K^-1 p.
+Eigen::Matrix3d pixelConic(const vpCameraParameters &cam, double opening, const vpHomogeneousMatrix &cMl,
+                           const vpPlane &plane)
+{
+  const Eigen::Matrix3d R = rotation(cMl);
+  const Eigen::Vector3d t(cMl[0][3], cMl[1][3], cMl[2][3]);
+  const double tan2 = std::pow(std::tan(0.5 * opening), 2);
+  const Eigen::Matrix3d M = R * Eigen::Vector3d(1, 1, -tan2).asDiagonal() * R.transpose();
+  const Eigen::Vector3d n(plane.getA(), plane.getB(), plane.getC());
+  const double D = plane.getD();
+  const Eigen::Matrix3d C =
+      M + (M * t * n.transpose() + n * t.transpose() * M) / D + (t.dot(M * t) / (D * D)) * n * n.transpose();
+  Eigen::Matrix3d Kinv;
+  Kinv << 1.0 / cam.get_px(), 0, -cam.get_u0() / cam.get_px(), 0, 1.0 / cam.get_py(), -cam.get_v0() / cam.get_py(), 0,
+      0, 1;
+  return Kinv.transpose() * C * Kinv;
+}
+
+// First-order (Sampson) distance in pixels of an image point to a conic; exact to first order near the curve.
+double sampsonDistance(const Eigen::Matrix3d &C, const vpImagePoint &p)
+{
+  const Eigen::Vector3d x(p.get_u(), p.get_v(), 1.0);
+  const Eigen::Vector3d Cx = C * x;
+  return std::fabs(x.dot(Cx)) / (2.0 * Cx.head<2>().norm());
+}
+
+// Angle between the cone axis and the ray from the apex to the back-projection of p on the plane.
+double coneAngleOf(const vpImagePoint &p, const vpCameraParameters &cam, const vpHomogeneousMatrix &cMl,
+                   const vpPlane &plane)
+{
+  double x = 0.0, y = 0.0;
+  vpPixelMeterConversion::convertPoint(cam, p, x, y);
+  const Eigen::Vector3d ray(x, y, 1.0), n(plane.getA(), plane.getB(), plane.getC());
+  const Eigen::Vector3d P = ray * (-plane.getD() / n.dot(ray));
+  const Eigen::Vector3d t(cMl[0][3], cMl[1][3], cMl[2][3]), axis(cMl[0][2], cMl[1][2], cMl[2][2]);
+  return std::acos(std::max(-1.0, std::min(1.0, axis.dot((P - t).normalized()))));
+}
+} // namespace
+
+TEST(LaserConicSimulator, GroundPlaneFacesTheCamera)
+{
+  for (double flip : {0.0, M_PI}) {
+    const vpHomogeneousMatrix cMg = groundPose() * vpHomogeneousMatrix(0, 0, 0, flip, 0, 0);
+    vpLaserConicSimulator sim = makeSimulator(cMg);
+    const vpPlane plane = sim.getGroundPlane();
+    const double norm = std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
+    EXPECT_NEAR(norm, 1.0, 1e-12);
+    EXPECT_GT(plane.getD(), 0.0); // camera centre on the positive side: n.0 + D > 0
+    // The ground origin and a point of the ground X axis lie on the plane.
+    for (double X : {0.0, 0.5}) {
+      const double px = cMg[0][0] * X + cMg[0][3], py = cMg[1][0] * X + cMg[1][3], pz = cMg[2][0] * X + cMg[2][3];
+      EXPECT_NEAR(plane.getA() * px + plane.getB() * py + plane.getC() * pz + plane.getD(), 0.0, 1e-12);
+    }
+  }
+}
+
+TEST(LaserConicSimulator, TracePointsLieOnTheTrueConic)
+{
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> tilt(-25.0, 25.0), height(0.5, 2.0), shift(-0.3, 0.3);
+  double worstPixel = 0.0, worstAngle = 0.0;
+  size_t total = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    const vpHomogeneousMatrix cMg(shift(rng), shift(rng), height(rng), vpMath::rad(tilt(rng)), vpMath::rad(tilt(rng)),
+                                  vpMath::rad(tilt(rng)));
+    vpLaserConicSimulator sim = makeSimulator(cMg);
+    const std::vector<vpImagePoint> points = sim.tracePoints(360);
+    const vpPlane plane = sim.getGroundPlane();
+    const Eigen::Matrix3d C = pixelConic(camera(), kOpening, laserPose(), plane);
+    for (const vpImagePoint &p : points) {
+      EXPECT_GE(p.get_u(), 0.0);
+      EXPECT_GE(p.get_v(), 0.0);
+      EXPECT_LE(p.get_u(), kWidth - 1.0);
+      EXPECT_LE(p.get_v(), kHeight - 1.0);
+      worstPixel = std::max(worstPixel, sampsonDistance(C, p));
+      worstAngle = std::max(worstAngle, std::fabs(coneAngleOf(p, camera(), laserPose(), plane) - 0.5 * kOpening));
+    }
+    total += points.size();
+  }
+  EXPECT_GT(total, 50u * 100u); // most of each trace is in the image for these poses
+  // Exact data: only double rounding on coordinates of ~1e3 px separates the points from the conic.
+  EXPECT_LT(worstPixel, 1e-8);
+  EXPECT_LT(worstAngle, 1e-9);
+  std::cout << "worst distance to the true conic " << worstPixel << " px, worst cone angle error " << worstAngle
+            << " rad" << std::endl;
+}
+
+TEST(LaserConicSimulator, WholeTraceInsideImageGivesEveryRay)
+{
+  vpLaserConicSimulator sim = makeSimulator();
+  EXPECT_EQ(sim.tracePoints(500).size(), 500u);
+  EXPECT_TRUE(sim.tracePoints(0).empty());
+}
+
+TEST(LaserConicSimulator, OnlyTheForwardNappeIsLit)
+{
+  // Laser pointing away from the ground: the backward half of the cone would cut the ground, but emits no light.
+  vpLaserConicSimulator sim = makeSimulator();
+  sim.setLaser(kOpening, laserPose() * vpHomogeneousMatrix(0, 0, 0, M_PI, 0, 0));
+  EXPECT_TRUE(sim.tracePoints(360).empty());
+}
+
+TEST(LaserConicSimulator, RoughnessMovesPointsOffTheConicReproducibly)
+{
+  vpLaserConicSimulator sim = makeSimulator();
+  const Eigen::Matrix3d C = pixelConic(camera(), kOpening, laserPose(), sim.getGroundPlane());
+  const std::vector<vpImagePoint> rough = sim.tracePoints(2000, 0.01);
+  ASSERT_EQ(rough.size(), 2000u);
+  double meanDistance = 0.0;
+  for (const vpImagePoint &p : rough)
+    meanDistance += sampsonDistance(C, p) / rough.size();
+  // 1 cm of normal offset at 1 m moves a point by up to ~15 px (f = 1500) along the image of the normal, a
+  // fraction of it across the curve: a mean of a few pixels, certainly between 0.3 and 15 px.
+  EXPECT_GT(meanDistance, 0.3);
+  EXPECT_LT(meanDistance, 15.0);
+  vpLaserConicSimulator again = makeSimulator();
+  const std::vector<vpImagePoint> rough2 = again.tracePoints(2000, 0.01);
+  for (size_t i = 0; i < rough.size(); ++i)
+    EXPECT_EQ(rough[i], rough2[i]);
+}
+
+TEST(LaserConicSimulator, NoiseHasTheRequestedStatistics)
+{
+  vpLaserConicSimulator sim = makeSimulator();
+  const std::vector<vpImagePoint> exact(20000, vpImagePoint(600, 800));
+  const double sigma = 0.7;
+  const std::vector<vpImagePoint> noisy = sim.addNoise(exact, sigma);
+  double mean[2] = {0, 0}, var[2] = {0, 0};
+  for (const vpImagePoint &p : noisy) {
+    const double d[2] = {p.get_u() - 800.0, p.get_v() - 600.0};
+    for (int k = 0; k < 2; ++k) {
+      mean[k] += d[k] / noisy.size();
+      var[k] += d[k] * d[k] / noisy.size();
+    }
+  }
+  for (int k = 0; k < 2; ++k) {
+    // Standard error of the mean sigma/sqrt(N) = 0.005 px: 5 standard errors.
+    EXPECT_NEAR(mean[k], 0.0, 5.0 * sigma / std::sqrt(20000.0));
+    // Relative standard error of the standard deviation 1/sqrt(2N) = 0.5 %: 3 % is 6 standard errors.
+    EXPECT_NEAR(std::sqrt(var[k]) / sigma, 1.0, 0.03);
+  }
+  EXPECT_EQ(sim.addNoise(exact, 0.0), exact);
+}
+
+TEST(LaserConicSimulator, OutliersReplaceTheRequestedFraction)
+{
+  vpLaserConicSimulator sim = makeSimulator();
+  const std::vector<vpImagePoint> inliers = sim.tracePoints(1000);
+  ASSERT_EQ(inliers.size(), 1000u);
+  std::vector<bool> isOutlier;
+  const std::vector<vpImagePoint> mixed = sim.addOutliers(inliers, 0.3, &isOutlier);
+  ASSERT_EQ(mixed.size(), 1000u);
+  ASSERT_EQ(isOutlier.size(), 1000u);
+  EXPECT_EQ(std::count(isOutlier.begin(), isOutlier.end(), true), 300);
+
+  std::set<std::pair<double, double> > original;
+  for (const vpImagePoint &p : inliers)
+    original.insert(std::make_pair(p.get_u(), p.get_v()));
+  double meanU = 0.0, meanV = 0.0;
+  size_t inOrder = 0;
+  for (size_t i = 0; i < mixed.size(); ++i) {
+    const bool known = original.count(std::make_pair(mixed[i].get_u(), mixed[i].get_v())) > 0;
+    EXPECT_EQ(known, !isOutlier[i]); // inliers untouched, outliers new (a uniform draw hits a trace point w.p. 0)
+    EXPECT_GE(mixed[i].get_u(), 0.0);
+    EXPECT_LE(mixed[i].get_u(), kWidth - 1.0);
+    EXPECT_GE(mixed[i].get_v(), 0.0);
+    EXPECT_LE(mixed[i].get_v(), kHeight - 1.0);
+    if (isOutlier[i]) {
+      meanU += mixed[i].get_u() / 300.0;
+      meanV += mixed[i].get_v() / 300.0;
+    }
+    if (mixed[i] == inliers[i])
+      ++inOrder;
+  }
+  // Uniform outliers: mean (W-1)/2 with standard error (W-1)/sqrt(12 * 300); 4 standard errors.
+  EXPECT_NEAR(meanU, (kWidth - 1) / 2.0, 4.0 * (kWidth - 1) / std::sqrt(12.0 * 300.0));
+  EXPECT_NEAR(meanV, (kHeight - 1) / 2.0, 4.0 * (kHeight - 1) / std::sqrt(12.0 * 300.0));
+  EXPECT_LT(inOrder, 50u); // shuffled: a random permutation keeps about one point in place
+
+  std::vector<bool> flags;
+  EXPECT_EQ(sim.addOutliers(inliers, 0.0, &flags).size(), 1000u);
+  EXPECT_EQ(std::count(flags.begin(), flags.end(), true), 0);
+  sim.addOutliers(inliers, 1.0, &flags);
+  EXPECT_EQ(std::count(flags.begin(), flags.end(), true), 1000);
+  EXPECT_THROW(sim.addOutliers(inliers, 1.5), vpException);
+  EXPECT_THROW(sim.addOutliers(inliers, -0.1), vpException);
+}
+
+TEST(LaserConicSimulator, SameSeedSameDraws)
+{
+  vpLaserConicSimulator a = makeSimulator(groundPose(), 3), b = makeSimulator(groundPose(), 3),
+                        c = makeSimulator(groundPose(), 4);
+  const std::vector<vpImagePoint> pts = a.tracePoints(100);
+  EXPECT_EQ(a.addNoise(pts, 1.0), b.addNoise(pts, 1.0));
+  EXPECT_NE(b.addNoise(pts, 1.0), c.addNoise(pts, 1.0));
+}
+
+TEST(LaserConicSimulator, RenderedStripeFollowsTheTrace)
+{
+  vpLaserConicSimulator sim = makeSimulator();
+  const double stripeWidth = 3.0;
+  vpImage<vpRGBa> I;
+  const auto start = std::chrono::steady_clock::now();
+  sim.render(I, vpImage<vpRGBa>(), stripeWidth, 2.0);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "render 1600x1200: " << ms << " ms" << std::endl;
+  ASSERT_EQ(I.getWidth(), kWidth);
+  ASSERT_EQ(I.getHeight(), kHeight);
+
+  auto isRed = [](const vpRGBa &c) { return c.R > 150 && c.R > c.G + 80 && c.R > c.B + 80; };
+  // Every exact trace point falls on a red pixel.
+  const std::vector<vpImagePoint> trace = sim.tracePoints(2000);
+  size_t redOnTrace = 0;
+  for (const vpImagePoint &p : trace)
+    if (isRed(I[static_cast<unsigned int>(std::lround(p.get_v()))][static_cast<unsigned int>(std::lround(p.get_u()))]))
+      ++redOnTrace;
+  EXPECT_EQ(redOnTrace, trace.size());
+
+  // No red pixel away from the trace: the profile at 2.5 FWHM is exp(-4 ln2 * 6.25) ~ 3e-8 of the peak.
+  const Eigen::Matrix3d C = pixelConic(camera(), kOpening, laserPose(), sim.getGroundPlane());
+  size_t red = 0;
+  double farthest = 0.0;
+  for (unsigned int i = 0; i < I.getHeight(); ++i)
+    for (unsigned int j = 0; j < I.getWidth(); ++j)
+      if (isRed(I[i][j])) {
+        ++red;
+        farthest = std::max(farthest, sampsonDistance(C, vpImagePoint(i, j)));
+      }
+  EXPECT_GT(red, trace.size()); // a stripe a few pixels wide along a curve longer than 2000 px
+  EXPECT_LT(farthest, 2.5 * stripeWidth);
+  std::cout << red << " red pixels, farthest " << farthest << " px from the trace" << std::endl;
+
+  // The ground is dark and textured: not uniform, and no pixel far from the trace is bright.
+  std::set<int> greys;
+  for (unsigned int j = 0; j < 200; ++j)
+    greys.insert(I[50][j].G);
+  EXPECT_GT(greys.size(), 10u);
+}
+
+TEST(LaserConicSimulator, RenderIsSeededAndUsesTheGivenTexture)
+{
+  vpLaserConicSimulator a = makeSimulator(), b = makeSimulator();
+  vpImage<vpRGBa> Ia, Ib;
+  a.render(Ia);
+  b.render(Ib);
+  EXPECT_TRUE(Ia == Ib);
+
+  // A uniform green texture without noise: the ground is that green everywhere but on the stripe.
+  vpImage<vpRGBa> green(64, 64, vpRGBa(0, 90, 0, 255));
+  vpLaserConicSimulator c = makeSimulator();
+  vpImage<vpRGBa> Ic;
+  c.render(Ic, green, 3.0, 0.0);
+  EXPECT_EQ(Ic[5][5].G, 90);
+  EXPECT_EQ(Ic[5][5].R, 0);
+}
+
+TEST(LaserConicSimulator, RendersTheHorizonWithoutTrouble)
+{
+  // Grazing view: the optical axis nearly parallel to the ground, horizon in the image.
+  const vpHomogeneousMatrix cMg = vpHomogeneousMatrix(0, 0.5, 3.0, vpMath::rad(-75), 0, 0);
+  vpLaserConicSimulator sim = makeSimulator(cMg);
+  vpImage<vpRGBa> I;
+  EXPECT_NO_THROW(sim.render(I));
+  EXPECT_EQ(I.getWidth(), kWidth);
+}
+
+TEST(LaserConicSimulator, BadSettingsThrow)
+{
+  vpLaserConicSimulator unset;
+  vpImage<vpRGBa> I;
+  EXPECT_THROW(unset.tracePoints(10), vpException);
+  EXPECT_THROW(unset.render(I), vpException);
+  EXPECT_THROW(unset.addOutliers(std::vector<vpImagePoint>(3), 0.5), vpException);
+
+  vpLaserConicSimulator sim = makeSimulator();
+  EXPECT_THROW(sim.setCamera(vpCameraParameters(0.0, 1500, 800, 600), kWidth, kHeight), vpException);
+  EXPECT_THROW(sim.setCamera(camera(), 0, kHeight), vpException);
+  EXPECT_THROW(sim.setLaser(0.0, laserPose()), vpLaserConicException);
+  EXPECT_THROW(sim.setLaser(M_PI, laserPose()), vpLaserConicException);
+  EXPECT_THROW(sim.setLaser(std::numeric_limits<double>::quiet_NaN(), laserPose()), vpLaserConicException);
+  vpHomogeneousMatrix nan = laserPose();
+  nan[0][3] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(sim.setLaser(kOpening, nan), vpLaserConicException);
+  EXPECT_THROW(sim.setGroundPose(nan), vpLaserConicException);
+  // Camera centre on the ground plane (ground plane through the optical centre).
+  EXPECT_THROW(sim.setGroundPose(vpHomogeneousMatrix(0.3, 0, 0, vpMath::rad(90), 0, 0)), vpLaserConicException);
+  EXPECT_THROW(sim.tracePoints(10, -1.0), vpException);
+  EXPECT_THROW(sim.addNoise(std::vector<vpImagePoint>(3), -1.0), vpException);
+  EXPECT_THROW(sim.render(I, vpImage<vpRGBa>(), 0.0), vpException);
+  EXPECT_THROW(sim.render(I, vpImage<vpRGBa>(), 3.0, -1.0), vpException);
+  // A failed setter leaves the simulator usable.
+  EXPECT_EQ(sim.tracePoints(100).size(), 100u);
+}
