@@ -35,7 +35,7 @@ public:
     badValueError          //!< any other invalid setting
   };
   //! Builds the exception with a code and a message.
-  vpLaserConicException(int code, const std::string &msg) : vpException(code, msg) {}
+  vpLaserConicException(int errorCode, const std::string &msg) : vpException(errorCode, msg) {}
 };
 
 /*!

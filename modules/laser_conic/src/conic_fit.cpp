@@ -1,0 +1,97 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// Conic fitting by DLT (Boutteau et al., JMIV 2018, eq. 29-31) on Hartley-normalised points.
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+#include <cmath>
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+namespace vpLaserSolvers
+{
+namespace
+{
+typedef Eigen::Matrix<double, 6, 1> Vector6d;
+typedef Eigen::Matrix<double, 6, 6> Matrix6d;
+
+//! Similarity T moving the centroid to the origin and the mean distance to sqrt(2).
+bool hartleyNormalisation(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &T)
+{
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (int i = 0; i < n; ++i)
+    centroid += points[i];
+  centroid /= n;
+  double meanDistance = 0.0;
+  for (int i = 0; i < n; ++i)
+    meanDistance += (points[i] - centroid).norm();
+  meanDistance /= n;
+  if (!(meanDistance > 0.0) || !std::isfinite(meanDistance))
+    return false;
+  const double s = std::sqrt(2.0) / meanDistance;
+  T << s, 0.0, -s * centroid(0), 0.0, s, -s * centroid(1), 0.0, 0.0, 1.0;
+  return true;
+}
+
+//! Row of the DLT system (eq. 31) for a normalised point.
+Vector6d conicRow(const Eigen::Matrix3d &T, const Eigen::Vector2d &p)
+{
+  const double x = T(0, 0) * p(0) + T(0, 2), y = T(1, 1) * p(1) + T(1, 2);
+  Vector6d row;
+  row << x * x, x * y, y * y, x, y, 1.0;
+  return row;
+}
+
+/*!
+  Null vector of the 6x6 triangular factor R (or padded minimal system): smallest right singular
+  vector. Fails when the null space has dimension > 1 (e.g. collinear points).
+*/
+bool smallestSingularVector(const Matrix6d &R, Vector6d &coefficients)
+{
+  Eigen::JacobiSVD<Matrix6d> svd(R, Eigen::ComputeFullV);
+  const Vector6d &sv = svd.singularValues();
+  if (!(sv(0) > 0.0) || !(sv(4) > 1e-12 * sv(0)))
+    return false;
+  coefficients = svd.matrixV().col(5);
+  return true;
+}
+} // namespace
+
+bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c)
+{
+  if (n < 5 || points == nullptr)
+    return false;
+  Eigen::Matrix3d T;
+  if (!hartleyNormalisation(points, n, T))
+    return false;
+
+  Matrix6d R = Matrix6d::Zero();
+  if (n <= 6) {
+    // Minimal (and one-over) case: the system itself, padded with zero rows, on the stack.
+    for (int i = 0; i < n; ++i)
+      R.row(i) = conicRow(T, points[i]).transpose();
+  } else {
+    // Least squares: the triangular factor of a QR has the same right singular vectors as A and
+    // avoids squaring the condition number as A^T A would.
+    Eigen::MatrixXd A(n, 6);
+    for (int i = 0; i < n; ++i)
+      A.row(i) = conicRow(T, points[i]).transpose();
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
+    R = qr.matrixQR().topRows<6>().triangularView<Eigen::Upper>();
+  }
+  Vector6d k;
+  if (!smallestSingularVector(R, k))
+    return false;
+
+  Eigen::Matrix3d cn;
+  cn << k(0), 0.5 * k(1), 0.5 * k(3), 0.5 * k(1), k(2), 0.5 * k(4), 0.5 * k(3), 0.5 * k(4), k(5);
+  c = T.transpose() * cn * T;
+  const double norm = c.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm))
+    return false;
+  c /= norm;
+  return true;
+}
+} // namespace vpLaserSolvers

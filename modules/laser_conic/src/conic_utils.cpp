@@ -1,0 +1,62 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// Small conic helpers: image of the laser trace, point-to-conic distance, ellipse test, attitude.
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/LU>
+
+namespace vpLaserSolvers
+{
+Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone)
+{
+  // A ray r meets the plane at X = -d r / (n.r). Up to the factor -(n.r), X - apex = G r with
+  // G = d I + apex n^T, so the trace seen through r satisfies r^T G^T M G r = 0 where M is the
+  // 3x3 form of the laser cone: (X - apex)^T M (X - apex) = 0.
+  const Eigen::Matrix3d M = laserConeQuadric(cone).topLeftCorner<3, 3>();
+  const Eigen::Matrix3d G = plane(3) * Eigen::Matrix3d::Identity() + cone.apex * plane.head<3>().transpose();
+  Eigen::Matrix3d c = G.transpose() * M * G;
+  c = 0.5 * (c + c.transpose());
+  const double norm = c.norm();
+  return norm > 0.0 ? Eigen::Matrix3d(c / norm) : c;
+}
+
+double sampsonDistance(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
+{
+  const Eigen::Vector3d x(p(0), p(1), 1.0);
+  const Eigen::Vector3d cx = c * x;
+  const double algebraic = x.dot(cx);
+  // Gradient of x^T c x with respect to the two inhomogeneous coordinates.
+  const double gradient = 2.0 * std::hypot(cx(0), cx(1));
+  if (!(gradient > 0.0))
+    return algebraic == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+  return std::abs(algebraic) / gradient;
+}
+
+bool isEllipse(const Eigen::Matrix3d &c)
+{
+  const double scale = c.cwiseAbs().maxCoeff();
+  if (!(scale > 0.0) || !std::isfinite(scale))
+    return false;
+  const Eigen::Matrix3d s = c / scale;
+  const double det2 = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
+  // Definite 2x2 block: bounded conic; real and non-degenerate when det(c) has the sign opposite to c11.
+  return det2 > 1e-12 && s(0, 0) * s.determinant() < 0.0;
+}
+
+void altitudeRollPitch(const Eigen::Vector4d &plane, double &altitude, double &roll, double &pitch)
+{
+  // Orient the normal towards the camera (d > 0) whatever the sign the caller used.
+  const Eigen::Vector4d p = plane(3) < 0.0 ? Eigen::Vector4d(-plane) : plane;
+  const double norm = p.head<3>().norm();
+  const Eigen::Vector3d g = -p.head<3>() / norm; // downward unit normal, camera frame
+  altitude = p(3) / norm;
+  roll = std::atan2(-g(1), g(2));
+  pitch = std::asin(std::max(-1.0, std::min(1.0, g(0))));
+}
+} // namespace vpLaserSolvers

@@ -1,0 +1,211 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// PP-3 minimal solver (Boutteau et al., JMIV 2018, Sec. 5.2): conics through three points tangent
+// to the two epipolar lines that are tangent to the laser cone.
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+namespace vpLaserSolvers
+{
+namespace
+{
+/*!
+  Unit normal m of the two planes through the apex that are tangent to the cone
+  x^2 + y^2 = tan^2(theta) z^2 (laser frame) and contain the point o: m . o = 0 and
+  m^T diag(1, 1, -1/tan^2 theta) m = 0 (the dual cone). Real only when o is outside the cone.
+*/
+bool tangentPlaneNormals(const Eigen::Vector3d &o, double halfAngle, Eigen::Vector3d &m1, Eigen::Vector3d &m2)
+{
+  const double on = o.norm();
+  if (!(on > 0.0))
+    return false;
+  const Eigen::Vector3d w = o / on;
+  // Orthonormal basis (b1, b2) of the plane orthogonal to o.
+  Eigen::Vector3d b1 = std::abs(w(0)) < 0.9 ? Eigen::Vector3d::UnitX().cross(w) : Eigen::Vector3d::UnitY().cross(w);
+  b1.normalize();
+  const Eigen::Vector3d b2 = w.cross(b1);
+  const double t = std::tan(halfAngle);
+  const Eigen::Vector3d dual(t * t, t * t, -1.0); // tan^2 theta * diag(1, 1, -1/tan^2 theta)
+  // Quadratic form of m = cos(phi) b1 + sin(phi) b2.
+  const double q11 = b1.dot(dual.cwiseProduct(b1)), q12 = b1.dot(dual.cwiseProduct(b2)),
+               q22 = b2.dot(dual.cwiseProduct(b2));
+  const double disc = q12 * q12 - q11 * q22;
+  if (!(disc > 0.0))
+    return false; // o inside the cone (or on it): no real tangent plane
+  const double root = std::sqrt(disc);
+  // Null directions (a, b) of q11 a^2 + 2 q12 a b + q22 b^2, picking the better-conditioned form.
+  Eigen::Vector2d d1, d2;
+  if (std::abs(q11) >= std::abs(q22)) {
+    d1 << -q12 + root, q11;
+    d2 << -q12 - root, q11;
+  } else {
+    d1 << q22, -q12 + root;
+    d2 << q22, -q12 - root;
+  }
+  if (!(d1.norm() > 0.0) || !(d2.norm() > 0.0))
+    return false;
+  m1 = (d1(0) * b1 + d1(1) * b2).normalized();
+  m2 = (d2(0) * b1 + d2(1) * b2).normalized();
+  return true;
+}
+
+/*!
+  Homography H with H x1 ~ (0,0,1), H x2 ~ (1,0,1), H x3 ~ (0,1,1), H e ~ (1,1,0) (eq. 36), in
+  closed form: A diag(lambda) maps the standard projective basis onto (x1, x2, x3, e), and a fixed
+  matrix N maps it onto the canonical points.
+*/
+bool canonicalHomography(const Eigen::Vector3d x[3], const Eigen::Vector3d &e, Eigen::Matrix3d &H)
+{
+  Eigen::Matrix3d A;
+  A << x[0], x[1], x[2];
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(A);
+  if (!lu.isInvertible())
+    return false;
+  const Eigen::Vector3d lambda = lu.solve(e);
+  const double scale = lambda.cwiseAbs().maxCoeff();
+  if (!(lambda.cwiseAbs().minCoeff() > 1e-12 * scale))
+    return false; // the epipole is aligned with two of the points
+  Eigen::Matrix3d N;
+  // Columns: -2 (0,0,1), (1,0,1), (0,1,1); their sum is (1,1,0).
+  N << 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, -2.0, 1.0, 1.0;
+  H = N * lambda.cwiseInverse().asDiagonal() * lu.inverse();
+  return H.allFinite();
+}
+
+//! Value and derivative of the polynomial k[0] + k[1] u + ... + k[degree] u^degree.
+double polynomial(const double *k, int degree, double u, double &derivative)
+{
+  double p = 0.0;
+  derivative = 0.0;
+  for (int i = degree; i >= 0; --i) {
+    derivative = derivative * u + p;
+    p = p * u + k[i];
+  }
+  return p;
+}
+
+//! Eigenvalues of the fixed-size companion matrix of a polynomial of degree Deg (no heap).
+template <int Deg> int companionRoots(const double *k, std::complex<double> *roots)
+{
+  Eigen::Matrix<double, Deg, Deg> companion = Eigen::Matrix<double, Deg, Deg>::Zero();
+  for (int i = 0; i < Deg; ++i)
+    companion(0, i) = -k[Deg - 1 - i] / k[Deg];
+  for (int i = 1; i < Deg; ++i)
+    companion(i, i - 1) = 1.0;
+  Eigen::EigenSolver<Eigen::Matrix<double, Deg, Deg> > eig(companion, false);
+  if (eig.info() != Eigen::Success)
+    return 0;
+  for (int i = 0; i < Deg; ++i)
+    roots[i] = eig.eigenvalues()(i);
+  return Deg;
+}
+
+//! Real roots of a polynomial of degree <= 4 (coefficients k[0] + k[1] u + ...), Newton-polished.
+int realQuarticRoots(const double k[5], double roots[4])
+{
+  double scale = 0.0;
+  for (int i = 0; i < 5; ++i)
+    scale = std::max(scale, std::abs(k[i]));
+  if (!(scale > 0.0) || !std::isfinite(scale))
+    return 0;
+  int degree = 4;
+  while (degree > 0 && std::abs(k[degree]) <= 1e-14 * scale)
+    --degree;
+  std::complex<double> candidates[4];
+  int ncandidates = 0;
+  switch (degree) {
+  case 4: ncandidates = companionRoots<4>(k, candidates); break;
+  case 3: ncandidates = companionRoots<3>(k, candidates); break;
+  case 2: ncandidates = companionRoots<2>(k, candidates); break;
+  case 1: candidates[0] = -k[0] / k[1]; ncandidates = 1; break;
+  default: return 0;
+  }
+  int count = 0;
+  for (int i = 0; i < ncandidates; ++i) {
+    const std::complex<double> z = candidates[i];
+    // Keep nearly real roots: a root that is real in exact arithmetic can come out slightly complex.
+    if (std::abs(z.imag()) > 1e-6 * (1.0 + std::abs(z.real())))
+      continue;
+    // Newton polish, each step kept only if it lowers the residual (safe near double roots).
+    double u = z.real(), d = 0.0;
+    double residual = std::abs(polynomial(k, degree, u, d));
+    for (int it = 0; it < 3 && residual > 0.0; ++it) {
+      const double next = u - polynomial(k, degree, u, d) / d;
+      double unused = 0.0;
+      const double nextResidual = std::abs(polynomial(k, degree, next, unused));
+      if (!(nextResidual < residual))
+        break;
+      u = next;
+      residual = nextResidual;
+    }
+    if (std::isfinite(u))
+      roots[count++] = u;
+  }
+  return count;
+}
+} // namespace
+
+bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents)
+{
+  // The camera centre in the laser frame.
+  const Eigen::Vector3d o = -cone.cRl.transpose() * cone.apex;
+  Eigen::Vector3d m1, m2;
+  if (!tangentPlaneNormals(o, cone.halfAngle, m1, m2))
+    return false;
+  // Each tangent plane contains the apex and the camera centre: in the camera frame it is
+  // (N, 0) with N = cRl m, and with P = [I | 0] its image is the line N.
+  tangents.epipole = cone.apex;
+  tangents.u = cone.cRl * m1;
+  tangents.v = cone.cRl * m2;
+  return true;
+}
+
+int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents, Eigen::Matrix3d conics[4])
+{
+  const Eigen::Vector3d x[3] = {Eigen::Vector3d(points[0](0), points[0](1), 1.0),
+                                Eigen::Vector3d(points[1](0), points[1](1), 1.0),
+                                Eigen::Vector3d(points[2](0), points[2](1), 1.0)};
+  Eigen::Matrix3d H;
+  if (!canonicalHomography(x, tangents.epipole, H))
+    return 0;
+  // Lines map with H^-T (eq. 38-39); both contain (1,1,0), so they read (1, -1, r) and (1, -1, s).
+  const Eigen::Matrix3d Hinv = H.inverse();
+  const Eigen::Vector3d up = Hinv.transpose() * tangents.u, vp = Hinv.transpose() * tangents.v;
+  if (!(std::abs(up(0)) > 1e-12 * up.norm()) || !(std::abs(vp(0)) > 1e-12 * vp.norm()))
+    return 0;
+  const double r = up(2) / up(0), s = vp(2) / vp(0);
+  // Quartic in u (eq. 53), lowest degree first.
+  const double k[5] = {16.0 * (r + s) * (r + s), -32.0 * (r + s) * (r * s + 1.0),
+                       8.0 * (r * r + 4.0 * r * s + s * s + 2.0), 8.0 * (r + s) * (r * s - 1.0), (r - s) * (r - s)};
+  double roots[4];
+  const int nroots = realQuarticRoots(k, roots);
+  int count = 0;
+  for (int i = 0; i < nroots; ++i) {
+    const double u = roots[i];
+    // t from eq. 52.
+    const double denominator = 2.0 * u * (s - r) + 4.0 * (r * r - s * s);
+    if (!(std::abs(denominator) > 1e-14 * (1.0 + std::abs(u)) * (std::abs(r) + std::abs(s))))
+      continue;
+    const double t = (2.0 * u * (s - r) + u * u * (r * r - s * s)) / denominator;
+    Eigen::Matrix3d cc;
+    cc << 2.0, u, -1.0, u, 2.0 * t, -t, -1.0, -t, 0.0; // eq. 43
+    Eigen::Matrix3d c = H.transpose() * cc * H;     // eq. 54
+    const double norm = c.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm))
+      continue;
+    c /= norm;
+    if (isEllipse(c))
+      conics[count++] = c;
+  }
+  return count;
+}
+} // namespace vpLaserSolvers

@@ -1,0 +1,282 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+#include <visp3/laser_conic/vpLaserConicPose.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+#include <visp3/robust/vpRansac.h>
+
+#include "laser_estimators.h"
+
+namespace
+{
+using vpLaserEstimators::PointList;
+
+//! Minimal number of points each method needs.
+int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
+{
+  return (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3 : 5;
+}
+
+const char *methodName(vpLaserConicPose::vpLaserConicMethod method)
+{
+  switch (method) {
+  case vpLaserConicPose::PLANE_PAIR: return "PLANE_PAIR";
+  case vpLaserConicPose::PP5: return "PP5";
+  case vpLaserConicPose::PP3: return "PP3";
+  case vpLaserConicPose::GP3: return "GP3";
+  }
+  return "unknown";
+}
+
+//! True when all points lie on one line (or one point), up to rounding.
+bool allCollinear(const PointList &points)
+{
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d &p : points)
+    mean += p;
+  mean /= double(points.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const Eigen::Vector2d &p : points)
+    scatter += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  const double largest = eig.eigenvalues()(1);
+  return !(largest > 0.0) || !(eig.eigenvalues()(0) > 1e-20 * largest);
+}
+
+/*!
+  Fraction of the points whose ray meets the plane in front of the camera, on the lit (forward)
+  nappe of the laser cone: a plane found only through the mirrored nappes of the cone quadrics
+  (behind the camera or behind the laser) explains none of them.
+*/
+double fractionInFront(const PointList &points, const std::vector<int> &indices, const Eigen::Vector4d &plane,
+                       const vpLaserSolvers::LaserCone &cone)
+{
+  if (indices.empty())
+    return 0.0;
+  int front = 0;
+  for (int i : indices) {
+    const Eigen::Vector3d ray(points[i](0), points[i](1), 1.0);
+    const double nr = plane.head<3>().dot(ray);
+    if (!(nr < 0.0))
+      continue; // the ray never reaches the plane ahead of the camera
+    const Eigen::Vector3d X = (-plane(3) / nr) * ray;
+    if ((X - cone.apex).dot(cone.cRl.col(2)) > 0.0)
+      ++front;
+  }
+  return double(front) / double(indices.size());
+}
+} // namespace
+
+vpLaserConicPose::vpLaserConicPose()
+  : m_cam(), m_hasCam(false), m_hasLaser(false), m_openingAngle(0.0), m_cMl(), m_threshold(2.0), m_maxTrials(1000),
+    m_probability(0.99), m_seed(0), m_localOptimisation(true), m_altitude(0.0), m_roll(0.0), m_pitch(0.0), m_inliers(),
+    m_trials(0), m_conic(3, 3, 0.0), m_failure()
+{
+}
+
+void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
+{
+  const double values[4] = {cam.get_px(), cam.get_py(), cam.get_u0(), cam.get_v0()};
+  for (double v : values)
+    if (!std::isfinite(v))
+      throw vpLaserConicException(vpLaserConicException::badCameraError,
+                                  "vpLaserConicPose: camera parameters must be finite");
+  if (!(cam.get_px() > 0.0) || !(cam.get_py() > 0.0))
+    throw vpLaserConicException(vpLaserConicException::badCameraError,
+                                "vpLaserConicPose: focal lengths px and py must be positive");
+  m_cam = cam;
+  m_hasCam = true;
+}
+
+void vpLaserConicPose::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
+{
+  if (!std::isfinite(openingAngle) || !(openingAngle > 0.0) || !(openingAngle < M_PI)) {
+    std::ostringstream msg;
+    msg << "vpLaserConicPose: laser opening angle " << openingAngle << " rad is not in (0, pi)";
+    throw vpLaserConicException(vpLaserConicException::badLaserError, msg.str());
+  }
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      if (!std::isfinite(cMl[i][j]))
+        throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                    "vpLaserConicPose: the laser pose cMl is not finite");
+  if (!cMl.isAnHomogeneousMatrix())
+    throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                "vpLaserConicPose: the laser pose cMl is not a rigid transformation");
+  const double baseline = std::sqrt(cMl[0][3] * cMl[0][3] + cMl[1][3] * cMl[1][3] + cMl[2][3] * cMl[2][3]);
+  if (!(baseline >= 1e-9))
+    throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                "vpLaserConicPose: the laser apex is at the camera centre (zero baseline): "
+                                "the ground plane is then unobservable");
+  m_openingAngle = openingAngle;
+  m_cMl = cMl;
+  m_hasLaser = true;
+}
+
+void vpLaserConicPose::setRansacThreshold(double pixels)
+{
+  if (!std::isfinite(pixels) || !(pixels > 0.0))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicPose: the RANSAC threshold must be a positive number of pixels");
+  m_threshold = pixels;
+}
+
+void vpLaserConicPose::setRansacMaxTrials(int trials)
+{
+  if (trials <= 0)
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicPose: the RANSAC trial budget must be positive");
+  m_maxTrials = trials;
+}
+
+void vpLaserConicPose::setRansacProbability(double p)
+{
+  if (!std::isfinite(p) || !(p > 0.0) || !(p < 1.0))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicPose: the RANSAC probability must be in (0, 1)");
+  m_probability = p;
+}
+
+void vpLaserConicPose::setRansacSeed(unsigned int seed) { m_seed = seed; }
+
+void vpLaserConicPose::setLocalOptimisation(bool enable) { m_localOptimisation = enable; }
+
+void vpLaserConicPose::computeAltitudeRollPitch(const vpPlane &cPlane, double &altitude, double &roll, double &pitch)
+{
+  const Eigen::Vector4d plane(cPlane.getA(), cPlane.getB(), cPlane.getC(), cPlane.getD());
+  if (!plane.allFinite() || !(plane.head<3>().norm() > 0.0))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicPose: the plane normal is zero or not finite");
+  vpLaserSolvers::altitudeRollPitch(plane, altitude, roll, pitch);
+}
+
+bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
+                                    vpPlane &cPlane)
+{
+  if (!m_hasCam)
+    throw vpLaserConicException(vpLaserConicException::badCameraError,
+                                "vpLaserConicPose: call setCameraParameters() before computePlane()");
+  if (!m_hasLaser)
+    throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                "vpLaserConicPose: call setLaser() before computePlane()");
+  if (method != PLANE_PAIR && method != PP5 && method != PP3 && method != GP3)
+    throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicPose: unknown method");
+  const int needed = requiredPoints(method);
+  if (points.size() < static_cast<size_t>(needed)) {
+    std::ostringstream msg;
+    msg << "vpLaserConicPose: method " << methodName(method) << " needs at least " << needed << " points, got "
+        << points.size();
+    throw vpLaserConicException(vpLaserConicException::notEnoughPointError, msg.str());
+  }
+
+  // Normalized image coordinates: x = K^-1 (u, v, 1).
+  PointList normalized;
+  normalized.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double u = points[i].get_u(), v = points[i].get_v();
+    if (!std::isfinite(u) || !std::isfinite(v)) {
+      std::ostringstream msg;
+      msg << "vpLaserConicPose: point " << i << " is not finite";
+      throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
+    }
+    normalized.emplace_back((u - m_cam.get_u0()) / m_cam.get_px(), (v - m_cam.get_v0()) / m_cam.get_py());
+  }
+
+  m_failure.clear();
+  m_inliers.clear();
+  m_trials = 0;
+  if (allCollinear(normalized)) {
+    m_failure = "all points are collinear: they cannot lie on the image of the laser ellipse";
+    return false;
+  }
+
+  vpLaserSolvers::LaserCone cone;
+  for (unsigned int i = 0; i < 3; ++i) {
+    for (unsigned int j = 0; j < 3; ++j)
+      cone.cRl(i, j) = m_cMl[i][j];
+    cone.apex(i) = m_cMl[i][3];
+  }
+  cone.halfAngle = 0.5 * m_openingAngle;
+
+  vpRansacOptions options;
+  options.threshold = m_threshold / (0.5 * (m_cam.get_px() + m_cam.get_py()));
+  options.probability = m_probability;
+  options.maxTrials = m_maxTrials;
+  options.seed = m_seed;
+  options.localOptimisation = m_localOptimisation;
+
+  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
+  Eigen::Vector4d plane = Eigen::Vector4d::Zero();
+  std::vector<int> inliers;
+  bool found = false;
+  vpRansacReport report;
+
+  if (method == PLANE_PAIR) {
+    for (int i = 0; i < static_cast<int>(normalized.size()); ++i)
+      inliers.push_back(i);
+    if (!vpLaserEstimators::fitEllipseOn(normalized, inliers, conic)) {
+      m_failure = "the least-squares conic of the points is not an ellipse";
+      return false;
+    }
+    found = true;
+  } else if (method == PP5 || method == PP3) {
+    if (method == PP5) {
+      found = vpRansacLoop(vpLaserEstimators::Pp5Estimator(normalized), options, conic, report);
+    } else {
+      vpLaserSolvers::EpipolarTangents tangents;
+      if (!vpLaserSolvers::epipolarTangents(cone, tangents)) {
+        m_failure = "no epipolar tangent to the laser cone: the camera centre lies inside the laser cone";
+        return false;
+      }
+      found = vpRansacLoop(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, conic, report);
+    }
+    inliers = report.inliers;
+  } else {
+    vpLaserEstimators::PlaneModel model;
+    found = vpRansacLoop(vpLaserEstimators::Gp3Estimator(normalized, cone), options, model, report);
+    plane = model.plane;
+    conic = model.conic;
+    inliers = report.inliers;
+  }
+  m_trials = report.trials;
+  if (!found) {
+    std::ostringstream msg;
+    msg << "no consensus: no " << methodName(method) << " hypothesis is supported by " << needed
+        << " points or more after " << report.trials << " samples";
+    m_failure = msg.str();
+    return false;
+  }
+  if (method != GP3 && !vpLaserSolvers::planePair(conic, cone, plane)) {
+    m_failure = "the plane pair of the image conic has no plane with both optical centres on the same side";
+    return false;
+  }
+  if (!plane.allFinite()) {
+    m_failure = "the estimated plane is not finite";
+    return false;
+  }
+  if (fractionInFront(normalized, inliers, plane, cone) < 0.5) {
+    m_failure = "the plane is behind the system: the laser or the camera cannot see its trace there";
+    return false;
+  }
+
+  cPlane.setABCD(plane(0), plane(1), plane(2), plane(3));
+  vpLaserSolvers::altitudeRollPitch(plane, m_altitude, m_roll, m_pitch);
+  m_inliers.assign(inliers.begin(), inliers.end());
+  // Image conic in pixels: x_n = K^-1 x_p, so C_p = K^-T C_n K^-1.
+  Eigen::Matrix3d Kinv;
+  Kinv << 1.0 / m_cam.get_px(), 0.0, -m_cam.get_u0() / m_cam.get_px(), 0.0, 1.0 / m_cam.get_py(),
+      -m_cam.get_v0() / m_cam.get_py(), 0.0, 0.0, 1.0;
+  const Eigen::Matrix3d pixelConic = Kinv.transpose() * conic * Kinv;
+  m_conic.resize(3, 3);
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      m_conic[i][j] = pixelConic(i, j);
+  return true;
+}

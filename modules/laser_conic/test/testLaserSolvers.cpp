@@ -1,0 +1,296 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// Tests of the pure circular-laser solvers on exact simulated traces (ground truth from the simulation).
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+#include <visp3/core/vpRotationMatrix.h>
+#include <visp3/core/vpRxyzVector.h>
+
+#include "laser_test_utils.h"
+
+using namespace vpLaserSolvers;
+using laser_test::Scene;
+
+namespace
+{
+// Exact data: only rounding remains, so the recovered planes must match to near machine precision.
+// A median of 1e-9 leaves four orders of magnitude of head-room over double rounding amplified by the
+// conditioning of the problem (image coordinates ~1, scene ~1 m); the max bound of 1e-6 covers the
+// worst-conditioned random scenes (strong tilts, short baselines).
+const double kMedianTol = 1e-9;
+const double kMaxTol = 1e-6;
+const int kScenes = 2000;
+
+struct ExactScene
+{
+  Scene scene;
+  LaserCone cone;
+  std::vector<Eigen::Vector2d> points; // normalized coordinates
+};
+
+/*!
+  A random exact scene. With \e epipolarTangents, only rigs where PP-3 applies: the camera centre
+  outside the (double) laser cone, so that real epipolar tangent planes exist.
+*/
+ExactScene drawScene(std::mt19937 &rng, unsigned int n = 40, bool epipolarTangents = false)
+{
+  ExactScene e;
+  std::vector<vpImagePoint> pixels;
+  e.scene = laser_test::randomScene(rng, laser_test::SceneRanges(), n, pixels);
+  while (epipolarTangents && laser_test::cameraInsideCone(laser_test::toCone(e.scene.rig)))
+    e.scene = laser_test::randomScene(rng, laser_test::SceneRanges(), n, pixels);
+  e.cone = laser_test::toCone(e.scene.rig);
+  e.points = laser_test::normalized(e.scene.rig.cam, pixels);
+  return e;
+}
+} // namespace
+
+TEST(LaserSolvers, ConeQuadricsContainTheTrace)
+{
+  std::mt19937 rng(1);
+  for (int k = 0; k < 50; ++k) {
+    const ExactScene e = drawScene(rng, 12);
+    const Eigen::Matrix4d D = laserConeQuadric(e.cone);
+    // The apex is the vertex of the cone: D (apex, 1) = 0.
+    EXPECT_LT((D * e.cone.apex.homogeneous()).norm(), 1e-12 * D.norm());
+    // The axis is inside the cone (negative), a generator is on it.
+    const Eigen::Vector3d axis = e.cone.cRl.col(2);
+    EXPECT_LT((e.cone.apex + axis).homogeneous().dot(D * (e.cone.apex + axis).homogeneous()), 0.0);
+    for (const Eigen::Vector2d &p : e.points) {
+      // The 3D trace point: the ray met by the true plane.
+      const Eigen::Vector3d ray(p(0), p(1), 1.0);
+      const Eigen::Vector3d X = (-e.scene.plane(3) / e.scene.plane.head<3>().dot(ray)) * ray;
+      EXPECT_NEAR(X.homogeneous().dot(D * X.homogeneous()) / D.norm(), 0.0, 1e-12);
+    }
+    const Eigen::Matrix3d c = conicFromPlane(e.scene.plane, e.cone);
+    const Eigen::Matrix4d C = cameraConeQuadric(c);
+    for (const Eigen::Vector2d &p : e.points) {
+      const Eigen::Vector4d X(2.0 * p(0), 2.0 * p(1), 2.0, 1.0); // any point of the ray
+      EXPECT_NEAR(X.dot(C * X), 0.0, 1e-12);
+    }
+  }
+}
+
+TEST(LaserSolvers, ConicFromPlaneIsTheImageOfTheTrace)
+{
+  std::mt19937 rng(2);
+  for (int k = 0; k < 200; ++k) {
+    const ExactScene e = drawScene(rng);
+    const Eigen::Matrix3d c = conicFromPlane(e.scene.plane, e.cone);
+    EXPECT_TRUE(isEllipse(c));
+    for (const Eigen::Vector2d &p : e.points)
+      EXPECT_LT(sampsonDistance(c, p), 1e-12); // normalized units: 1e-12 ~ 1e-9 px
+  }
+}
+
+TEST(LaserSolvers, SampsonDistanceOfACircle)
+{
+  // Unit circle: the first-order distance of (1 + e, 0) is e (1 + e/2) / (1 + e), close to e.
+  const Eigen::Matrix3d c = Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal();
+  EXPECT_NEAR(sampsonDistance(c, Eigen::Vector2d(1.0, 0.0)), 0.0, 1e-15);
+  EXPECT_NEAR(sampsonDistance(c, Eigen::Vector2d(1.01, 0.0)), 0.01 * 1.005 / 1.01, 1e-12);
+  EXPECT_NEAR(sampsonDistance(-3.0 * c, Eigen::Vector2d(0.0, 0.99)), 0.01 * 0.995 / 0.99, 1e-12);
+}
+
+TEST(LaserSolvers, EllipseTest)
+{
+  EXPECT_TRUE(isEllipse(Eigen::Vector3d(1.0, 4.0, -1.0).asDiagonal().toDenseMatrix()));
+  EXPECT_TRUE(isEllipse(Eigen::Vector3d(-1.0, -4.0, 1.0).asDiagonal().toDenseMatrix())); // sign-free
+  EXPECT_FALSE(isEllipse(Eigen::Vector3d(1.0, 1.0, 1.0).asDiagonal().toDenseMatrix()));  // no real point
+  EXPECT_FALSE(isEllipse(Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal().toDenseMatrix())); // hyperbola
+  EXPECT_FALSE(isEllipse(Eigen::Vector3d(1.0, 0.0, -1.0).asDiagonal().toDenseMatrix()));  // line pair
+  EXPECT_FALSE(isEllipse(Eigen::Matrix3d::Zero()));
+}
+
+TEST(LaserSolvers, FitConicOnFiveExactPoints)
+{
+  std::mt19937 rng(3);
+  std::vector<double> errors;
+  for (int k = 0; k < kScenes; ++k) {
+    const ExactScene e = drawScene(rng, 5);
+    Eigen::Matrix3d c;
+    ASSERT_TRUE(fitConic(e.points.data(), 5, c));
+    errors.push_back(laser_test::conicDistance(c, conicFromPlane(e.scene.plane, e.cone)));
+  }
+  EXPECT_LT(laser_test::median(errors), kMedianTol);
+  EXPECT_LT(laser_test::maximum(errors), kMaxTol);
+}
+
+TEST(LaserSolvers, FitConicRejectsDegenerateSets)
+{
+  Eigen::Vector2d line[6];
+  for (int i = 0; i < 6; ++i)
+    line[i] = Eigen::Vector2d(0.1 * i, 0.05 - 0.2 * i);
+  Eigen::Matrix3d c;
+  EXPECT_FALSE(fitConic(line, 6, c));
+  EXPECT_FALSE(fitConic(line, 5, c));
+  EXPECT_FALSE(fitConic(line, 4, c)); // too few
+  const Eigen::Vector2d same[5] = {Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(0.3, 0.2),
+                                   Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(0.3, 0.2)};
+  EXPECT_FALSE(fitConic(same, 5, c));
+}
+
+TEST(LaserSolvers, PlanePairOnTheExactConic)
+{
+  std::mt19937 rng(4);
+  std::vector<double> normalErr, altitudeErr;
+  for (int k = 0; k < kScenes; ++k) {
+    const ExactScene e = drawScene(rng, 3);
+    Eigen::Vector4d plane;
+    ASSERT_TRUE(planePair(conicFromPlane(e.scene.plane, e.cone), e.cone, plane)) << "scene " << k;
+    EXPECT_NEAR(plane.head<3>().norm(), 1.0, 1e-12);
+    EXPECT_GT(plane(3), 0.0);
+    normalErr.push_back(laser_test::normalError(plane, e.scene.plane));
+    altitudeErr.push_back(laser_test::altitudeError(plane, e.scene.plane));
+  }
+  EXPECT_LT(laser_test::median(normalErr), kMedianTol);
+  EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
+  EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
+  EXPECT_LT(laser_test::maximum(altitudeErr), kMaxTol);
+}
+
+TEST(LaserSolvers, PlanePairIsScaleAndSignInvariant)
+{
+  std::mt19937 rng(5);
+  const ExactScene e = drawScene(rng, 3);
+  const Eigen::Matrix3d c = conicFromPlane(e.scene.plane, e.cone);
+  for (double s : {1e-6, -1.0, 1e6}) {
+    Eigen::Vector4d plane;
+    ASSERT_TRUE(planePair(s * c, e.cone, plane));
+    EXPECT_LT(laser_test::normalError(plane, e.scene.plane), 1e-9);
+    EXPECT_LT(laser_test::altitudeError(plane, e.scene.plane), 1e-9);
+  }
+}
+
+TEST(LaserSolvers, EpipolarTangentsTouchTheImageConic)
+{
+  std::mt19937 rng(6);
+  for (int k = 0; k < 500; ++k) {
+    const ExactScene e = drawScene(rng, 3);
+    EpipolarTangents tangents;
+    ASSERT_EQ(epipolarTangents(e.cone, tangents), !laser_test::cameraInsideCone(e.cone)) << "scene " << k;
+    if (laser_test::cameraInsideCone(e.cone))
+      continue;
+    const Eigen::Matrix3d c = conicFromPlane(e.scene.plane, e.cone);
+    const Eigen::Matrix3d dual = c.inverse();
+    for (const Eigen::Vector3d &l : {tangents.u, tangents.v}) {
+      // Tangent: the line lies on the dual conic; and it contains the epipole.
+      EXPECT_NEAR(l.dot(dual * l) / (l.squaredNorm() * dual.norm()), 0.0, 1e-10);
+      EXPECT_NEAR(l.dot(tangents.epipole) / (l.norm() * tangents.epipole.norm()), 0.0, 1e-12);
+    }
+    EXPECT_GT(laser_test::normalError(tangents.u.homogeneous(), tangents.v.homogeneous()), 1e-3); // distinct
+  }
+}
+
+TEST(LaserSolvers, EpipolarTangentsNeedTheCameraOutsideTheCone)
+{
+  LaserCone cone;
+  cone.halfAngle = vpMath::rad(17.0);
+  cone.apex = Eigen::Vector3d(0.0, 0.0, -0.1); // laser behind the camera, pointing forward: camera inside
+  EpipolarTangents tangents;
+  EXPECT_FALSE(epipolarTangents(cone, tangents));
+  cone.apex.setZero(); // apex at the camera centre
+  EXPECT_FALSE(epipolarTangents(cone, tangents));
+}
+
+TEST(LaserSolvers, Pp3FindsTheTrueConic)
+{
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> pick(0, 39);
+  std::vector<double> errors;
+  int found = 0;
+  for (int k = 0; k < kScenes; ++k) {
+    const ExactScene e = drawScene(rng, 40, true);
+    EpipolarTangents tangents;
+    ASSERT_TRUE(epipolarTangents(e.cone, tangents));
+    // Three points spread over the trace (a third of it apart) and a random triplet.
+    const int i0 = pick(rng);
+    const int triplets[2][3] = {{i0, (i0 + 13) % 40, (i0 + 26) % 40}, {pick(rng), pick(rng), pick(rng)}};
+    const Eigen::Matrix3d truth = conicFromPlane(e.scene.plane, e.cone);
+    for (int t = 0; t < 2; ++t) {
+      const int *idx = triplets[t];
+      if (idx[0] == idx[1] || idx[1] == idx[2] || idx[0] == idx[2])
+        continue;
+      const Eigen::Vector2d p[3] = {e.points[idx[0]], e.points[idx[1]], e.points[idx[2]]};
+      Eigen::Matrix3d conics[4];
+      const int n = pp3Conics(p, tangents, conics);
+      double best = 1.0;
+      for (int i = 0; i < n; ++i)
+        best = std::min(best, laser_test::conicDistance(conics[i], truth));
+      if (t == 0) {
+        errors.push_back(best);
+        found += best < 1e-6;
+      } else {
+        // Close points give a worse-conditioned sample: only check the true conic is among the candidates.
+        EXPECT_LT(best, 1e-4) << "scene " << k;
+      }
+    }
+  }
+  EXPECT_EQ(found, kScenes);
+  EXPECT_LT(laser_test::median(errors), kMedianTol);
+  EXPECT_LT(laser_test::maximum(errors), kMaxTol);
+}
+
+TEST(LaserSolvers, Gp3FindsTheTruePlane)
+{
+  std::mt19937 rng(8);
+  std::uniform_int_distribution<int> pick(0, 39);
+  std::vector<double> normalErr, altitudeErr;
+  for (int k = 0; k < kScenes; ++k) {
+    const ExactScene e = drawScene(rng);
+    const int i0 = pick(rng);
+    const Eigen::Vector2d p[3] = {e.points[i0], e.points[(i0 + 13) % 40], e.points[(i0 + 26) % 40]};
+    Eigen::Vector4d planes[8];
+    const int n = gp3Planes(p, e.cone, planes);
+    ASSERT_GT(n, 0) << "scene " << k;
+    int best = 0;
+    for (int i = 1; i < n; ++i)
+      if (laser_test::normalError(planes[i], e.scene.plane) + laser_test::altitudeError(planes[i], e.scene.plane) <
+          laser_test::normalError(planes[best], e.scene.plane) + laser_test::altitudeError(planes[best], e.scene.plane))
+        best = i;
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(planes[i].head<3>().norm(), 1.0, 1e-12);
+      EXPECT_GT(planes[i](3), 0.0);
+      EXPECT_GT(planes[i].head<3>().dot(e.cone.apex) + planes[i](3), 0.0); // same side as the camera
+    }
+    normalErr.push_back(laser_test::normalError(planes[best], e.scene.plane));
+    altitudeErr.push_back(laser_test::altitudeError(planes[best], e.scene.plane));
+  }
+  EXPECT_LT(laser_test::median(normalErr), kMedianTol);
+  EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
+  EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
+  EXPECT_LT(laser_test::maximum(altitudeErr), kMaxTol);
+}
+
+TEST(LaserSolvers, AltitudeRollPitchConvention)
+{
+  // Downward direction of a camera whose ground frame (Z down) is rotated by Rx(roll) Ry(pitch):
+  // g = cRg (0, 0, 1), built by ViSP (vpRxyzVector: R = Rx Ry Rz), independently of the solver.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> angle(-1.2, 1.2), altitude(0.3, 3.0);
+  for (int k = 0; k < 200; ++k) {
+    const double roll = angle(rng), pitch = angle(rng), h = altitude(rng);
+    const vpRotationMatrix cRg(vpRxyzVector(roll, pitch, 0.0));
+    const Eigen::Vector3d g(cRg[0][2], cRg[1][2], cRg[2][2]);
+    double a, r, p;
+    const double scale = 0.5 + k; // the plane needs no normalisation
+    altitudeRollPitch(scale * Eigen::Vector4d(-g(0), -g(1), -g(2), h), a, r, p);
+    EXPECT_NEAR(a, h, 1e-12);
+    EXPECT_NEAR(r, roll, 1e-12);
+    EXPECT_NEAR(p, pitch, 1e-12);
+  }
+  // Concrete case: looking straight down gives zero angles; a camera pitched so that the ground is
+  // towards +x of the image sees g_x > 0, i.e. a positive pitch.
+  double a, r, p;
+  altitudeRollPitch(Eigen::Vector4d(0.0, 0.0, -1.0, 2.0), a, r, p);
+  EXPECT_NEAR(a, 2.0, 1e-15);
+  EXPECT_NEAR(r, 0.0, 1e-15);
+  EXPECT_NEAR(p, 0.0, 1e-15);
+  altitudeRollPitch(Eigen::Vector4d(-std::sin(0.3), 0.0, -std::cos(0.3), 1.0), a, r, p);
+  EXPECT_NEAR(p, 0.3, 1e-15);
+  EXPECT_NEAR(r, 0.0, 1e-15);
+}
