@@ -93,8 +93,40 @@ int polynomialRootsRealPart(const double coeffs[5], double roots[4])
   }
 }
 
-// Angle minimising q^T Q q on the unit circle, with q = (cos, sin, 1).
-double minimiseOnCircle(const Eigen::Matrix3d &Qin)
+// Everything needed to score a candidate yaw: the reduced cost and the points in front of the camera.
+struct Problem
+{
+  const Eigen::Matrix3d &wRc, &wRo;
+  const Eigen::Vector3d *x, *X;
+  int n;
+  Eigen::Matrix3d MssInv, Mqs;
+};
+
+// Translation (upright camera frame) minimising the algebraic cost for a given yaw.
+Eigen::Vector3d translationForYaw(const Problem &p, double alpha)
+{
+  const Eigen::Vector3d q(std::cos(alpha), std::sin(alpha), 1.0);
+  return -p.MssInv * p.Mqs.transpose() * q;
+}
+
+// Number of points in front of the camera for a yaw and its best translation.
+int pointsInFront(const Problem &p, double alpha)
+{
+  const Eigen::Matrix3d Rz = detail::rotationZ(std::cos(alpha), std::sin(alpha));
+  const Eigen::Vector3d s = translationForYaw(p, alpha);
+  // Depth along the camera optical axis = (wRc^T P_up).z = (third column of wRc) . P_up.
+  const Eigen::Vector3d axisUp = p.wRc.col(2);
+  int count = 0;
+  for (int i = 0; i < p.n; ++i)
+    count += (axisUp.dot(Rz * (p.wRo * p.X[i]) + s) > 0.0);
+  return count;
+}
+
+// Yaw minimising q^T Q q on the unit circle, q = (cos, sin, 1). The algebraic cost does not see
+// which side of the camera a point lies on, so that it can have two global minima (e.g. two
+// points on one vertical ray: the mirrored pose fits as well); the stationary points are therefore
+// ranked first by the number of points in front of the camera, then by cost.
+double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
 {
   // Reference angle: the unconstrained minimiser over (c, s). For exact data it is the solution,
   // so after rotating by it the sought root of the half-angle quartic is near 0, far from the
@@ -115,21 +147,25 @@ double minimiseOnCircle(const Eigen::Matrix3d &Qin)
   const double dQ = Q(0, 0) - Q(1, 1);
   const double coeffs[5] = {-Q(0, 1) - Q(1, 2), 2.0 * dQ + 2.0 * Q(0, 2), 6.0 * Q(0, 1), -2.0 * dQ + 2.0 * Q(0, 2),
                             Q(1, 2) - Q(0, 1)};
-  double roots[4];
-  const int count = polynomialRootsRealPart(coeffs, roots);
+  double phis[5];
+  int count = polynomialRootsRealPart(coeffs, phis);
+  for (int k = 0; k < count; ++k)
+    phis[k] = 2.0 * std::atan(phis[k]);
+  phis[count++] = 3.14159265358979323846; // the stationary point lost by the half-angle substitution, if it is one
 
-  const double pi = 3.14159265358979323846;
-  double bestPhi = pi; // the stationary point lost by the half-angle substitution, if it is one
-  double bestCost = circleCost(Q, pi);
+  double bestAlpha = 0.0, bestCost = std::numeric_limits<double>::infinity();
+  int bestFront = -1;
   for (int k = 0; k < count; ++k) {
-    const double phi = 2.0 * std::atan(roots[k]);
-    const double cost = circleCost(Q, phi);
-    if (cost < bestCost) {
+    const double alpha = detail::wrapAngle(theta0 + phis[k]);
+    const double cost = circleCost(Q, phis[k]);
+    const int front = pointsInFront(problem, alpha);
+    if (front > bestFront || (front == bestFront && cost < bestCost)) {
+      bestFront = front;
       bestCost = cost;
-      bestPhi = phi;
+      bestAlpha = alpha;
     }
   }
-  return detail::wrapAngle(theta0 + bestPhi);
+  return bestAlpha;
 }
 } // namespace
 
@@ -163,10 +199,10 @@ bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, cons
     return false;
   const Eigen::Matrix3d Q = Mqq - Mqs * MssInv * Mqs.transpose();
 
-  const double alpha = minimiseOnCircle(0.5 * (Q + Q.transpose()));
-  const Eigen::Vector3d q(std::cos(alpha), std::sin(alpha), 1.0);
-  const Eigen::Vector3d sUp = -MssInv * Mqs.transpose() * q;
-  pose.R = wRc.transpose() * detail::rotationZ(q.x(), q.y()) * wRo;
+  const Problem problem{wRc, wRo, x, X, n, MssInv, Mqs};
+  const double alpha = minimiseOnCircle(0.5 * (Q + Q.transpose()), problem);
+  const Eigen::Vector3d sUp = translationForYaw(problem, alpha);
+  pose.R = detail::composeRotation(wRc, alpha, wRo);
   pose.t = wRc.transpose() * sUp;
   return pose.R.allFinite() && pose.t.allFinite();
 }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <Eigen/Dense>
+
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
 #include <visp3/robust/vpRansac.h>
