@@ -1,0 +1,26 @@
+# ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+# Runs COMMAND (arguments joined with '|') and passes when it exits non-zero with a message matching
+# EXPECT. PROTECT "src>dst" first copies src to dst and then checks that dst was left unchanged (the
+# program must never overwrite one of its inputs).
+string(REPLACE "|" ";" command "${COMMAND}")
+if(PROTECT)
+  string(REPLACE ">" ";" protect "${PROTECT}")
+  list(GET protect 0 protect_source)
+  list(GET protect 1 protected)
+  configure_file("${protect_source}" "${protected}" COPYONLY)
+  file(SHA256 "${protected}" hash_before)
+endif()
+execute_process(COMMAND ${command} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("exit status: ${status}\nstdout:\n${out}\nstderr:\n${err}")
+if(status EQUAL 0)
+  message(FATAL_ERROR "expected a non-zero exit status")
+endif()
+if(NOT "${err}" MATCHES "${EXPECT}")
+  message(FATAL_ERROR "expected an error message matching '${EXPECT}'")
+endif()
+if(PROTECT)
+  file(SHA256 "${protected}" hash_after)
+  if(NOT hash_before STREQUAL hash_after)
+    message(FATAL_ERROR "the input ${protected} was modified")
+  endif()
+endif()

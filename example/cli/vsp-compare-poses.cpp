@@ -1,0 +1,130 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \example vsp-compare-poses.cpp
+  Compares a pose file written by vsp-gravity-pose with a ground-truth pose file (same format,
+  matched by frame index): prints the translation and rotation errors (mean, median, maximum) and,
+  with bounds, exits non-zero when a median exceeds its bound or a frame has no pose.
+
+  \verbatim
+  vsp-compare-poses --estimate poses.csv --truth groundtruth.csv
+                    [--max-median-translation METRES] [--max-median-rotation-deg DEG]
+  \endverbatim
+*/
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpThetaUVector.h>
+#include <visp3/core/vpTranslationVector.h>
+
+#include "vpCsvTools.h"
+#include "vpGravityPointsIo.h"
+
+namespace
+{
+double median(std::vector<double> v)
+{
+  if (v.empty())
+    return std::nan("");
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double mean(const std::vector<double> &v)
+{
+  double s = 0.0;
+  for (double x : v)
+    s += x;
+  return v.empty() ? std::nan("") : s / v.size();
+}
+
+void summarize(const std::string &name, const std::vector<double> &v, double scale, const std::string &unit)
+{
+  const double maxValue = v.empty() ? std::nan("") : *std::max_element(v.begin(), v.end());
+  std::cout << name << ": mean " << mean(v) * scale << " " << unit << ", median " << median(v) * scale << " " << unit
+            << ", max " << maxValue * scale << " " << unit << std::endl;
+}
+
+int usage(const char *program, const std::string &error)
+{
+  std::cerr << program << ": " << error << "\nUsage: " << program
+            << " --estimate poses.csv --truth groundtruth.csv [--max-median-translation M]"
+               " [--max-median-rotation-deg D]\n";
+  return EXIT_FAILURE;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  std::string estimateFile, truthFile, error;
+  double maxTranslation = -1.0, maxRotationDeg = -1.0;
+  for (int i = 1; i < argc; i += 2) {
+    const std::string arg = argv[i];
+    if (i + 1 >= argc)
+      return usage(argv[0], "option " + arg + " needs a value");
+    const std::string value = argv[i + 1];
+    if (arg == "--estimate")
+      estimateFile = value;
+    else if (arg == "--truth")
+      truthFile = value;
+    else if (arg == "--max-median-translation") {
+      if (!vpCsvTools::parseDouble(value, maxTranslation, arg, "value", error))
+        return usage(argv[0], error);
+    } else if (arg == "--max-median-rotation-deg") {
+      if (!vpCsvTools::parseDouble(value, maxRotationDeg, arg, "value", error))
+        return usage(argv[0], error);
+    } else
+      return usage(argv[0], "unknown option '" + arg + "'");
+  }
+  if (estimateFile.empty() || truthFile.empty())
+    return usage(argv[0], "--estimate and --truth are required");
+
+  std::vector<vpPoseRow> estimates, truth;
+  if (!vpGravityPointsIo::readPoses(estimateFile, estimates, error) ||
+      !vpGravityPointsIo::readPoses(truthFile, truth, error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  std::map<unsigned int, vpHomogeneousMatrix> truthByFrame;
+  for (const vpPoseRow &row : truth)
+    truthByFrame[row.frame] = row.cMo;
+
+  std::vector<double> translationErrors, rotationErrors;
+  unsigned int missing = 0;
+  for (const vpPoseRow &row : estimates) {
+    const auto it = truthByFrame.find(row.frame);
+    if (row.status != "ok" || it == truthByFrame.end()) {
+      ++missing;
+      continue;
+    }
+    const vpHomogeneousMatrix delta = it->second.inverse() * row.cMo;
+    translationErrors.push_back((row.cMo.getTranslationVector() - it->second.getTranslationVector()).frobeniusNorm());
+    rotationErrors.push_back(vpThetaUVector(delta.getRotationMatrix()).getTheta());
+  }
+  std::cout << estimates.size() - missing << "/" << estimates.size() << " frames with a pose and a ground truth"
+            << std::endl;
+  summarize("translation error", translationErrors, 1000.0, "mm");
+  summarize("rotation error", rotationErrors, 180.0 / M_PI, "deg");
+
+  bool pass = missing == 0 && !translationErrors.empty();
+  if (maxTranslation >= 0.0 && !(median(translationErrors) <= maxTranslation)) {
+    std::cerr << "median translation error above " << maxTranslation << " m" << std::endl;
+    pass = false;
+  }
+  if (maxRotationDeg >= 0.0 && !(median(rotationErrors) * 180.0 / M_PI <= maxRotationDeg)) {
+    std::cerr << "median rotation error above " << maxRotationDeg << " deg" << std::endl;
+    pass = false;
+  }
+  if (missing > 0)
+    std::cerr << missing << " frame(s) without a pose" << std::endl;
+  return pass ? EXIT_SUCCESS : EXIT_FAILURE;
+}

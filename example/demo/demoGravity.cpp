@@ -1,0 +1,230 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*
+  Gravity-aided pose half of the main demo: the sequence of data/gravity_sequence (simulated by
+  vsp-make-gravity-sequence: 8 points, 0.5 px image noise, 0.3 deg IMU noise, one mismatched point
+  every sixth frame) through vpPoseGravity (P3P, P3P + refinePose, LEAST_SQUARES, RANSAC) and, for
+  comparison, vpPose on the same points.
+*/
+#include "demoCommon.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpColor.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpImageDraw.h>
+#include <visp3/core/vpMeterPixelConversion.h>
+#include <visp3/core/vpTime.h>
+#include <visp3/io/vpImageIo.h>
+#include <visp3/pose_gravity/vpPoseGravity.h>
+#include <visp3/vision/vpPose.h>
+
+#include "vpCsvTools.h"
+#include "vpGravityPointsIo.h"
+#include "vpPngPlot.h"
+
+namespace
+{
+// The simulated camera of the sequence (see make-gravity-sequence.cpp), used only to draw overlays.
+const vpCameraParameters kCamera(800.0, 800.0, 320.0, 240.0);
+const unsigned int kWidth = 640, kHeight = 480;
+// RANSAC inlier threshold in normalized coordinates: 2.5e-3 is 2 px at f = 800 px, four times the
+// 0.5 px image noise, far below the displacement of a mismatched point.
+const double kRansacThreshold = 2.5e-3;
+
+enum class Method { P3P, P3P_REFINED, LEAST_SQUARES, RANSAC, VISP_POSE };
+const Method kMethods[] = {Method::P3P, Method::P3P_REFINED, Method::LEAST_SQUARES, Method::RANSAC, Method::VISP_POSE};
+
+std::string methodName(Method m)
+{
+  switch (m) {
+  case Method::P3P:
+    return "P3P";
+  case Method::P3P_REFINED:
+    return "P3P+refinePose";
+  case Method::LEAST_SQUARES:
+    return "LEAST_SQUARES";
+  case Method::RANSAC:
+    return "RANSAC";
+  case Method::VISP_POSE:
+  default:
+    return "vpPose DEMENTHON_VVS";
+  }
+}
+
+//! Runs one method on one frame. \return false when it gives no pose.
+bool estimate(Method method, const vpGravityFrame &frame, vpHomogeneousMatrix &cMo, std::vector<unsigned int> &inliers)
+{
+  inliers.clear();
+  try {
+    if (method == Method::VISP_POSE) {
+      vpPose pose;
+      for (const vpPoint &P : frame.points)
+        pose.addPoint(P);
+      return pose.computePose(vpPose::DEMENTHON_VIRTUAL_VS, cMo);
+    }
+    vpPoseGravity pose;
+    pose.setCameraGravity(frame.gCam);
+    pose.setObjectGravity(frame.gObj);
+    pose.addPoints(frame.points);
+    pose.setRansacThreshold(kRansacThreshold);
+    pose.setRansacSeed(frame.frame);
+    const vpPoseGravity::vpPoseGravityMethod m = method == Method::LEAST_SQUARES ? vpPoseGravity::LEAST_SQUARES
+                                                 : method == Method::RANSAC     ? vpPoseGravity::RANSAC
+                                                                                : vpPoseGravity::P3P;
+    if (!pose.computePose(m, cMo))
+      return false;
+    if (method == Method::P3P_REFINED)
+      pose.refinePose(cMo); // keeps the P3P pose when the refinement does not converge
+    if (method == Method::RANSAC)
+      inliers = pose.getRansacInlierIndex();
+    return true;
+  } catch (const vpException &e) {
+    std::cerr << "gravity frame " << frame.frame << ", " << methodName(method) << ": " << e.getStringMessage()
+              << std::endl;
+    return false;
+  }
+}
+
+//! Synthetic view of a frame: observed points (red), RANSAC inliers (green), reprojection with the
+//! RANSAC pose (blue circles) and its object frame axes.
+void writeOverlay(const std::string &file, const vpGravityFrame &frame, const vpHomogeneousMatrix &cMo,
+                  const std::vector<unsigned int> &inliers, const vpHomogeneousMatrix &cMoTrue)
+{
+  vpImage<vpRGBa> I(kHeight, kWidth, vpRGBa(40, 40, 40));
+  vpImageDraw::drawFrame(I, cMoTrue, kCamera, 0.08, vpColor::gray, 1);
+  vpImageDraw::drawFrame(I, cMo, kCamera, 0.1, vpColor::none, 2);
+  for (size_t i = 0; i < frame.points.size(); ++i) {
+    vpImagePoint observed;
+    vpMeterPixelConversion::convertPoint(kCamera, frame.points[i].get_x(), frame.points[i].get_y(), observed);
+    const bool inlier = std::find(inliers.begin(), inliers.end(), i) != inliers.end();
+    vpImageDraw::drawCross(I, observed, 12, inlier ? vpColor::green : vpColor::red, 2);
+    vpPoint P = frame.points[i];
+    P.project(cMo);
+    vpImagePoint reprojected;
+    vpMeterPixelConversion::convertPoint(kCamera, P.get_x(), P.get_y(), reprojected);
+    vpImageDraw::drawCircle(I, reprojected, 6, vpColor::blue, 1);
+  }
+  vpImageIo::write(I, file);
+}
+} // namespace
+
+std::vector<vpAccuracyBound> gravityBounds()
+{
+  const std::string noise = "0.5 px image noise and 0.3 deg IMU noise give a few mm and tenths of a degree";
+  return {
+      {"P3P", "translation", "median", 20.0, "minimal solver: " + noise + ", amplified by using 3 points only"},
+      {"P3P", "rotation", "median", 1.5, "minimal solver: " + noise + ", amplified by using 3 points only"},
+      {"P3P+refinePose", "translation", "median", 15.0, "refined on all 8 points, outlier frames included"},
+      {"P3P+refinePose", "rotation", "median", 1.0, "refined on all 8 points, outlier frames included"},
+      {"LEAST_SQUARES", "translation", "median", 15.0, noise + "; the median ignores the outlier frames"},
+      {"LEAST_SQUARES", "rotation", "median", 1.0, noise + "; the median ignores the outlier frames"},
+      {"RANSAC", "translation", "max", 30.0, "the mismatched points must be rejected on every frame"},
+      {"RANSAC", "rotation", "max", 2.0, "the mismatched points must be rejected on every frame"},
+  };
+}
+
+bool runGravityDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &summaries,
+                    std::vector<std::string> &writtenFiles)
+{
+  const std::string dir = options.dataDir + "/gravity_sequence";
+  std::vector<vpGravityFrame> frames;
+  std::vector<vpPoseRow> truthRows;
+  std::string error;
+  if (!vpGravityPointsIo::readPoints(dir + "/points.csv", frames, error) ||
+      !vpGravityPointsIo::readPoses(dir + "/groundtruth.csv", truthRows, error)) {
+    std::cerr << "gravity sequence: " << error << std::endl;
+    return false;
+  }
+  std::map<unsigned int, vpHomogeneousMatrix> truth;
+  for (const vpPoseRow &row : truthRows)
+    truth[row.frame] = row.cMo;
+  if (options.maxFrames > 0 && frames.size() > options.maxFrames)
+    frames.resize(options.maxFrames);
+
+  summaries.clear();
+  for (Method m : kMethods) {
+    vpMethodSummary s;
+    s.method = methodName(m);
+    s.errors = {{"translation", "mm", 1000.0, {}}, {"rotation", "deg", 180.0 / M_PI, {}}};
+    summaries.push_back(s);
+  }
+  const size_t nMethods = summaries.size();
+  std::vector<std::vector<double> > plotX(nMethods), plotT(nMethods), plotR(nMethods);
+
+  const std::string csvFile = options.outputDir + "/gravity_results.csv";
+  std::ofstream csv(csvFile);
+  csv << "frame,method,status,points,inliers,tx,ty,tz,tux,tuy,tuz,translation_error_m,rotation_error_rad,time_ms\n";
+  const std::vector<size_t> overlayFrames = {0, frames.size() / 2, frames.size() - 1};
+
+  vpProgress progress("gravity-aided pose sequence", frames.size());
+  for (size_t k = 0; k < frames.size(); ++k) {
+    progress.update(k);
+    const vpGravityFrame &frame = frames[k];
+    if (truth.find(frame.frame) == truth.end()) {
+      std::cerr << "gravity sequence: frame " << frame.frame << " has no ground truth" << std::endl;
+      return false;
+    }
+    const vpHomogeneousMatrix &cMoTrue = truth[frame.frame];
+    for (size_t m = 0; m < nMethods; ++m) {
+      vpHomogeneousMatrix cMo;
+      std::vector<unsigned int> inliers;
+      const double t0 = vpTime::measureTimeMs();
+      const bool ok = estimate(kMethods[m], frame, cMo, inliers);
+      const double elapsed = vpTime::measureTimeMs() - t0;
+      vpMethodSummary &s = summaries[m];
+      ++s.frames;
+      s.totalTimeMs += elapsed;
+      csv << frame.frame << "," << s.method << "," << (ok ? "ok" : "failed") << "," << frame.points.size() << ","
+          << (kMethods[m] == Method::RANSAC ? inliers.size() : frame.points.size());
+      if (!ok) {
+        csv << ",nan,nan,nan,nan,nan,nan,nan,nan," << elapsed << "\n";
+        continue;
+      }
+      ++s.successes;
+      const vpTranslationVector t = cMo.getTranslationVector();
+      const vpThetaUVector tu = cMo.getThetaUVector();
+      const double tErr = (t - cMoTrue.getTranslationVector()).frobeniusNorm();
+      const double rErr = vpThetaUVector((cMoTrue.inverse() * cMo).getRotationMatrix()).getTheta();
+      s.errors[0].stats.add(tErr);
+      s.errors[1].stats.add(rErr);
+      plotX[m].push_back(frame.frame);
+      plotT[m].push_back(tErr * 1000.0);
+      plotR[m].push_back(rErr * 180.0 / M_PI);
+      for (unsigned int i = 0; i < 3; ++i)
+        csv << "," << vpCsvTools::formatDouble(t[i]);
+      for (unsigned int i = 0; i < 3; ++i)
+        csv << "," << vpCsvTools::formatDouble(tu[i]);
+      csv << "," << vpCsvTools::formatDouble(tErr) << "," << vpCsvTools::formatDouble(rErr) << "," << elapsed << "\n";
+
+      if (kMethods[m] == Method::RANSAC && std::find(overlayFrames.begin(), overlayFrames.end(), k) != overlayFrames.end()) {
+        char name[64];
+        std::snprintf(name, sizeof(name), "/gravity_overlay_frame_%03u.png", frame.frame);
+        writeOverlay(options.outputDir + name, frame, cMo, inliers, cMoTrue);
+        writtenFiles.push_back(options.outputDir + name);
+      }
+    }
+  }
+  progress.done();
+  writtenFiles.push_back(csvFile);
+
+  const vpColor colors[] = {vpColor::red, vpColor::orange, vpColor::blue, vpColor::darkGreen, vpColor::purple};
+  vpPngPlot tPlot("Gravity-aided pose: translation error", "frame", "error [mm]");
+  vpPngPlot rPlot("Gravity-aided pose: rotation error", "frame", "error [deg]");
+  for (size_t m = 0; m < nMethods; ++m) {
+    tPlot.addCurve(summaries[m].method, plotX[m], plotT[m], colors[m % 5]);
+    rPlot.addCurve(summaries[m].method, plotX[m], plotR[m], colors[m % 5]);
+  }
+  tPlot.write(options.outputDir + "/gravity_translation_error.png");
+  rPlot.write(options.outputDir + "/gravity_rotation_error.png");
+  writtenFiles.push_back(options.outputDir + "/gravity_translation_error.png");
+  writtenFiles.push_back(options.outputDir + "/gravity_rotation_error.png");
+  return true;
+}

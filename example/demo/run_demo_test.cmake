@@ -1,0 +1,27 @@
+# ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+# Runs the demo on a copy of the shipped data into a fresh output folder, with --check, and checks
+# the exit status and the files it must leave.
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}/data")
+file(COPY "${DATA}/laser_sequence" "${DATA}/gravity_sequence" DESTINATION "${WORK}/data")
+execute_process(COMMAND "${PROGRAM}" --data "${WORK}/data" --output "${WORK}/output" --check
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(err)
+  message("stderr:\n${err}")
+endif()
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "vsp-demo exited with status ${status}")
+endif()
+foreach(f laser_results.csv gravity_results.csv laser_altitude.png laser_roll.png laser_pitch.png
+          laser_altitude_error.png gravity_translation_error.png gravity_rotation_error.png)
+  if(NOT EXISTS "${WORK}/output/${f}")
+    message(FATAL_ERROR "vsp-demo did not write ${f}")
+  endif()
+endforeach()
+file(GLOB overlays "${WORK}/output/*overlay*.png")
+list(LENGTH overlays overlay_count)
+if(overlay_count LESS 3)
+  message(FATAL_ERROR "expected overlays, found ${overlay_count}")
+endif()
+message("demo test: exit status 0, CSV, plots and ${overlay_count} overlays present")
