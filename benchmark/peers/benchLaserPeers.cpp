@@ -1,0 +1,334 @@
+/* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
+/*!
+  \file benchLaserPeers.cpp
+  \brief Laser-conic estimators on 1000-point frames (PLANE_PAIR, PP-5, PP-3, GP-3 at 0-75 %
+  outliers) against an OpenCV ellipse fit + plane pair, and the whole 1600x1200 frame (detection +
+  GP-3) against one cv::cvtColor BGR->HSV pass.
+
+  The point frames come from an independent generator (vspLaserScene.h); the rendered frames from
+  vpLaserConicSimulator. Without the laser_conic library (VSP_HAVE_LASER_CONIC undefined) only the
+  OpenCV passes are timed.
+*/
+#include <random>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpImageConvert.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpPlane.h>
+
+#ifdef VSP_HAVE_LASER_CONIC
+#include <visp3/laser_conic/vpLaserConicDetector.h>
+#include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicSimulator.h>
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+#endif
+
+#include "benchTable.h"
+#include "vspBenchUtils.h"
+#include "vspLaserScene.h"
+
+namespace
+{
+//! One 1000-point frame and its ground truth, in the types of every method.
+struct LaserFrame
+{
+  Eigen::Vector4d truth;
+  std::vector<vpImagePoint> points;
+  std::vector<cv::Point2f> cvPoints;
+};
+
+std::vector<LaserFrame> makeFrames(const vspBench::LaserRig &rig, unsigned int seed, int count, double outlierRatio)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> altitude(0.8, 3.0), tilt(-15.0 * M_PI / 180.0, 15.0 * M_PI / 180.0);
+  std::vector<LaserFrame> frames;
+  while (static_cast<int>(frames.size()) < count) {
+    LaserFrame f;
+    f.truth = vspBench::groundPlane(altitude(rng), tilt(rng), tilt(rng));
+    const std::vector<Eigen::Vector2d> uv = vspBench::traceFrame(rig, f.truth, 1000, 0.5, outlierRatio, rng);
+    if (uv.size() < 1000) {
+      continue;
+    }
+    for (const Eigen::Vector2d &p : uv) {
+      f.points.emplace_back(p.y(), p.x());
+      f.cvPoints.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
+    }
+    frames.push_back(f);
+  }
+  return frames;
+}
+
+//! The success criterion of the benchmark: altitude within 1 cm and normal within 1 deg.
+bool planeIsGood(const Eigen::Vector4d &estimate, const Eigen::Vector4d &truth)
+{
+  double angle = 0.0, offset = 0.0;
+  vspBench::planeErrors(estimate, truth, angle, offset);
+  return std::isfinite(angle) && std::isfinite(offset) && angle < M_PI / 180.0 && offset < 0.01;
+}
+
+/*!
+  Symmetric pixel conic of an OpenCV rotated rectangle (full axes \e size, angle in degrees),
+  scaled so that its largest coefficient is of order one.
+*/
+Eigen::Matrix3d conicOfRotatedRect(const cv::RotatedRect &box)
+{
+  const double a = 0.5 * box.size.width, b = 0.5 * box.size.height, theta = box.angle * M_PI / 180.0;
+  const Eigen::Matrix2d Rot = Eigen::Rotation2Dd(theta).toRotationMatrix();
+  const Eigen::Matrix2d A = Rot * Eigen::Vector2d(1.0 / (a * a), 1.0 / (b * b)).asDiagonal() * Rot.transpose();
+  const Eigen::Vector2d c(box.center.x, box.center.y);
+  Eigen::Matrix3d C;
+  C.topLeftCorner<2, 2>() = A;
+  C.topRightCorner<2, 1>() = -A * c;
+  C.bottomLeftCorner<1, 2>() = (-A * c).transpose();
+  C(2, 2) = c.dot(A * c) - 1.0;
+  return C;
+}
+
+[[maybe_unused]] double timeFitEllipseOnly(const std::vector<LaserFrame> &frames, bool direct)
+{
+  return vspBench::medianNsPerCall(
+      [&](int i) {
+        const cv::RotatedRect box = direct ? cv::fitEllipseDirect(frames[i].cvPoints) : cv::fitEllipse(frames[i].cvPoints);
+        vspBench::consume(box.size.width);
+      },
+      static_cast<int>(frames.size()), 9, 0.2);
+}
+
+#ifdef VSP_HAVE_LASER_CONIC
+vpHomogeneousMatrix toHomogeneous(const Eigen::Matrix3d &R, const Eigen::Vector3d &t)
+{
+  vpHomogeneousMatrix M;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      M[r][c] = R(r, c);
+    }
+    M[r][3] = t(r);
+  }
+  return M;
+}
+
+vpLaserSolvers::LaserCone coneOf(const vspBench::LaserRig &rig)
+{
+  vpLaserSolvers::LaserCone cone;
+  cone.cRl = rig.cRl;
+  cone.apex = rig.apex;
+  cone.halfAngle = rig.halfAngle;
+  return cone;
+}
+
+vpLaserConicPose makeEstimator(const vspBench::LaserRig &rig)
+{
+  vpLaserConicPose estimator;
+  estimator.setCameraParameters(vpCameraParameters(rig.px, rig.py, rig.u0, rig.v0));
+  estimator.setLaser(2.0 * rig.halfAngle, toHomogeneous(rig.cRl, rig.apex));
+  return estimator;
+}
+
+Eigen::Vector4d toEigen(const vpPlane &p) { return Eigen::Vector4d(p.getA(), p.getB(), p.getC(), p.getD()); }
+
+//! OpenCV ellipse fit, conic mapped to normalized coordinates (c_n = K^T c_px K), then our plane pair.
+bool baselinePlane(const vspBench::LaserRig &rig, const LaserFrame &f, bool direct, Eigen::Vector4d &plane)
+{
+  const cv::RotatedRect box = direct ? cv::fitEllipseDirect(f.cvPoints) : cv::fitEllipse(f.cvPoints);
+  if (!(box.size.width > 0.0f && box.size.height > 0.0f)) {
+    return false;
+  }
+  Eigen::Matrix3d K;
+  K << rig.px, 0.0, rig.u0, 0.0, rig.py, rig.v0, 0.0, 0.0, 1.0;
+  const Eigen::Matrix3d c = K.transpose() * conicOfRotatedRect(box) * K;
+  return vpLaserSolvers::planePair(c / c.norm(), coneOf(rig), plane);
+}
+
+const char *methodName(vpLaserConicPose::vpLaserConicMethod m)
+{
+  switch (m) {
+  case vpLaserConicPose::PLANE_PAIR:
+    return "PLANE_PAIR";
+  case vpLaserConicPose::PP5:
+    return "PP-5";
+  case vpLaserConicPose::PP3:
+    return "PP-3";
+  default:
+    return "GP-3";
+  }
+}
+
+void renderFrames(const vspBench::LaserRig &rig, unsigned int seed, int count, std::vector<vpImage<vpRGBa> > &images,
+                  std::vector<Eigen::Vector4d> &truths)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> altitude(1.0, 2.5), tilt(-10.0 * M_PI / 180.0, 10.0 * M_PI / 180.0);
+  vpLaserConicSimulator simulator;
+  simulator.setCamera(vpCameraParameters(rig.px, rig.py, rig.u0, rig.v0), rig.width, rig.height);
+  simulator.setLaser(2.0 * rig.halfAngle, toHomogeneous(rig.cRl, rig.apex));
+  simulator.setSeed(seed);
+  for (int i = 0; i < count; ++i) {
+    const double h = altitude(rng), roll = tilt(rng), pitch = tilt(rng);
+    // Ground frame: Z up towards the camera, the camera at height h, then the rig tilted by roll/pitch.
+    const Eigen::Matrix3d tiltR = (Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()) *
+                                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+                                      .toRotationMatrix();
+    const Eigen::Matrix3d flip = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    simulator.setGroundPose(toHomogeneous(tiltR * flip, tiltR * Eigen::Vector3d(0.0, 0.0, h)));
+    vpImage<vpRGBa> I;
+    simulator.render(I);
+    images.push_back(I);
+    truths.push_back(vspBench::groundPlane(h, roll, pitch));
+  }
+}
+#endif
+
+BenchRow row(const std::string &problem, const std::string &method, double ns, double referenceNs, bool ours,
+             double success)
+{
+  BenchRow r;
+  r.problem = problem;
+  r.method = method;
+  r.ns = ns;
+  r.referenceNs = referenceNs;
+  r.ours = ours;
+  r.successRate = success;
+  return r;
+}
+} // namespace
+
+void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick)
+{
+  const vspBench::LaserRig rig = vspBench::defaultRig();
+  const int nFrames = quick ? 10 : 50;
+
+  BenchTable table;
+  table.title = "Circular laser: 1000-point frame";
+  table.note = "1000 trace points (0.5 px noise) per frame, " + std::to_string(nFrames) +
+               " seeded frames per outlier ratio (altitude 0.8-3 m, roll and pitch within 15 deg); "
+               "time = median over repetitions of the mean time per frame; success = altitude error < 1 cm and "
+               "normal error < 1 deg. Default settings (2 px threshold, 1000 trials max, p = 0.99). "
+               "Ratio to GP-3 of the same outlier ratio.";
+  for (double ratio : {0.0, 0.25, 0.5, 0.75}) {
+    const std::vector<LaserFrame> frames = makeFrames(rig, seed + static_cast<unsigned int>(100 * ratio), nFrames, ratio);
+    const std::string problem = std::to_string(static_cast<int>(100 * ratio)) + " % outliers";
+    double referenceNs = 0.0;
+    std::vector<BenchRow> group;
+#ifdef VSP_HAVE_LASER_CONIC
+    for (vpLaserConicPose::vpLaserConicMethod method :
+         {vpLaserConicPose::GP3, vpLaserConicPose::PP3, vpLaserConicPose::PP5, vpLaserConicPose::PLANE_PAIR}) {
+      vpLaserConicPose estimator = makeEstimator(rig);
+      int good = 0;
+      for (const LaserFrame &f : frames) {
+        vpPlane plane;
+        try {
+          if (estimator.computePlane(f.points, method, plane) && planeIsGood(toEigen(plane), f.truth)) {
+            ++good;
+          }
+        } catch (const vpException &) {
+        }
+      }
+      const double ns = vspBench::medianNsPerCall(
+          [&](int i) {
+            vpPlane plane;
+            try {
+              estimator.computePlane(frames[i].points, method, plane);
+            } catch (const vpException &) {
+            }
+            vspBench::consume(plane.getD());
+          },
+          static_cast<int>(frames.size()), 5, 0.2);
+      if (method == vpLaserConicPose::GP3) {
+        referenceNs = ns;
+        if (ratio == 0.5) {
+          targets.gp3At50 = ns;
+        }
+      }
+      group.push_back(row(problem, std::string("ours ") + methodName(method), ns, 0.0, true,
+                          static_cast<double>(good) / frames.size()));
+    }
+    for (bool direct : {false, true}) {
+      int good = 0;
+      for (const LaserFrame &f : frames) {
+        Eigen::Vector4d plane;
+        good += baselinePlane(rig, f, direct, plane) && planeIsGood(plane, f.truth) ? 1 : 0;
+      }
+      const double ns = vspBench::medianNsPerCall(
+          [&](int i) {
+            Eigen::Vector4d plane = Eigen::Vector4d::Zero();
+            baselinePlane(rig, frames[i], direct, plane);
+            vspBench::consume(plane(3));
+          },
+          static_cast<int>(frames.size()), 9, 0.2);
+      group.push_back(row(problem, direct ? "OpenCV fitEllipseDirect + our plane pair" : "OpenCV fitEllipse + our plane pair",
+                          ns, 0.0, false, static_cast<double>(good) / frames.size()));
+    }
+#else
+    group.push_back(row(problem, "OpenCV fitEllipse (fit only)", timeFitEllipseOnly(frames, false), 0.0, false, -1.0));
+    group.push_back(row(problem, "OpenCV fitEllipseDirect (fit only)", timeFitEllipseOnly(frames, true), 0.0, false, -1.0));
+#endif
+    for (BenchRow &r : group) {
+      r.referenceNs = referenceNs;
+      table.rows.push_back(r);
+    }
+  }
+  tables.push_back(table);
+
+  BenchTable frame;
+  frame.title = "Circular laser: whole 1600x1200 frame";
+  frame.note = "Colour frames rendered by vpLaserConicSimulator (default texture, 3 px stripe, noise 2); "
+               "ratio to one cv::cvtColor BGR->HSV pass over the same frame (already a cv::Mat).";
+  frame.ratioHeader = "Ratio to cvtColor";
+#ifdef VSP_HAVE_LASER_CONIC
+  std::vector<vpImage<vpRGBa> > images;
+  std::vector<Eigen::Vector4d> truths;
+  renderFrames(rig, seed + 7, quick ? 2 : 6, images, truths);
+  std::vector<cv::Mat> bgr(images.size());
+  for (size_t i = 0; i < images.size(); ++i) {
+    vpImageConvert::convert(images[i], bgr[i]);
+  }
+  const int nImages = static_cast<int>(images.size());
+  const double cvtNs = vspBench::medianNsPerCall(
+      [&](int i) {
+        cv::Mat hsv;
+        cv::cvtColor(bgr[i], hsv, cv::COLOR_BGR2HSV);
+        vspBench::consume(hsv.at<cv::Vec3b>(0, 0)[0]);
+      },
+      nImages, 15, 0.5);
+  vpLaserConicDetector detector;
+  vpLaserConicPose estimator = makeEstimator(rig);
+  const double detectNs = vspBench::medianNsPerCall(
+      [&](int i) { vspBench::consume(static_cast<double>(detector.detect(images[i]).size())); }, nImages, 9, 0.5);
+  int good = 0;
+  for (int i = 0; i < nImages; ++i) {
+    vpPlane plane;
+    try {
+      good += estimator.computePlane(detector.detect(images[i]), vpLaserConicPose::GP3, plane) &&
+                      planeIsGood(toEigen(plane), truths[i])
+                  ? 1
+                  : 0;
+    } catch (const vpException &) {
+    }
+  }
+  const double wholeNs = vspBench::medianNsPerCall(
+      [&](int i) {
+        vpPlane plane;
+        try {
+          estimator.computePlane(detector.detect(images[i]), vpLaserConicPose::GP3, plane);
+        } catch (const vpException &) {
+        }
+        vspBench::consume(plane.getD());
+      },
+      nImages, 9, 0.5);
+  targets.wholeFrame = wholeNs;
+  targets.cvtColor = cvtNs;
+  frame.rows.push_back(row("1600x1200 frame", "OpenCV cvtColor BGR->HSV", cvtNs, cvtNs, false, -1.0));
+  frame.rows.push_back(row("1600x1200 frame", "ours vpLaserConicDetector::detect", detectNs, cvtNs, true, -1.0));
+  frame.rows.push_back(row("1600x1200 frame", "ours detect + GP-3", wholeNs, cvtNs, true,
+                           static_cast<double>(good) / nImages));
+  tables.push_back(frame);
+#else
+
+#endif
+}

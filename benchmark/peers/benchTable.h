@@ -1,0 +1,49 @@
+/* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
+/*!
+  \file benchTable.h
+  \brief Rows of the peer benchmark and their markdown rendering.
+*/
+#ifndef VSP_BENCH_TABLE_H
+#define VSP_BENCH_TABLE_H
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+//! One measured method: its median time and, for estimators run on noisy data, a success rate.
+struct BenchRow
+{
+  std::string problem;     //!< what is solved ("P3P", "4 coplanar points", ...)
+  std::string method;      //!< the method and its library
+  double ns = 0.0;         //!< median time per call, nanoseconds
+  double referenceNs = 0.0; //!< median time of our solver of the same group (ratio denominator)
+  double successRate = -1.0; //!< fraction of successful estimates in [0, 1], or < 0 when not measured
+  bool ours = false;       //!< true for this project's code
+};
+
+//! A titled table of rows.
+struct BenchTable
+{
+  std::string title;
+  std::string note;
+  std::string ratioHeader = "Ratio to ours"; //!< what the ratio column divides by
+  std::vector<BenchRow> rows;
+};
+
+//! Prints tables as markdown (a ratio above 1 means slower than our reference solver).
+void printMarkdown(std::ostream &os, const std::vector<BenchTable> &tables);
+
+//! Measurements used to evaluate the targets of the benchmark (negative when not measured).
+struct BenchTargets
+{
+  double oursP3P = -1.0, cvAp3p = -1.0, vpPoseLagrange4 = -1.0;
+  double gp3At50 = -1.0;
+  double wholeFrame = -1.0, cvtColor = -1.0;
+};
+
+//! Gravity-aided pose benchmarks: appends their tables and fills the P3P targets.
+void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
+//! Laser-conic benchmarks (1000-point frames and whole 1600x1200 frames).
+void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
+
+#endif
