@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <numeric>
 
@@ -295,6 +296,143 @@ const vpImage<vpRGBa> &vpLaserConicSimulator::proceduralTexture()
   return m_texture;
 }
 
+void vpLaserConicSimulator::groundFootprint(double &cx, double &cy, double &half) const
+{
+  // Back-project the image corners on the ground (camera frame plane n.X + D = 0, D > 0).
+  const vpPlane plane = getGroundPlane();
+  const double n[3] = {plane.getA(), plane.getB(), plane.getC()}, D = plane.getD();
+  const vpHomogeneousMatrix gMc = m_cMg.inverse();
+  const double pixels[4][2] = {{0.0, 0.0}, {m_width - 1.0, 0.0}, {m_width - 1.0, m_height - 1.0}, {0.0, m_height - 1.0}};
+  double minX = std::numeric_limits<double>::infinity(), minY = minX, maxX = -minX, maxY = -minX;
+  bool allHit = true;
+  for (const auto &pixel : pixels) {
+    const double ray[3] = {(pixel[0] - m_cam.get_u0()) / m_cam.get_px(), (pixel[1] - m_cam.get_v0()) / m_cam.get_py(), 1.0};
+    const double towards = n[0] * ray[0] + n[1] * ray[1] + n[2] * ray[2];
+    if (!(towards < 0.0)) {
+      allHit = false; // this corner sees the sky: the horizon is in the image
+      break;
+    }
+    const double lambda = -D / towards;
+    double P[3];
+    for (unsigned int i = 0; i < 3; ++i)
+      P[i] = gMc[i][0] * ray[0] * lambda + gMc[i][1] * ray[1] * lambda + gMc[i][2] * lambda + gMc[i][3];
+    minX = std::min(minX, P[0]);
+    maxX = std::max(maxX, P[0]);
+    minY = std::min(minY, P[1]);
+    maxY = std::max(maxY, P[1]);
+  }
+  const double maxHalf = 50.0 * D; // beyond, the ground is a few pixels wide per metre: plain far grey
+  if (allHit) {
+    cx = 0.5 * (minX + maxX);
+    cy = 0.5 * (minY + maxY);
+    half = std::min(maxHalf, 0.55 * std::max(maxX - minX, maxY - minY)); // 10 % margin
+  } else {
+    cx = gMc[0][3];
+    cy = gMc[1][3];
+    half = maxHalf;
+  }
+}
+
+void vpLaserConicSimulator::renderGround(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture)
+{
+  const vpImage<vpRGBa> &tex = texture.getSize() == 0 ? proceduralTexture() : texture;
+  double cx = 0.0, cy = 0.0, half = 0.0;
+  groundFootprint(cx, cy, half);
+  vpColVector X[4];
+  const double corners[4][2] = {{cx - half, cy - half}, {cx + half, cy - half}, {cx + half, cy + half},
+                                {cx - half, cy + half}};
+  for (unsigned int k = 0; k < 4; ++k) {
+    X[k].resize(3);
+    X[k][0] = corners[k][0];
+    X[k][1] = corners[k][1];
+    X[k][2] = 0.0;
+  }
+  // vpImageSimulator draws one side of its rectangle only: order the corners so that this side faces the camera.
+  vpColVector p[3];
+  for (unsigned int k = 0; k < 3; ++k) {
+    vpColVector Xh(4, 1.0);
+    for (unsigned int i = 0; i < 3; ++i)
+      Xh[i] = X[k][i];
+    p[k] = (m_cMg * Xh).extract(0, 3);
+  }
+  const vpColVector faceNormal = vpColVector::crossProd(p[1] - p[0], p[2] - p[1]);
+  if (vpColVector::dotProd(p[0], faceNormal) <= 0.0)
+    std::swap(X[1], X[3]);
+
+  vpImageSimulator ground(vpImageSimulator::COLORED);
+  ground.init(tex, X);
+  // Nearest texel: the optical blur smooths the texture anyway, at half the cost of bilinear interpolation.
+  ground.setInterpolationType(vpImageSimulator::SIMPLE);
+  ground.setCleanPreviousImage(true, vpColor(kFarGroundGrey, kFarGroundGrey, kFarGroundGrey));
+  ground.setCameraPosition(m_cMg);
+  I.resize(m_height, m_width);
+  ground.getImage(I, m_cam);
+}
+
+void vpLaserConicSimulator::traceDistanceMap(float radius, std::vector<float> &dist2) const
+{
+  const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
+  dist2.assign(static_cast<size_t>(W) * H, std::numeric_limits<float>::infinity());
+
+  // Image point of the cone ray gamma, if that ray lights a ground point in front of the camera.
+  struct Sample
+  {
+    double gamma, u, v;
+    bool ok;
+  };
+  auto sample = [this](double gamma) {
+    Sample s = {gamma, 0.0, 0.0, false};
+    double P[3];
+    s.ok = groundPoint(gamma, P) && project(P, s.u, s.v);
+    return s;
+  };
+  // Lowers dist2 around the chord [a, b].
+  auto rasterise = [&](const Sample &a, const Sample &b) {
+    const float ax = static_cast<float>(a.u), ay = static_cast<float>(a.v);
+    const float bx = static_cast<float>(b.u), by = static_cast<float>(b.v);
+    const int j0 = std::max(0, static_cast<int>(std::floor(std::min(ax, bx) - radius)));
+    const int j1 = std::min(W - 1, static_cast<int>(std::ceil(std::max(ax, bx) + radius)));
+    const int i0 = std::max(0, static_cast<int>(std::floor(std::min(ay, by) - radius)));
+    const int i1 = std::min(H - 1, static_cast<int>(std::ceil(std::max(ay, by) + radius)));
+    for (int i = i0; i <= i1; ++i) {
+      float *row = &dist2[static_cast<size_t>(i) * W];
+      for (int j = j0; j <= j1; ++j)
+        row[j] = std::min(row[j], squaredDistanceToSegment(static_cast<float>(j), static_cast<float>(i), ax, ay, bx, by));
+    }
+  };
+  // Both ends on the same outer side of the image (with the stripe radius): the chord cannot touch it.
+  auto outside = [&](const Sample &a, const Sample &b) {
+    return (a.u < -radius && b.u < -radius) || (a.v < -radius && b.v < -radius) ||
+           (a.u > W - 1 + radius && b.u > W - 1 + radius) || (a.v > H - 1 + radius && b.v > H - 1 + radius);
+  };
+  // Splits [a, b] in gamma until each chord is shorter than a pixel, so that the polyline stays within
+  // 1e-3 pixel of the curve (curvature radius above ~100 pixels); depth-limited near the horizon, where
+  // the curve runs to infinity.
+  std::function<void(const Sample &, const Sample &, int)> draw = [&](const Sample &a, const Sample &b, int depth) {
+    if (a.ok && b.ok) {
+      if (outside(a, b))
+        return;
+      if (std::hypot(b.u - a.u, b.v - a.v) <= 1.0) {
+        rasterise(a, b);
+        return;
+      }
+    }
+    if (depth == 0 || (!a.ok && !b.ok))
+      return;
+    const Sample mid = sample(0.5 * (a.gamma + b.gamma));
+    draw(a, mid, depth - 1);
+    draw(mid, b, depth - 1);
+  };
+  const unsigned int coarse = 256;
+  Sample previous = sample(0.0);
+  const Sample first = previous;
+  for (unsigned int k = 1; k <= coarse; ++k) {
+    const Sample next = k == coarse ? Sample{2.0 * M_PI, first.u, first.v, first.ok} : sample(2.0 * M_PI * k / coarse);
+    draw(previous, next, 24);
+    previous = next;
+  }
+}
+
 void vpLaserConicSimulator::render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture, double stripeWidth,
                                    double noise)
 {
@@ -307,93 +445,15 @@ void vpLaserConicSimulator::render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &te
                                 "vpLaserConicSimulator: the sensor noise must be finite and >= 0");
   const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
 
-  // 1. Ground: a textured square of the plane Z = 0 centred under the camera.
-  const vpImage<vpRGBa> &tex = texture.getSize() == 0 ? proceduralTexture() : texture;
-  const vpHomogeneousMatrix gMc = m_cMg.inverse();
-  const double altitude = getGroundPlane().getD();
-  const double cx = gMc[0][3], cy = gMc[1][3], half = 10.0 * altitude;
-  vpColVector X[4];
-  const double corners[4][2] = {{cx - half, cy - half}, {cx + half, cy - half}, {cx + half, cy + half},
-                                {cx - half, cy + half}};
-  for (unsigned int k = 0; k < 4; ++k) {
-    X[k].resize(3);
-    X[k][0] = corners[k][0];
-    X[k][1] = corners[k][1];
-    X[k][2] = 0.0;
-  }
-  // vpImageSimulator draws one side of its rectangle only: order the corners so that this side faces the camera.
-  {
-    vpColVector p[3];
-    for (unsigned int k = 0; k < 3; ++k) {
-      vpColVector Xh(4, 1.0);
-      for (unsigned int i = 0; i < 3; ++i)
-        Xh[i] = X[k][i];
-      p[k] = (m_cMg * Xh).extract(0, 3);
-    }
-    const vpColVector faceNormal = vpColVector::crossProd(p[1] - p[0], p[2] - p[1]);
-    if (vpColVector::dotProd(p[0], faceNormal) <= 0.0)
-      std::swap(X[1], X[3]);
-  }
-  vpImageSimulator ground(vpImageSimulator::COLORED);
-  ground.init(tex, X);
-  // Nearest texel: the optical blur below smooths the texture anyway, at half the cost of bilinear.
-  ground.setInterpolationType(vpImageSimulator::SIMPLE);
-  ground.setCleanPreviousImage(true, vpColor(kFarGroundGrey, kFarGroundGrey, kFarGroundGrey));
-  ground.setCameraPosition(m_cMg);
-  I.resize(m_height, m_width);
-  ground.getImage(I, m_cam);
+  // 1. Ground through vpImageSimulator.
+  renderGround(I, texture);
 
-  // 2. Laser: squared distance of every pixel near the trace to a dense polyline of the exact image curve.
+  // 2. Laser: distance of the pixels near the trace to the exact image curve, Gaussian profile of that
+  // distance (full width at half maximum stripeWidth), added as red light to the ground, in floating point.
   const double sigma = stripeWidth / (2.0 * std::sqrt(2.0 * std::log(2.0)));
   const float radius = static_cast<float>(3.5 * sigma + 1.0);
-  std::vector<float> dist2(static_cast<size_t>(W) * H, std::numeric_limits<float>::infinity());
-  auto sampleCurve = [this](unsigned int n, std::vector<float> &us, std::vector<float> &vs, std::vector<char> &ok) {
-    us.assign(n, 0.f);
-    vs.assign(n, 0.f);
-    ok.assign(n, 0);
-    for (unsigned int k = 0; k < n; ++k) {
-      double P[3], u, v;
-      if (groundPoint(2.0 * M_PI * k / n, P) && project(P, u, v)) {
-        us[k] = static_cast<float>(u);
-        vs[k] = static_cast<float>(v);
-        ok[k] = 1;
-      }
-    }
-  };
-  std::vector<float> us, vs;
-  std::vector<char> ok;
-  // Coarse pass to measure the image length of the curve, then about 2 samples per pixel of length (the
-  // chords then deviate from the curve by less than 1e-3 pixel for curvature radii above 30 pixels).
-  const unsigned int coarse = 1024;
-  sampleCurve(coarse, us, vs, ok);
-  double length = 0.0;
-  for (unsigned int k = 0; k < coarse; ++k) {
-    const unsigned int k1 = (k + 1) % coarse;
-    if (ok[k] && ok[k1])
-      length += std::min(2.0 * (W + H), static_cast<double>(std::hypot(us[k1] - us[k], vs[k1] - vs[k])));
-  }
-  const unsigned int dense = static_cast<unsigned int>(std::min(400000.0, std::max(4096.0, 2.0 * length)));
-  sampleCurve(dense, us, vs, ok);
-  for (unsigned int k = 0; k < dense; ++k) {
-    const unsigned int k1 = (k + 1) % dense;
-    if (!ok[k] || !ok[k1])
-      continue;
-    const float ax = us[k], ay = vs[k], bx = us[k1], by = vs[k1];
-    // A long chord only happens where the curve runs to the horizon: not drawn, it is not a stripe any more.
-    if (std::hypot(bx - ax, by - ay) > 8.f)
-      continue;
-    const int j0 = std::max(0, static_cast<int>(std::floor(std::min(ax, bx) - radius)));
-    const int j1 = std::min(W - 1, static_cast<int>(std::ceil(std::max(ax, bx) + radius)));
-    const int i0 = std::max(0, static_cast<int>(std::floor(std::min(ay, by) - radius)));
-    const int i1 = std::min(H - 1, static_cast<int>(std::ceil(std::max(ay, by) + radius)));
-    for (int i = i0; i <= i1; ++i) {
-      float *row = &dist2[static_cast<size_t>(i) * W];
-      for (int j = j0; j <= j1; ++j)
-        row[j] = std::min(row[j], squaredDistanceToSegment(static_cast<float>(j), static_cast<float>(i), ax, ay, bx, by));
-    }
-  }
-
-  // 3. Compose in floating point: ground + laser light (RGB order), then blur and sensor noise.
+  std::vector<float> dist2;
+  traceDistanceMap(radius, dist2);
   cv::Mat image(H, W, CV_32FC3);
   const float inv2s2 = static_cast<float>(1.0 / (2.0 * sigma * sigma));
   const float r2 = radius * radius;
@@ -402,21 +462,17 @@ void vpLaserConicSimulator::render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &te
     const vpRGBa *in = I[static_cast<unsigned int>(i)];
     const float *d2 = &dist2[static_cast<size_t>(i) * W];
     for (int j = 0; j < W; ++j) {
-      float r = in[j].R, g = in[j].G, b = in[j].B;
-      if (d2[j] < r2) {
-        const float profile = std::exp(-d2[j] * inv2s2);
-        r += kLaserRgb[0] * profile;
-        g += kLaserRgb[1] * profile;
-        b += kLaserRgb[2] * profile;
-      }
-      out[3 * j] = r;
-      out[3 * j + 1] = g;
-      out[3 * j + 2] = b;
+      const float profile = d2[j] < r2 ? std::exp(-d2[j] * inv2s2) : 0.f;
+      out[3 * j] = in[j].R + kLaserRgb[0] * profile;
+      out[3 * j + 1] = in[j].G + kLaserRgb[1] * profile;
+      out[3 * j + 2] = in[j].B + kLaserRgb[2] * profile;
     }
   }
+
+  // 3. Optics: blur.
   cv::GaussianBlur(image, image, cv::Size(0, 0), kBlurSigma);
 
-  // 4. Sensor noise, rounding and saturation in one pass.
+  // 4. Sensor: noise, rounding and saturation in one pass.
   const std::vector<float> &quantiles = normalQuantiles();
   FastRandom random((static_cast<uint64_t>(m_rng()) << 32) | m_rng());
   const float sensorSigma = static_cast<float>(noise);

@@ -124,15 +124,16 @@ TEST(LaserConicDetector, FindsTheCleanRenderedTraceWithSubPixelAccuracy)
   unsigned int seed = 1;
   for (const vpHomogeneousMatrix &cMg : groundPoses()) {
     // Clean render: blur but no sensor noise. The stripe is symmetric across the curve, so the weighted
-    // centre is off the curve only by the curvature of the stripe and the truncation of the run at the
-    // mask threshold: a few tenths of a pixel at most.
+    // centre is off the curve only by the curvature of the stripe, the truncation of the run at the mask
+    // threshold and the textured ground under the stripe (grain of ~20 grey levels under a ~250 level
+    // peak): measured at most 0.28 px, 0.03 px on average.
     const DetectionStats stats = detectAndCompare(cMg, seed++, 3.0, 0.0, detector);
     std::cout << "clean: " << stats.nbPoints << " points, max error " << stats.maxError << " px, mean "
               << stats.meanError << " px, recall " << stats.recall << ", detect " << stats.milliseconds << " ms"
               << std::endl;
     EXPECT_GT(stats.nbPoints, 1000u);
     EXPECT_LT(stats.maxError, 0.5);
-    EXPECT_LT(stats.meanError, 0.15);
+    EXPECT_LT(stats.meanError, 0.06);
     EXPECT_GT(stats.recall, 0.99);
   }
 }
@@ -142,14 +143,15 @@ TEST(LaserConicDetector, FindsTheNoisyRenderedTrace)
   vpLaserConicDetector detector;
   unsigned int seed = 10;
   for (const vpHomogeneousMatrix &cMg : groundPoses()) {
-    // Sensor noise of 3 grey levels on a stripe of ~250 levels moves a weighted centre of ~4 pixels by
-    // well under 0.1 px; the mask edge pixels flicker, which shifts some centres by up to ~0.5 px.
+    // Sensor noise of 3 grey levels on a stripe of ~250 levels moves a weighted centre of ~5 pixels by
+    // a few hundredths of a pixel; the mask edge pixels flicker, which adds a little more: measured at
+    // most 0.30 px, 0.045 px on average.
     const DetectionStats stats = detectAndCompare(cMg, seed++, 4.0, 3.0, detector);
     std::cout << "noisy: " << stats.nbPoints << " points, max error " << stats.maxError << " px, mean "
               << stats.meanError << " px, recall " << stats.recall << std::endl;
-    EXPECT_LT(stats.maxError, 1.0);
-    EXPECT_LT(stats.meanError, 0.2);
-    EXPECT_GT(stats.recall, 0.98);
+    EXPECT_LT(stats.maxError, 0.5);
+    EXPECT_LT(stats.meanError, 0.08);
+    EXPECT_GT(stats.recall, 0.99);
   }
 }
 

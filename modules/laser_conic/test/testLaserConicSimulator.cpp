@@ -313,14 +313,34 @@ TEST(LaserConicSimulator, RenderIsSeededAndUsesTheGivenTexture)
   EXPECT_EQ(Ic[5][5].R, 0);
 }
 
-TEST(LaserConicSimulator, RendersTheHorizonWithoutTrouble)
+TEST(LaserConicSimulator, RendersAnOpenTraceUpToTheHorizon)
 {
-  // Grazing view: the optical axis nearly parallel to the ground, horizon in the image.
-  const vpHomogeneousMatrix cMg = vpHomogeneousMatrix(0, 0.5, 3.0, vpMath::rad(-75), 0, 0);
-  vpLaserConicSimulator sim = makeSimulator(cMg);
+  // Optical axis and cone axis parallel to the ground, 0.3 m above it: the horizon is the middle row and
+  // the trace is a hyperbola branch whose image runs up to a vanishing point on the horizon.
+  const vpHomogeneousMatrix cMg(0, 0.3, 0, vpMath::rad(-90), 0, 0);
+  vpLaserConicSimulator sim;
+  sim.setCamera(camera(), kWidth, kHeight);
+  sim.setLaser(kOpening, vpHomogeneousMatrix(0.05, 0, 0, 0, 0, 0));
+  sim.setGroundPose(cMg);
+  sim.setSeed(8);
   vpImage<vpRGBa> I;
-  EXPECT_NO_THROW(sim.render(I));
-  EXPECT_EQ(I.getWidth(), kWidth);
+  sim.render(I, vpImage<vpRGBa>(), 3.0, 0.0);
+
+  auto isRed = [](const vpRGBa &c) { return c.R > 150 && c.R > c.G + 80 && c.R > c.B + 80; };
+  const std::vector<vpImagePoint> trace = sim.tracePoints(4000);
+  ASSERT_GT(trace.size(), 100u);
+  size_t onRed = 0;
+  for (const vpImagePoint &p : trace) {
+    EXPECT_GT(p.get_v(), 600.0 - 1e-6); // below the horizon
+    if (isRed(I[static_cast<unsigned int>(std::lround(p.get_v()))][static_cast<unsigned int>(std::lround(p.get_u()))]))
+      ++onRed;
+  }
+  EXPECT_EQ(onRed, trace.size());
+  // The sky (above the horizon) is the plain far grey, no laser.
+  for (unsigned int j = 0; j < kWidth; j += 50) {
+    EXPECT_EQ(I[100][j].R, 20);
+    EXPECT_EQ(I[100][j].G, 20);
+  }
 }
 
 TEST(LaserConicSimulator, BadSettingsThrow)

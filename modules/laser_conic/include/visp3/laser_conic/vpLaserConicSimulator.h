@@ -106,10 +106,11 @@ public:
   /*!
     Renders a colour image of the camera's view.
 
-    -# The ground: \e texture mapped by vpImageSimulator on a square of the ground plane centred under
-       the camera, 20 altitudes wide (when \e texture is empty: a procedural dark tiled floor that depends
-       on the seed only, so that all frames rendered with one seed see the same floor); what lies beyond it
-       is dark grey.
+    -# The ground: \e texture mapped by vpImageSimulator on a square of the ground plane that covers the
+       camera's footprint (up to 100 altitudes wide when the horizon is in view), so the texture is not
+       attached to fixed ground coordinates from one pose to the next (the laser methods do not use it).
+       When \e texture is empty, a procedural dark tiled floor that depends on the seed only is used;
+       what lies beyond the square is dark grey.
     -# The laser: red light added along the exact image of the trace with a Gaussian profile across the
        curve whose full width at half maximum is \e stripeWidth pixels.
     -# Optics and sensor: a Gaussian blur of standard deviation 0.7 pixel, then Gaussian sensor noise
@@ -130,6 +131,12 @@ private:
   bool groundPoint(double gamma, double P[3]) const;
   //! Projects a camera-frame point; false when it is not in front of the camera.
   bool project(const double P[3], double &u, double &v) const;
+  //! Renders the textured ground into I (resized to the image size).
+  void renderGround(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture);
+  //! Squared distance of each pixel within \e radius of the exact image trace to that trace (+inf elsewhere).
+  void traceDistanceMap(float radius, std::vector<float> &dist2) const;
+  //! Square of the ground (centre cx, cy and half side in ground coordinates) covering the camera's view.
+  void groundFootprint(double &cx, double &cy, double &half) const;
   //! Dark tiled floor texture drawn from the seed (cached).
   const vpImage<vpRGBa> &proceduralTexture();
 
