@@ -56,13 +56,15 @@ vpColVector normalizedGravity(const vpColVector &g, const char *which)
     msg << "vpPoseGravity: " << which << " gravity must be a 3-vector (got " << g.size() << " elements)";
     throw vpPoseGravityException(vpPoseGravityException::badGravityError, msg.str());
   }
-  const double norm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  if (!std::isfinite(norm) || !(norm > 0.0)) {
+  // Scale by the largest component first so that neither tiny nor huge norms under/overflow.
+  const double largest = std::max({std::abs(g[0]), std::abs(g[1]), std::abs(g[2])});
+  if (!std::isfinite(g[0]) || !std::isfinite(g[1]) || !std::isfinite(g[2]) || !(largest > 0.0)) {
     std::ostringstream msg;
     msg << "vpPoseGravity: " << which << " gravity must be finite and non-zero (got " << g.t() << ")";
     throw vpPoseGravityException(vpPoseGravityException::badGravityError, msg.str());
   }
-  return g / norm;
+  vpColVector unit = g / largest;
+  return unit / std::sqrt(unit[0] * unit[0] + unit[1] * unit[1] + unit[2] * unit[2]);
 }
 
 // The RANSAC estimator over 2-point minimal samples (see vpRansacLoop()).
