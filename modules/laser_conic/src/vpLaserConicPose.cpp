@@ -72,6 +72,34 @@ double fractionInFront(const PointList &points, const std::vector<int> &indices,
   }
   return double(front) / double(indices.size());
 }
+/*!
+  vpRansacLoop() followed by a final least-squares refit of the best model on its inliers. The
+  loop only keeps a local refit when it scores better on the truncated Sampson cost, which an
+  algebraic least-squares fit need not do even when it is closer to the truth under noise; the
+  final refit is kept unless it loses more than a tenth of the inliers (a sign of a bad consensus).
+*/
+template <class Estimator>
+bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &options,
+                          typename Estimator::Model &best, vpRansacReport &report)
+{
+  if (!vpRansacLoop(estimator, options, best, report))
+    return false;
+  if (!options.localOptimisation)
+    return true;
+  typename Estimator::Model refit = best;
+  if (!estimator.refine(report.inliers, refit))
+    return true;
+  std::vector<int> inliers;
+  for (int i = 0; i < estimator.size(); ++i)
+    if (estimator.residual(refit, i) < options.threshold)
+      inliers.push_back(i);
+  if (10 * inliers.size() < 9 * report.inliers.size() || static_cast<int>(inliers.size()) < Estimator::kSampleSize)
+    return true;
+  best = refit;
+  report.inliers = inliers;
+  report.inlierCount = static_cast<int>(inliers.size());
+  return true;
+}
 } // namespace
 
 vpLaserConicPose::vpLaserConicPose()
@@ -228,19 +256,19 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     found = true;
   } else if (method == PP5 || method == PP3) {
     if (method == PP5) {
-      found = vpRansacLoop(vpLaserEstimators::Pp5Estimator(normalized), options, conic, report);
+      found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, conic, report);
     } else {
       vpLaserSolvers::EpipolarTangents tangents;
       if (!vpLaserSolvers::epipolarTangents(cone, tangents)) {
         m_failure = "no epipolar tangent to the laser cone: the camera centre lies inside the laser cone";
         return false;
       }
-      found = vpRansacLoop(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, conic, report);
+      found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, conic, report);
     }
     inliers = report.inliers;
   } else {
     vpLaserEstimators::PlaneModel model;
-    found = vpRansacLoop(vpLaserEstimators::Gp3Estimator(normalized, cone), options, model, report);
+    found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, model, report);
     plane = model.plane;
     conic = model.conic;
     inliers = report.inliers;

@@ -196,12 +196,15 @@ inline std::vector<vpImagePoint> addNoise(const std::vector<vpImagePoint> &point
 
 /*!
   Replaces the fraction \e ratio of the points by points uniform in the image that are farther than
-  \e margin pixels from every trace point (so that they are true outliers), then shuffles;
-  \e isOutlier receives the flags.
+  \e margin pixels from the image of the trace (Sampson distance to the true conic, accurate near the
+  curve) and from every trace point, so that they are true outliers; \e isOutlier receives the flags.
 */
-inline std::vector<vpImagePoint> addOutliers(const std::vector<vpImagePoint> &points, double ratio, const Rig &rig,
+inline std::vector<vpImagePoint> addOutliers(const std::vector<vpImagePoint> &points, double ratio, const Scene &s,
                                              std::mt19937 &rng, std::vector<bool> &isOutlier, double margin = 10.0)
 {
+  const Rig &rig = s.rig;
+  const Eigen::Matrix3d trueConic = vpLaserSolvers::conicFromPlane(s.plane, toCone(rig));
+  const double focal = 0.5 * (rig.cam.get_px() + rig.cam.get_py());
   std::uniform_real_distribution<double> u(0.0, rig.width - 1.0), v(0.0, rig.height - 1.0);
   std::vector<vpImagePoint> out = points;
   std::vector<size_t> order(points.size());
@@ -215,7 +218,9 @@ inline std::vector<vpImagePoint> addOutliers(const std::vector<vpImagePoint> &po
     bool far = false;
     while (!far) {
       candidate.set_uv(u(rng), v(rng));
-      far = true;
+      const Eigen::Vector2d x((candidate.get_u() - rig.cam.get_u0()) / rig.cam.get_px(),
+                              (candidate.get_v() - rig.cam.get_v0()) / rig.cam.get_py());
+      far = focal * vpLaserSolvers::sampsonDistance(trueConic, x) > margin;
       for (const vpImagePoint &p : points)
         far = far && vpImagePoint::distance(p, candidate) > margin;
     }

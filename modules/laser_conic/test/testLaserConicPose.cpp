@@ -1,0 +1,417 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// Tests of vpLaserConicPose on exact, noisy and outlier-ridden simulated traces, and on bad input.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include <visp3/laser_conic/vpLaserConicPose.h>
+
+#include "laser_test_utils.h"
+
+using laser_test::Scene;
+
+namespace
+{
+const vpLaserConicPose::vpLaserConicMethod kAllMethods[] = {vpLaserConicPose::PLANE_PAIR, vpLaserConicPose::PP5,
+                                                             vpLaserConicPose::PP3, vpLaserConicPose::GP3};
+
+std::string name(vpLaserConicPose::vpLaserConicMethod m)
+{
+  switch (m) {
+  case vpLaserConicPose::PLANE_PAIR: return "PLANE_PAIR";
+  case vpLaserConicPose::PP5: return "PP5";
+  case vpLaserConicPose::PP3: return "PP3";
+  case vpLaserConicPose::GP3: return "GP3";
+  }
+  return "?";
+}
+
+Eigen::Vector4d toEigen(const vpPlane &p) { return Eigen::Vector4d(p.getA(), p.getB(), p.getC(), p.getD()); }
+
+vpLaserConicPose makeEstimator(const laser_test::Rig &rig)
+{
+  vpLaserConicPose estimator;
+  estimator.setCameraParameters(rig.cam);
+  estimator.setLaser(rig.openingAngle, rig.cMl);
+  return estimator;
+}
+
+//! A random scene where the method applies (PP-3 needs the camera outside the laser cone).
+Scene drawScene(std::mt19937 &rng, vpLaserConicPose::vpLaserConicMethod method, unsigned int n,
+                std::vector<vpImagePoint> &points, const laser_test::SceneRanges &ranges = laser_test::SceneRanges())
+{
+  for (;;) {
+    Scene s = laser_test::randomScene(rng, ranges, n, points);
+    if (method != vpLaserConicPose::PP3 || !laser_test::cameraInsideCone(laser_test::toCone(s.rig)))
+      return s;
+  }
+}
+
+struct Errors
+{
+  std::vector<double> normal, altitude;
+  int failures = 0;
+  void print(const std::string &what) const
+  {
+    std::printf("%-34s normal rad median %.2e max %.2e | altitude m median %.2e max %.2e | failures %d\n",
+                what.c_str(), laser_test::median(normal), laser_test::maximum(normal), laser_test::median(altitude),
+                laser_test::maximum(altitude), failures);
+  }
+};
+
+/*!
+  Runs one method over random scenes of \e n trace points, with pixel noise \e sigma and a fraction
+  \e outliers of outliers. Checks the returned plane is consistent with the altitude/roll/pitch getters.
+*/
+Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigned int n, double sigma,
+                double outliers, unsigned int seed, double threshold = 2.0)
+{
+  std::mt19937 rng(seed);
+  Errors errors;
+  for (int k = 0; k < scenes; ++k) {
+    std::vector<vpImagePoint> points;
+    const Scene s = drawScene(rng, method, n, points);
+    if (sigma > 0.0)
+      points = laser_test::addNoise(points, sigma, rng);
+    std::vector<bool> isOutlier;
+    if (outliers > 0.0)
+      points = laser_test::addOutliers(points, outliers, s, rng, isOutlier);
+    vpLaserConicPose estimator = makeEstimator(s.rig);
+    estimator.setRansacSeed(seed + k);
+    estimator.setRansacThreshold(threshold);
+    vpPlane plane;
+    if (!estimator.computePlane(points, method, plane)) {
+      ++errors.failures;
+      continue;
+    }
+    const Eigen::Vector4d p = toEigen(plane);
+    errors.normal.push_back(laser_test::normalError(p, s.plane));
+    errors.altitude.push_back(laser_test::altitudeError(p, s.plane));
+    double a, r, pi;
+    vpLaserConicPose::computeAltitudeRollPitch(plane, a, r, pi);
+    EXPECT_EQ(a, estimator.getAltitude());
+    EXPECT_EQ(r, estimator.getRoll());
+    EXPECT_EQ(pi, estimator.getPitch());
+    EXPECT_NEAR(p.head<3>().norm(), 1.0, 1e-12);
+    EXPECT_GT(p(3), 0.0);
+  }
+  return errors;
+}
+} // namespace
+
+// Exact data: only rounding remains (see testLaserSolvers.cpp for the tolerances). 2000 random
+// scenes per method: tilts up to 60 deg, baselines 5-30 cm in any direction, laser axis tilted up to 15 deg.
+TEST(LaserConicPose, ExactDataEveryMethod)
+{
+  for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+    const Errors e = evaluate(method, 2000, 30, 0.0, 0.0, 100 + method);
+    e.print("exact " + name(method));
+    EXPECT_EQ(e.failures, 0) << name(method);
+    EXPECT_LT(laser_test::median(e.normal), 1e-9) << name(method);
+    EXPECT_LT(laser_test::maximum(e.normal), 1e-6) << name(method);
+    EXPECT_LT(laser_test::median(e.altitude), 1e-9) << name(method);
+    EXPECT_LT(laser_test::maximum(e.altitude), 1e-6) << name(method);
+  }
+}
+
+TEST(LaserConicPose, ExactDataGivesAllInliersAndThePixelConic)
+{
+  std::mt19937 rng(7);
+  for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+    std::vector<vpImagePoint> points;
+    const Scene s = drawScene(rng, method, 50, points);
+    vpLaserConicPose estimator = makeEstimator(s.rig);
+    vpPlane plane;
+    ASSERT_TRUE(estimator.computePlane(points, method, plane)) << estimator.getFailureReason();
+    EXPECT_TRUE(estimator.getFailureReason().empty());
+    EXPECT_EQ(estimator.getInliers().size(), points.size()) << name(method);
+    if (method != vpLaserConicPose::PLANE_PAIR) {
+      EXPECT_GT(estimator.getRansacTrials(), 0);
+    }
+    // The conic is given in pixels: every trace point is on it (Sampson distance in pixels).
+    const vpMatrix C = estimator.getImageConic();
+    Eigen::Matrix3d c;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        c(i, j) = C[i][j];
+    for (const vpImagePoint &p : points)
+      EXPECT_LT(vpLaserSolvers::sampsonDistance(c, Eigen::Vector2d(p.get_u(), p.get_v())), 1e-6) << name(method);
+  }
+}
+
+// Half the points replaced by points uniform in the image, at least 10 px from the trace. The inliers
+// are exact, so the plane refit on them is exact unless an outlier falls within the 2 px threshold,
+// which the 10 px margin prevents: the exact-data bounds hold, and the inlier set is the true one.
+TEST(LaserConicPose, FiftyPercentOutliers)
+{
+  for (vpLaserConicPose::vpLaserConicMethod method :
+       {vpLaserConicPose::PP5, vpLaserConicPose::PP3, vpLaserConicPose::GP3}) {
+    std::mt19937 rng(200 + method);
+    Errors e;
+    for (int k = 0; k < 200; ++k) {
+      std::vector<vpImagePoint> points;
+      const Scene s = drawScene(rng, method, 60, points);
+      std::vector<bool> isOutlier;
+      points = laser_test::addOutliers(points, 0.5, s, rng, isOutlier);
+      vpLaserConicPose estimator = makeEstimator(s.rig);
+      estimator.setRansacSeed(k);
+      vpPlane plane;
+      if (!estimator.computePlane(points, method, plane)) {
+        ++e.failures;
+        continue;
+      }
+      e.normal.push_back(laser_test::normalError(toEigen(plane), s.plane));
+      e.altitude.push_back(laser_test::altitudeError(toEigen(plane), s.plane));
+      const std::vector<unsigned int> inliers = estimator.getInliers();
+      EXPECT_EQ(inliers.size(), 30u);
+      for (unsigned int i : inliers)
+        EXPECT_FALSE(isOutlier[i]);
+    }
+    e.print("50% outliers " + name(method));
+    EXPECT_EQ(e.failures, 0) << name(method);
+    EXPECT_LT(laser_test::median(e.normal), 1e-9) << name(method);
+    EXPECT_LT(laser_test::maximum(e.normal), 1e-6) << name(method);
+    EXPECT_LT(laser_test::median(e.altitude), 1e-9) << name(method);
+    EXPECT_LT(laser_test::maximum(e.altitude), 1e-6) << name(method);
+  }
+}
+
+// Gaussian pixel noise on 100 trace points. First-order model: the least-squares conic averages
+// the noise over the N points, so the trace is located to ~sigma / sqrt(N) px; its depth then follows by
+// triangulation over the baseline component b across the line of sight to the trace centre (at distance
+// D): dD ~ D^2 / (b f) * sigma / sqrt(N). The tilt comes from the depth difference across the trace of
+// radius R = D tan(theta): dn ~ dD / R. The per-scene errors divided by these scales have a median
+// ~1.7 and a 95th percentile ~6.5 (a single scale cannot capture the trace shape and the image
+// position); the bounds (median < 3, 95 % < 10) catch any loss of accuracy beyond that spread.
+// The typical absolute errors are printed (sigma = 1 px: altitude ~2.5 mm, normal ~0.35 deg).
+TEST(LaserConicPose, NoisyPoints)
+{
+  for (double sigma : {0.5, 1.0}) {
+    for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+      std::mt19937 rng(300);
+      std::vector<double> altitudeRatio, normalRatio, altitudeMm, normalDeg;
+      int failures = 0;
+      const unsigned int n = 100;
+      for (int k = 0; k < 200; ++k) {
+        std::vector<vpImagePoint> points;
+        const Scene s = drawScene(rng, method, n, points);
+        points = laser_test::addNoise(points, sigma, rng);
+        vpLaserConicPose estimator = makeEstimator(s.rig);
+        estimator.setRansacSeed(k);
+        estimator.setRansacThreshold(3.0 * sigma);
+        vpPlane plane;
+        if (!estimator.computePlane(points, method, plane)) {
+          ++failures;
+          continue;
+        }
+        // Triangulation scale: depth D of the trace centre, baseline component b across the line of sight.
+        const vpLaserSolvers::LaserCone cone = laser_test::toCone(s.rig);
+        const Eigen::Vector3d axis = cone.cRl.col(2);
+        const Eigen::Vector3d centre =
+            cone.apex - (s.plane.head<3>().dot(cone.apex) + s.plane(3)) / s.plane.head<3>().dot(axis) * axis;
+        const double h = centre.norm(), b = cone.apex.cross(centre.normalized()).norm();
+        const double scale = h * h / (b * s.rig.cam.get_px()) * sigma / std::sqrt(double(n));
+        const Eigen::Vector4d p = toEigen(plane);
+        altitudeMm.push_back(1e3 * laser_test::altitudeError(p, s.plane));
+        normalDeg.push_back(vpMath::deg(laser_test::normalError(p, s.plane)));
+        altitudeRatio.push_back(laser_test::altitudeError(p, s.plane) / scale);
+        normalRatio.push_back(laser_test::normalError(p, s.plane) / (scale / (h * std::tan(cone.halfAngle))));
+      }
+      std::sort(altitudeRatio.begin(), altitudeRatio.end());
+      std::sort(normalRatio.begin(), normalRatio.end());
+      const double alt95 = altitudeRatio[altitudeRatio.size() * 95 / 100];
+      const double nor95 = normalRatio[normalRatio.size() * 95 / 100];
+      std::printf("sigma %.1f px %-10s altitude mm median %.2f max %.2f | normal deg median %.3f max %.3f | "
+                  "ratio to first-order scale: altitude median %.2f p95 %.2f, normal median %.2f p95 %.2f | "
+                  "failures %d\n",
+                  sigma, name(method).c_str(), laser_test::median(altitudeMm), laser_test::maximum(altitudeMm),
+                  laser_test::median(normalDeg), laser_test::maximum(normalDeg), laser_test::median(altitudeRatio),
+                  alt95, laser_test::median(normalRatio), nor95, failures);
+      EXPECT_EQ(failures, 0) << name(method);
+      EXPECT_LT(laser_test::median(altitudeRatio), 3.0) << name(method);
+      EXPECT_LT(alt95, 10.0) << name(method);
+      EXPECT_LT(laser_test::median(normalRatio), 3.0) << name(method);
+      EXPECT_LT(nor95, 10.0) << name(method);
+    }
+  }
+}
+
+TEST(LaserConicPose, SameSeedSameResult)
+{
+  std::mt19937 rng(11);
+  std::vector<vpImagePoint> points;
+  const Scene s = drawScene(rng, vpLaserConicPose::GP3, 60, points);
+  std::vector<bool> isOutlier;
+  points = laser_test::addNoise(laser_test::addOutliers(points, 0.4, s, rng, isOutlier), 0.5, rng);
+  for (vpLaserConicPose::vpLaserConicMethod method : {vpLaserConicPose::PP5, vpLaserConicPose::GP3}) {
+    vpPlane a, b;
+    vpLaserConicPose e1 = makeEstimator(s.rig), e2 = makeEstimator(s.rig);
+    e1.setRansacSeed(5);
+    e2.setRansacSeed(5);
+    ASSERT_TRUE(e1.computePlane(points, method, a));
+    ASSERT_TRUE(e2.computePlane(points, method, b));
+    EXPECT_EQ(toEigen(a), toEigen(b));
+    EXPECT_EQ(e1.getInliers(), e2.getInliers());
+    EXPECT_EQ(e1.getRansacTrials(), e2.getRansacTrials());
+  }
+}
+
+// ---- Bad input ------------------------------------------------------------------------------------
+
+namespace
+{
+//! Calls computePlane and expects a vpLaserConicException with the given code.
+void expectThrowCode(vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points,
+                     vpLaserConicPose::vpLaserConicMethod method, int code)
+{
+  vpPlane plane;
+  try {
+    estimator.computePlane(points, method, plane);
+    ADD_FAILURE() << "no exception for " << name(method);
+  } catch (const vpLaserConicException &e) {
+    EXPECT_EQ(e.getCode(), code) << e.getMessage();
+    EXPECT_FALSE(std::string(e.getMessage()).empty());
+  }
+}
+} // namespace
+
+TEST(LaserConicPose, UnsetCameraOrLaserThrows)
+{
+  laser_test::Rig rig;
+  rig.cMl.buildFrom(0.1, 0.0, 0.0, 0.0, 0.0, 0.0);
+  const std::vector<vpImagePoint> points(10, vpImagePoint(100, 200));
+  vpLaserConicPose noCamera;
+  noCamera.setLaser(rig.openingAngle, rig.cMl);
+  expectThrowCode(noCamera, points, vpLaserConicPose::GP3, vpLaserConicException::badCameraError);
+  vpLaserConicPose noLaser;
+  noLaser.setCameraParameters(rig.cam);
+  expectThrowCode(noLaser, points, vpLaserConicPose::GP3, vpLaserConicException::badLaserError);
+}
+
+TEST(LaserConicPose, BadLaserThrows)
+{
+  vpLaserConicPose estimator;
+  vpHomogeneousMatrix cMl;
+  cMl.buildFrom(0.1, 0.0, 0.0, 0.0, 0.0, 0.0);
+  for (double angle : {0.0, -0.5, M_PI, 4.0, std::numeric_limits<double>::quiet_NaN()}) {
+    try {
+      estimator.setLaser(angle, cMl);
+      ADD_FAILURE() << "opening angle " << angle << " accepted";
+    } catch (const vpLaserConicException &e) {
+      EXPECT_EQ(e.getCode(), vpLaserConicException::badLaserError);
+    }
+  }
+  EXPECT_NO_THROW(estimator.setLaser(vpMath::rad(34.0), cMl));
+  vpHomogeneousMatrix atCentre; // identity: apex at the camera centre
+  EXPECT_THROW(estimator.setLaser(vpMath::rad(34.0), atCentre), vpLaserConicException);
+  vpHomogeneousMatrix nan = cMl;
+  nan[1][3] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(estimator.setLaser(vpMath::rad(34.0), nan), vpLaserConicException);
+  EXPECT_THROW(estimator.setRansacThreshold(0.0), vpLaserConicException);
+  EXPECT_THROW(estimator.setRansacMaxTrials(0), vpLaserConicException);
+  EXPECT_THROW(estimator.setRansacProbability(1.0), vpLaserConicException);
+}
+
+TEST(LaserConicPose, TooFewOrNonFinitePointsThrow)
+{
+  std::mt19937 rng(12);
+  std::vector<vpImagePoint> points;
+  const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 20, points);
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+    const unsigned int needed =
+        (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3u : 5u;
+    expectThrowCode(estimator, std::vector<vpImagePoint>(), method, vpLaserConicException::notEnoughPointError);
+    expectThrowCode(estimator, std::vector<vpImagePoint>(points.begin(), points.begin() + needed - 1), method,
+                    vpLaserConicException::notEnoughPointError);
+    std::vector<vpImagePoint> bad = points;
+    bad[3].set_u(std::numeric_limits<double>::infinity());
+    expectThrowCode(estimator, bad, method, vpLaserConicException::badPointError);
+  }
+}
+
+TEST(LaserConicPose, CollinearPointsFailWithAReason)
+{
+  std::mt19937 rng(13);
+  std::vector<vpImagePoint> points;
+  const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 20, points);
+  std::vector<vpImagePoint> line;
+  for (int i = 0; i < 30; ++i)
+    line.emplace_back(100.0 + 20.0 * i, 50.0 + 31.0 * i);
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+    vpPlane plane(1.0, 2.0, 3.0, 4.0);
+    EXPECT_FALSE(estimator.computePlane(line, method, plane)) << name(method);
+    EXPECT_NE(estimator.getFailureReason().find("collinear"), std::string::npos) << estimator.getFailureReason();
+    EXPECT_EQ(plane.getD(), 4.0); // untouched
+  }
+}
+
+// The mirrored (unlit) nappe of the laser cone meets a plane in front of the camera: the cone
+// quadrics cannot tell, but no laser light can reach that plane.
+TEST(LaserConicPose, PlaneBehindTheLaserFailsWithAReason)
+{
+  laser_test::Scene s;
+  // Laser 15 cm to the right, pointing backwards (axis -Z): its mirrored nappe meets the ground 1 m ahead.
+  s.rig.cMl.buildFrom(0.15, 0.0, 0.0, M_PI, 0.0, 0.0);
+  s.plane << 0.0, 0.0, -1.0, 1.0;
+  std::mt19937 rng(14);
+  std::vector<vpImagePoint> points;
+  ASSERT_TRUE(laser_test::traceImagePoints(s, 40, rng, points, true, -1));
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+    vpPlane plane;
+    EXPECT_FALSE(estimator.computePlane(points, method, plane)) << name(method);
+    EXPECT_FALSE(estimator.getFailureReason().empty()) << name(method);
+    std::printf("%-10s behind the laser: %s\n", name(method).c_str(), estimator.getFailureReason().c_str());
+  }
+}
+
+TEST(LaserConicPose, CameraInsideTheLaserConeFailsForPp3)
+{
+  laser_test::Scene s;
+  s.rig.cMl.buildFrom(0.0, 0.0, 0.1, 0.0, 0.0, 0.0); // apex 10 cm ahead on the optical axis
+  s.plane << 0.0, 0.0, -1.0, 1.0;
+  std::mt19937 rng(15);
+  std::vector<vpImagePoint> points;
+  ASSERT_TRUE(laser_test::traceImagePoints(s, 40, rng, points));
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  vpPlane plane;
+  EXPECT_FALSE(estimator.computePlane(points, vpLaserConicPose::PP3, plane));
+  EXPECT_NE(estimator.getFailureReason().find("inside the laser cone"), std::string::npos);
+  // The other methods need no epipolar tangent: the apex offset along the line of sight still fixes the scale.
+  for (vpLaserConicPose::vpLaserConicMethod method :
+       {vpLaserConicPose::PLANE_PAIR, vpLaserConicPose::PP5, vpLaserConicPose::GP3}) {
+    ASSERT_TRUE(estimator.computePlane(points, method, plane)) << name(method) << ": " << estimator.getFailureReason();
+    EXPECT_LT(laser_test::normalError(toEigen(plane), s.plane), 1e-9) << name(method);
+    EXPECT_LT(laser_test::altitudeError(toEigen(plane), s.plane), 1e-9) << name(method);
+  }
+}
+
+TEST(LaserConicPose, PureOutliersGiveNoConsensus)
+{
+  // Points scattered over the whole image: no ellipse of the laser has 3 of them (GP3) within 0.1 px.
+  std::mt19937 rng(16);
+  laser_test::Rig rig;
+  rig.cMl.buildFrom(0.15, 0.0, 0.0, 0.0, 0.0, 0.0);
+  std::uniform_real_distribution<double> u(0.0, 1599.0), v(0.0, 1199.0);
+  std::vector<vpImagePoint> points;
+  for (int i = 0; i < 8; ++i)
+    points.emplace_back(v(rng), u(rng));
+  vpLaserConicPose estimator = makeEstimator(rig);
+  estimator.setRansacThreshold(0.1);
+  vpPlane plane;
+  const bool found = estimator.computePlane(points, vpLaserConicPose::PP5, plane);
+  if (!found) {
+    EXPECT_FALSE(estimator.getFailureReason().empty());
+  }
+  // PLANE_PAIR on a scatter: either no ellipse or a plane, never a crash; a reason when false.
+  if (!estimator.computePlane(points, vpLaserConicPose::PLANE_PAIR, plane)) {
+    EXPECT_FALSE(estimator.getFailureReason().empty());
+  }
+}
