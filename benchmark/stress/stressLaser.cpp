@@ -1,0 +1,243 @@
+/* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
+/*!
+  \file stressLaser.cpp
+  \brief Stress test of the circular-laser solvers (vpLaserSolvers) on random exact configurations.
+
+  Each configuration draws a rig (half opening angle 10-40 deg, apex up to 20 cm from the camera
+  centre, cone axis tilted up to 10 deg) and a ground plane (altitude 0.5-5 m, roll and pitch within
+  30 deg), then exact trace points in normalized coordinates from an independent ray/plane
+  generator (vspLaserScene.h). Per method:
+  - GP3: gp3Planes on 3 points; the true plane must be among the candidates;
+  - PP3: pp3Conics on 3 points + planePair on each conic; the true plane must be among the results;
+  - PP5: fitConic on 5 points + planePair;
+  - PLANE_PAIR: fitConic on 50 points + planePair.
+  A plane is correct when its normal is within 1e-6 rad and its altitude within 1e-6 (relative).
+  Outcomes: correct; degenerate (for the minimal solvers, two sample points closer than 1e-3 rad of
+  cone angle, or the camera centre inside the cone for PP3); no answer (no candidate on a non-degenerate
+  configuration); wrong (candidates, none correct). Exit status 1 on any wrong answer.
+
+  Usage: stress-laser [--method gp3|pp3|pp5|planepair|all] [--n N] [--seed S] [--verbose]
+  (default: all, N = 1e6 per method).
+*/
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+#include "vspBenchUtils.h"
+#include "vspLaserScene.h"
+
+namespace
+{
+constexpr double kTolerance = 1e-6;
+constexpr int kMaxDumps = 5;
+constexpr int kPlanePairPoints = 50;
+
+struct Config
+{
+  vspBench::LaserRig rig;
+  vpLaserSolvers::LaserCone cone;
+  Eigen::Vector4d plane;
+  Eigen::Vector2d x[kPlanePairPoints];
+  double phi[kPlanePairPoints];
+};
+
+//! A random rig and plane and \e n exact trace points; false when the trace misses the camera's front.
+bool makeConfig(std::mt19937_64 &rng, int n, Config &c)
+{
+  std::uniform_real_distribution<double> half(10.0, 40.0), offset(-0.2, 0.2), tilt(-10.0, 10.0),
+      altitude(0.5, 5.0), attitude(-30.0, 30.0), angle(-M_PI, M_PI);
+  const double deg = M_PI / 180.0;
+  c.rig.halfAngle = half(rng) * deg;
+  c.rig.apex = Eigen::Vector3d(offset(rng), offset(rng), offset(rng) * 0.25);
+  c.rig.cRl = (Eigen::AngleAxisd(tilt(rng) * deg, Eigen::Vector3d::UnitX()) *
+               Eigen::AngleAxisd(tilt(rng) * deg, Eigen::Vector3d::UnitY()) *
+               Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitZ()))
+                  .toRotationMatrix();
+  c.cone.cRl = c.rig.cRl;
+  c.cone.apex = c.rig.apex;
+  c.cone.halfAngle = c.rig.halfAngle;
+  c.plane = vspBench::groundPlane(altitude(rng), attitude(rng) * deg, attitude(rng) * deg);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d Xc;
+    int attempts = 0;
+    do {
+      c.phi[i] = angle(rng);
+    } while (!vspBench::traceAt(c.rig, c.plane, c.phi[i], Xc) && ++attempts < 100);
+    if (attempts >= 100) {
+      return false;
+    }
+    c.x[i] = vspBench::normalizedOf(Xc);
+  }
+  return true;
+}
+
+//! Two sample points closer than 1e-3 rad on the cone: the minimal problem is degenerate.
+bool closeSamples(const Config &c, int n)
+{
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const double d = std::remainder(c.phi[i] - c.phi[j], 2.0 * M_PI);
+      if (std::abs(d) < 1e-3) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+double planeError(const Eigen::Vector4d &estimate, const Eigen::Vector4d &truth)
+{
+  double angle = 0.0, offset = 0.0;
+  vspBench::planeErrors(estimate, truth, angle, offset);
+  const double e = std::max(angle, offset / truth(3));
+  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+}
+
+struct Tally
+{
+  long correct = 0, degenerate = 0, noAnswer = 0, wrong = 0, skipped = 0;
+  double worstCorrectError = 0.0;
+};
+
+void dump(const char *what, long index, const Config &c, int n, double error)
+{
+  std::printf("  %s at configuration %ld (best error %.3g):\n", what, index, error);
+  std::printf("    halfAngle = %.17g  apex = [%.17g %.17g %.17g]\n", c.cone.halfAngle, c.cone.apex.x(),
+              c.cone.apex.y(), c.cone.apex.z());
+  std::printf("    cRl = [%.17g %.17g %.17g; %.17g %.17g %.17g; %.17g %.17g %.17g]\n", c.cone.cRl(0, 0),
+              c.cone.cRl(0, 1), c.cone.cRl(0, 2), c.cone.cRl(1, 0), c.cone.cRl(1, 1), c.cone.cRl(1, 2),
+              c.cone.cRl(2, 0), c.cone.cRl(2, 1), c.cone.cRl(2, 2));
+  std::printf("    plane = [%.17g %.17g %.17g %.17g]\n", c.plane(0), c.plane(1), c.plane(2), c.plane(3));
+  for (int i = 0; i < std::min(n, 5); ++i) {
+    std::printf("    x%d = [%.17g %.17g]\n", i, c.x[i].x(), c.x[i].y());
+  }
+}
+
+void classify(Tally &t, long index, const Config &c, int n, bool degenerate, int candidates, double best, bool verbose)
+{
+  if (degenerate) {
+    ++t.degenerate;
+  } else if (candidates == 0) {
+    ++t.noAnswer;
+    if (verbose && t.noAnswer <= kMaxDumps) {
+      dump("no answer", index, c, n, best);
+    }
+  } else if (best <= kTolerance) {
+    ++t.correct;
+    t.worstCorrectError = std::max(t.worstCorrectError, best);
+  } else {
+    ++t.wrong;
+    if (t.wrong <= kMaxDumps) {
+      dump("WRONG", index, c, n, best);
+    }
+  }
+}
+
+//! Runs \e count configurations of \e n points through \e solve(config, best) -> number of candidates.
+template <typename Solve>
+Tally stress(long count, unsigned long seed, int n, bool verbose, Solve solve,
+             bool (*degenerate)(const Config &, int) = closeSamples)
+{
+  std::mt19937_64 rng(seed);
+  Tally t;
+  Config c;
+  for (long k = 0; k < count; ++k) {
+    if (!makeConfig(rng, n, c)) {
+      ++t.skipped;
+      continue;
+    }
+    double best = std::numeric_limits<double>::infinity();
+    const int candidates = solve(c, best);
+    classify(t, k, c, n, degenerate(c, n), candidates, best, verbose);
+  }
+  return t;
+}
+
+int solveGp3(const Config &c, double &best)
+{
+  Eigen::Vector4d planes[8];
+  const int m = vpLaserSolvers::gp3Planes(c.x, c.cone, planes);
+  for (int i = 0; i < m; ++i) {
+    best = std::min(best, planeError(planes[i], c.plane));
+  }
+  return m;
+}
+
+//! An overdetermined fit on many exact points has no degenerate sample.
+bool neverDegenerate(const Config &, int) { return false; }
+
+bool pp3Degenerate(const Config &c, int n)
+{
+  vpLaserSolvers::EpipolarTangents tangents;
+  return closeSamples(c, n) || !vpLaserSolvers::epipolarTangents(c.cone, tangents);
+}
+
+int solvePp3(const Config &c, double &best)
+{
+  vpLaserSolvers::EpipolarTangents tangents;
+  if (!vpLaserSolvers::epipolarTangents(c.cone, tangents)) {
+    return 0;
+  }
+  Eigen::Matrix3d conics[4];
+  const int m = vpLaserSolvers::pp3Conics(c.x, tangents, conics);
+  int planes = 0;
+  for (int i = 0; i < m; ++i) {
+    Eigen::Vector4d plane;
+    if (vpLaserSolvers::planePair(conics[i], c.cone, plane)) {
+      ++planes;
+      best = std::min(best, planeError(plane, c.plane));
+    }
+  }
+  return planes;
+}
+
+int solveConicThenPlanePair(const Config &c, int n, double &best)
+{
+  Eigen::Matrix3d conic;
+  Eigen::Vector4d plane;
+  if (!vpLaserSolvers::fitConic(c.x, n, conic) || !vpLaserSolvers::planePair(conic, c.cone, plane)) {
+    return 0;
+  }
+  best = planeError(plane, c.plane);
+  return 1;
+}
+
+bool report(const char *name, long count, const Tally &t)
+{
+  std::printf("%-11s n=%ld  correct=%ld  degenerate=%ld  no-answer=%ld  wrong=%ld  skipped=%ld  "
+              "worst-correct-error=%.2e\n",
+              name, count, t.correct, t.degenerate, t.noAnswer, t.wrong, t.skipped, t.worstCorrectError);
+  return t.wrong == 0;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  const std::string method = vspBench::argValue(argc, argv, "--method", "all");
+  const long count = static_cast<long>(std::stod(vspBench::argValue(argc, argv, "--n", "1e6")));
+  const unsigned long seed = std::stoul(vspBench::argValue(argc, argv, "--seed", "1"));
+  const bool verbose = vspBench::hasFlag(argc, argv, "--verbose");
+  const bool all = method == "all";
+  bool ok = true;
+  if (all || method == "gp3") {
+    ok = report("GP3", count, stress(count, seed, 3, verbose, solveGp3)) && ok;
+  }
+  if (all || method == "pp3") {
+    ok = report("PP3", count, stress(count, seed, 3, verbose, solvePp3, pp3Degenerate)) && ok;
+  }
+  if (all || method == "pp5") {
+    ok = report("PP5", count,
+                stress(count, seed, 5, verbose, [](const Config &c, double &b) { return solveConicThenPlanePair(c, 5, b); })) &&
+         ok;
+  }
+  if (all || method == "planepair") {
+    ok = report("PLANE_PAIR", count,
+                stress(count, seed, kPlanePairPoints, verbose,
+                       [](const Config &c, double &b) { return solveConicThenPlanePair(c, kPlanePairPoints, b); },
+                       neverDegenerate)) &&
+         ok;
+  }
+  return ok ? 0 : 1;
+}
