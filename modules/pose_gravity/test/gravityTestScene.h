@@ -2,7 +2,7 @@
 /*
   Simulated scenes for the pose_gravity tests: a random object seen by ViSP's pinhole camera
   (vpPoint::track), gravity measured by an IMU in each frame. The ground truth is the simulated
-  pose itself.
+  pose itself. The test suites are named pose_gravity_* so that `ctest -R pose_gravity` selects them.
 */
 #ifndef GRAVITY_TEST_SCENE_H
 #define GRAVITY_TEST_SCENE_H

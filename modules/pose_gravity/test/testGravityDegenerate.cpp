@@ -76,7 +76,7 @@ Eigen::Vector3d objectPointAt(const vpHomogeneousMatrix &cMo, const Eigen::Vecto
 }
 } // namespace
 
-TEST(GravityDegenerate, GravityAlongAxes)
+TEST(pose_gravity_Degenerate, GravityAlongAxes)
 {
   // Every pair of signed axes (camera, object), including Y (the paper's singular direction) for
   // both, and a random direction on the other side.
@@ -98,7 +98,7 @@ TEST(GravityDegenerate, GravityAlongAxes)
       }
 }
 
-TEST(GravityDegenerate, EqualImageXOrY)
+TEST(pose_gravity_Degenerate, EqualImageXOrY)
 {
   // Second point placed in camera coordinates so that x_B == x_A (resp. y_B == y_A) exactly up to
   // rounding: the paper needs dedicated formulas for these cases, the plane formulation does not.
@@ -124,7 +124,7 @@ TEST(GravityDegenerate, EqualImageXOrY)
     }
 }
 
-TEST(GravityDegenerate, CoincidentImagePointsGeneralRay)
+TEST(pose_gravity_Degenerate, CoincidentImagePointsGeneralRay)
 {
   // Lemma 1, second case: A, B and the optical centre aligned, ray not parallel to gravity. The
   // rotation is unique, the translation known up to the ray; the facade reports the status and no
@@ -162,7 +162,7 @@ TEST(GravityDegenerate, CoincidentImagePointsGeneralRay)
   EXPECT_EQ(tested, 2000);
 }
 
-TEST(GravityDegenerate, CoincidentImagePointsHorizontalRay)
+TEST(pose_gravity_Degenerate, CoincidentImagePointsHorizontalRay)
 {
   // Horizontal ray: which point is nearer is not observable; the solver takes the first point as
   // the nearer (visible) one, which recovers the truth when that holds.
@@ -191,7 +191,7 @@ TEST(GravityDegenerate, CoincidentImagePointsHorizontalRay)
   }
 }
 
-TEST(GravityDegenerate, CoincidentImagePointsVerticalRay)
+TEST(pose_gravity_Degenerate, CoincidentImagePointsVerticalRay)
 {
   // Lemma 1, third case: the common ray is parallel to gravity: infinitely many poses.
   SceneGenerator gen(25);
@@ -211,7 +211,7 @@ TEST(GravityDegenerate, CoincidentImagePointsVerticalRay)
   }
 }
 
-TEST(GravityDegenerate, P3PWithTwoPointsOnOneRay)
+TEST(pose_gravity_Degenerate, P3PWithTwoPointsOnOneRay)
 {
   // Two of the three points share an image point (general ray or vertical ray): P3P works through
   // the pairs that involve the third point.

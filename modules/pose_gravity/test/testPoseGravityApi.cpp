@@ -52,7 +52,7 @@ vpPoseGravity readyEstimator(const Scene &s)
 }
 } // namespace
 
-TEST(PoseGravityApi, BadGravityThrows)
+TEST(pose_gravity_Api, BadGravityThrows)
 {
   vpPoseGravity pose;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -71,7 +71,7 @@ TEST(PoseGravityApi, BadGravityThrows)
   EXPECT_NEAR(pose.getObjectGravity()[1], -std::sqrt(0.5), 1e-15);
 }
 
-TEST(PoseGravityApi, UnsetGravityThrows)
+TEST(pose_gravity_Api, UnsetGravityThrows)
 {
   SceneGenerator gen(31);
   const Scene s = gen.scene(4);
@@ -89,7 +89,7 @@ TEST(PoseGravityApi, UnsetGravityThrows)
   expectThrowCode([&] { noObject.refinePose(cMo); }, code, "object gravity unset (refine)");
 }
 
-TEST(PoseGravityApi, TooFewPointsThrows)
+TEST(pose_gravity_Api, TooFewPointsThrows)
 {
   SceneGenerator gen(32);
   const Scene s = gen.scene(3);
@@ -113,7 +113,7 @@ TEST(PoseGravityApi, TooFewPointsThrows)
   expectThrowCode([&] { pose.computePose(vpPoseGravity::P3P, cMo); }, code, "after clearPoint");
 }
 
-TEST(PoseGravityApi, NonFiniteCoordinatesThrow)
+TEST(pose_gravity_Api, NonFiniteCoordinatesThrow)
 {
   SceneGenerator gen(33);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -145,7 +145,7 @@ TEST(PoseGravityApi, NonFiniteCoordinatesThrow)
     }
 }
 
-TEST(PoseGravityApi, DuplicateObjectPointsThrow)
+TEST(pose_gravity_Api, DuplicateObjectPointsThrow)
 {
   SceneGenerator gen(34);
   vpHomogeneousMatrix cMo;
@@ -174,7 +174,7 @@ TEST(PoseGravityApi, DuplicateObjectPointsThrow)
   EXPECT_NO_THROW(pose3.computePose(vpPoseGravity::LEAST_SQUARES, cMo));
 }
 
-TEST(PoseGravityApi, CollinearPointsThrowForP3P)
+TEST(pose_gravity_Api, CollinearPointsThrowForP3P)
 {
   SceneGenerator gen(35);
   Scene s = gen.scene(4);
@@ -190,7 +190,7 @@ TEST(PoseGravityApi, CollinearPointsThrowForP3P)
   EXPECT_LT(poseError(cMo, s.cMo), 1e-9);
 }
 
-TEST(PoseGravityApi, BadSettingsThrow)
+TEST(pose_gravity_Api, BadSettingsThrow)
 {
   vpPoseGravity pose;
   const int code = vpPoseGravityException::badParameterError;
@@ -204,7 +204,7 @@ TEST(PoseGravityApi, BadSettingsThrow)
   EXPECT_NO_THROW(pose.setGravityStdDev(0.0));
 }
 
-TEST(PoseGravityApi, ComputeResidualMatchesHandComputation)
+TEST(pose_gravity_Api, ComputeResidualMatchesHandComputation)
 {
   // Identity rotation, camera 2 m behind the object origin: point (X, Y, Z) projects to
   // (X / (Z + 2), Y / (Z + 2)). Image points offset by known amounts.
@@ -224,7 +224,7 @@ TEST(PoseGravityApi, ComputeResidualMatchesHandComputation)
   EXPECT_NEAR(pose.computeResidual(cMo), 5.25e-4, 1e-15);
 }
 
-TEST(PoseGravityApi, StatusesAndCandidateOrder)
+TEST(pose_gravity_Api, StatusesAndCandidateOrder)
 {
   SceneGenerator gen(36);
   vpPoseGravity pose;
@@ -259,7 +259,7 @@ TEST(PoseGravityApi, StatusesAndCandidateOrder)
   EXPECT_GT(twoCandidates, 0);
 }
 
-TEST(PoseGravityApi, RefineKeepsPoseOnFailure)
+TEST(pose_gravity_Api, RefineKeepsPoseOnFailure)
 {
   SceneGenerator gen(37);
   const Scene s = gen.scene(5);

@@ -74,7 +74,7 @@ vpPoseGravity estimatorFor(const Scene &s)
 }
 } // namespace
 
-TEST(PoseGravityNoise, P3PAndLeastSquaresImageNoiseOnly)
+TEST(pose_gravity_Noise, P3PAndLeastSquaresImageNoiseOnly)
 {
   SceneGenerator gen(41);
   Errors p3p, lsq;
@@ -97,7 +97,7 @@ TEST(PoseGravityNoise, P3PAndLeastSquaresImageNoiseOnly)
   EXPECT_LT(median(lsq.translation), 0.007); // measured ~0.003
 }
 
-TEST(PoseGravityNoise, GravityAndImageNoise)
+TEST(pose_gravity_Noise, GravityAndImageNoise)
 {
   SceneGenerator gen(42);
   Errors p3p, lsq;
@@ -124,7 +124,7 @@ TEST(PoseGravityNoise, GravityAndImageNoise)
   EXPECT_LT(median(lsq.translation), 0.01); // measured ~0.005
 }
 
-TEST(PoseGravityNoise, RefinementImprovesP3P)
+TEST(pose_gravity_Noise, RefinementImprovesP3P)
 {
   SceneGenerator gen(43);
   Errors p3p, refined4, refined6;
@@ -146,7 +146,7 @@ TEST(PoseGravityNoise, RefinementImprovesP3P)
   EXPECT_LT(mean(refined4.translation), mean(p3p.translation));
 }
 
-TEST(PoseGravityNoise, FullRefinementWithNoisyGravity)
+TEST(pose_gravity_Noise, FullRefinementWithNoisyGravity)
 {
   SceneGenerator gen(44);
   Errors p3p, refined4, refined6;
@@ -173,7 +173,7 @@ TEST(PoseGravityNoise, FullRefinementWithNoisyGravity)
   EXPECT_LT(mean(refined6.translation), mean(refined4.translation));
 }
 
-TEST(PoseGravityNoise, RansacWithHalfOutliers)
+TEST(pose_gravity_Noise, RansacWithHalfOutliers)
 {
   SceneGenerator gen(45);
   Errors ransac, refined;
@@ -215,7 +215,7 @@ TEST(PoseGravityNoise, RansacWithHalfOutliers)
   EXPECT_LT(median(refined.rotation), 0.008);
 }
 
-TEST(PoseGravityNoise, RansacExactInliers)
+TEST(pose_gravity_Noise, RansacExactInliers)
 {
   // Exact inliers: the pose is the truth to rounding and the inlier set is exact.
   SceneGenerator gen(46);
@@ -238,7 +238,7 @@ TEST(PoseGravityNoise, RansacExactInliers)
   }
 }
 
-TEST(PoseGravityNoise, RansacWithoutConsensus)
+TEST(pose_gravity_Noise, RansacWithoutConsensus)
 {
   // Only outliers: random image points with a threshold far below their spread.
   SceneGenerator gen(47);

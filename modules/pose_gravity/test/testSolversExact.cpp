@@ -32,7 +32,7 @@ void reportAndCheck(const char *what, const std::vector<double> &errors)
 }
 } // namespace
 
-TEST(SolversExact, P2PTruthAmongCandidates)
+TEST(pose_gravity_SolversExact, P2PTruthAmongCandidates)
 {
   SceneGenerator gen(11);
   std::vector<double> errors;
@@ -56,7 +56,7 @@ TEST(SolversExact, P2PTruthAmongCandidates)
   reportAndCheck("P2P (best candidate)", errors);
 }
 
-TEST(SolversExact, P3PGivesTruth)
+TEST(pose_gravity_SolversExact, P3PGivesTruth)
 {
   SceneGenerator gen(12);
   std::vector<double> errors;
@@ -71,7 +71,7 @@ TEST(SolversExact, P3PGivesTruth)
   reportAndCheck("P3P", errors);
 }
 
-TEST(SolversExact, LeastSquaresGivesTruth)
+TEST(pose_gravity_SolversExact, LeastSquaresGivesTruth)
 {
   SceneGenerator gen(13);
   std::vector<double> errors;
@@ -87,7 +87,7 @@ TEST(SolversExact, LeastSquaresGivesTruth)
   reportAndCheck("LEAST_SQUARES", errors);
 }
 
-TEST(SolversExact, TranslationFromTrueRotation)
+TEST(pose_gravity_SolversExact, TranslationFromTrueRotation)
 {
   SceneGenerator gen(14);
   std::vector<Eigen::Vector3d> x, X;
