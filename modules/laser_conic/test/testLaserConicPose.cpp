@@ -241,6 +241,66 @@ TEST(LaserConicPose, NoisyPoints)
   }
 }
 
+// Noise and outliers together: 100 points, half replaced by outliers, sigma = 1 px on the others.
+// The robust methods must do as well as on the 50 inliers alone: same first-order model and bounds as
+// NoisyPoints with N = 50; every true inlier within the 3 sigma threshold is expected in the consensus
+// set, so at least 90 % of the true inliers and no outlier (they are 10 px away from the trace).
+TEST(LaserConicPose, NoisyPointsWithFiftyPercentOutliers)
+{
+  const double sigma = 1.0;
+  for (vpLaserConicPose::vpLaserConicMethod method :
+       {vpLaserConicPose::PP5, vpLaserConicPose::PP3, vpLaserConicPose::GP3}) {
+    std::mt19937 rng(400);
+    std::vector<double> altitudeRatio, normalRatio, altitudeMm, normalDeg;
+    int failures = 0;
+    for (int k = 0; k < 200; ++k) {
+      std::vector<vpImagePoint> points;
+      const Scene s = drawScene(rng, method, 100, points);
+      std::vector<bool> isOutlier;
+      points = laser_test::addOutliers(laser_test::addNoise(points, sigma, rng), 0.5, s, rng, isOutlier);
+      vpLaserConicPose estimator = makeEstimator(s.rig);
+      estimator.setRansacSeed(k);
+      estimator.setRansacThreshold(3.0 * sigma);
+      vpPlane plane;
+      if (!estimator.computePlane(points, method, plane)) {
+        ++failures;
+        continue;
+      }
+      const std::vector<unsigned int> inliers = estimator.getInliers();
+      int wrong = 0;
+      for (unsigned int i : inliers)
+        wrong += isOutlier[i] ? 1 : 0;
+      EXPECT_EQ(wrong, 0) << name(method) << " scene " << k;
+      EXPECT_GE(inliers.size(), 45u) << name(method) << " scene " << k;
+      const vpLaserSolvers::LaserCone cone = laser_test::toCone(s.rig);
+      const Eigen::Vector3d axis = cone.cRl.col(2);
+      const Eigen::Vector3d centre =
+          cone.apex - (s.plane.head<3>().dot(cone.apex) + s.plane(3)) / s.plane.head<3>().dot(axis) * axis;
+      const double h = centre.norm(), b = cone.apex.cross(centre.normalized()).norm();
+      const double scale = h * h / (b * s.rig.cam.get_px()) * sigma / std::sqrt(50.0);
+      const Eigen::Vector4d p = toEigen(plane);
+      altitudeMm.push_back(1e3 * laser_test::altitudeError(p, s.plane));
+      normalDeg.push_back(vpMath::deg(laser_test::normalError(p, s.plane)));
+      altitudeRatio.push_back(laser_test::altitudeError(p, s.plane) / scale);
+      normalRatio.push_back(laser_test::normalError(p, s.plane) / (scale / (h * std::tan(cone.halfAngle))));
+    }
+    std::sort(altitudeRatio.begin(), altitudeRatio.end());
+    std::sort(normalRatio.begin(), normalRatio.end());
+    const double alt95 = altitudeRatio[altitudeRatio.size() * 95 / 100];
+    const double nor95 = normalRatio[normalRatio.size() * 95 / 100];
+    std::printf("sigma 1 px + 50%% outliers %-4s altitude mm median %.2f max %.2f | normal deg median %.3f max %.3f | "
+                "ratio altitude median %.2f p95 %.2f, normal median %.2f p95 %.2f | failures %d\n",
+                name(method).c_str(), laser_test::median(altitudeMm), laser_test::maximum(altitudeMm),
+                laser_test::median(normalDeg), laser_test::maximum(normalDeg), laser_test::median(altitudeRatio), alt95,
+                laser_test::median(normalRatio), nor95, failures);
+    EXPECT_EQ(failures, 0) << name(method);
+    EXPECT_LT(laser_test::median(altitudeRatio), 3.0) << name(method);
+    EXPECT_LT(alt95, 10.0) << name(method);
+    EXPECT_LT(laser_test::median(normalRatio), 3.0) << name(method);
+    EXPECT_LT(nor95, 10.0) << name(method);
+  }
+}
+
 TEST(LaserConicPose, SameSeedSameResult)
 {
   std::mt19937 rng(11);
