@@ -173,7 +173,7 @@ bool vpLaserRigIo::writeLaserCalibration(const std::string &file, double opening
   out << "cMl\n";
   for (unsigned int r = 0; r < 4; ++r) {
     for (unsigned int c = 0; c < 4; ++c) {
-      out << (c ? " " : "") << cMl[r][c];
+      out << (c ? " " : "") << cMl[r][c] + 0.0; // + 0.0 prints -0 as 0
     }
     out << "\n";
   }

@@ -40,7 +40,7 @@ namespace
 struct Options
 {
   int trials = 1000;
-  int outlierTrials = 200;
+  int outlierTrials = -1; //!< -1: same as trials
   unsigned int points = 360;
   unsigned int seed = 1;
   int ransacTrials = 1000;
@@ -48,6 +48,7 @@ struct Options
   std::string only;
   bool quick = false;
   bool check = false;
+  bool localOptimisation = true;
 };
 
 //! The methods compared by the paper, with their minimal sample size and plot colour.
@@ -107,7 +108,7 @@ Scenario drawScenario(std::mt19937 &rng, vpLaserConicSimulator &sim)
   return s;
 }
 
-TrialError evaluate(const Method &method, const TrialInput &input, const Scenario &truth, int ransacTrials,
+TrialError evaluate(const Method &method, const TrialInput &input, const Scenario &truth, const Options &opt,
                     unsigned int ransacSeed)
 {
   TrialError e;
@@ -115,7 +116,8 @@ TrialError evaluate(const Method &method, const TrialInput &input, const Scenari
   estimator.setCameraParameters(input.cam);
   estimator.setLaser(vpMath::rad(vspLaserRig::kOpeningAngleDeg), input.cMl);
   estimator.setRansacThreshold(input.threshold);
-  estimator.setRansacMaxTrials(ransacTrials);
+  estimator.setRansacMaxTrials(opt.ransacTrials);
+  estimator.setLocalOptimisation(opt.localOptimisation);
   estimator.setRansacSeed(ransacSeed);
   vpPlane plane;
   try {
@@ -257,7 +259,7 @@ void runCurveStudy(CurveStudy &study, const Options &opt)
       const Scenario truth = drawScenario(rng, sim);
       const TrialInput input = study.perturb(study.levels[l], sim, rng);
       for (const Method &m : methods()) {
-        errors[m.name].push_back(evaluate(m, input, truth, opt.ransacTrials, levelSeed + static_cast<unsigned int>(t)));
+        errors[m.name].push_back(evaluate(m, input, truth, opt, levelSeed + static_cast<unsigned int>(t)));
       }
     }
     for (const Method &m : methods()) {
@@ -348,7 +350,7 @@ double successRate(const Method &m, int percent, const Options &opt)
     const Scenario truth = drawScenario(rng, sim);
     TrialInput in = exactInput(sim, opt.points);
     in.points = sim.addOutliers(in.points, percent / 100.0);
-    const TrialError e = evaluate(m, in, truth, opt.ransacTrials, seed + static_cast<unsigned int>(t));
+    const TrialError e = evaluate(m, in, truth, opt, seed + static_cast<unsigned int>(t));
     if (e.success && e.altitude <= kMaxAltitudeError && e.normal <= kMaxNormalError) {
       ++successes;
     }
@@ -420,7 +422,8 @@ void writeOutlierStudy(const OutlierStudy &study, const Options &opt)
             << "(failure: no plane, altitude error > 1 cm or normal error > 1 deg; breakdown: first ratio whose\n"
             << " success rate over " << opt.outlierTrials << " trials is below 50 %; " << opt.points
             << " trace points, exact inliers, outliers uniform in the image,\n RANSAC budget " << opt.ransacTrials
-            << " samples with the adaptive stop at p = 0.99, threshold 2 px)\n\n";
+            << " samples with the adaptive stop at p = 0.99, threshold 2 px"
+            << (opt.localOptimisation ? "" : ", no refit") << ")\n\n";
   std::cout << "| Method | Breakdown outlier ratio |\n|---|---|\n";
   for (const Method &m : methods()) {
     const int b = study.breakdown.at(m.name);
@@ -495,12 +498,13 @@ void usage(const char *argv0)
                "       [--only noise|outliers|intrinsics|baseline|roughness] [--quick] [--check] [--help]\n\n"
                "Synthetic evaluation of PP5, PP3 and GP3 (Boutteau et al. 2018, Sec. 7.1).\n"
                "  --trials N          trials per level of the error curves (default 1000)\n"
-               "  --outlier-trials N  trials per outlier ratio (default 200)\n"
+               "  --outlier-trials N  trials per outlier ratio (default: --trials)\n"
                "  --points N          laser rays per frame (default 360, one per degree)\n"
                "  --seed S            random seed (default 1)\n"
                "  --ransac-trials N   RANSAC sample budget (default 1000)\n"
                "  --output DIR        directory of the CSV and PNG results (default laser-synthetic-results)\n"
                "  --only STUDY        run one study\n"
+               "  --no-local-optimisation  keep the best minimal-sample model (no least-squares refit on its inliers)\n"
                "  --quick             30 trials per point, 3 levels per curve (for ctest)\n"
                "  --check             exit non-zero when a sanity assertion fails\n";
 }
@@ -532,6 +536,8 @@ bool parseOptions(int argc, char **argv, Options &opt)
       opt.only = argv[++i];
     } else if (arg == "--quick") {
       opt.quick = true;
+    } else if (arg == "--no-local-optimisation") {
+      opt.localOptimisation = false;
     } else if (arg == "--check") {
       opt.check = true;
     } else {
@@ -543,6 +549,9 @@ bool parseOptions(int argc, char **argv, Options &opt)
   if (opt.quick) {
     opt.trials = trialsGiven ? opt.trials : 30;
     opt.outlierTrials = outlierTrialsGiven ? opt.outlierTrials : 30;
+  }
+  if (opt.outlierTrials < 0) {
+    opt.outlierTrials = opt.trials;
   }
   const std::vector<std::string> studies = {"", "noise", "outliers", "intrinsics", "baseline", "roughness"};
   if (std::find(studies.begin(), studies.end(), opt.only) == studies.end()) {
@@ -568,7 +577,9 @@ int main(int argc, char **argv)
     std::cout << "Rig: " << vspLaserRig::kWidth << "x" << vspLaserRig::kHeight << " camera, f = " << vspLaserRig::kFocal
               << " px; laser " << vspLaserRig::kOpeningAngleDeg << " deg, apex (0.15, 0.02, 0) m, axis tilted 8 deg;\n"
               << "altitude U[0.5, 1.5] m, roll and pitch U[-20, 20] deg; " << opt.points << " rays per frame; "
-              << opt.trials << " trials per curve level; seed " << opt.seed << std::endl;
+              << opt.trials << " trials per curve level; seed " << opt.seed << ";\nRANSAC: " << opt.ransacTrials
+              << " samples at most, adaptive stop p = 0.99, threshold max(2 px, 3 sigma of the image noise), "
+              << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit on the inliers") << std::endl;
 
     std::vector<CurveStudy> studies = curveStudies(opt);
     for (CurveStudy &study : studies) {

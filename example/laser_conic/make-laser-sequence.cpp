@@ -9,8 +9,9 @@
   laserRigSetup.h) moved along a smooth hand-held-like trajectory at 0.5-1.5 m with roll and pitch
   within +-20 deg over a dark floor, rendered by vpLaserConicSimulator::render().
 
-  Writes camera.xml, laser.txt, groundtruth.csv and images/frame_XXX.jpg. The output depends only on
-  the seed and the options (deterministic).
+  Writes camera.xml, laser.txt (the laser pose calibrated with vpLaserConicCalibration from simulated
+  grid views, as in the paper), laser_true.txt (the pose used for rendering), groundtruth.csv and
+  images/frame_XXX.jpg. The output depends only on the seed and the options (deterministic).
 */
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,7 @@
 #include <visp3/core/vpIoTools.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/io/vpImageIo.h>
+#include <visp3/laser_conic/vpLaserConicCalibration.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
@@ -38,7 +40,7 @@ struct Options
   std::string output = std::string(VSP_DATA_DIR) + "/laser_sequence";
   unsigned int frames = 100;
   unsigned int seed = 2018;
-  int quality = 80;
+  int quality = 60;
   double sensorNoise = 1.0;
   double stripeWidth = 3.0;
 };
@@ -95,6 +97,85 @@ std::vector<RigState> trajectory(unsigned int frames, unsigned int seed)
   return states;
 }
 
+/*!
+  A dark, low-detail floor (the paper's experiments run in a dark room over a dark floor): smooth
+  value noise around grey level 30 with a faint warm tint. Low detail keeps the JPEG files small;
+  the laser detector must not depend on the floor anyway.
+*/
+vpImage<vpRGBa> darkFloorTexture(unsigned int seed)
+{
+  const unsigned int cells = 24, size = 512;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<double> grid((cells + 1) * (cells + 1));
+  for (double &g : grid) {
+    g = value(rng);
+  }
+  vpImage<vpRGBa> texture(size, size);
+  for (unsigned int i = 0; i < size; ++i) {
+    for (unsigned int j = 0; j < size; ++j) {
+      // Bilinear interpolation of the coarse grid with a smoothstep weight: no visible cell edges.
+      const double y = i * cells / static_cast<double>(size), x = j * cells / static_cast<double>(size);
+      const unsigned int gy = static_cast<unsigned int>(y), gx = static_cast<unsigned int>(x);
+      double fy = y - gy, fx = x - gx;
+      fy = fy * fy * (3.0 - 2.0 * fy);
+      fx = fx * fx * (3.0 - 2.0 * fx);
+      const double top = grid[gy * (cells + 1) + gx] * (1.0 - fx) + grid[gy * (cells + 1) + gx + 1] * fx;
+      const double bottom =
+          grid[(gy + 1) * (cells + 1) + gx] * (1.0 - fx) + grid[(gy + 1) * (cells + 1) + gx + 1] * fx;
+      const double grey = 30.0 + 12.0 * (top * (1.0 - fy) + bottom * fy);
+      texture[i][j] = vpRGBa(static_cast<unsigned char>(grey + 3.0), static_cast<unsigned char>(grey),
+                             static_cast<unsigned char>(grey - 2.0), 255);
+    }
+  }
+  return texture;
+}
+
+/*!
+  Simulates the paper's calibration session (Sec. 6 and 7.2: 16 views of a planar grid with the
+  laser trace on it, a rough initial guess of the laser pose) and runs vpLaserConicCalibration, so that
+  laser.txt carries a realistic calibration error instead of the true pose. The grid poses given to
+  the calibration are perturbed (1 mm, 0.1 deg) as a pose from grid corners would be, and the trace
+  points have 0.5 pixel noise.
+*/
+vpHomogeneousMatrix calibrateLaser(const vpCameraParameters &cam, double openingAngle, const vpHomogeneousMatrix &cMl,
+                                   unsigned int seed, double &rms)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> distance(0.6, 1.2), tilt(vpMath::rad(-25.0), vpMath::rad(25.0)),
+      yaw(-M_PI, M_PI);
+  std::normal_distribution<double> gridTranslationError(0.0, 1e-3), gridRotationError(0.0, vpMath::rad(0.1));
+  vpLaserConicSimulator sim;
+  sim.setCamera(cam, vspLaserRig::kWidth, vspLaserRig::kHeight);
+  sim.setLaser(openingAngle, cMl);
+  sim.setSeed(seed);
+  vpLaserConicCalibration calibration;
+  calibration.setCameraParameters(cam);
+  calibration.setOpeningAngle(openingAngle);
+  // "Measured roughly": 1-2 cm and a few degrees away from the truth.
+  calibration.setInitialGuess(vpHomogeneousMatrix(0.13, 0.0, 0.01, 0.0, vpMath::rad(-4.0), 0.0));
+  for (unsigned int v = 0; v < 16; ++v) {
+    const vpHomogeneousMatrix cMg = vspLaserRig::groundPose(distance(rng), tilt(rng), tilt(rng), yaw(rng));
+    sim.setGroundPose(cMg);
+    const std::vector<vpImagePoint> points = sim.addNoise(sim.tracePoints(180), 0.5);
+    const vpHomogeneousMatrix gridError(gridTranslationError(rng), gridTranslationError(rng),
+                                        gridTranslationError(rng), gridRotationError(rng), gridRotationError(rng),
+                                        gridRotationError(rng));
+    calibration.addView(cMg * gridError, points);
+  }
+  vpHomogeneousMatrix calibrated;
+  rms = calibration.calibrate(calibrated);
+  return calibrated;
+}
+
+//! Distance between the apexes (m) and angle between the cone axes (rad) of two laser poses.
+void laserPoseError(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b, double &apexError, double &axisError)
+{
+  apexError = std::sqrt(vpMath::sqr(a[0][3] - b[0][3]) + vpMath::sqr(a[1][3] - b[1][3]) + vpMath::sqr(a[2][3] - b[2][3]));
+  const double dot = a[0][2] * b[0][2] + a[1][2] * b[1][2] + a[2][2] * b[2][2];
+  axisError = std::acos(std::max(-1.0, std::min(1.0, dot)));
+}
+
 void usage(const char *argv0)
 {
   std::cout << "Usage: " << argv0
@@ -103,7 +184,7 @@ void usage(const char *argv0)
                "  --output DIR          default " VSP_DATA_DIR "/laser_sequence\n"
                "  --frames N            number of frames (default 100)\n"
                "  --seed S              trajectory and rendering seed (default 2018)\n"
-               "  --quality Q           JPEG quality (default 80)\n"
+               "  --quality Q           JPEG quality (default 60)\n"
                "  --sensor-noise GREY   sensor noise standard deviation, grey levels (default 1)\n";
 }
 
@@ -150,14 +231,21 @@ int main(int argc, char **argv)
     const vpCameraParameters cam = vspLaserRig::camera();
     const double openingAngle = vpMath::rad(vspLaserRig::kOpeningAngleDeg);
     const vpHomogeneousMatrix cMl = vspLaserRig::laserPose();
+    double rms = 0.0, apexError = 0.0, axisError = 0.0;
+    const vpHomogeneousMatrix cMlCalibrated = calibrateLaser(cam, openingAngle, cMl, opt.seed, rms);
+    laserPoseError(cMlCalibrated, cMl, apexError, axisError);
+    std::cout << "Laser calibration from 16 simulated grid views: RMS " << rms * 1e3 << " mm, apex error "
+              << apexError * 1e3 << " mm, axis error " << vpMath::deg(axisError) << " deg" << std::endl;
     std::string error;
     if (!vpLaserRigIo::writeCamera(opt.output + "/camera.xml", cam, vspLaserRig::kWidth, vspLaserRig::kHeight,
                                    error) ||
-        !vpLaserRigIo::writeLaserCalibration(opt.output + "/laser.txt", openingAngle, cMl, error)) {
+        !vpLaserRigIo::writeLaserCalibration(opt.output + "/laser.txt", openingAngle, cMlCalibrated, error) ||
+        !vpLaserRigIo::writeLaserCalibration(opt.output + "/laser_true.txt", openingAngle, cMl, error)) {
       std::cerr << error << std::endl;
       return EXIT_FAILURE;
     }
 
+    const vpImage<vpRGBa> floor = darkFloorTexture(opt.seed);
     vpLaserConicSimulator sim;
     sim.setCamera(cam, vspLaserRig::kWidth, vspLaserRig::kHeight);
     sim.setLaser(openingAngle, cMl);
@@ -166,10 +254,10 @@ int main(int argc, char **argv)
     for (unsigned int k = 0; k < states.size(); ++k) {
       const RigState &s = states[k];
       sim.setGroundPose(vspLaserRig::groundPose(s.altitude, s.roll, s.pitch, s.yaw, s.x, s.y));
-      // Reseeding per frame makes each image reproducible on its own (and identical floor texture).
+      // Reseeding per frame makes each image reproducible on its own.
       sim.setSeed(opt.seed + k);
       vpImage<vpRGBa> I;
-      sim.render(I, vpImage<vpRGBa>(), opt.stripeWidth, opt.sensorNoise);
+      sim.render(I, floor, opt.stripeWidth, opt.sensorNoise);
 
       vpLaserGroundTruthFrame f;
       f.frame = k;
