@@ -5,6 +5,8 @@
 #include <visp3/laser_conic/vpLaserConicDetector.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -13,6 +15,14 @@
 
 namespace
 {
+// True when the 8 bytes at p are all zero: lets the scans jump over empty stretches of the mask.
+inline bool zero8(const unsigned char *p)
+{
+  uint64_t word;
+  std::memcpy(&word, p, sizeof(word));
+  return word == 0;
+}
+
 // Run of mask pixels through (i, j) along one direction ((di, dj) = (1, 0) for a column, (0, 1) for a row):
 // its length (counting stops beyond maxLength, all the caller needs) and the largest weight on it.
 struct CrossRun
@@ -72,6 +82,10 @@ void scanRows(const unsigned char *mask, const unsigned char *weight, int H, int
     const unsigned char *w = weight + i * W;
     int j = 0;
     while (j < W) {
+      if (j + 8 <= W && zero8(m + j)) {
+        j += 8;
+        continue;
+      }
       if (!m[j]) {
         ++j;
         continue;
@@ -95,23 +109,33 @@ void scanColumns(const unsigned char *mask, const unsigned char *weight, int H, 
 {
   std::vector<int> start(W, -1), maxW(W, 0);
   std::vector<double> sumW(W, 0.0), sumWi(W, 0.0);
+  std::vector<unsigned char> open(W + 8, 0); // 1 where a column run is open (padded for zero8)
   for (int i = 0; i <= H; ++i) {
-    const unsigned char *m = mask + i * W;
+    const unsigned char *m = i < H ? mask + i * W : nullptr;
     const unsigned char *w = weight + i * W;
-    for (int j = 0; j < W; j += step) {
-      if (i < H && m[j]) {
-        if (start[j] < 0) {
-          start[j] = i;
-          sumW[j] = 0.0;
-          sumWi[j] = 0.0;
-          maxW[j] = 0;
+    for (int j0 = 0; j0 < W; j0 += 8) {
+      const int j1 = std::min(W, j0 + 8);
+      // Nothing to start, extend or close in these 8 columns.
+      if (zero8(&open[j0]) && (m == nullptr || (j1 - j0 == 8 && zero8(m + j0))))
+        continue;
+      for (int j = j0; j < j1; ++j) {
+        if (j % step != 0)
+          continue;
+        if (m != nullptr && m[j]) {
+          if (!open[j]) {
+            open[j] = 1;
+            start[j] = i;
+            sumW[j] = 0.0;
+            sumWi[j] = 0.0;
+            maxW[j] = 0;
+          }
+          sumW[j] += w[j];
+          sumWi[j] += static_cast<double>(w[j]) * i;
+          maxW[j] = std::max<int>(maxW[j], w[j]);
+        } else if (open[j]) {
+          keepRun(mask, weight, H, W, false, j, start[j], i, sumW[j], sumWi[j], maxW[j], H, maxWidth, points);
+          open[j] = 0;
         }
-        sumW[j] += w[j];
-        sumWi[j] += static_cast<double>(w[j]) * i;
-        maxW[j] = std::max<int>(maxW[j], w[j]);
-      } else if (start[j] >= 0) {
-        keepRun(mask, weight, H, W, false, j, start[j], i, sumW[j], sumWi[j], maxW[j], H, maxWidth, points);
-        start[j] = -1;
       }
     }
   }
@@ -168,18 +192,25 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   cv::cvtColor(rgb, hsv, cv::COLOR_RGB2HSV);
 
   // Mask and brightness weight of the trace pixels, in one pass.
-  cv::Mat weight(H, W, CV_8UC1);
+  const int maxHueLow = m_maxHueLow, minHueHigh = m_minHueHigh, minSaturation = m_minSaturation,
+            minValue = m_minValue;
+  cv::Mat weight = cv::Mat::zeros(H, W, CV_8UC1);
   unsigned char *mask = m_mask.bitmap;
+  std::memset(mask, 0, static_cast<size_t>(W) * H);
   for (int i = 0; i < H; ++i) {
     const unsigned char *p = hsv.ptr<unsigned char>(i);
     unsigned char *w = weight.ptr<unsigned char>(i);
     unsigned char *m = mask + i * W;
     for (int j = 0; j < W; ++j, p += 3) {
+      // Most pixels are darker than the laser: one well-predicted test rejects them.
+      if (p[2] < minValue)
+        continue;
       const int h = p[0], s = p[1], v = p[2];
-      const bool red = (h <= m_maxHueLow || h >= m_minHueHigh) && s >= m_minSaturation && v >= m_minValue;
-      m[j] = red ? 255 : 0;
-      // Brightness above the threshold (+1 so that no trace pixel weighs zero).
-      w[j] = red ? static_cast<unsigned char>(v - m_minValue + 1 > 255 ? 255 : v - m_minValue + 1) : 0;
+      if ((h <= maxHueLow || h >= minHueHigh) && s >= minSaturation) {
+        m[j] = 255;
+        // Brightness above the threshold (+1 so that no trace pixel weighs zero).
+        w[j] = static_cast<unsigned char>(std::min(255, v - minValue + 1));
+      }
     }
   }
 
