@@ -181,7 +181,7 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
 {
   std::vector<vpImagePoint> points;
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
-  m_mask.resize(I.getHeight(), I.getWidth(), 0);
+  m_mask.resize(I.getHeight(), I.getWidth()); // cleared below
   if (H == 0 || W == 0)
     return points;
 

@@ -33,6 +33,8 @@
   Image points follow ViSP's conventions (vpMeterPixelConversion with the model of the given
   vpCameraParameters; the rest of the module assumes a model without distortion).
 
+  Errors are reported with vpLaserConicException (declared in vpLaserConicPose.h), a vpException.
+
   All random draws come from one generator seeded by setSeed() (default seed 0): the same sequence of
   calls with the same seed gives the same results.
 
@@ -55,7 +57,8 @@ public:
 
   /*!
     Camera intrinsics and image size (pixels).
-    \exception vpException::badValue when a focal length is not positive or finite or the size is zero.
+    \exception vpLaserConicException::badCameraError when a focal length is not positive or finite or the
+    size is zero.
   */
   void setCamera(const vpCameraParameters &cam, unsigned int width, unsigned int height);
   /*!
@@ -84,12 +87,13 @@ public:
     \param n : number of cone rays.
     \param roughness : standard deviation (metres) of a random offset of each ground point along the
     ground normal, to mimic a rough ground (0 for a plane).
-    \exception vpException when the camera is unset or \e roughness is negative or not finite.
+    \exception vpLaserConicException when the camera is unset (badCameraError) or \e roughness is negative
+    or not finite (badValueError).
   */
   std::vector<vpImagePoint> tracePoints(unsigned int n, double roughness = 0.0);
   /*!
     Adds independent Gaussian noise of standard deviation \e sigma pixels to each coordinate.
-    \exception vpException::badValue when \e sigma is negative or not finite.
+    \exception vpLaserConicException::badValueError when \e sigma is negative or not finite.
   */
   std::vector<vpImagePoint> addNoise(const std::vector<vpImagePoint> &points, double sigma);
   /*!
@@ -98,7 +102,8 @@ public:
     \param points : input points.
     \param ratio : fraction of outliers, in [0, 1].
     \param isOutlier : when not null, receives the flag of each returned point.
-    \exception vpException when \e ratio is outside [0, 1] or the camera is unset.
+    \exception vpLaserConicException when \e ratio is outside [0, 1] (badValueError) or the camera is unset
+    (badCameraError).
   */
   std::vector<vpImagePoint> addOutliers(const std::vector<vpImagePoint> &points, double ratio,
                                         std::vector<bool> *isOutlier = nullptr);
@@ -120,7 +125,8 @@ public:
     \param texture : ground texture (may be empty).
     \param stripeWidth : full width at half maximum of the stripe, pixels, > 0.
     \param noise : sensor noise standard deviation, grey levels, >= 0.
-    \exception vpException on an unset camera or invalid widths / noise.
+    \exception vpLaserConicException on an unset camera (badCameraError), a stripe width that is not
+    positive or a negative noise (badValueError).
   */
   void render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture = vpImage<vpRGBa>(), double stripeWidth = 3.0,
               double noise = 2.0);
