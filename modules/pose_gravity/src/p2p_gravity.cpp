@@ -125,8 +125,8 @@ int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::V
   const double c = n.z() * u.z();
   const double M = std::hypot(a, b);
   if (M < kUnobservable) {
-    // Vertical segment, or both rays horizontal: every yaw satisfies the equation.
-    result = P2PCase::Undetermined;
+    // Vertical segment, or both rays horizontal: every yaw satisfies the equation if c ~ 0 too.
+    result = (std::abs(c) <= kMaxPlaneMismatch) ? P2PCase::Undetermined : P2PCase::NoSolution;
     return 0;
   }
   if (std::abs(c) - M > kMaxPlaneMismatch)

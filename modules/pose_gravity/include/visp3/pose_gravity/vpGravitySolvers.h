@@ -15,7 +15,14 @@
     \f$ \mathbf{x} = (x, y, 1)^T \f$ (any positive multiple is accepted);
   - \e gCam and \e gObj are the gravity direction measured in the camera and the object frames, of
     unit norm (the facade normalises them);
-  - no function allocates on the heap; none throws: validation belongs to the facade.
+  - no function allocates on the heap; none throws: validation belongs to the facade, degenerate input gives a false / zero return;
+  - the rotation is parametrised as \f$ {}^c\mathbf{R}_o = {}^w\mathbf{R}_c^T \mathbf{R}_z(\alpha)\,
+    {}^w\mathbf{R}_o \f$ with \f$ {}^w\mathbf{R}_c = \f$ uprightRotation(gCam) and
+    \f$ {}^w\mathbf{R}_o = \f$ uprightRotation(gObj): the "yaw" \f$ \alpha \f$ is the only unknown
+    angle. With the bearings \f$ \mathbf{f}_i = {}^w\mathbf{R}_c \mathbf{x}_i \f$ and
+    \f$ \mathbf{Y}_i = {}^w\mathbf{R}_o \mathbf{X}_i \f$ every solver works on
+    \f$ \mathbf{R}_z(\alpha)\mathbf{Y}_i + {}^w\mathbf{R}_c\mathbf{t} = \lambda_i \mathbf{f}_i \f$, free of the
+    singular frames of the paper's closed forms (gravity along a Y axis).
 */
 #ifndef VP_GRAVITY_SOLVERS_H
 #define VP_GRAVITY_SOLVERS_H
@@ -27,6 +34,7 @@
 
 #include <visp3/core/vpConfig.h>
 
+//! Pure Eigen solvers for the pose with known camera and object vertical directions.
 namespace vpGravitySolvers
 {
 //! A camera pose: object-to-camera rotation and translation (cRo, cto).
@@ -39,16 +47,21 @@ struct Pose
 //! Outcome of the two-point solver (Lemma 1 of the paper).
 enum class P2PCase
 {
-  TwoSolutions,      //!< distinct image points: two candidate poses (one if the trigonometric equation has a double root).
-  UniqueRotation,    //!< both image points on one ray not parallel to gravity: rotation unique, translation known only up to that ray.
-  Undetermined,      //!< both image points on one ray parallel to gravity: infinitely many rotations and translations.
-  NoSolution         //!< degenerate input (identical 3D points, non-finite data): nothing returned.
+  TwoSolutions,   //!< distinct image points: the two roots of the yaw equation; one pose when it has a double root or when cheirality discards a root.
+  UniqueRotation, //!< both image points on one ray not parallel to gravity: rotation unique, translation known only up to that ray.
+  Undetermined,   //!< the yaw is not observable from the pair: both image points on one ray parallel to gravity (Lemma 1), or a vertical object segment, or two horizontal rays; infinitely many poses.
+  NoSolution      //!< no admissible pose: identical object points, non-finite data, measurements inconsistent beyond noise, or both roots behind the camera.
 };
 
 /*!
   Rotation \f$ {}^w\mathbf{R}_s \f$ that maps the unit vector \e g (gravity in a sensor frame s) onto
-  \f$ \mathbf{e}_z \f$ of an "upright" frame w. It is smooth and well conditioned for every
-  direction of \e g (two branches joined where both are exact, no singular direction).
+  \f$ \mathbf{e}_z \f$ of an "upright" frame w (Sec. III: the paper's "fake NED" frame).
+
+  Its rows are \f$ (\mathbf{b}_1, \mathbf{b}_2, \mathbf{g}) \f$, the basis completed as in Duff et al.,
+  "Building an orthonormal basis, revisited" (JCGT 2017). It is exact and well conditioned for every
+  direction of \e g: the only division is by \f$ 1 + |g_z| \ge 1 \f$. The horizontal axes switch
+  branch with the sign of \f$ g_z \f$; that choice is arbitrary and absorbed by the yaw.
+  \param g : unit vector (not normalised here).
 */
 Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
 
@@ -59,34 +72,65 @@ Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
   \param gCam, gObj : unit gravity in camera and object frames.
   \param x : the two bearings (normalized image points, z > 0).
   \param X : the two object points.
-  \param poses : receives the candidates, ordered by increasing yaw angle \f$ \alpha \in (-\pi, \pi] \f$.
+  \param poses : receives the candidates, ordered by increasing yaw angle \f$ \alpha \in (-\pi, \pi] \f$
+  (see the file description for the definition of the yaw).
   \param p2pCase : optional, receives the Lemma 1 case.
-  \return number of poses written (0, 1 or 2). In the UniqueRotation case one pose is returned
-  whose translation places object point 0 at unit depth along its ray.
+  \return number of poses written (0, 1 or 2).
+
+  The yaw solves \f$ \mathbf{n} \cdot \mathbf{R}_z(\alpha)(\mathbf{Y}_A - \mathbf{Y}_B) = 0 \f$ with
+  \f$ \mathbf{n} = \mathbf{f}_A \times \mathbf{f}_B \f$, i.e. \f$ a\cos\alpha + b\sin\alpha + c = 0 \f$
+  (the paper's eq. 12); the depths follow by linear least squares. When noise makes
+  \f$ |c| \f$ exceed \f$ \sqrt{a^2+b^2} \f$ by less than 0.05 (unit vectors: about the angle by
+  which the segment misses the plane of the rays), the double root is returned; beyond, NoSolution.
+  Roots that put a point behind the camera are discarded (the paper counts both algebraic roots).
+
+  Coincident image points (Lemma 1): for a ray not parallel to gravity one pose is returned
+  (UniqueRotation) with the exact rotation and the translation that puts the nearer of the two
+  points at unit depth (the translation is only known up to the ray). Which point is nearer follows
+  from the vertical components of the segment and the ray; for a horizontal ray it is not observable
+  and point 0 is taken as the nearer one. A ray parallel to gravity gives Undetermined.
 */
 int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[2],
         const Eigen::Vector3d X[2], std::array<Pose, 2> &poses, P2PCase *p2pCase = nullptr);
 
 /*!
-  P3P with known vertical (Sec. V): P2P on the pair of points farthest apart in the image (the
-  other pairs if its image points coincide), then the candidate that reprojects the third point best.
+  P3P with known vertical (Sec. V): P2P on the pair of points farthest apart in the image, then the
+  candidate that reprojects the third point best. If that pair gives no two-point solution (image
+  points coinciding, or inconsistent beyond noise) the other pairs are tried in decreasing image
+  distance, so two points sharing one image point are handled through the third one.
+  \param gCam, gObj : unit gravity in camera and object frames.
+  \param x : the three bearings; \param X : the three object points (not collinear).
+  \param pose : receives the pose when found.
   \return true when a pose was found.
 */
 bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[3],
          const Eigen::Vector3d X[3], Pose &pose);
 
 /*!
-  Closed-form least squares on n >= 2 points: the algebraic residuals of all projection equations
-  are linear in \f$ (\cos\alpha, \sin\alpha, \mathbf{t}) \f$; \f$ \mathbf{t} \f$ is eliminated and the
-  remaining constrained problem on the unit circle is solved exactly through a quartic.
-  \return true when a pose was found.
+  Closed-form least squares on n >= 2 points: the algebraic residuals
+  \f$ x_i P_z - P_x \f$, \f$ y_i P_z - P_y \f$ of all points (\f$ \mathbf{P} = \mathbf{R}\mathbf{X}_i + \mathbf{t} \f$)
+  are linear in \f$ (\cos\alpha, \sin\alpha, \mathbf{t}, 1) \f$; \f$ \mathbf{t} \f$ is eliminated (Schur
+  complement) and the remaining quadratic form is minimised on the unit circle exactly: its
+  stationary points are the roots of a quartic in \f$ \tan(\phi/2) \f$ (companion matrix). No
+  iteration. Since the algebraic cost ignores the side of the camera, the stationary points are
+  ranked first by the number of points in front of the camera, then by cost (two points on one
+  vertical ray, for instance, fit the mirrored pose as well).
+  \param gCam, gObj : unit gravity in camera and object frames.
+  \param x, X : n bearings and object points.
+  \param n : number of points (>= 2; 2 points leave the yaw ambiguous, use p2p()).
+  \param pose : receives the pose.
+  \return false when all rays are parallel or data are not finite.
 */
 bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
                   const Eigen::Vector3d *X, int n, Pose &pose);
 
 /*!
-  Translation of the pose given its rotation, linear least squares on n >= 2 points
-  (the paper's eq. 14 generalised). \return false when the rays are all parallel.
+  Translation of the pose given its rotation: linear least squares on n >= 2 points of the
+  distance of each transformed point \f$ \mathbf{R}\mathbf{X}_i + \mathbf{t} \f$ to its ray (the paper's
+  eq. 14 generalised to all points and all equations).
+  \param R : cRo. \param x, X : n bearings and object points. \param n : number of points.
+  \param t : receives cto.
+  \return false when the rays are all parallel (translation unobservable along them).
 */
 bool translationFromRotation(const Eigen::Matrix3d &R, const Eigen::Vector3d *x, const Eigen::Vector3d *X,
                              int n, Eigen::Vector3d &t);

@@ -45,8 +45,16 @@ public:
   points give two candidate poses and a third point selects one (D'Alfonso, Garone, Muraca,
   Pugliese, "P3P and P2P problems with known camera and object vertical directions", MED 2013).
 
-  Points are given as in vpPose: object coordinates from vpPoint::get_oX(), get_oY(), get_oZ() and
-  normalized image coordinates from vpPoint::get_x(), get_y().
+  Usage in short:
+  - setCameraGravity() / setObjectGravity(): gravity measured by each IMU, any positive norm.
+  - addPoint() / addPoints(): as in vpPose, object coordinates from vpPoint::get_oX(), get_oY(),
+    get_oZ() and normalized image coordinates from vpPoint::get_x(), get_y().
+  - computePoseCandidates(): the (up to) two P2P poses from the first two points.
+  - computePose(P3P, cMo): first three points; LEAST_SQUARES: all points, closed form;
+    RANSAC: 2-point samples, setRansacThreshold() in normalized units, getRansacInliers().
+  - refinePose(): Ceres maximum likelihood; setGravityStdDev() > 0 also refines the tilt.
+  - Bad input throws vpPoseGravityException; degenerate-but-legal geometry (paper's Lemma 1)
+    returns false / no candidate and getStatus() tells why.
 
   \code
   vpPoseGravity pose;
@@ -56,7 +64,11 @@ public:
   vpHomogeneousMatrix cMo;
   if (pose.computePose(vpPoseGravity::P3P, cMo))
     pose.refinePose(cMo);         // optional maximum-likelihood refinement
+  else
+    std::cout << vpPoseGravity::getStatusMessage(pose.getStatus()) << std::endl;
   \endcode
+
+  The solvers themselves are pure Eigen functions in vpGravitySolvers.h.
 */
 class VISP_EXPORT vpPoseGravity
 {
@@ -73,12 +85,13 @@ public:
     STATUS_NOT_COMPUTED,        //!< nothing computed yet.
     STATUS_OK,                  //!< a pose (or two candidates) was found.
     STATUS_COINCIDENT_IMAGE_POINTS, //!< Lemma 1, second case: both image points on one ray not parallel to gravity; rotation unique, translation only up to the ray.
-    STATUS_VERTICAL_RAY,        //!< Lemma 1, third case: both image points on one ray parallel to gravity; infinitely many poses.
+    STATUS_VERTICAL_RAY,        //!< Lemma 1, third case: both image points on one ray parallel to gravity; infinitely many poses. Also reported when the yaw is unobservable from the pair for another reason (vertical object segment, both rays horizontal).
     STATUS_NO_SOLUTION,         //!< the measurements admit no pose (e.g. too inconsistent for the trigonometric equation).
     STATUS_NO_CONSENSUS,        //!< RANSAC found no model with enough inliers.
     STATUS_REFINEMENT_FAILED    //!< refinePose() did not converge; the input pose was left unchanged.
   } vpPoseGravityStatus;
 
+  //! Estimator without points nor gravity; RANSAC and refinement settings at their defaults.
   vpPoseGravity();
 
   /*! Gravity direction in the camera frame (any positive norm; normalized inside).
@@ -92,19 +105,22 @@ public:
   //! Unit gravity in the object frame (zero vector until set).
   vpColVector getObjectGravity() const;
 
-  //! Adds a point (object coordinates and normalized image coordinates), like vpPose::addPoint().
+  /*! Adds a point (object coordinates and normalized image coordinates), like vpPose::addPoint().
+      The coordinates are checked when a pose is computed. Forgets the last RANSAC inliers. */
   void addPoint(const vpPoint &P);
-  //! Adds several points, like vpPose::addPoints().
+  //! Adds several points, like vpPose::addPoints(). Forgets the last RANSAC inliers.
   void addPoints(const std::vector<vpPoint> &lP);
-  //! Removes all points.
+  //! Removes all points (and the last RANSAC inliers).
   void clearPoint();
   //! Points added so far, in order.
   const std::vector<vpPoint> &getPoints() const { return m_points; }
 
   /*!
-    All P2P solutions from the first two points, ordered by increasing yaw angle about the vertical.
-    Empty, with getStatus() telling why, in the degenerate cases of Lemma 1
-    (STATUS_COINCIDENT_IMAGE_POINTS, STATUS_VERTICAL_RAY) and when no real solution exists.
+    All P2P solutions from the first two points, ordered by increasing yaw angle about the vertical
+    (as defined in vpGravitySolvers.h); roots that would put a point behind the camera are left out,
+    so that one candidate is common. Empty, with getStatus() telling why, in the degenerate cases
+    of Lemma 1 (STATUS_COINCIDENT_IMAGE_POINTS, STATUS_VERTICAL_RAY; vpGravitySolvers::p2p() gives
+    the rotation in the first case) and when no real solution exists (STATUS_NO_SOLUTION).
     \exception vpPoseGravityException on missing gravity, fewer than 2 points, bad coordinates or
     identical object points.
   */
@@ -113,8 +129,16 @@ public:
   /*!
     Computes cMo with the given method. Returns false, with getStatus() telling why, when the
     geometry is degenerate but legal or when RANSAC finds no consensus; cMo is then untouched.
-    \exception vpPoseGravityException on missing gravity, too few points for the method, non-finite
-    coordinates, duplicate object points or (P3P) collinear object points.
+    - P3P uses (and checks) the first three points only.
+    - LEAST_SQUARES uses all points, closed form.
+    - RANSAC draws 2-point samples, scores the P2P candidates by reprojection error against
+      setRansacThreshold(), refits each new best model by LEAST_SQUARES on its inliers and finally on
+      the whole consensus set; it needs at least 3 inliers (else STATUS_NO_CONSENSUS).
+    \param method : P3P, LEAST_SQUARES or RANSAC.
+    \param cMo : receives the pose on success.
+    \exception vpPoseGravityException on missing gravity, too few points for the method (3),
+    non-finite coordinates, duplicate object points (equal within 1e-12 times the largest object
+    coordinate) or (P3P) collinear object points.
   */
   bool computePose(vpPoseGravityMethod method, vpHomogeneousMatrix &cMo);
 
@@ -124,19 +148,23 @@ public:
     Without gravity priors (setGravityStdDev(0), the default) the refinement has 4 DOF: the yaw
     angle and the translation, both gravity vectors held exact. With a positive gravity standard
     deviation all 6 DOF are refined and the two gravity measurements enter as soft priors.
-    \return true if the refinement converged (cMo updated), false otherwise (cMo unchanged).
+    The gravity priors are whitened residuals \f$ ({}^c\mathbf{R}_o \mathbf{g}_o - \mathbf{g}_c) / (\sqrt{2}\sigma_g) \f$.
+    \param cMo : initial pose (any method), replaced by the refined pose on success.
+    \return true if Ceres returned a usable solution (cMo updated), false otherwise (cMo unchanged,
+    status STATUS_REFINEMENT_FAILED), e.g. for a non-finite initial pose.
+    \exception vpPoseGravityException on missing gravity, fewer than 2 points or bad coordinates.
   */
   bool refinePose(vpHomogeneousMatrix &cMo);
 
   /*! Sum of squared reprojection errors in normalized coordinates over all points, like
-      vpPose::computeResidual(). */
+      vpPose::computeResidual(): \f$ \sum_i (x_i - X_c/Z_c)^2 + (y_i - Y_c/Z_c)^2 \f$. Needs no gravity. */
   double computeResidual(const vpHomogeneousMatrix &cMo) const;
 
-  //! RANSAC inlier threshold on the reprojection error in normalized coordinates (as vpPose); default 1e-3.
+  //! RANSAC inlier threshold on the reprojection error in normalized coordinates (as vpPose); default 1e-3. Throws badParameterError unless > 0.
   void setRansacThreshold(double t);
-  //! Maximum number of RANSAC samples; default 1000.
+  //! Maximum number of RANSAC samples; default 1000. Throws badParameterError unless > 0.
   void setRansacMaxTrials(int trials);
-  //! Confidence of the adaptive RANSAC stop; default 0.99.
+  //! Confidence of the adaptive RANSAC stop; default 0.99. Throws badParameterError unless in (0, 1).
   void setRansacProbability(double p);
   //! Seed of the RANSAC sampler; default 0.
   void setRansacSeed(unsigned int seed);
@@ -147,9 +175,9 @@ public:
   //! Number of samples drawn by the last RANSAC computation.
   int getRansacTrials() const { return m_ransacTrials; }
 
-  //! Standard deviation of image measurements in normalized coordinates, used by refinePose(); default 1e-3.
+  //! Standard deviation of image measurements in normalized coordinates, used by refinePose(); default 1e-3. Throws badParameterError unless > 0.
   void setImageStdDev(double sigma);
-  //! Standard deviation of each gravity component (unit vectors); 0 (default) holds gravity exact in refinePose().
+  //! Standard deviation of each gravity component (unit vectors); 0 (default) holds gravity exact in refinePose(). Throws badParameterError if < 0.
   void setGravityStdDev(double sigma);
 
   //! Status of the last computation.
