@@ -114,16 +114,44 @@ public:
   }
   //! Distance of the point to the image of the trace the plane predicts.
   double residual(const Model &m, int i) const { return vpLaserSolvers::sampsonDistance(m.conic, m_points[i]); }
-  //! Local optimisation: plane pair on the least-squares ellipse of the inliers.
+  /*!
+    Local optimisation: geometric refinement of the plane on the inliers (refinePlane), started from
+    the hypothesis and from the plane pair of their least-squares ellipse; the better one is kept.
+  */
   bool refine(const std::vector<int> &inliers, Model &m) const
   {
+    if (inliers.size() < 3)
+      return false;
+    PointList subset;
+    subset.reserve(inliers.size());
+    for (int i : inliers)
+      subset.push_back(m_points[i]);
+    const int n = static_cast<int>(subset.size());
+    Eigen::Vector4d starts[2] = {m.plane, Eigen::Vector4d::Zero()};
+    int nstarts = 1;
     Eigen::Matrix3d c;
-    if (inliers.size() < 5 || !fitEllipseOn(m_points, inliers, c))
-      return false;
-    if (!vpLaserSolvers::planePair(c, m_cone, m.plane))
-      return false;
-    m.conic = vpLaserSolvers::conicFromPlane(m.plane, m_cone);
-    return true;
+    if (n >= 5 && fitEllipseOn(m_points, inliers, c) && vpLaserSolvers::planePair(c, m_cone, starts[1]))
+      nstarts = 2;
+    bool refined = false;
+    double bestCost = 0.0;
+    for (int k = 0; k < nstarts; ++k) {
+      Model candidate;
+      candidate.plane = starts[k];
+      if (!vpLaserSolvers::refinePlane(subset.data(), n, m_cone, candidate.plane))
+        continue;
+      candidate.conic = vpLaserSolvers::conicFromPlane(candidate.plane, m_cone);
+      double cost = 0.0;
+      for (int i : inliers) {
+        const double r = residual(candidate, i);
+        cost += r * r;
+      }
+      if (!refined || cost < bestCost) {
+        m = candidate;
+        bestCost = cost;
+        refined = true;
+      }
+    }
+    return refined;
   }
 
 private:

@@ -5,6 +5,8 @@
 // Tests of the pure circular-laser solvers on exact simulated traces (ground truth from the simulation).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <Eigen/LU>
 
 #include <visp3/core/vpRotationMatrix.h>
@@ -36,6 +38,12 @@ struct ExactScene
   A random exact scene. With \e epipolarTangents, only rigs where PP-3 applies: the camera centre
   outside the (double) laser cone, so that real epipolar tangent planes exist.
 */
+void print(const char *what, const std::vector<double> &errors)
+{
+  std::printf("%-28s median %.2e max %.2e over %zu\n", what, laser_test::median(errors), laser_test::maximum(errors),
+              errors.size());
+}
+
 ExactScene drawScene(std::mt19937 &rng, unsigned int n = 40, bool epipolarTangents = false)
 {
   ExactScene e;
@@ -116,6 +124,7 @@ TEST(LaserSolvers, FitConicOnFiveExactPoints)
     ASSERT_TRUE(fitConic(e.points.data(), 5, c));
     errors.push_back(laser_test::conicDistance(c, conicFromPlane(e.scene.plane, e.cone)));
   }
+  print("fitConic 5 points (conic)", errors);
   EXPECT_LT(laser_test::median(errors), kMedianTol);
   EXPECT_LT(laser_test::maximum(errors), kMaxTol);
 }
@@ -147,6 +156,8 @@ TEST(LaserSolvers, PlanePairOnTheExactConic)
     normalErr.push_back(laser_test::normalError(plane, e.scene.plane));
     altitudeErr.push_back(laser_test::altitudeError(plane, e.scene.plane));
   }
+  print("planePair normal (rad)", normalErr);
+  print("planePair altitude (m)", altitudeErr);
   EXPECT_LT(laser_test::median(normalErr), kMedianTol);
   EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
   EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
@@ -231,6 +242,7 @@ TEST(LaserSolvers, Pp3FindsTheTrueConic)
     }
   }
   EXPECT_EQ(found, kScenes);
+  print("pp3Conics (conic)", errors);
   EXPECT_LT(laser_test::median(errors), kMedianTol);
   EXPECT_LT(laser_test::maximum(errors), kMaxTol);
 }
@@ -260,6 +272,8 @@ TEST(LaserSolvers, Gp3FindsTheTruePlane)
     normalErr.push_back(laser_test::normalError(planes[best], e.scene.plane));
     altitudeErr.push_back(laser_test::altitudeError(planes[best], e.scene.plane));
   }
+  print("gp3Planes normal (rad)", normalErr);
+  print("gp3Planes altitude (m)", altitudeErr);
   EXPECT_LT(laser_test::median(normalErr), kMedianTol);
   EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
   EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
@@ -293,4 +307,33 @@ TEST(LaserSolvers, AltitudeRollPitchConvention)
   altitudeRollPitch(Eigen::Vector4d(-std::sin(0.3), 0.0, -std::cos(0.3), 1.0), a, r, p);
   EXPECT_NEAR(p, 0.3, 1e-15);
   EXPECT_NEAR(r, 0.0, 1e-15);
+}
+
+TEST(LaserSolvers, RefinePlaneConvergesOnExactPoints)
+{
+  // From a plane 2 deg and 5 % off, the refinement on exact points recovers the truth.
+  std::mt19937 rng(10);
+  std::vector<double> normalErr, altitudeErr;
+  for (int k = 0; k < 300; ++k) {
+    const ExactScene e = drawScene(rng, 30);
+    Eigen::Vector4d plane = e.scene.plane;
+    const Eigen::Vector3d tilt = laser_test::randomDirection(rng).cross(plane.head<3>()).normalized();
+    plane.head<3>() = Eigen::AngleAxisd(vpMath::rad(2.0), tilt) * plane.head<3>();
+    plane(3) *= 1.05;
+    ASSERT_TRUE(refinePlane(e.points.data(), 30, e.cone, plane));
+    normalErr.push_back(laser_test::normalError(plane, e.scene.plane));
+    altitudeErr.push_back(laser_test::altitudeError(plane, e.scene.plane));
+  }
+  print("refinePlane normal (rad)", normalErr);
+  print("refinePlane altitude (m)", altitudeErr);
+  EXPECT_LT(laser_test::median(normalErr), kMedianTol);
+  EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
+  EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
+  EXPECT_LT(laser_test::maximum(altitudeErr), kMaxTol);
+  // Invalid starts are refused without touching the plane.
+  const ExactScene e = drawScene(rng, 30);
+  Eigen::Vector4d bad(0.0, 0.0, 0.0, 1.0);
+  EXPECT_FALSE(refinePlane(e.points.data(), 30, e.cone, bad));
+  EXPECT_EQ(bad, Eigen::Vector4d(0.0, 0.0, 0.0, 1.0));
+  EXPECT_FALSE(refinePlane(e.points.data(), 2, e.cone, bad));
 }

@@ -79,6 +79,16 @@ int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents,
 */
 int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vector4d planes[8]);
 
+/*!
+  Geometric refinement of a ground plane (d > 0) on image points (normalized coordinates) believed
+  to lie on the trace: Levenberg-Marquardt over the 3 degrees of freedom of the plane (normal on the
+  sphere, altitude) minimising the squared Sampson distances of the points to conicFromPlane().
+  Unlike a free conic fit, every iterate satisfies the epipolar constraints of the rig.
+  \return false (plane untouched) on invalid input; otherwise the plane is the refined one (never worse).
+*/
+bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane,
+                 int iterations = 20);
+
 //! Image conic (normalized coordinates) of the trace of the laser cone on a ground plane.
 Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone);
 
