@@ -282,7 +282,8 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     return false;
   }
   if (method != GP3 && !vpLaserSolvers::planePair(conic, cone, plane)) {
-    m_failure = "the plane pair of the image conic has no plane with both optical centres on the same side";
+    m_failure = "no ground plane in the plane pair of the image conic: the conic does not match the laser cone "
+                "(no real plane pair, or no plane with both optical centres on its side)";
     return false;
   }
   if (!plane.allFinite()) {

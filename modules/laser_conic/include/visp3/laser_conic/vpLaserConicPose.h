@@ -91,13 +91,23 @@ public:
   void setRansacProbability(double p);
   //! Seed of the RANSAC sampler; default 0.
   void setRansacSeed(unsigned int seed);
-  //! Refit the best model on its inliers (default true).
+  /*!
+    Refit the best model on its inliers (default true), during the RANSAC loop (kept when it scores
+    better) and once after it (kept unless it loses more than a tenth of the inliers): PP5 and PP3
+    refit a least-squares ellipse, GP3 refines the plane geometrically (refinePlane(), 3 degrees of
+    freedom, Sampson distances to the predicted trace).
+  */
   void setLocalOptimisation(bool enable);
 
   /*!
     Estimates the ground plane from image points (pixels) with the given method.
     \param cPlane : the ground plane in the camera frame, unit normal pointing from the plane towards the camera.
     \return false, with getFailureReason() telling why, when no plane was found; cPlane is then untouched.
+    The reasons: all points collinear; the least-squares conic is not an ellipse (PLANE_PAIR); no
+    consensus (no hypothesis with enough inliers); the camera centre inside the laser cone, where no
+    epipolar tangent exists (PP3 only); no plane of the plane pair has both optical centres on its side;
+    the plane is behind the system (the inliers' rays do not meet it ahead of the camera on the lit
+    nappe of the laser cone).
     \exception vpLaserConicException when the camera or laser is unset, too few points are given for
     the method, or a point is not finite.
   */
@@ -113,7 +123,8 @@ public:
   std::vector<unsigned int> getInliers() const { return m_inliers; }
   //! Number of RANSAC samples drawn by the last estimate.
   int getRansacTrials() const { return m_trials; }
-  //! Image conic (pixel coordinates, x^T C x = 0 with x = (u, v, 1)) of the last estimate, for display.
+  /*! Image conic (pixel coordinates, x^T C x = 0 with x = (u, v, 1)) of the last estimate, for display:
+      the fitted ellipse for PLANE_PAIR, PP5 and PP3, the image of the trace on the estimated plane for GP3. */
   vpMatrix getImageConic() const { return m_conic; }
   //! Why the last computePlane() returned false (empty after a success).
   std::string getFailureReason() const { return m_failure; }
