@@ -475,3 +475,48 @@ TEST(LaserConicPose, PureOutliersGiveNoConsensus)
     EXPECT_FALSE(estimator.getFailureReason().empty());
   }
 }
+
+// Arbitrary point sets (random sizes, duplicates, points far outside the image, near-collinear sets):
+// every call returns true with a finite unit-normal plane, or false with a reason; nothing else.
+TEST(LaserConicPose, ArbitraryPointSetsNeverMisbehave)
+{
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> size(5, 25), kind(0, 3);
+  std::uniform_real_distribution<double> u(-2000.0, 4000.0), small(-1.0, 1.0);
+  int successes = 0, failures = 0;
+  for (int k = 0; k < 400; ++k) {
+    std::vector<vpImagePoint> points;
+    laser_test::Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 20, points);
+    const int n = size(rng);
+    const int what = kind(rng);
+    points.clear();
+    for (int i = 0; i < n; ++i) {
+      if (what == 0) // scattered, also outside the image
+        points.emplace_back(u(rng), u(rng));
+      else if (what == 1) // a few distinct points repeated
+        points.emplace_back(100.0 * (i % 3), 50.0 * (i % 4));
+      else if (what == 2) // nearly collinear
+        points.emplace_back(10.0 * i + 1e-3 * small(rng), 5.0 * i);
+      else // a tiny cluster
+        points.emplace_back(600.0 + 1e-6 * small(rng), 800.0 + 1e-6 * small(rng));
+    }
+    vpLaserConicPose estimator = makeEstimator(s.rig);
+    estimator.setRansacMaxTrials(200);
+    for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+      vpPlane plane;
+      if (estimator.computePlane(points, method, plane)) {
+        ++successes;
+        const Eigen::Vector4d p = toEigen(plane);
+        EXPECT_TRUE(p.allFinite());
+        EXPECT_NEAR(p.head<3>().norm(), 1.0, 1e-9);
+        EXPECT_GT(p(3), 0.0);
+        EXPECT_TRUE(std::isfinite(estimator.getAltitude()) && std::isfinite(estimator.getRoll()) &&
+                    std::isfinite(estimator.getPitch()));
+      } else {
+        ++failures;
+        EXPECT_FALSE(estimator.getFailureReason().empty());
+      }
+    }
+  }
+  std::printf("arbitrary point sets: %d planes, %d failures with a reason\n", successes, failures);
+}
