@@ -31,6 +31,8 @@
   camera frame (A: full opening angle), from the apex \f$ \mathbf{v} \f$; mapped into the grid frame with
   \f$ {}^g\mathbf{M}_c = {}^c\mathbf{M}_g^{-1} \f$ and cut with the plane Z = 0 it predicts the grid XY of
   the point. The returned laser pose is \f$ {}^c\mathbf{M}_l = [R_x(\alpha) R_y(\beta) \mid \mathbf{v}] \f$.
+  The cone axis is \f$ (\sin\beta, -\sin\alpha\cos\beta, \cos\alpha\cos\beta)^T \f$: the parameterisation
+  is singular only for an axis perpendicular to the optical axis (beta = +-90 degrees).
 
   \code
   vpLaserConicCalibration calib;
