@@ -99,6 +99,7 @@ struct Problem
   const Eigen::Matrix3d &wRc, &wRo;
   const Eigen::Vector3d *x, *X;
   int n;
+  Eigen::Vector3d centroid; // object points are centred on it (better conditioning, same yaw)
   Eigen::Matrix3d MssInv, Mqs;
 };
 
@@ -118,7 +119,7 @@ int pointsInFront(const Problem &p, double alpha)
   const Eigen::Vector3d axisUp = p.wRc.col(2);
   int count = 0;
   for (int i = 0; i < p.n; ++i)
-    count += (axisUp.dot(Rz * (p.wRo * p.X[i]) + s) > 0.0);
+    count += (axisUp.dot(Rz * (p.wRo * (p.X[i] - p.centroid)) + s) > 0.0);
   return count;
 }
 
@@ -176,12 +177,18 @@ bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, cons
     return false;
   const Eigen::Matrix3d wRc = uprightRotation(gCam);
   const Eigen::Matrix3d wRo = uprightRotation(gObj);
-  Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
+  // Centring the object points only shifts t (by R * centroid) but keeps the normal matrix free of
+  // a large common offset, which would otherwise swamp the yaw-dependent terms.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i) {
     if (!(x[i].z() > 0.0) || !detail::allFinite(x[i]) || !detail::allFinite(X[i]))
       return false;
-    accumulatePoint(wRc, x[i], wRo * X[i], M);
+    centroid += X[i];
   }
+  centroid /= n;
+  Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int i = 0; i < n; ++i)
+    accumulatePoint(wRc, x[i], wRo * (X[i] - centroid), M);
 
   Eigen::Matrix3d Mqq, Mqs, Mss;
   for (int r = 0; r < 3; ++r)
@@ -199,11 +206,18 @@ bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, cons
     return false;
   const Eigen::Matrix3d Q = Mqq - Mqs * MssInv * Mqs.transpose();
 
-  const Problem problem{wRc, wRo, x, X, n, MssInv, Mqs};
+  // The yaw is observable only if the reduced cost depends on (cos, sin): it does not when all the
+  // points lie on one vertical line (the data then only repeat the IMUs). Exact data give a
+  // dependence at rounding level there, any observable geometry a dependence of order trace(Mqq).
+  const double yawDependence = Q.topLeftCorner<2, 2>().norm() + Q.topRightCorner<2, 1>().norm();
+  if (!(yawDependence > 1e-10 * Mqq.trace()))
+    return false;
+
+  const Problem problem{wRc, wRo, x, X, n, centroid, MssInv, Mqs};
   const double alpha = minimiseOnCircle(0.5 * (Q + Q.transpose()), problem);
   const Eigen::Vector3d sUp = translationForYaw(problem, alpha);
   pose.R = detail::composeRotation(wRc, alpha, wRo);
-  pose.t = wRc.transpose() * sUp;
+  pose.t = wRc.transpose() * sUp - pose.R * centroid;
   return pose.R.allFinite() && pose.t.allFinite();
 }
 

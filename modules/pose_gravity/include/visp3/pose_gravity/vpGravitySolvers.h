@@ -119,7 +119,8 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
   \param x, X : n bearings and object points.
   \param n : number of points (>= 2; 2 points leave the yaw ambiguous, use p2p()).
   \param pose : receives the pose.
-  \return false when all rays are parallel or data are not finite.
+  \return false when all rays are parallel, when the yaw is not observable (all points on one
+  vertical line) or data are not finite.
 */
 bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
                   const Eigen::Vector3d *X, int n, Pose &pose);

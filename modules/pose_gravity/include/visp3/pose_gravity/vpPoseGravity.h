@@ -130,7 +130,8 @@ public:
     Computes cMo with the given method. Returns false, with getStatus() telling why, when the
     geometry is degenerate but legal or when RANSAC finds no consensus; cMo is then untouched.
     - P3P uses (and checks) the first three points only.
-    - LEAST_SQUARES uses all points, closed form.
+    - LEAST_SQUARES uses all points, closed form (STATUS_NO_SOLUTION when all the points lie on one
+      vertical line: the yaw is then unobservable).
     - RANSAC draws 2-point samples, scores the P2P candidates by reprojection error against
       setRansacThreshold(), refits each new best model by LEAST_SQUARES on its inliers and finally on
       the whole consensus set; it needs at least 3 inliers (else STATUS_NO_CONSENSUS).
