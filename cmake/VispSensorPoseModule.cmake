@@ -68,7 +68,7 @@ function(vsp_add_gtest exe)
   target_compile_definitions(${exe} PRIVATE VSP_DATA_DIR="${PROJECT_SOURCE_DIR}/data")
   vsp_set_warnings(${exe})
   include(GoogleTest)
-  gtest_discover_tests(${exe} DISCOVERY_TIMEOUT 120 PROPERTIES TIMEOUT 600)
+  gtest_discover_tests(${exe} TEST_PREFIX "${exe}." DISCOVERY_TIMEOUT 120 PROPERTIES TIMEOUT 600)
 endfunction()
 
 # vsp_add_program(<exe> <sources...> [LIBS ...]): an example / tutorial / benchmark program.
