@@ -8,13 +8,14 @@
 #define VSP_BENCH_UTILS_H
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
 #include <vector>
+
+#include <time.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -29,7 +30,19 @@ inline volatile double g_sink = 0.0;
 inline void consume(double v) { g_sink = g_sink + v; }
 
 /*!
-  Median time per call, in nanoseconds, of \e call(i) for i in [0, nInstances): one batch runs every
+  CPU time of the calling thread, in seconds. The benchmarks use it rather than the wall clock:
+  on a shared machine the wall clock also counts the time the thread waits for a core, the thread
+  CPU time does not (cache pollution by the other processes remains, hence the median).
+*/
+inline double threadCpuSeconds()
+{
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/*!
+  Median time per call (thread CPU time), in nanoseconds, of \e call(i) for i in [0, nInstances): one batch runs every
   instance once (so that the branch predictor cannot learn a single input), the batch is repeated
   until it has run \e repetitions times and at least \e minSeconds in total, and the median batch
   time divided by the batch size is returned. The median resists the occasional preemption by the
@@ -37,18 +50,17 @@ inline void consume(double v) { g_sink = g_sink + v; }
 */
 template <typename Call> double medianNsPerCall(Call &&call, int nInstances, int repetitions = 15, double minSeconds = 0.3)
 {
-  using Clock = std::chrono::steady_clock;
   for (int i = 0; i < nInstances; ++i) { // warm-up: caches, lazy initialisations, page faults
     call(i);
   }
   std::vector<double> perCall;
   double total = 0.0;
   while (static_cast<int>(perCall.size()) < repetitions || (total < minSeconds && perCall.size() < 10000)) {
-    const Clock::time_point start = Clock::now();
+    const double start = threadCpuSeconds();
     for (int i = 0; i < nInstances; ++i) {
       call(i);
     }
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const double seconds = threadCpuSeconds() - start;
     total += seconds;
     perCall.push_back(seconds * 1e9 / nInstances);
   }

@@ -198,6 +198,33 @@ BenchRow row(const std::string &problem, const std::string &method, double ns, d
 }
 } // namespace
 
+int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int frames, unsigned int seed)
+{
+#ifdef VSP_HAVE_LASER_CONIC
+  const vspBench::LaserRig rig = vspBench::defaultRig();
+  const std::vector<LaserFrame> data = makeFrames(rig, seed, frames, outlierRatio);
+  vpLaserConicPose estimator = makeEstimator(rig);
+  const vpLaserConicPose::vpLaserConicMethod method =
+      methodName == "pp3" ? vpLaserConicPose::PP3
+                          : (methodName == "pp5" ? vpLaserConicPose::PP5
+                                                 : (methodName == "planepair" ? vpLaserConicPose::PLANE_PAIR
+                                                                              : vpLaserConicPose::GP3));
+  int good = 0;
+  long trials = 0;
+  for (const LaserFrame &f : data) {
+    vpPlane plane;
+    good += estimator.computePlane(f.points, method, plane) && planeIsGood(toEigen(plane), f.truth) ? 1 : 0;
+    trials += estimator.getRansacTrials();
+  }
+  std::printf("%s at %.0f %% outliers: %d/%d frames good, %.1f RANSAC trials per frame\n", methodName.c_str(),
+              100.0 * outlierRatio, good, frames, static_cast<double>(trials) / frames);
+  return 0;
+#else
+  (void)methodName, (void)outlierRatio, (void)frames, (void)seed;
+  return 1;
+#endif
+}
+
 void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick)
 {
   const vspBench::LaserRig rig = vspBench::defaultRig();

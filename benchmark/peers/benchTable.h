@@ -46,4 +46,10 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
 //! Laser-conic benchmarks (1000-point frames and whole 1600x1200 frames).
 void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 
+/*!
+  Runs one laser method on \e frames seeded 1000-point frames and prints its success rate and mean
+  RANSAC trial count: a short, deterministic loop to run under a profiler (valgrind --tool=callgrind).
+*/
+int runLaserProfileLoop(const std::string &method, double outlierRatio, int frames, unsigned int seed);
+
 #endif
