@@ -152,6 +152,85 @@ int realQuarticRoots(const double k[5], double roots[4])
   }
   return count;
 }
+typedef Eigen::Matrix<double, 6, 1> Vector6d;
+typedef Eigen::Matrix<double, 6, 6> Matrix6d;
+
+//! Symmetric conic from its six distinct entries (c00, c01, c11, c02, c12, c22).
+Eigen::Matrix3d conicOf(const Vector6d &k)
+{
+  Eigen::Matrix3d c;
+  c << k(0), k(1), k(3), k(1), k(2), k(4), k(3), k(4), k(5);
+  return c;
+}
+
+//! Line tangency l^T adj(c) l = 0, a quadratic form in the entries of c (adj: adjugate).
+double tangency(const Vector6d &k, const Eigen::Vector3d &l)
+{
+  const Eigen::Matrix3d c = conicOf(k);
+  Eigen::Matrix3d adj;
+  adj(0, 0) = c(1, 1) * c(2, 2) - c(1, 2) * c(2, 1);
+  adj(0, 1) = c(0, 2) * c(2, 1) - c(0, 1) * c(2, 2);
+  adj(0, 2) = c(0, 1) * c(1, 2) - c(0, 2) * c(1, 1);
+  adj(1, 1) = c(0, 0) * c(2, 2) - c(0, 2) * c(2, 0);
+  adj(1, 2) = c(0, 2) * c(1, 0) - c(0, 0) * c(1, 2);
+  adj(2, 2) = c(0, 0) * c(1, 1) - c(0, 1) * c(1, 0);
+  adj(1, 0) = adj(0, 1);
+  adj(2, 0) = adj(0, 2);
+  adj(2, 1) = adj(1, 2);
+  return l.dot(adj * l);
+}
+
+/*!
+  Newton polish of a PP-3 conic on the original constraints (3 incidences, 2 tangencies, unit scale
+  along the initial conic). The canonical frame of eq. 36 degrades when the epipole nears the line
+  through two of the points, and the quartic then has nearly double roots; the constraints
+  themselves stay well conditioned, so a few Newton steps restore full precision. A step is kept only
+  if it lowers the residual.
+*/
+void polishConic(const Eigen::Vector3d x[3], const Eigen::Vector3d &u, const Eigen::Vector3d &v, Eigen::Matrix3d &c)
+{
+  const Eigen::Vector3d lines[2] = {u.normalized(), v.normalized()};
+  Vector6d k;
+  k << c(0, 0), c(0, 1), c(1, 1), c(0, 2), c(1, 2), c(2, 2);
+  k.normalize();
+  const Vector6d k0 = k;
+  auto residuals = [&](const Vector6d &q) {
+    Vector6d r;
+    for (int i = 0; i < 3; ++i)
+      r(i) = x[i].dot(conicOf(q) * x[i]);
+    r(3) = tangency(q, lines[0]);
+    r(4) = tangency(q, lines[1]);
+    r(5) = k0.dot(q) - 1.0;
+    return r;
+  };
+  Vector6d r = residuals(k);
+  for (int it = 0; it < 4 && r.norm() > 0.0; ++it) {
+    Matrix6d J;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d &p = x[i];
+      J.row(i) << p(0) * p(0), 2.0 * p(0) * p(1), p(1) * p(1), 2.0 * p(0) * p(2), 2.0 * p(1) * p(2), p(2) * p(2);
+    }
+    // The tangency is quadratic in k: central differences are exact up to rounding.
+    const double h = 1e-4;
+    for (int j = 0; j < 6; ++j) {
+      Vector6d plus = k, minus = k;
+      plus(j) += h;
+      minus(j) -= h;
+      for (int l = 0; l < 2; ++l)
+        J(3 + l, j) = (tangency(plus, lines[l]) - tangency(minus, lines[l])) / (2.0 * h);
+    }
+    J.row(5) = k0.transpose();
+    const Vector6d next = k - J.fullPivLu().solve(r);
+    if (!next.allFinite())
+      break;
+    const Vector6d rn = residuals(next);
+    if (!(rn.norm() < r.norm()))
+      break;
+    k = next;
+    r = rn;
+  }
+  c = conicOf(k);
+}
 } // namespace
 
 bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents)
@@ -199,6 +278,7 @@ int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents,
     Eigen::Matrix3d cc;
     cc << 2.0, u, -1.0, u, 2.0 * t, -t, -1.0, -t, 0.0; // eq. 43
     Eigen::Matrix3d c = H.transpose() * cc * H;     // eq. 54
+    polishConic(x, tangents.u, tangents.v, c);
     const double norm = c.norm();
     if (!(norm > 0.0) || !std::isfinite(norm))
       continue;

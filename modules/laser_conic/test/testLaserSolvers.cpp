@@ -236,8 +236,9 @@ TEST(LaserSolvers, Pp3FindsTheTrueConic)
         errors.push_back(best);
         found += best < 1e-6;
       } else {
-        // Close points give a worse-conditioned sample: only check the true conic is among the candidates.
-        EXPECT_LT(best, 1e-4) << "scene " << k;
+        // Any triplet, also with two points on nearly the same epipolar line (where the canonical
+        // frame of eq. 36 degenerates and the Newton polish restores the precision).
+        EXPECT_LT(best, 1e-6) << "scene " << k;
       }
     }
   }
