@@ -24,6 +24,7 @@
 #include <visp3/io/vpImageIo.h>
 #include <visp3/laser_conic/vpLaserConicDetector.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
 
 #include "vpLaserRigIo.h"
 #include "vpPngPlot.h"
@@ -93,6 +94,37 @@ std::string cell(const std::vector<double> &v)
   const MeanStd m = meanStd(v);
   std::ostringstream ss;
   ss << std::fixed << std::setprecision(2) << m.mean << " ± " << m.std;
+  return ss.str();
+}
+
+/*!
+  Distances (pixels) of detected points to the exact image of the trace, from the true laser pose and
+  the true ground plane: the detection error that the estimators see, used to justify the bounds.
+*/
+void detectionResiduals(const std::vector<vpImagePoint> &points, const vpCameraParameters &cam, double openingAngle,
+                        const vpHomogeneousMatrix &cMlTrue, const vpPlane &plane, std::vector<double> &residuals)
+{
+  vpLaserSolvers::LaserCone cone;
+  for (unsigned int i = 0; i < 3; ++i) {
+    for (unsigned int j = 0; j < 3; ++j) {
+      cone.cRl(i, j) = cMlTrue[i][j];
+    }
+    cone.apex(i) = cMlTrue[i][3];
+  }
+  cone.halfAngle = 0.5 * openingAngle;
+  const Eigen::Vector4d pi(plane.getA(), plane.getB(), plane.getC(), plane.getD());
+  const Eigen::Matrix3d conic = vpLaserSolvers::conicFromPlane(pi, cone);
+  const double focal = 0.5 * (cam.get_px() + cam.get_py());
+  for (const vpImagePoint &ip : points) {
+    const Eigen::Vector2d x((ip.get_u() - cam.get_u0()) / cam.get_px(), (ip.get_v() - cam.get_v0()) / cam.get_py());
+    residuals.push_back(focal * vpLaserSolvers::sampsonDistance(conic, x));
+  }
+}
+
+std::string fmt(double x)
+{
+  std::ostringstream ss;
+  ss << std::setprecision(3) << x;
   return ss.str();
 }
 
@@ -209,6 +241,13 @@ int main(int argc, char **argv)
   }
   std::vector<MethodResult> results(methods().size());
   std::vector<unsigned int> detected;
+  // The rendering pose of the laser, when shipped, measures the detection error.
+  double openingTrue = 0.0;
+  vpHomogeneousMatrix cMlTrue;
+  std::string ignored;
+  const bool hasTrueLaser =
+      vpLaserRigIo::readLaserCalibration(opt.data + "/laser_true.txt", openingTrue, cMlTrue, ignored);
+  std::vector<double> residuals;
   try {
     vpIoTools::makeDirectory(opt.output);
     vpLaserConicDetector detector;
@@ -224,6 +263,9 @@ int main(int argc, char **argv)
       vpImageIo::read(I, dataset.imagePath(f));
       const std::vector<vpImagePoint> points = detector.detect(I);
       detected.push_back(static_cast<unsigned int>(points.size()));
+      if (hasTrueLaser) {
+        detectionResiduals(points, dataset.cam, openingTrue, cMlTrue, f.plane, residuals);
+      }
       for (size_t i = 0; i < methods().size(); ++i) {
         MethodResult &r = results[i];
         estimator.setRansacSeed(f.frame);
@@ -268,6 +310,18 @@ int main(int argc, char **argv)
             << "laser " << (opt.laserFile.empty() ? opt.data + "/laser.txt" : opt.laserFile) << ", RANSAC threshold "
             << opt.threshold << " px, " << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit")
             << "\n\n";
+  double rmsResidual = 0.0, outlierFraction = 0.0;
+  if (!residuals.empty()) {
+    for (double r : residuals) {
+      rmsResidual += r * r;
+      outlierFraction += r > 2.0 ? 1.0 : 0.0;
+    }
+    rmsResidual = std::sqrt(rmsResidual / residuals.size());
+    outlierFraction /= residuals.size();
+    std::sort(residuals.begin(), residuals.end());
+    std::cout << "Detection error against the exact trace (laser_true.txt): RMS " << rmsResidual << " px, median "
+              << residuals[residuals.size() / 2] << " px, " << 100.0 * outlierFraction << " % of points beyond 2 px\n\n";
+  }
   std::cout << "| | PP-5 | PP-3 | GP-3 |\n|---|---|---|---|\n";
   std::cout << "| Altitude error (mm) | " << cell(results[0].altitudeMm) << " | " << cell(results[1].altitudeMm)
             << " | " << cell(results[2].altitudeMm) << " |\n";
@@ -286,28 +340,38 @@ int main(int argc, char **argv)
   if (!opt.check) {
     return EXIT_SUCCESS;
   }
-  // Bounds. The rendered stripe (Gaussian profile, 0.7 px blur, 1 grey-level sensor noise, JPEG)
-  // is located by the detector to well below one pixel, so the point noise is under the 1 px level
-  // of the synthetic study, whose mean errors at 1 px (laser-synthetic-eval --only noise) are
-  // a few millimetres and about 0.1 deg for every method. The bounds below are those values with
-  // a safety factor of about 3, and well under the published errors of the real sequence: a
-  // detector bias, a convention error or a wrong estimator exceeds them.
-  const double maxMeanAltitudeMm = 10.0, maxMeanAngleDeg = 0.5;
+  // Bounds, from the error budget of the simulated sequence:
+  // - detection: the stripe (3 px FWHM, 0.7 px blur, 1 grey-level noise, JPEG) is located with an RMS
+  //   error of about 0.1 px (printed above); the synthetic study gives 1.5 mm and 0.25 deg at 0.5 px
+  //   with 360 points, which scales to about 0.15 mm and 0.03 deg at 0.1 px with ~1800 points;
+  // - calibration: laser.txt comes from vpLaserConicCalibration on simulated grid views (apex and
+  //   axis errors of about 0.1 mm and 0.01 deg), which adds a sub-millimetre altitude bias.
+  // Mean errors are therefore below 1 mm and 0.05 deg with the refit; without it (the best minimal
+  // sample only) a few millimetres and 0.5 deg. The bounds keep a margin of about 3 over the latter, so
+  // they hold for both settings, and stay under the published errors of the real sequence: a biased
+  // detector, a convention error or a broken estimator exceeds them.
+  const double maxMeanAltitudeMm = opt.localOptimisation ? 3.0 : 8.0;
+  const double maxMeanAngleDeg = opt.localOptimisation ? 0.2 : 1.5;
+  const double maxDetectionRmsPx = 0.5;
   int failed = 0;
   auto expect = [&failed](bool condition, const std::string &what) {
     std::cout << (condition ? "  [ok]   " : "  [FAIL] ") << what << std::endl;
     failed += condition ? 0 : 1;
   };
+  if (hasTrueLaser) {
+    expect(rmsResidual < maxDetectionRmsPx, "detection RMS error " + fmt(rmsResidual) + " px < " +
+                                                fmt(maxDetectionRmsPx));
+  }
   expect(minDetected >= 100, "at least 100 trace points detected in every frame (" + std::to_string(minDetected) + ")");
   for (size_t i = 0; i < methods().size(); ++i) {
     const MethodResult &r = results[i];
     const std::string name = methods()[i].name;
     expect(r.failures == 0, name + ": an estimate for every frame (" + std::to_string(r.failures) + " failures)");
     expect(meanStd(r.altitudeMm).mean < maxMeanAltitudeMm,
-           name + ": mean altitude error " + cell(r.altitudeMm) + " mm < " + std::to_string(maxMeanAltitudeMm));
+           name + ": mean altitude error " + cell(r.altitudeMm) + " mm < " + fmt(maxMeanAltitudeMm));
     expect(meanStd(r.pitchDeg).mean < maxMeanAngleDeg && meanStd(r.rollDeg).mean < maxMeanAngleDeg,
            name + ": mean pitch " + cell(r.pitchDeg) + " and roll " + cell(r.rollDeg) + " deg < " +
-               std::to_string(maxMeanAngleDeg));
+               fmt(maxMeanAngleDeg));
   }
   std::cout << (failed ? "CHECK FAILED" : "All checks passed") << std::endl;
   return failed ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -49,6 +49,7 @@ struct Options
   bool quick = false;
   bool check = false;
   bool localOptimisation = true;
+  double threshold = 2.0; //!< minimum RANSAC threshold, pixels
 };
 
 //! The methods compared by the paper, with their minimal sample size and plot colour.
@@ -158,9 +159,10 @@ struct CurveStudy
   std::map<std::string, std::vector<CurvePoint> > curves; //!< per method, one entry per level
 };
 
-TrialInput exactInput(vpLaserConicSimulator &sim, unsigned int points, double roughness = 0.0)
+TrialInput exactInput(vpLaserConicSimulator &sim, unsigned int points, double roughness, double threshold)
 {
   TrialInput in;
+  in.threshold = threshold;
   in.points = sim.tracePoints(points, roughness);
   in.cam = vspLaserRig::camera();
   in.cMl = vspLaserRig::laserPose();
@@ -179,6 +181,7 @@ std::vector<double> range(double first, double last, double step)
 std::vector<CurveStudy> curveStudies(const Options &opt)
 {
   const unsigned int n = opt.points;
+  const double minThreshold = opt.threshold;
   std::vector<CurveStudy> studies;
 
   CurveStudy noise;
@@ -186,11 +189,11 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   noise.figure = "Fig. 7";
   noise.xLabel = "image noise sigma (px)";
   noise.levels = opt.quick ? std::vector<double>{0.0, 1.0, 3.0} : range(0.0, 3.0, 0.5);
-  noise.perturb = [n](double sigma, vpLaserConicSimulator &sim, std::mt19937 &) {
-    TrialInput in = exactInput(sim, n);
+  noise.perturb = [n, minThreshold](double sigma, vpLaserConicSimulator &sim, std::mt19937 &) {
+    TrialInput in = exactInput(sim, n, 0.0, minThreshold);
     in.points = sim.addNoise(in.points, sigma);
     // Perpendicular residuals of Gaussian noise stay within 3 sigma 99.7 % of the time.
-    in.threshold = std::max(2.0, 3.0 * sigma);
+    in.threshold = std::max(minThreshold, 3.0 * sigma);
     return in;
   };
   studies.push_back(noise);
@@ -200,8 +203,8 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   intrinsics.figure = "Fig. 9";
   intrinsics.xLabel = "sigma of fx, fy, u0, v0 errors (px)";
   intrinsics.levels = opt.quick ? std::vector<double>{0.0, 5.0, 20.0} : range(0.0, 20.0, 2.5);
-  intrinsics.perturb = [n](double sigma, vpLaserConicSimulator &sim, std::mt19937 &rng) {
-    TrialInput in = exactInput(sim, n);
+  intrinsics.perturb = [n, minThreshold](double sigma, vpLaserConicSimulator &sim, std::mt19937 &rng) {
+    TrialInput in = exactInput(sim, n, 0.0, minThreshold);
     std::normal_distribution<double> err(0.0, 1.0);
     in.cam = vpCameraParameters(in.cam.get_px() + sigma * err(rng), in.cam.get_py() + sigma * err(rng),
                                 in.cam.get_u0() + sigma * err(rng), in.cam.get_v0() + sigma * err(rng));
@@ -214,8 +217,8 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   baseline.figure = "Fig. 10";
   baseline.xLabel = "sigma of the laser position error (mm)";
   baseline.levels = opt.quick ? std::vector<double>{0.0, 2.0, 10.0} : range(0.0, 10.0, 1.0);
-  baseline.perturb = [n](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &rng) {
-    TrialInput in = exactInput(sim, n);
+  baseline.perturb = [n, minThreshold](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &rng) {
+    TrialInput in = exactInput(sim, n, 0.0, minThreshold);
     std::normal_distribution<double> err(0.0, sigmaMm * 1e-3);
     const vpTranslationVector t = in.cMl.getTranslationVector();
     in.cMl.buildFrom(vpTranslationVector(t[0] + err(rng), t[1] + err(rng), t[2] + err(rng)), in.cMl.getRotationMatrix());
@@ -228,8 +231,8 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   roughness.figure = "Fig. 11";
   roughness.xLabel = "ground roughness sigma (mm)";
   roughness.levels = opt.quick ? std::vector<double>{0.0, 5.0, 20.0} : range(0.0, 20.0, 2.5);
-  roughness.perturb = [n](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &) {
-    return exactInput(sim, n, sigmaMm * 1e-3);
+  roughness.perturb = [n, minThreshold](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &) {
+    return exactInput(sim, n, sigmaMm * 1e-3, minThreshold);
   };
   studies.push_back(roughness);
   return studies;
@@ -348,7 +351,7 @@ double successRate(const Method &m, int percent, const Options &opt)
   int successes = 0;
   for (int t = 0; t < opt.outlierTrials; ++t) {
     const Scenario truth = drawScenario(rng, sim);
-    TrialInput in = exactInput(sim, opt.points);
+    TrialInput in = exactInput(sim, opt.points, 0.0, opt.threshold);
     in.points = sim.addOutliers(in.points, percent / 100.0);
     const TrialError e = evaluate(m, in, truth, opt, seed + static_cast<unsigned int>(t));
     if (e.success && e.altitude <= kMaxAltitudeError && e.normal <= kMaxNormalError) {
@@ -422,7 +425,7 @@ void writeOutlierStudy(const OutlierStudy &study, const Options &opt)
             << "(failure: no plane, altitude error > 1 cm or normal error > 1 deg; breakdown: first ratio whose\n"
             << " success rate over " << opt.outlierTrials << " trials is below 50 %; " << opt.points
             << " trace points, exact inliers, outliers uniform in the image,\n RANSAC budget " << opt.ransacTrials
-            << " samples with the adaptive stop at p = 0.99, threshold 2 px"
+            << " samples with the adaptive stop at p = 0.99, threshold " << opt.threshold << " px"
             << (opt.localOptimisation ? "" : ", no refit") << ")\n\n";
   std::cout << "| Method | Breakdown outlier ratio |\n|---|---|\n";
   for (const Method &m : methods()) {
@@ -494,8 +497,9 @@ void checkOutlierStudy(const OutlierStudy &study)
 void usage(const char *argv0)
 {
   std::cout << "Usage: " << argv0
-            << " [--trials N] [--outlier-trials N] [--points N] [--seed S] [--ransac-trials N] [--output DIR]\n"
-               "       [--only noise|outliers|intrinsics|baseline|roughness] [--quick] [--check] [--help]\n\n"
+            << " [--trials N] [--outlier-trials N] [--points N] [--seed S] [--ransac-trials N] [--threshold PX] [--output DIR]\n"
+               "       [--only noise|outliers|intrinsics|baseline|roughness] [--no-local-optimisation]\n"
+               "       [--quick] [--check] [--help]\n\n"
                "Synthetic evaluation of PP5, PP3 and GP3 (Boutteau et al. 2018, Sec. 7.1).\n"
                "  --trials N          trials per level of the error curves (default 1000)\n"
                "  --outlier-trials N  trials per outlier ratio (default: --trials)\n"
@@ -504,6 +508,7 @@ void usage(const char *argv0)
                "  --ransac-trials N   RANSAC sample budget (default 1000)\n"
                "  --output DIR        directory of the CSV and PNG results (default laser-synthetic-results)\n"
                "  --only STUDY        run one study\n"
+               "  --threshold PX      RANSAC threshold in pixels (default 2; the noise study uses max(PX, 3 sigma))\n"
                "  --no-local-optimisation  keep the best minimal-sample model (no least-squares refit on its inliers)\n"
                "  --quick             30 trials per point, 3 levels per curve (for ctest)\n"
                "  --check             exit non-zero when a sanity assertion fails\n";
@@ -536,6 +541,8 @@ bool parseOptions(int argc, char **argv, Options &opt)
       opt.only = argv[++i];
     } else if (arg == "--quick") {
       opt.quick = true;
+    } else if (arg == "--threshold" && hasValue) {
+      opt.threshold = std::atof(argv[++i]);
     } else if (arg == "--no-local-optimisation") {
       opt.localOptimisation = false;
     } else if (arg == "--check") {
@@ -558,7 +565,7 @@ bool parseOptions(int argc, char **argv, Options &opt)
     std::cerr << "--only expects noise, outliers, intrinsics, baseline or roughness\n";
     return false;
   }
-  if (opt.trials < 1 || opt.outlierTrials < 1 || opt.points < 20 || opt.ransacTrials < 1) {
+  if (opt.trials < 1 || opt.outlierTrials < 1 || opt.points < 20 || opt.ransacTrials < 1 || !(opt.threshold > 0.0)) {
     std::cerr << "--trials, --outlier-trials and --ransac-trials must be >= 1, --points >= 20\n";
     return false;
   }
@@ -578,7 +585,8 @@ int main(int argc, char **argv)
               << " px; laser " << vspLaserRig::kOpeningAngleDeg << " deg, apex (0.15, 0.02, 0) m, axis tilted 8 deg;\n"
               << "altitude U[0.5, 1.5] m, roll and pitch U[-20, 20] deg; " << opt.points << " rays per frame; "
               << opt.trials << " trials per curve level; seed " << opt.seed << ";\nRANSAC: " << opt.ransacTrials
-              << " samples at most, adaptive stop p = 0.99, threshold max(2 px, 3 sigma of the image noise), "
+              << " samples at most, adaptive stop p = 0.99, threshold max(" << opt.threshold
+              << " px, 3 sigma of the image noise), "
               << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit on the inliers") << std::endl;
 
     std::vector<CurveStudy> studies = curveStudies(opt);
