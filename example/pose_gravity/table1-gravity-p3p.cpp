@@ -15,11 +15,11 @@
                     cv::solvePnP(SOLVEPNP_IPPE);
   - P4P_VISP        extra row: ViSP vpPose::computePose(DEMENTHON_VIRTUAL_VS) on the same four points.
 
-  Usage: table1-gravity-p3p [--trials N] [--seed S] [--reference true|measured] [--check] [--help]
+  Usage: table1-gravity-p3p [--trials N] [--seed S] [--camera vga|uxga] [--reference true|measured] [--check]
 
   Protocol choices (the paper leaves them open; each is stated where it is implemented):
   - camera: 640 x 480 pinhole without distortion, px = py = 800 (about 44 x 33 degrees field of view),
-    principal point (320, 240);
+    principal point (320, 240); --camera uxga: 1600 x 1200, px = py = 2000, same field of view;
   - the 5 m cube: x, y in [-2.5, 2.5] m around the optical axis, depth z in [0.5, 5.5] m;
   - a trial is redrawn until the four points are in front of the camera and inside the image;
   - the relative error divides by the norm of the pixel coordinates measured from the image corner
@@ -57,13 +57,22 @@ namespace
 {
 // ---- Experiment constants (paper Sec. VI unless stated otherwise) --------------------------------
 
-// Camera: a common VGA sensor with a moderate lens. The paper gives no camera; its error index is
-// relative to the pixel coordinates, so the image size sets the scale of the denominator.
-constexpr double kImageWidth = 640.0;
-constexpr double kImageHeight = 480.0;
-constexpr double kFocalPx = 800.0;
-constexpr double kU0 = 320.0;
-constexpr double kV0 = 240.0;
+//! A distortion-free pinhole camera with its principal point at the image centre.
+struct CameraModel
+{
+  const char *name;
+  double width, height; //!< image size, pixels
+  double focal;         //!< px = py, pixels
+  double u0() const { return 0.5 * width; }
+  double v0() const { return 0.5 * height; }
+};
+
+// The paper gives no camera. Its error index is relative to the pixel coordinates, so the image size sets
+// the scale of the denominator while the noise stays 2 px: the default is a common VGA sensor with a
+// moderate lens (about 44 x 33 degrees field of view); "uxga" is a 1600 x 1200 sensor with the same field
+// of view, to show how much the numbers depend on that choice.
+const CameraModel kCameraVga = {"vga", 640.0, 480.0, 800.0};
+const CameraModel kCameraUxga = {"uxga", 1600.0, 1200.0, 2000.0};
 
 // The object is placed "randomly in a cube with a side of 5 m": we centre the cube laterally on the
 // optical axis and start it 0.5 m in front of the camera, closer than that the 10 cm target would
@@ -104,15 +113,18 @@ struct Options
   unsigned int seed = 1;
   bool check = false;
   bool referenceMeasured = false; // false: error against the noise-free projections
+  CameraModel camera = kCameraVga;
 };
 
 void printUsage(const char *program, std::ostream &os)
 {
-  os << "Usage: " << program << " [--trials N] [--seed S] [--reference true|measured] [--check] [--help]\n"
+  os << "Usage: " << program
+     << " [--trials N] [--seed S] [--camera vga|uxga] [--reference true|measured] [--check] [--help]\n"
      << "Reproduces Table I of D'Alfonso et al. (MED 2013): relative reprojection error of P3P with two IMUs\n"
      << "against a P3P with IMUs + compass and an image-only P4P.\n"
      << "  --trials N       number of random trials, N >= 1 (default 8000)\n"
      << "  --seed S         seed of the random generator (default 1)\n"
+     << "  --camera C       'vga' 640x480 px, f = 800 px (default) or 'uxga' 1600x1200 px, f = 2000 px\n"
      << "  --reference R    pixels the error is measured against: 'true' noise-free projections (default)\n"
      << "                   or 'measured' noisy image points\n"
      << "  --check          exit with status 1 unless P3P_IMU meets the bounds checked by ctest\n"
@@ -150,6 +162,10 @@ int parseOptions(int argc, char **argv, Options &opt)
     } else if (arg == "--seed" && hasValue && parseUnsigned(argv[i + 1], 0, 0xffffffffUL, value)) {
       opt.seed = static_cast<unsigned int>(value);
       ++i;
+    } else if (arg == "--camera" && hasValue && (std::string(argv[i + 1]) == "vga" ||
+                                                 std::string(argv[i + 1]) == "uxga")) {
+      opt.camera = std::string(argv[i + 1]) == "vga" ? kCameraVga : kCameraUxga;
+      ++i;
     } else if (arg == "--reference" && hasValue && (std::string(argv[i + 1]) == "true" ||
                                                     std::string(argv[i + 1]) == "measured")) {
       opt.referenceMeasured = std::string(argv[i + 1]) == "measured";
@@ -167,6 +183,7 @@ int parseOptions(int argc, char **argv, Options &opt)
 //! One random scene: ground truth, true and noisy sensor readings.
 struct Trial
 {
+  CameraModel camera;
   Eigen::Matrix3d wRc, wRo;                     // orientations in the world frame (z axis = gravity, x = north)
   Eigen::Matrix3d cRo;                          // true relative pose...
   Eigen::Vector3d cto;                          // ...object to camera
@@ -175,26 +192,25 @@ struct Trial
   std::array<Eigen::Vector2d, kNumFeaturePoints> uvTrue, uvMeasured; // pixels, noise-free and noisy
 };
 
-const vpCameraParameters &camera()
+vpCameraParameters cameraParameters(const CameraModel &camera)
 {
-  static const vpCameraParameters cam(kFocalPx, kFocalPx, kU0, kV0);
-  return cam;
+  return vpCameraParameters(camera.focal, camera.focal, camera.u0(), camera.v0());
 }
 
 //! Pixel coordinates (from the image corner) of a camera-frame point; false behind the camera.
-bool projectToPixel(const Eigen::Vector3d &cX, Eigen::Vector2d &uv)
+bool projectToPixel(const CameraModel &camera, const Eigen::Vector3d &cX, Eigen::Vector2d &uv)
 {
   if (!(cX.z() > 0.0))
     return false;
   double u = 0.0, v = 0.0;
-  vpMeterPixelConversion::convertPoint(camera(), cX.x() / cX.z(), cX.y() / cX.z(), u, v);
+  vpMeterPixelConversion::convertPoint(cameraParameters(camera), cX.x() / cX.z(), cX.y() / cX.z(), u, v);
   uv = Eigen::Vector2d(u, v);
   return true;
 }
 
-bool insideImage(const Eigen::Vector2d &uv)
+bool insideImage(const CameraModel &camera, const Eigen::Vector2d &uv)
 {
-  return uv.x() >= 0.0 && uv.x() <= kImageWidth - 1.0 && uv.y() >= 0.0 && uv.y() <= kImageHeight - 1.0;
+  return uv.x() >= 0.0 && uv.x() <= camera.width - 1.0 && uv.y() >= 0.0 && uv.y() <= camera.height - 1.0;
 }
 
 //! Uniformly distributed rotation (normalised 4D Gaussian quaternion).
@@ -221,11 +237,12 @@ Eigen::Vector3d noisyGravity(const Eigen::Vector3d &g, std::mt19937 &rng)
   front of the camera and inside the image (the paper needs all points seen). Noise is then drawn once
   per trial and shared by every method.
 */
-Trial drawTrial(std::mt19937 &rng)
+Trial drawTrial(const CameraModel &camera, std::mt19937 &rng)
 {
   std::uniform_real_distribution<double> lateral(-0.5 * kCubeSide, 0.5 * kCubeSide);
   std::uniform_real_distribution<double> depth(kCubeNearDepth, kCubeNearDepth + kCubeSide);
   Trial trial;
+  trial.camera = camera;
   for (;;) {
     trial.wRc = randomRotation(rng);
     trial.wRo = randomRotation(rng);
@@ -234,7 +251,8 @@ Trial drawTrial(std::mt19937 &rng)
     trial.cto = Eigen::Vector3d(tx, ty, tz);
     bool visible = true;
     for (int q = 0; q < kNumFeaturePoints && visible; ++q)
-      visible = projectToPixel(trial.cRo * kFeature[q] + trial.cto, trial.uvTrue[q]) && insideImage(trial.uvTrue[q]);
+      visible = projectToPixel(camera, trial.cRo * kFeature[q] + trial.cto, trial.uvTrue[q]) &&
+                insideImage(camera, trial.uvTrue[q]);
     if (visible)
       break;
   }
@@ -253,7 +271,8 @@ Trial drawTrial(std::mt19937 &rng)
 Eigen::Vector3d measuredBearing(const Trial &trial, int q)
 {
   double x = 0.0, y = 0.0;
-  vpPixelMeterConversion::convertPoint(camera(), trial.uvMeasured[q].x(), trial.uvMeasured[q].y(), x, y);
+  const Eigen::Vector2d &uv = trial.uvMeasured[q];
+  vpPixelMeterConversion::convertPoint(cameraParameters(trial.camera), uv.x(), uv.y(), x, y);
   return Eigen::Vector3d(x, y, 1.0);
 }
 
@@ -327,7 +346,7 @@ void estimateGravityP3P(const Trial &trial, Estimate &p3p, Estimate &refined)
     // Maximum likelihood with the sensors' own noise levels: gravity components sigma_g, image
     // points sigma_px expressed in normalized coordinates.
     pose.setGravityStdDev(kSigmaGravity);
-    pose.setImageStdDev(kSigmaPixel / kFocalPx);
+    pose.setImageStdDev(kSigmaPixel / trial.camera.focal);
     refined = fromHomogeneous(pose.refinePose(cMo), cMo);
   } catch (const vpException &e) {
     std::cerr << "vpPoseGravity: " << e.getStringMessage() << "\n";
@@ -404,7 +423,8 @@ Estimate estimateP4POpenCV(const Trial &trial)
     objectPoints.emplace_back(kFeature[q].x(), kFeature[q].y(), kFeature[q].z());
     imagePoints.emplace_back(trial.uvMeasured[q].x(), trial.uvMeasured[q].y());
   }
-  const cv::Matx33d K(kFocalPx, 0.0, kU0, 0.0, kFocalPx, kV0, 0.0, 0.0, 1.0);
+  const CameraModel &c = trial.camera;
+  const cv::Matx33d K(c.focal, 0.0, c.u0(), 0.0, c.focal, c.v0(), 0.0, 0.0, 1.0);
   std::vector<cv::Mat> rvecs, tvecs;
   try {
     cv::solvePnPGeneric(objectPoints, imagePoints, K, cv::noArray(), rvecs, tvecs, false, cv::SOLVEPNP_IPPE);
@@ -460,7 +480,7 @@ double relativeReprojectionError(const Trial &trial, const Estimate &e, bool ref
   double sum = 0.0;
   for (int q = 0; q < kNumFeaturePoints; ++q) {
     Eigen::Vector2d uvEstimated;
-    if (!projectToPixel(e.R * kFeature[q] + e.t, uvEstimated))
+    if (!projectToPixel(trial.camera, e.R * kFeature[q] + e.t, uvEstimated))
       return std::numeric_limits<double>::infinity();
     const Eigen::Vector2d &uvReference = referenceMeasured ? trial.uvMeasured[q] : trial.uvTrue[q];
     sum += (uvReference - uvEstimated).norm() / uvReference.norm();
@@ -514,28 +534,35 @@ void printTable(const std::array<MethodStats, kNumMethods> &stats)
 
 /*!
   Assertions used by ctest (--check), meant for about 2000 trials:
-  - P3P_IMU succeeds on every trial: the P3P of three non-collinear points always has a solution;
+  - P3P_IMU fails on at most 1 % of the trials: with exact data it always has a solution, but 2 px of
+    noise on a target ~20 px wide can make the image of every pair inconsistent with the two gravity
+    readings (no yaw solves the P2P equation within the solver's tolerance), which the solver reports
+    instead of guessing (about 0.1 % of the trials here); more than 1 % means a broken solver;
   - mean eps of P3P_IMU < 0.02: with sigma_px = 2 px the reprojection error of a pose estimated from the
-    same noisy pixels is a few pixels, and the pixel norm in the denominator is a few hundred pixels
-    (about 0.005-0.01 expected, the paper reports 0.008), so 0.02 leaves room for the rare near-corner
-    points whose small denominator inflates eps, but catches a wrong solver or a wrong candidate choice;
-  - P3P_IMU is not worse than P4P on the eps < 0.02 column (the paper's claim, 93 % vs 56 %).
+    same noisy pixels is a few pixels and the pixel norm in the denominator a few hundred pixels (0.0115
+    measured over 8000 trials, the paper reports 0.008); 0.02 leaves room for the near-corner points whose
+    small denominator inflates eps, yet picking the P2P candidate at random instead of by the third point
+    gives 0.027 and fails;
+  - P3P_IMU is not worse than P4P on the eps < 0.02 column (the paper's claim, 93 % vs 56 %; here about
+    90 % vs 89 %, the P4P losing mostly its failures; the random candidate choice above gives 78 %).
 */
 bool checkResults(const std::array<MethodStats, kNumMethods> &stats)
 {
   bool ok = true;
   const MethodStats &imu = stats[kP3PIMU], &p4p = stats[kP4P];
-  if (imu.failures != 0) {
-    std::cout << "CHECK FAILED: P3P_IMU failed on " << imu.failures << " trials (expected 0)\n";
+  if (imu.failures > imu.trials / 100) {
+    std::cout << "CHECK FAILED: P3P_IMU failed on " << imu.failures << " of " << imu.trials
+              << " trials (at most 1 % expected)\n";
     ok = false;
   }
   if (!(imu.meanFinite() < 0.02)) {
-    std::cout << "CHECK FAILED: P3P_IMU mean eps " << imu.meanFinite() << " is not below 0.02\n";
+    std::cout << "CHECK FAILED: P3P_IMU mean eps " << std::setprecision(4) << imu.meanFinite()
+              << " is not below 0.02\n";
     ok = false;
   }
   if (!(imu.percentBelow(0) >= p4p.percentBelow(0))) {
-    std::cout << "CHECK FAILED: P3P_IMU has " << imu.percentBelow(0) << " % under 0.02, P4P "
-              << p4p.percentBelow(0) << " %\n";
+    std::cout << "CHECK FAILED: P3P_IMU has " << std::setprecision(1) << imu.percentBelow(0)
+              << " % under 0.02, P4P " << p4p.percentBelow(0) << " %\n";
     ok = false;
   }
   if (ok)
@@ -563,7 +590,7 @@ int main(int argc, char **argv)
   std::mt19937 rng(opt.seed);
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < opt.trials; ++i) {
-    const Trial trial = drawTrial(rng);
+    const Trial trial = drawTrial(opt.camera, rng);
     std::array<Estimate, kNumMethods> estimates;
     estimateGravityP3P(trial, estimates[kP3PIMU], estimates[kP3PIMURefined]);
     estimates[kP3PNM] = estimateNorthMagnetic(trial);
@@ -576,7 +603,7 @@ int main(int argc, char **argv)
 
   std::cout << "Table I of D'Alfonso et al. (MED 2013), relative reprojection error eps (eq. 17) against the "
             << (opt.referenceMeasured ? "measured (noisy)" : "noise-free") << " pixels.\n"
-            << "Camera " << kImageWidth << "x" << kImageHeight << " px, f = " << kFocalPx
+            << "Camera " << opt.camera.width << "x" << opt.camera.height << " px, f = " << opt.camera.focal
             << " px; object in x,y in [-2.5, 2.5] m, z in [" << kCubeNearDepth << ", " << kCubeNearDepth + kCubeSide
             << "] m; sigma_g = " << kSigmaGravity << ", sigma_px = " << kSigmaPixel
             << " px, sigma_compass = 4 deg.\n\n";
