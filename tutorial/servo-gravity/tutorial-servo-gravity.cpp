@@ -42,7 +42,7 @@ std::string estimatorName(Estimator e) { return e == Estimator::GravityP3P ? "vp
 struct SensorNoise
 {
   double pixel = 0.5;   //!< image noise, pixels (standard deviation per coordinate)
-  double gravity = 0.003; //!< noise on each component of a unit gravity vector (about 0.2 deg)
+  double gravity = 0.002; //!< noise on each component of a unit gravity vector (about 0.16 deg of tilt)
 };
 
 //! Everything recorded along one servo run.
@@ -57,12 +57,11 @@ struct ServoRun
 };
 
 //! [Target]
-//! Target on a vertical wall: X right, Y down (along gravity), Z into the wall. The first three points
-//! are the ones vpPoseGravity uses; the fourth stands out of the wall, towards the camera, so that vpPose
-//! has a non-coplanar set.
+//! Target on a vertical wall: X right, Y down (along gravity), Z into the wall: the four corners of a
+//! 20 cm square. vpPoseGravity uses the first three; vpPose all four.
 std::vector<vpPoint> makeTarget()
 {
-  return {vpPoint(-0.1, -0.1, 0), vpPoint(0.1, -0.1, 0), vpPoint(0.1, 0.1, 0), vpPoint(-0.1, 0.1, -0.05)};
+  return {vpPoint(-0.1, -0.1, 0), vpPoint(0.1, -0.1, 0), vpPoint(0.1, 0.1, 0), vpPoint(-0.1, 0.1, 0)};
 }
 //! Gravity in the target frame (the wall's vertical).
 const vpColVector kGravityInTarget{0, 1, 0};
@@ -117,7 +116,7 @@ bool estimatePose(Estimator estimator, const std::vector<vpPoint> &points, const
   vpPose pose;
   pose.addPoints(points);
   vpHomogeneousMatrix estimate;
-  if (!pose.computePose(vpPose::DEMENTHON_VIRTUAL_VS, estimate))
+  if (!pose.computePose(vpPose::LAGRANGE_VIRTUAL_VS, estimate))
     return false;
   cMo = estimate;
   return true;
@@ -143,7 +142,7 @@ ServoRun runServo(Estimator estimator, const vpHomogeneousMatrix &cdMo, const vp
   vpServo task;
   task.setServo(vpServo::EYEINHAND_CAMERA);
   task.setInteractionMatrixType(vpServo::CURRENT);
-  task.setLambda(vpAdaptiveGain(2.0, 0.4, 30)); // fast at the end, gentle at the start
+  task.setLambda(vpAdaptiveGain(1.5, 1.0, 30)); // moderate: a lower gain averages more noisy estimates
   task.addFeature(t, td);
   task.addFeature(tu, tud);
 
@@ -192,10 +191,34 @@ ServoRun runServo(Estimator estimator, const vpHomogeneousMatrix &cdMo, const vp
   return run;
 }
 
-//! Largest value of the last n samples.
-double maxOfLast(const std::vector<double> &values, size_t n)
+//! Root mean square of the last n samples.
+double rmsOfLast(const std::vector<double> &values, size_t n)
 {
-  return *std::max_element(values.end() - static_cast<long>(std::min(n, values.size())), values.end());
+  const size_t count = std::min(n, values.size());
+  double sum = 0;
+  for (size_t i = values.size() - count; i < values.size(); ++i)
+    sum += values[i] * values[i];
+  return count ? std::sqrt(sum / count) : 0.0;
+}
+
+//! Fits the plot range to the data of both runs plus the goal, with free space at the top for the legend.
+void fitRangeWithLegendRoom(vpPngPlot &plot, const std::vector<double> &x1, const std::vector<double> &y1,
+                            const std::vector<double> &x2, const std::vector<double> &y2, double goalX, double goalY)
+{
+  double xmin = goalX, xmax = goalX, ymin = goalY, ymax = goalY;
+  for (const std::vector<double> *v : {&x1, &x2})
+    for (double value : *v) {
+      xmin = std::min(xmin, value);
+      xmax = std::max(xmax, value);
+    }
+  for (const std::vector<double> *v : {&y1, &y2})
+    for (double value : *v) {
+      ymin = std::min(ymin, value);
+      ymax = std::max(ymax, value);
+    }
+  const double dx = std::max(xmax - xmin, 1e-3), dy = std::max(ymax - ymin, 1e-3);
+  plot.setXRange(xmin - 0.05 * dx, xmax + 0.05 * dx);
+  plot.setYRange(ymin - 0.05 * dy, ymax + 0.45 * dy);
 }
 
 //! [Plots]
@@ -209,12 +232,14 @@ void writePlots(const ServoRun &gravity, const ServoRun &classic, const vpHomoge
   xy.addCurve(estimatorName(Estimator::GravityP3P), gravity.oX, gravity.oY, vpColor::red);
   xy.addCurve(estimatorName(Estimator::ClassicP4P), classic.oX, classic.oY, vpColor::blue);
   xy.addPoints("desired", goalX, goalY, vpColor::darkGreen);
+  fitRangeWithLegendRoom(xy, gravity.oX, gravity.oY, classic.oX, classic.oY, goalX[0], goalY[0]);
   xy.write(vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xy.png"));
 
   vpPngPlot xz("Camera trajectory, top view", "X (m)", "Z (m)", 640, 420);
   xz.addCurve(estimatorName(Estimator::GravityP3P), gravity.oX, gravity.oZ, vpColor::red);
   xz.addCurve(estimatorName(Estimator::ClassicP4P), classic.oX, classic.oZ, vpColor::blue);
   xz.addPoints("desired", goalX, goalZ, vpColor::darkGreen);
+  fitRangeWithLegendRoom(xz, gravity.oX, gravity.oZ, classic.oX, classic.oZ, goalX[0], goalZ[0]);
   xz.write(vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xz.png"));
 
   std::vector<double> logT[2], logR[2];
@@ -275,25 +300,28 @@ int main(int argc, char **argv)
     const ServoRun classic = runServo(Estimator::ClassicP4P, cdMo, cMo, cam, noise, seed, iterations);
     writePlots(gravity, classic, cdMo, outputDir);
 
-    // Steady state: the worst true error over the last 20 iterations. With 0.5 px noise at 0.75 m
-    // (f = 800 px, the 0.2 m target spans ~210 px) one pose estimate is off by about 1-2 mm in depth and
-    // 0.1-0.2 deg (plus ~0.2 deg from each IMU for the gravity method); the loop gain averages a few
-    // estimates. 5 mm and 1 deg are about 3 standard deviations of that steady-state error.
-    const size_t tail = 20;
-    const double boundMm = 5.0, boundDeg = 1.0;
+    // Steady state: RMS of the true error over the last 50 iterations (both loops converge in ~100).
+    // With 0.5 px of noise at 0.75 m (f = 800 px, the 0.2 m target spans ~210 px) one estimate has a
+    // rotation error of a few tenths of a degree (for the gravity method, mostly the 0.16 deg tilt noise
+    // of each IMU); seen from the target, 0.3 deg moves the camera by 0.75 m x 0.005 rad ~ 4 mm. The loop
+    // (gain 1.5 x 0.04 s per iteration) averages about 15 estimates, so the steady-state RMS is 1-5 mm
+    // and 0.1-0.4 deg over seeds 1-12; 8 mm and 0.8 deg leave a margin over that, far below the
+    // 30 cm / 50 deg of the start.
+    const size_t tail = 50;
+    const double boundMm = 8.0, boundDeg = 0.8;
     bool ok = true;
     std::cout << std::fixed << std::setprecision(2);
     for (const ServoRun *run : {&gravity, &classic}) {
       const Estimator e = (run == &gravity) ? Estimator::GravityP3P : Estimator::ClassicP4P;
-      const double worstT = maxOfLast(run->errorTranslationMm, tail);
-      const double worstR = maxOfLast(run->errorRotationDeg, tail);
-      std::cout << estimatorName(e) << ": converged (1 cm, 1 deg) at iteration " << run->convergedAt
-                << ", last " << tail << " iterations: max translation error " << worstT << " mm, max rotation error "
-                << worstR << " deg, estimation failures " << run->estimationFailures << std::endl;
-      const bool runOk = run->convergedAt >= 0 && worstT < boundMm && worstR < boundDeg;
+      const double rmsT = rmsOfLast(run->errorTranslationMm, tail);
+      const double rmsR = rmsOfLast(run->errorRotationDeg, tail);
+      std::cout << estimatorName(e) << ": converged (1 cm, 1 deg) at iteration " << run->convergedAt << ", last "
+                << tail << " iterations: RMS error " << rmsT << " mm, " << rmsR << " deg, estimation failures "
+                << run->estimationFailures << std::endl;
+      const bool runOk = run->convergedAt >= 0 && rmsT < boundMm && rmsR < boundDeg;
       if (!runOk)
-        std::cerr << "FAILED: " << estimatorName(e) << " did not reach " << boundMm << " mm / " << boundDeg
-                  << " deg" << std::endl;
+        std::cerr << "FAILED: " << estimatorName(e) << " did not converge to " << boundMm << " mm / " << boundDeg
+                  << " deg RMS" << std::endl;
       ok = ok && runOk;
     }
     if (gravity.estimationFailures > 0) {
