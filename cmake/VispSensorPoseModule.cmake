@@ -37,7 +37,10 @@ function(vsp_add_module name)
                                   PRIVATE ${M_PRIVATE_LIBS})
   set_target_properties(${target} PROPERTIES
     VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
-    EXPORT_NAME ${target})
+    EXPORT_NAME ${target}
+    # Installed modules find each other (e.g. visp_robust) next to themselves: a RUNPATH on the
+    # consumer's executable does not apply to indirect dependencies.
+    INSTALL_RPATH "\$ORIGIN")
   vsp_set_warnings(${target})
 
   install(TARGETS ${target} EXPORT VispSensorPoseTargets

@@ -37,7 +37,7 @@ int solveQuadratic(double a, double b, double c, double roots[2])
 void plot(vpImage<vpRGBa> &I, double u, double v, const vpColor &color)
 {
   if (u >= 0.0 && v >= 0.0 && u < I.getWidth() && v < I.getHeight())
-    vpImageDraw::drawPoint(I, vpImagePoint(v, u), color, 2);
+    vpImageDraw::drawPoint(I, vpImagePoint(v, u), color, 1);
 }
 } // namespace
 
@@ -64,12 +64,12 @@ void vpLaserOverlay::drawConic(vpImage<vpRGBa> &I, const vpMatrix &C, const vpCo
 void vpLaserOverlay::draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
                           const std::vector<unsigned int> &inliers, const vpMatrix &conic, const std::string &caption)
 {
-  drawConic(I, conic, vpColor::blue);
   for (const vpImagePoint &p : points)
-    vpImageDraw::drawPoint(I, p, vpColor::red, 2);
+    vpImageDraw::drawPoint(I, p, vpColor::red, 3);
   for (unsigned int index : inliers)
     if (index < points.size())
-      vpImageDraw::drawPoint(I, points[index], vpColor::green, 2);
+      vpImageDraw::drawPoint(I, points[index], vpColor::green, 3);
+  drawConic(I, conic, vpColor::blue); // last, thinner: visible over the points it fits
   if (!caption.empty()) {
     vpFont font(16);
     font.drawText(I, caption, vpImagePoint(8, 8), vpColor::white, vpColor::black);

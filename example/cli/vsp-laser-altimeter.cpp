@@ -312,9 +312,12 @@ int main(int argc, char **argv)
   double openingAngle = 0.0;
   vpHomogeneousMatrix cMl;
   std::vector<std::string> images;
+  // The output is checked against the named files first, so that a wrong command line is refused
+  // before the image list is read.
   if (!readCamera(options, cam, error) ||
       !vpLaserRigIo::readLaserCalibration(options.laser, openingAngle, cMl, error) ||
-      !listImages(options, images, error) || !checkOutputs(options, images, error)) {
+      !checkOutputs(options, images, error) || !listImages(options, images, error) ||
+      !checkOutputs(options, images, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }

@@ -90,17 +90,17 @@ struct LaserCurves
 
 std::vector<vpAccuracyBound> laserBounds()
 {
-  // The dataset's ground truth is exact; the errors come from the detection of a blurred, noisy
-  // stripe (sub-pixel centres, roughly 0.1-0.5 px) on a textured ground, which the paper's
-  // simulations (Sec. 7.1) translate into errors of a few millimetres to centimetres of altitude
-  // and tenths of a degree at these altitudes. The bounds leave a margin of several times that and
-  // still catch a wrong plane (errors of tens of centimetres or degrees).
-  const std::string why = "sub-pixel stripe detection noise; a wrong plane is off by decimetres or degrees";
+  // The images are rendered from an exact ground truth; the errors come from the sub-pixel detection
+  // of a blurred, noisy stripe (a small fraction of a pixel over ~1800 points) and from laser.txt being
+  // a calibrated, slightly wrong, laser pose. Measured on the shipped sequence: at most 1.7 mm of
+  // altitude and 0.06 deg of roll or pitch for every method. The bounds are on the worst frame with a
+  // margin of about 5, so that a single wrong plane (errors of centimetres or degrees) fails.
+  const std::string why = "worst frame; measured <= 1.7 mm and 0.06 deg, a wrong plane is off by cm or degrees";
   std::vector<vpAccuracyBound> bounds;
   for (const char *method : {"GP3", "PP3", "PP5", "PLANE_PAIR"}) {
-    bounds.push_back({method, "altitude", "median", 30.0, why});
-    bounds.push_back({method, "roll", "median", 1.0, why});
-    bounds.push_back({method, "pitch", "median", 1.0, why});
+    bounds.push_back({method, "altitude", "max", 10.0, why});
+    bounds.push_back({method, "roll", "max", 0.3, why});
+    bounds.push_back({method, "pitch", "max", 0.3, why});
   }
   return bounds;
 }

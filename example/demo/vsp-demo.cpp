@@ -20,6 +20,8 @@
 #include <iostream>
 #include <string>
 
+#include <visp3/core/vpException.h>
+
 #include "demoCommon.h"
 #include "vpCsvTools.h"
 

@@ -374,19 +374,30 @@ OutlierStudy runOutlierStudy(const Options &opt)
   OutlierStudy study;
   for (const Method &m : methods()) {
     std::map<int, double> &rates = study.successRate[m.name];
-    int coarseBreak = -1;
-    for (int percent = 0; percent <= 95; percent += 5) {
+    int coarseBreak = -1, bracketStart = 0;
+    const int step = opt.quick ? 10 : 5;
+    std::vector<int> coarse;
+    for (int percent = 0; percent <= 95; percent += step) {
+      coarse.push_back(percent);
+    }
+    if (coarse.back() != 95) {
+      coarse.push_back(95);
+    }
+    int previous = 0;
+    for (int percent : coarse) {
       rates[percent] = successRate(m, percent, opt);
       std::cout << "  outliers " << percent << " %: " << m.name << " success " << rates[percent] << " (predicted "
                 << std::setprecision(3) << predictedRate(m.sampleSize, percent, opt.ransacTrials) << ")" << std::endl;
       if (coarseBreak < 0 && rates[percent] < kBreakdownSuccessRate) {
         coarseBreak = percent;
+        bracketStart = previous;
       }
+      previous = percent;
     }
     int breakdown = coarseBreak;
-    // Refine to 1 % inside the 5 % bracket where the success rate crosses 50 %.
+    // Refine to 1 % inside the bracket where the success rate crosses 50 %.
     if (coarseBreak > 0) {
-      for (int percent = coarseBreak - 4; percent < coarseBreak; ++percent) {
+      for (int percent = bracketStart + 1; percent < coarseBreak; ++percent) {
         rates[percent] = successRate(m, percent, opt);
         std::cout << "  outliers " << percent << " %: " << m.name << " success " << rates[percent] << std::endl;
         if (rates[percent] < kBreakdownSuccessRate) {
@@ -510,7 +521,7 @@ void usage(const char *argv0)
                "  --only STUDY        run one study\n"
                "  --threshold PX      RANSAC threshold in pixels (default 2; the noise study uses max(PX, 3 sigma))\n"
                "  --no-local-optimisation  keep the best minimal-sample model (no least-squares refit on its inliers)\n"
-               "  --quick             30 trials per point, 3 levels per curve (for ctest)\n"
+               "  --quick             30 trials per point, 3 levels per curve, outlier ratios by 10 % (for ctest)\n"
                "  --check             exit non-zero when a sanity assertion fails\n";
 }
 

@@ -215,6 +215,12 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
       throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
     }
     normalized.emplace_back((u - m_cam.get_u0()) / m_cam.get_px(), (v - m_cam.get_v0()) / m_cam.get_py());
+    // Squares of the coordinates must stay finite for the conic fits.
+    if (!(normalized.back().cwiseAbs().maxCoeff() < 1e100)) {
+      std::ostringstream msg;
+      msg << "vpLaserConicPose: point " << i << " is out of range (" << u << ", " << v << ")";
+      throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
+    }
   }
 
   m_failure.clear();
