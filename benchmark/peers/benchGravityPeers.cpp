@@ -281,18 +281,6 @@ double successOursFacade(const std::vector<PoseInstance> &in, vpPoseGravity::vpP
 }
 #endif
 
-BenchRow row(const std::string &problem, const std::string &method, double ns, double referenceNs, bool ours = false,
-             double success = -1.0)
-{
-  BenchRow r;
-  r.problem = problem;
-  r.method = method;
-  r.ns = ns;
-  r.referenceNs = referenceNs;
-  r.ours = ours;
-  r.successRate = success;
-  return r;
-}
 } // namespace
 
 void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick)
@@ -324,30 +312,30 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
 #endif
 
   // P2P: ours solves the yaw and the translation; OpenGV's p2p is given the full rotation.
-  rows.push_back(row("P2P (2 points)", "ours vpGravitySolvers::p2p (gravity)", oursP2P, oursP2P, true));
-  rows.push_back(row("P2P (2 points)", "OpenGV absolute_pose::p2p (rotation known)",
+  rows.push_back(benchRow("P2P (2 points)", "ours vpGravitySolvers::p2p (gravity)", oursP2P, oursP2P, true));
+  rows.push_back(benchRow("P2P (2 points)", "OpenGV absolute_pose::p2p (rotation known)",
                      timeOpenGv(two, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
                        return opengv::absolute_pose::p2p(a, 0, 1).z();
                      }),
                      oursP2P));
 
-  rows.push_back(row("P3P (3 points)", "ours vpGravitySolvers::p3p (gravity)", oursP3P, oursP3P, true));
+  rows.push_back(benchRow("P3P (3 points)", "ours vpGravitySolvers::p3p (gravity)", oursP3P, oursP3P, true));
 #ifdef VSP_HAVE_POSE_GRAVITY
-  rows.push_back(row("P3P (3 points)", "ours vpPoseGravity::computePose(P3P) (facade)",
+  rows.push_back(benchRow("P3P (3 points)", "ours vpPoseGravity::computePose(P3P) (facade)",
                      timeOursFacade(three, vpPoseGravity::P3P, 15), oursP3P, true));
 #endif
   const double cvP3P = timeCvSolveP3P(three, cv::SOLVEPNP_P3P);
   const double cvAP3P = timeCvSolveP3P(three, cv::SOLVEPNP_AP3P);
   targets.cvAp3p = cvAP3P;
-  rows.push_back(row("P3P (3 points)", "OpenCV solveP3P SOLVEPNP_P3P", cvP3P, oursP3P));
-  rows.push_back(row("P3P (3 points)", "OpenCV solveP3P SOLVEPNP_AP3P", cvAP3P, oursP3P));
-  rows.push_back(row("P3P (3 points)", "OpenGV p3p_kneip",
+  rows.push_back(benchRow("P3P (3 points)", "OpenCV solveP3P SOLVEPNP_P3P", cvP3P, oursP3P));
+  rows.push_back(benchRow("P3P (3 points)", "OpenCV solveP3P SOLVEPNP_AP3P", cvAP3P, oursP3P));
+  rows.push_back(benchRow("P3P (3 points)", "OpenGV p3p_kneip",
                      timeOpenGv(three, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
                        const opengv::transformations_t T = opengv::absolute_pose::p3p_kneip(a, 0, 1, 2);
                        return T.empty() ? 0.0 : T[0](2, 3);
                      }),
                      oursP3P));
-  rows.push_back(row("P3P (3 points)", "OpenGV p3p_gao",
+  rows.push_back(benchRow("P3P (3 points)", "OpenGV p3p_gao",
                      timeOpenGv(three, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
                        const opengv::transformations_t T = opengv::absolute_pose::p3p_gao(a, 0, 1, 2);
                        return T.empty() ? 0.0 : T[0](2, 3);
@@ -355,43 +343,43 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
                      oursP3P));
 
   const std::string four4 = "4 coplanar points";
-  rows.push_back(row(four4, "ours vpGravitySolvers::p3p (first 3 points)", oursP3P4, oursP3P4, true));
+  rows.push_back(benchRow(four4, "ours vpGravitySolvers::p3p (first 3 points)", oursP3P4, oursP3P4, true));
 #ifdef VSP_HAVE_POSE_GRAVITY
-  rows.push_back(row(four4, "ours vpGravitySolvers::leastSquares (4 points)", timeOursLeastSquares(four), oursP3P4, true));
+  rows.push_back(benchRow(four4, "ours vpGravitySolvers::leastSquares (4 points)", timeOursLeastSquares(four), oursP3P4, true));
 #endif
-  rows.push_back(row(four4, "OpenCV solvePnP SOLVEPNP_SQPNP", timeCvSolvePnP(four, cv::SOLVEPNP_SQPNP), oursP3P4));
-  rows.push_back(row(four4, "OpenCV solvePnP SOLVEPNP_IPPE", timeCvSolvePnP(four, cv::SOLVEPNP_IPPE), oursP3P4));
+  rows.push_back(benchRow(four4, "OpenCV solvePnP SOLVEPNP_SQPNP", timeCvSolvePnP(four, cv::SOLVEPNP_SQPNP), oursP3P4));
+  rows.push_back(benchRow(four4, "OpenCV solvePnP SOLVEPNP_IPPE", timeCvSolvePnP(four, cv::SOLVEPNP_IPPE), oursP3P4));
   const double lagrange4 = timeVpPose(four, vpPose::LAGRANGE);
   targets.vpPoseLagrange4 = lagrange4;
-  rows.push_back(row(four4, "ViSP vpPose LAGRANGE", lagrange4, oursP3P4));
-  rows.push_back(row(four4, "ViSP vpPose DEMENTHON", timeVpPose(four, vpPose::DEMENTHON), oursP3P4));
-  rows.push_back(row(four4, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(four, vpPose::LAGRANGE_VIRTUAL_VS), oursP3P4));
+  rows.push_back(benchRow(four4, "ViSP vpPose LAGRANGE", lagrange4, oursP3P4));
+  rows.push_back(benchRow(four4, "ViSP vpPose DEMENTHON", timeVpPose(four, vpPose::DEMENTHON), oursP3P4));
+  rows.push_back(benchRow(four4, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(four, vpPose::LAGRANGE_VIRTUAL_VS), oursP3P4));
   rows.push_back(
-      row(four4, "ViSP vpPose DEMENTHON_VIRTUAL_VS", timeVpPose(four, vpPose::DEMENTHON_VIRTUAL_VS), oursP3P4));
+      benchRow(four4, "ViSP vpPose DEMENTHON_VIRTUAL_VS", timeVpPose(four, vpPose::DEMENTHON_VIRTUAL_VS), oursP3P4));
 
   for (int n : {10, 100}) {
     const std::vector<PoseInstance> &in = n == 10 ? ten : hundred;
     const double ours = n == 10 ? oursLs10 : oursLs100;
     const std::string problem = std::to_string(n) + " points";
-    rows.push_back(row(problem, "ours vpGravitySolvers::leastSquares", ours, ours, true));
-    rows.push_back(row(problem, "OpenCV solvePnP SOLVEPNP_SQPNP", timeCvSolvePnP(in, cv::SOLVEPNP_SQPNP), ours));
-    rows.push_back(row(problem, "OpenCV solvePnP SOLVEPNP_EPNP", timeCvSolvePnP(in, cv::SOLVEPNP_EPNP), ours));
-    rows.push_back(row(problem, "OpenGV epnp",
+    rows.push_back(benchRow(problem, "ours vpGravitySolvers::leastSquares", ours, ours, true));
+    rows.push_back(benchRow(problem, "OpenCV solvePnP SOLVEPNP_SQPNP", timeCvSolvePnP(in, cv::SOLVEPNP_SQPNP), ours));
+    rows.push_back(benchRow(problem, "OpenCV solvePnP SOLVEPNP_EPNP", timeCvSolvePnP(in, cv::SOLVEPNP_EPNP), ours));
+    rows.push_back(benchRow(problem, "OpenGV epnp",
                        timeOpenGv(in, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
                          return opengv::absolute_pose::epnp(a)(2, 3);
                        }),
                        ours));
-    rows.push_back(row(problem, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(in, vpPose::LAGRANGE_VIRTUAL_VS), ours));
+    rows.push_back(benchRow(problem, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(in, vpPose::LAGRANGE_VIRTUAL_VS), ours));
   }
 
   const std::string rs = "RANSAC, 100 points, 30 % outliers";
 #ifdef VSP_HAVE_POSE_GRAVITY
-  rows.push_back(row(rs, "ours vpPoseGravity RANSAC (2-point)", oursRansac, oursRansac, true,
+  rows.push_back(benchRow(rs, "ours vpPoseGravity RANSAC (2-point)", oursRansac, oursRansac, true,
                      successOursFacade(ransac, vpPoseGravity::RANSAC)));
 #endif
-  rows.push_back(row(rs, "OpenCV solvePnPRansac SOLVEPNP_AP3P", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_AP3P), oursRansac,
+  rows.push_back(benchRow(rs, "OpenCV solvePnPRansac SOLVEPNP_AP3P", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_AP3P), oursRansac,
                      false, successCvSolvePnPRansac(ransac, cv::SOLVEPNP_AP3P)));
-  rows.push_back(row(rs, "OpenCV solvePnPRansac SOLVEPNP_EPNP", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_EPNP), oursRansac,
+  rows.push_back(benchRow(rs, "OpenCV solvePnPRansac SOLVEPNP_EPNP", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_EPNP), oursRansac,
                      false, successCvSolvePnPRansac(ransac, cv::SOLVEPNP_EPNP)));
   tables.push_back(table);
 }

@@ -184,18 +184,7 @@ void renderFrames(const vspBench::LaserRig &rig, unsigned int seed, int count, s
 }
 #endif
 
-BenchRow row(const std::string &problem, const std::string &method, double ns, double referenceNs, bool ours,
-             double success)
-{
-  BenchRow r;
-  r.problem = problem;
-  r.method = method;
-  r.ns = ns;
-  r.referenceNs = referenceNs;
-  r.ours = ours;
-  r.successRate = success;
-  return r;
-}
+constexpr auto row = benchRow; // the shared builder of benchTable.h
 } // namespace
 
 int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int frames, unsigned int seed)

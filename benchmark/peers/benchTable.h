@@ -21,6 +21,20 @@ struct BenchRow
   bool ours = false;       //!< true for this project's code
 };
 
+//! A row from its fields: \e referenceNs is the ratio denominator, \e success < 0 when not measured.
+inline BenchRow benchRow(const std::string &problem, const std::string &method, double ns, double referenceNs,
+                         bool ours = false, double success = -1.0)
+{
+  BenchRow r;
+  r.problem = problem;
+  r.method = method;
+  r.ns = ns;
+  r.referenceNs = referenceNs;
+  r.ours = ours;
+  r.successRate = success;
+  return r;
+}
+
 //! A titled table of rows.
 struct BenchTable
 {
