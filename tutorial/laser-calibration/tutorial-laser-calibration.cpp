@@ -22,6 +22,7 @@
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
 #include "vpPngPlot.h"
+#include "vpTutorialCommon.h"
 
 namespace
 {
@@ -66,33 +67,45 @@ GridCurve backProjectToGrid(const std::vector<vpImagePoint> &points, const vpHom
 }
 //! [Back-project]
 
-//! Writes measured and predicted grid points of one view as a scatter plot with a fixed range.
-void writeGridFigure(const GridCurve &measured, const GridCurve &predicted, const std::string &title,
-                     const std::string &predictedName, const std::string &filename)
+//! Splits grid points into their X and Y coordinates, for vpPngPlot.
+void splitCoordinates(const GridCurve &curve, std::vector<double> &x, std::vector<double> &y)
+{
+  x.clear();
+  y.clear();
+  for (const auto &p : curve) {
+    x.push_back(p.first);
+    y.push_back(p.second);
+  }
+}
+
+//! Like Fig. 13 of the paper: the measured trace of one view (green) with the trace predicted by the
+//! initial guess, then by the calibrated laser (red), both figures on the same range to compare them.
+void writeGridFigures(const GridCurve &measured, const GridCurve &byGuess, const GridCurve &calibrated,
+                      const std::string &outputDir)
 {
   std::vector<double> mx, my, px, py;
-  for (const auto &p : measured) {
-    mx.push_back(p.first);
-    my.push_back(p.second);
-  }
-  for (const auto &p : predicted) {
-    px.push_back(p.first);
-    py.push_back(p.second);
-  }
-  vpPngPlot plot(title, "grid X (m)", "grid Y (m)", 560, 480);
-  plot.addPoints("measured", mx, my, vpColor::blue);
-  plot.addPoints(predictedName, px, py, vpColor::red);
-  // Same range for both figures so that they can be compared side by side.
   double lo = 1e9, hi = -1e9;
-  for (const std::vector<double> *v : {&mx, &my, &px, &py})
-    for (double value : *v) {
-      lo = std::min(lo, value);
-      hi = std::max(hi, value);
+  for (const GridCurve *curve : {&measured, &byGuess, &calibrated})
+    for (const auto &p : *curve) {
+      lo = std::min({lo, p.first, p.second});
+      hi = std::max({hi, p.first, p.second});
     }
   const double margin = 0.1 * (hi - lo);
-  plot.setXRange(lo - margin, hi + margin);
-  plot.setYRange(lo - margin, hi + margin);
-  plot.write(filename);
+  splitCoordinates(measured, mx, my);
+
+  const GridCurve *predicted[2] = {&byGuess, &calibrated};
+  const std::string titles[2] = {"Grid view 1, initial guess", "Grid view 1, after calibration"};
+  const std::string names[2] = {"predicted (guess)", "predicted (calibrated)"};
+  const std::string files[2] = {"laser-calibration-before.png", "laser-calibration-after.png"};
+  for (int k = 0; k < 2; ++k) {
+    splitCoordinates(*predicted[k], px, py);
+    vpPngPlot plot(titles[k], "grid X (m)", "grid Y (m)", 560, 480);
+    plot.addPoints("measured", mx, my, vpColor::darkGreen);
+    plot.addPoints(names[k], px, py, vpColor::red);
+    plot.setXRange(lo - margin, hi + margin);
+    plot.setYRange(lo - margin, hi + margin);
+    plot.write(vpIoTools::createFilePath(outputDir, files[k]));
+  }
 }
 
 //! Angle (deg) between the cone axes (third columns) of two laser poses.
@@ -102,99 +115,75 @@ double axisAngleDeg(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b)
   return vpMath::deg(std::acos(std::max(-1.0, std::min(1.0, vpColVector::dotProd(za, zb)))));
 }
 
-void usage(const char *name)
+//! The calibration, its figures and its checks; true when the recovered laser pose is within the bounds.
+bool runCalibrationTutorial(const std::string &outputDir)
 {
-  std::cout << "Usage: " << name << " [--output <dir>] [--help]\n"
-            << "  Calibrates the laser pose cMl from simulated grid views;\n"
-            << "  writes laser-calibration-{before,after}.png into <dir> (default: current directory).\n";
+  //! [Rig]
+  const unsigned int width = 640, height = 480;
+  const vpCameraParameters cam(500, 500, 320, 240);
+  const double openingAngle = vpMath::rad(34);
+  // The true laser pose, to be recovered; no rotation about the cone axis (it is unobservable).
+  const vpHomogeneousMatrix cMlTrue(0.08, 0.01, -0.01, vpMath::rad(1.5), vpMath::rad(-2.5), 0);
+  // What we would measure with a ruler: 3 cm and 3 degrees off.
+  const vpHomogeneousMatrix cMlGuess(0.10, -0.01, 0.0, 0, 0, 0);
+  const double pixelNoise = 0.3;
+  //! [Rig]
+
+  //! [Views]
+  vpLaserConicSimulator simulator;
+  simulator.setCamera(cam, width, height);
+  simulator.setLaser(openingAngle, cMlTrue);
+  simulator.setSeed(11);
+
+  vpLaserConicCalibration calibration;
+  calibration.setCameraParameters(cam);
+  calibration.setOpeningAngle(openingAngle);
+  calibration.setInitialGuess(cMlGuess);
+  const std::vector<vpHomogeneousMatrix> poses = gridPoses();
+  for (const vpHomogeneousMatrix &cMg : poses) {
+    simulator.setGroundPose(cMg); // in practice cMg comes from vpPose on the grid corners
+    calibration.addView(cMg, simulator.addNoise(simulator.tracePoints(120), pixelNoise));
+  }
+  //! [Views]
+
+  //! [Calibrate]
+  vpHomogeneousMatrix cMl;
+  const double rms = calibration.calibrate(cMl);
+  std::cout << std::fixed << std::setprecision(3) << "RMS on the grid planes: " << 1000 * calibration.getInitialRms()
+            << " mm with the guess, " << 1000 * rms << " mm after calibration" << std::endl;
+  //! [Calibrate]
+
+  //! [Figures]
+  // Before: the trace the guess predicts on the first grid, computed with the simulator.
+  vpLaserConicSimulator guessSimulator;
+  guessSimulator.setCamera(cam, width, height);
+  guessSimulator.setLaser(openingAngle, cMlGuess);
+  guessSimulator.setGroundPose(poses[0]);
+  const GridCurve predictedByGuess = backProjectToGrid(guessSimulator.tracePoints(120), poses[0], cam);
+  writeGridFigures(calibration.getMeasuredGridPoints()[0], predictedByGuess, calibration.getPredictedGridPoints()[0],
+                   outputDir);
+  //! [Figures]
+
+  const double apexGuessMm =
+      1000 * (cMlGuess.getTranslationVector() - cMlTrue.getTranslationVector()).frobeniusNorm();
+  const double apexMm = 1000 * (cMl.getTranslationVector() - cMlTrue.getTranslationVector()).frobeniusNorm();
+  const double axisGuessDeg = axisAngleDeg(cMlGuess, cMlTrue), axisDeg = axisAngleDeg(cMl, cMlTrue);
+  std::cout << "Laser apex error: " << apexGuessMm << " mm -> " << apexMm << " mm; cone axis error: "
+            << axisGuessDeg << " deg -> " << axisDeg << " deg" << std::endl;
+  std::cout << "Figures written to " << outputDir << "/laser-calibration-{before,after}.png" << std::endl;
+
+  // Bounds. 0.3 px of noise at 0.45-0.8 m with f = 500 px is 0.3-0.5 mm on the grid per point, which
+  // is the RMS floor (measured 0.44 mm). With 7 views of ~100 points the apex and the axis are
+  // over-determined: measured errors 0.13 mm and 0.013 deg. Bounds: apex 1 mm, axis 0.1 deg, RMS
+  // 0.6 mm, against 30 mm, 2.9 deg and 40 mm RMS for the guess: a wrong or partial optimum fails.
+  return vpTutorialCheck(apexMm < 1.0 && axisDeg < 0.1 && rms < 0.6e-3 && rms < calibration.getInitialRms(),
+                         "calibrated laser pose off the bounds (apex 1 mm, axis 0.1 deg, RMS 0.6 mm)");
 }
 } // namespace
 
 int main(int argc, char **argv)
 {
-  std::string outputDir = ".";
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--output" && i + 1 < argc)
-      outputDir = argv[++i];
-    else if (arg == "--help" || arg == "-h") {
-      usage(argv[0]);
-      return EXIT_SUCCESS;
-    } else {
-      std::cerr << "Unknown or incomplete option: " << arg << "\n";
-      usage(argv[0]);
-      return EXIT_FAILURE;
-    }
-  }
-
-  try {
-    vpIoTools::makeDirectory(outputDir);
-    //! [Rig]
-    const unsigned int width = 640, height = 480;
-    const vpCameraParameters cam(500, 500, 320, 240);
-    const double openingAngle = vpMath::rad(34);
-    // The true laser pose, to be recovered; no rotation about the cone axis (it is unobservable).
-    const vpHomogeneousMatrix cMlTrue(0.08, 0.01, -0.01, vpMath::rad(1.5), vpMath::rad(-2.5), 0);
-    // What we would measure with a ruler: 3 cm and 3 degrees off.
-    const vpHomogeneousMatrix cMlGuess(0.10, -0.01, 0.0, 0, 0, 0);
-    const double pixelNoise = 0.3;
-    //! [Rig]
-
-    //! [Views]
-    vpLaserConicSimulator simulator;
-    simulator.setCamera(cam, width, height);
-    simulator.setLaser(openingAngle, cMlTrue);
-    simulator.setSeed(11);
-
-    vpLaserConicCalibration calibration;
-    calibration.setCameraParameters(cam);
-    calibration.setOpeningAngle(openingAngle);
-    calibration.setInitialGuess(cMlGuess);
-    const std::vector<vpHomogeneousMatrix> poses = gridPoses();
-    for (const vpHomogeneousMatrix &cMg : poses) {
-      simulator.setGroundPose(cMg); // in practice cMg comes from vpPose on the grid corners
-      calibration.addView(cMg, simulator.addNoise(simulator.tracePoints(120), pixelNoise));
-    }
-    //! [Views]
-
-    //! [Calibrate]
-    vpHomogeneousMatrix cMl;
-    const double rms = calibration.calibrate(cMl);
-    std::cout << std::fixed << std::setprecision(3) << "RMS on the grid planes: " << 1000 * calibration.getInitialRms()
-              << " mm with the guess, " << 1000 * rms << " mm after calibration" << std::endl;
-    //! [Calibrate]
-
-    //! [Figures]
-    // Before: the trace the guess predicts on the first grid, computed with the simulator.
-    vpLaserConicSimulator guessSimulator;
-    guessSimulator.setCamera(cam, width, height);
-    guessSimulator.setLaser(openingAngle, cMlGuess);
-    guessSimulator.setGroundPose(poses[0]);
-    const GridCurve predictedByGuess = backProjectToGrid(guessSimulator.tracePoints(120), poses[0], cam);
-    const GridCurve measured = calibration.getMeasuredGridPoints()[0];
-    writeGridFigure(measured, predictedByGuess, "Grid view 1, initial guess", "predicted (guess)",
-                    vpIoTools::createFilePath(outputDir, "laser-calibration-before.png"));
-    writeGridFigure(measured, calibration.getPredictedGridPoints()[0], "Grid view 1, after calibration",
-                    "predicted (calibrated)", vpIoTools::createFilePath(outputDir, "laser-calibration-after.png"));
-    //! [Figures]
-
-    const double apexGuessMm = 1000 * (cMlGuess.getTranslationVector() - cMlTrue.getTranslationVector()).frobeniusNorm();
-    const double apexMm = 1000 * (cMl.getTranslationVector() - cMlTrue.getTranslationVector()).frobeniusNorm();
-    const double axisGuessDeg = axisAngleDeg(cMlGuess, cMlTrue), axisDeg = axisAngleDeg(cMl, cMlTrue);
-    std::cout << "Laser apex error: " << apexGuessMm << " mm -> " << apexMm << " mm; cone axis error: "
-              << axisGuessDeg << " deg -> " << axisDeg << " deg" << std::endl;
-    std::cout << "Figures written to " << outputDir << "/laser-calibration-{before,after}.png" << std::endl;
-
-    // Bounds. 0.3 px of noise at 0.45-0.8 m with f = 500 px is 0.3-0.5 mm on the grid per point, which
-    // is the RMS floor (measured 0.44 mm). With 7 views of ~100 points the apex and the axis are
-    // over-determined: measured errors 0.13 mm and 0.013 deg. Bounds: apex 1 mm, axis 0.1 deg, RMS
-    // 0.6 mm, against 30 mm, 2.9 deg and 40 mm RMS for the guess: a wrong or partial optimum fails.
-    const bool ok = apexMm < 1.0 && axisDeg < 0.1 && rms < 0.6e-3 && rms < calibration.getInitialRms();
-    if (!ok)
-      std::cerr << "FAILED: calibrated laser pose off the bounds (apex 1 mm, axis 0.1 deg, RMS 0.6 mm)" << std::endl;
-    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
-  } catch (const vpException &e) {
-    std::cerr << "Error: " << e.getMessage() << std::endl;
-    return EXIT_FAILURE;
-  }
+  vpTutorialProgram program("Calibrates the laser pose cMl from simulated grid views; "
+                            "writes laser-calibration-{before,after}.png.");
+  return program.run(argc, argv, [](const std::string &outputDir) { return runCalibrationTutorial(outputDir); });
 }

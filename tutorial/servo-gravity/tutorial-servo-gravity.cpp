@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <iostream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@
 #include <visp3/vs/vpServo.h>
 
 #include "vpPngPlot.h"
+#include "vpTutorialCommon.h"
 
 namespace
 {
@@ -66,16 +68,6 @@ std::vector<vpPoint> makeTarget()
 //! Gravity in the target frame (the wall's vertical).
 const vpColVector kGravityInTarget{0, 1, 0};
 //! [Target]
-
-//! Adds Gaussian noise to each component of a gravity vector, as an IMU would measure it.
-vpColVector measureGravity(const vpColVector &g, double sigma, std::mt19937 &rng)
-{
-  std::normal_distribution<double> noise(0.0, sigma);
-  vpColVector m(3);
-  for (unsigned int i = 0; i < 3; ++i)
-    m[i] = g[i] + noise(rng);
-  return m;
-}
 
 //! [Measure]
 //! Projects the target with the true pose and adds pixel noise: what the camera measures.
@@ -161,8 +153,9 @@ ServoRun runServo(Estimator estimator, const vpHomogeneousMatrix &cdMo, const vp
     const vpHomogeneousMatrix cMo = wMc.inverse() * wMo; // ground truth, used only to simulate sensors
 
     const std::vector<vpPoint> points = measurePoints(target, cMo, cam, noise.pixel, rng);
-    const vpColVector gCam = measureGravity(vpColVector(cMo.getRotationMatrix() * kGravityInTarget), noise.gravity, rng);
-    const vpColVector gObj = measureGravity(kGravityInTarget, noise.gravity, rng);
+    const vpColVector gCam =
+        vpTutorialMeasureGravity(vpColVector(cMo.getRotationMatrix() * kGravityInTarget), noise.gravity, rng);
+    const vpColVector gObj = vpTutorialMeasureGravity(kGravityInTarget, noise.gravity, rng);
 
     if (!estimatePose(estimator, points, gCam, gObj, cMoEstimate))
       ++run.estimationFailures;
@@ -201,24 +194,32 @@ double rmsOfLast(const std::vector<double> &values, size_t n)
   return count ? std::sqrt(sum / count) : 0.0;
 }
 
-//! Fits the plot range to the data of both runs plus the goal, with free space at the top for the legend.
-void fitRangeWithLegendRoom(vpPngPlot &plot, const std::vector<double> &x1, const std::vector<double> &y1,
-                            const std::vector<double> &x2, const std::vector<double> &y2, double goalX, double goalY)
+//! One view of the camera trajectories of both runs (camera centre in the target frame), with the goal.
+//! The range fits the data and keeps free space at the top for the legend.
+//! gravityY and classicY are the vertical coordinates of the two runs (their oY or their oZ).
+void writeTrajectoryPlot(const std::string &title, const std::string &yLabel, const ServoRun &gravity,
+                         const std::vector<double> &gravityY, const ServoRun &classic,
+                         const std::vector<double> &classicY, double goalX, double goalY, const std::string &filename)
 {
+  vpPngPlot plot(title, "X (m)", yLabel, 640, 420);
+  plot.addCurve(estimatorName(Estimator::GravityP3P), gravity.oX, gravityY, vpColor::red);
+  plot.addCurve(estimatorName(Estimator::ClassicP4P), classic.oX, classicY, vpColor::blue);
+  plot.addPoints("desired", std::vector<double>{goalX}, std::vector<double>{goalY}, vpColor::darkGreen);
   double xmin = goalX, xmax = goalX, ymin = goalY, ymax = goalY;
-  for (const std::vector<double> *v : {&x1, &x2})
-    for (double value : *v) {
+  for (const std::vector<double> *x : {&gravity.oX, &classic.oX})
+    for (double value : *x) {
       xmin = std::min(xmin, value);
       xmax = std::max(xmax, value);
     }
-  for (const std::vector<double> *v : {&y1, &y2})
-    for (double value : *v) {
+  for (const std::vector<double> *y : {&gravityY, &classicY})
+    for (double value : *y) {
       ymin = std::min(ymin, value);
       ymax = std::max(ymax, value);
     }
   const double dx = std::max(xmax - xmin, 1e-3), dy = std::max(ymax - ymin, 1e-3);
   plot.setXRange(xmin - 0.05 * dx, xmax + 0.05 * dx);
   plot.setYRange(ymin - 0.05 * dy, ymax + 0.45 * dy);
+  plot.write(filename);
 }
 
 //! [Plots]
@@ -226,21 +227,12 @@ void writePlots(const ServoRun &gravity, const ServoRun &classic, const vpHomoge
                 const std::string &outputDir)
 {
   const vpHomogeneousMatrix oMcd = cdMo.inverse();
-  const std::vector<double> goalX{oMcd[0][3]}, goalY{oMcd[1][3]}, goalZ{oMcd[2][3]};
-
-  vpPngPlot xy("Camera trajectory, front view", "X (m)", "Y (m)", 640, 420);
-  xy.addCurve(estimatorName(Estimator::GravityP3P), gravity.oX, gravity.oY, vpColor::red);
-  xy.addCurve(estimatorName(Estimator::ClassicP4P), classic.oX, classic.oY, vpColor::blue);
-  xy.addPoints("desired", goalX, goalY, vpColor::darkGreen);
-  fitRangeWithLegendRoom(xy, gravity.oX, gravity.oY, classic.oX, classic.oY, goalX[0], goalY[0]);
-  xy.write(vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xy.png"));
-
-  vpPngPlot xz("Camera trajectory, top view", "X (m)", "Z (m)", 640, 420);
-  xz.addCurve(estimatorName(Estimator::GravityP3P), gravity.oX, gravity.oZ, vpColor::red);
-  xz.addCurve(estimatorName(Estimator::ClassicP4P), classic.oX, classic.oZ, vpColor::blue);
-  xz.addPoints("desired", goalX, goalZ, vpColor::darkGreen);
-  fitRangeWithLegendRoom(xz, gravity.oX, gravity.oZ, classic.oX, classic.oZ, goalX[0], goalZ[0]);
-  xz.write(vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xz.png"));
+  writeTrajectoryPlot("Camera trajectory, front view", "Y (m)", gravity, gravity.oY, classic, classic.oY,
+                      oMcd[0][3], oMcd[1][3],
+                      vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xy.png"));
+  writeTrajectoryPlot("Camera trajectory, top view", "Z (m)", gravity, gravity.oZ, classic, classic.oZ,
+                      oMcd[0][3], oMcd[2][3],
+                      vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xz.png"));
 
   std::vector<double> logT[2], logR[2];
   const ServoRun *runs[2] = {&gravity, &classic};
@@ -258,82 +250,56 @@ void writePlots(const ServoRun &gravity, const ServoRun &classic, const vpHomoge
 }
 //! [Plots]
 
-void usage(const char *name)
+//! Both servo loops, their plots and their checks; true when both converge within the bounds.
+bool runServoTutorial(int seed, const std::string &outputDir)
 {
-  std::cout << "Usage: " << name << " [--output <dir>] [--seed <n>] [--help]\n"
-            << "  PBVS loop closed by vpPoseGravity (3 points + IMU) and by vpPose (4 points);\n"
-            << "  writes servo-gravity-*.png into <dir> (default: current directory).\n";
+  const vpCameraParameters cam(800, 800, 320, 240);
+  //! [Poses]
+  const vpHomogeneousMatrix cdMo(0, 0, 0.75, 0, 0, 0);
+  const vpHomogeneousMatrix cMo(0.15, -0.1, 1.0, vpMath::rad(10), vpMath::rad(-10), vpMath::rad(50));
+  //! [Poses]
+  const SensorNoise noise;
+  const int iterations = 200;
+
+  const unsigned int noiseSeed = static_cast<unsigned int>(seed);
+  const ServoRun gravity = runServo(Estimator::GravityP3P, cdMo, cMo, cam, noise, noiseSeed, iterations);
+  const ServoRun classic = runServo(Estimator::ClassicP4P, cdMo, cMo, cam, noise, noiseSeed, iterations);
+  writePlots(gravity, classic, cdMo, outputDir);
+
+  // Steady state: RMS of the true error over the last 50 iterations (both loops converge in ~100).
+  // With 0.5 px of noise at 0.75 m (f = 800 px, the 0.2 m target spans ~210 px) one estimate has a
+  // rotation error of a few tenths of a degree (for the gravity method, mostly the 0.16 deg tilt noise
+  // of each IMU); seen from the target, 0.3 deg moves the camera by 0.75 m x 0.005 rad ~ 4 mm. The loop
+  // (gain 1.5 x 0.04 s per iteration) averages about 15 estimates, so the steady-state RMS is 1-5 mm
+  // and 0.1-0.4 deg over seeds 1-12; 8 mm and 0.8 deg leave a margin over that, far below the
+  // 30 cm / 50 deg of the start.
+  const size_t tail = 50;
+  const double boundMm = 8.0, boundDeg = 0.8;
+  bool ok = true;
+  std::cout << std::fixed << std::setprecision(2);
+  for (const ServoRun *run : {&gravity, &classic}) {
+    const Estimator e = (run == &gravity) ? Estimator::GravityP3P : Estimator::ClassicP4P;
+    const double rmsT = rmsOfLast(run->errorTranslationMm, tail);
+    const double rmsR = rmsOfLast(run->errorRotationDeg, tail);
+    std::cout << estimatorName(e) << ": converged (1 cm, 1 deg) at iteration " << run->convergedAt << ", last "
+              << tail << " iterations: RMS error " << rmsT << " mm, " << rmsR << " deg, estimation failures "
+              << run->estimationFailures << std::endl;
+    std::ostringstream failure;
+    failure << estimatorName(e) << " did not converge to " << boundMm << " mm / " << boundDeg << " deg RMS";
+    ok = vpTutorialCheck(run->convergedAt >= 0 && rmsT < boundMm && rmsR < boundDeg, failure.str()) && ok;
+  }
+  ok = vpTutorialCheck(gravity.estimationFailures == 0, "the gravity P3P found no pose in some iterations") && ok;
+  std::cout << "Plots written to " << outputDir << "/servo-gravity-{trajectory-xy,trajectory-xz,errors}.png"
+            << std::endl;
+  return ok;
 }
 } // namespace
 
 int main(int argc, char **argv)
 {
-  std::string outputDir = ".";
-  unsigned int seed = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--output" && i + 1 < argc)
-      outputDir = argv[++i];
-    else if (arg == "--seed" && i + 1 < argc)
-      seed = static_cast<unsigned int>(std::strtoul(argv[++i], nullptr, 10));
-    else if (arg == "--help" || arg == "-h") {
-      usage(argv[0]);
-      return EXIT_SUCCESS;
-    } else {
-      std::cerr << "Unknown or incomplete option: " << arg << "\n";
-      usage(argv[0]);
-      return EXIT_FAILURE;
-    }
-  }
-
-  try {
-    vpIoTools::makeDirectory(outputDir);
-    const vpCameraParameters cam(800, 800, 320, 240);
-    //! [Poses]
-    const vpHomogeneousMatrix cdMo(0, 0, 0.75, 0, 0, 0);
-    const vpHomogeneousMatrix cMo(0.15, -0.1, 1.0, vpMath::rad(10), vpMath::rad(-10), vpMath::rad(50));
-    //! [Poses]
-    const SensorNoise noise;
-    const int iterations = 200;
-
-    const ServoRun gravity = runServo(Estimator::GravityP3P, cdMo, cMo, cam, noise, seed, iterations);
-    const ServoRun classic = runServo(Estimator::ClassicP4P, cdMo, cMo, cam, noise, seed, iterations);
-    writePlots(gravity, classic, cdMo, outputDir);
-
-    // Steady state: RMS of the true error over the last 50 iterations (both loops converge in ~100).
-    // With 0.5 px of noise at 0.75 m (f = 800 px, the 0.2 m target spans ~210 px) one estimate has a
-    // rotation error of a few tenths of a degree (for the gravity method, mostly the 0.16 deg tilt noise
-    // of each IMU); seen from the target, 0.3 deg moves the camera by 0.75 m x 0.005 rad ~ 4 mm. The loop
-    // (gain 1.5 x 0.04 s per iteration) averages about 15 estimates, so the steady-state RMS is 1-5 mm
-    // and 0.1-0.4 deg over seeds 1-12; 8 mm and 0.8 deg leave a margin over that, far below the
-    // 30 cm / 50 deg of the start.
-    const size_t tail = 50;
-    const double boundMm = 8.0, boundDeg = 0.8;
-    bool ok = true;
-    std::cout << std::fixed << std::setprecision(2);
-    for (const ServoRun *run : {&gravity, &classic}) {
-      const Estimator e = (run == &gravity) ? Estimator::GravityP3P : Estimator::ClassicP4P;
-      const double rmsT = rmsOfLast(run->errorTranslationMm, tail);
-      const double rmsR = rmsOfLast(run->errorRotationDeg, tail);
-      std::cout << estimatorName(e) << ": converged (1 cm, 1 deg) at iteration " << run->convergedAt << ", last "
-                << tail << " iterations: RMS error " << rmsT << " mm, " << rmsR << " deg, estimation failures "
-                << run->estimationFailures << std::endl;
-      const bool runOk = run->convergedAt >= 0 && rmsT < boundMm && rmsR < boundDeg;
-      if (!runOk)
-        std::cerr << "FAILED: " << estimatorName(e) << " did not converge to " << boundMm << " mm / " << boundDeg
-                  << " deg RMS" << std::endl;
-      ok = ok && runOk;
-    }
-    if (gravity.estimationFailures > 0) {
-      std::cerr << "FAILED: the gravity P3P found no pose in " << gravity.estimationFailures << " iterations"
-                << std::endl;
-      ok = false;
-    }
-    std::cout << "Plots written to " << outputDir << "/servo-gravity-{trajectory-xy,trajectory-xz,errors}.png"
-              << std::endl;
-    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
-  } catch (const vpException &e) {
-    std::cerr << "Error: " << e.getMessage() << std::endl;
-    return EXIT_FAILURE;
-  }
+  int seed = 1;
+  vpTutorialProgram program("PBVS loop closed by vpPoseGravity (3 points + IMU) and by vpPose (4 points); "
+                            "writes servo-gravity-*.png.");
+  program.addOption("--seed", seed, 0, "seed of the simulated sensor noise");
+  return program.run(argc, argv, [&](const std::string &outputDir) { return runServoTutorial(seed, outputDir); });
 }

@@ -17,7 +17,6 @@
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpException.h>
-#include <visp3/core/vpFont.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImageConvert.h>
@@ -28,11 +27,11 @@
 #include <visp3/core/vpPixelMeterConversion.h>
 #include <visp3/core/vpPoint.h>
 #include <visp3/core/vpThetaUVector.h>
-#include <visp3/io/vpImageIo.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
 #include <visp3/robot/vpImageSimulator.h>
 
 #include "vpPngPlot.h"
+#include "vpTutorialCommon.h"
 
 namespace
 {
@@ -95,15 +94,6 @@ void renderFrame(vpImageSimulator &simulator, const vpHomogeneousMatrix &cMo, co
     I.bitmap[n] = static_cast<unsigned char>(vpMath::saturate<unsigned char>(I.bitmap[n] + noise(rng)));
 }
 
-vpColVector measureGravity(const vpColVector &g, double sigma, std::mt19937 &rng)
-{
-  std::normal_distribution<double> noise(0.0, sigma);
-  vpColVector m(3);
-  for (unsigned int i = 0; i < 3; ++i)
-    m[i] = g[i] + noise(rng);
-  return m;
-}
-
 //! Translation (mm) and rotation (deg) of the error between an estimate and the truth.
 void poseError(const vpHomogeneousMatrix &cMoEst, const vpHomogeneousMatrix &cMoTrue, double &errMm, double &errDeg)
 {
@@ -123,157 +113,131 @@ void writeOverlay(const vpImage<unsigned char> &I, const std::vector<vpDot2> &do
     vpImageDraw::drawCross(overlay, dot.getCog(), 15, vpColor::orange, 2);
   // x in red, y in green, z in blue (vpColor::none selects these colours).
   vpImageDraw::drawFrame(overlay, cMo, cam, 0.08, vpColor::none, 2);
-  const vpFont font(18);
-  font.drawText(overlay, caption, vpImagePoint(8, 8), vpColor::yellow, vpColor::black);
-  vpImageIo::write(overlay, filename);
+  vpTutorialWriteCaptioned(overlay, caption, vpColor::yellow, filename);
 }
 //! [Overlay]
 
-void usage(const char *name)
+//! The tracking sequence, its images and its checks; true when the pose errors are within the bounds.
+bool runTrackerTutorial(int frames, const std::string &outputDir)
 {
-  std::cout << "Usage: " << name << " [--output <dir>] [--frames <n>] [--help]\n"
-            << "  Tracks four dots with vpDot2 in rendered images and estimates the pose with vpPoseGravity;\n"
-            << "  writes tracker-gravity-*.png into <dir> (default: current directory).\n";
+  const vpCameraParameters cam(800, 800, 320, 240);
+  const double imageNoise = 2.0;     // grey levels
+  const double gravityNoise = 0.003; // per component of a unit vector, about 0.2 deg
+  std::mt19937 rng(7);
+
+  //! [Simulator]
+  const vpImage<unsigned char> texture = makeTargetTexture(400);
+  std::vector<vpPoint> corners = {vpPoint(-kHalfSide, -kHalfSide, 0), vpPoint(kHalfSide, -kHalfSide, 0),
+                                  vpPoint(kHalfSide, kHalfSide, 0), vpPoint(-kHalfSide, kHalfSide, 0)};
+  vpImageSimulator simulator(vpImageSimulator::GRAY_SCALED);
+  simulator.setInterpolationType(vpImageSimulator::BILINEAR_INTERPOLATION);
+  simulator.init(texture, corners);
+  vpImage<unsigned char> I(480, 640);
+  //! [Simulator]
+
+  //! [Init tracking]
+  std::vector<vpPoint> points = dotCentres();
+  renderFrame(simulator, targetPose(0, frames), cam, imageNoise, rng, I);
+  std::vector<vpDot2> dots(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    points[k].project(targetPose(0, frames));
+    vpImagePoint ip;
+    vpMeterPixelConversion::convertPoint(cam, points[k].get_x(), points[k].get_y(), ip);
+    dots[k].setGraphics(false);
+    dots[k].initTracking(I, ip);
+  }
+  //! [Init tracking]
+
+  std::vector<double> frameIndex, errP3pMm, errRefinedMm, errRefinedDeg;
+  double sumMm = 0, sumDeg = 0, maxMm = 0, maxDeg = 0, sumP3pMm = 0, sumP3pDeg = 0;
+  int failures = 0;
+  for (int k = 0; k < frames; ++k) {
+    const vpHomogeneousMatrix cMoTrue = targetPose(k, frames);
+    if (k > 0)
+      renderFrame(simulator, cMoTrue, cam, imageNoise, rng, I);
+
+    //! [Track and estimate]
+    for (size_t d = 0; d < dots.size(); ++d) {
+      dots[d].track(I);
+      double x = 0, y = 0;
+      vpPixelMeterConversion::convertPoint(cam, dots[d].getCog(), x, y);
+      points[d].set_x(x);
+      points[d].set_y(y);
+    }
+    vpPoseGravity pose;
+    pose.setCameraGravity(vpTutorialMeasureGravity(vpColVector(cMoTrue.getRotationMatrix() * kGravityInTarget),
+                                         gravityNoise, rng));
+    pose.setObjectGravity(vpTutorialMeasureGravity(kGravityInTarget, gravityNoise, rng));
+    pose.addPoints(points); // P3P uses the first three; refinePose() all four
+    pose.setImageStdDev(0.2 / cam.get_px()); // tracked centres: ~0.2 px, in normalized coordinates
+    pose.setGravityStdDev(gravityNoise);     // refine all 6 DOF, gravity as soft priors
+    vpHomogeneousMatrix cMo;
+    if (!pose.computePose(vpPoseGravity::P3P, cMo)) {
+      std::cerr << "frame " << k << ": " << vpPoseGravity::getStatusMessage(pose.getStatus()) << std::endl;
+      ++failures;
+      continue;
+    }
+    const vpHomogeneousMatrix cMoP3p = cMo;
+    pose.refinePose(cMo);
+    //! [Track and estimate]
+
+    double errMm = 0, errDeg = 0, errP3p = 0, errP3pDeg = 0;
+    poseError(cMo, cMoTrue, errMm, errDeg);
+    poseError(cMoP3p, cMoTrue, errP3p, errP3pDeg);
+    frameIndex.push_back(k);
+    errP3pMm.push_back(errP3p);
+    errRefinedMm.push_back(errMm);
+    errRefinedDeg.push_back(errDeg);
+    sumMm += errMm;
+    sumP3pMm += errP3p;
+    sumP3pDeg += errP3pDeg;
+    sumDeg += errDeg;
+    maxMm = std::max(maxMm, errMm);
+    maxDeg = std::max(maxDeg, errDeg);
+
+    if (k == 0 || k == frames / 2 || k == frames - 1) {
+      char name[64];
+      std::snprintf(name, sizeof(name), "tracker-gravity-frame-%03d.png", k);
+      std::ostringstream caption;
+      caption << std::fixed << std::setprecision(1) << "frame " << k << ": error " << errMm << " mm, "
+              << std::setprecision(2) << errDeg << " deg";
+      writeOverlay(I, dots, cMo, cam, caption.str(), vpIoTools::createFilePath(outputDir, name));
+    }
+  }
+
+  vpPngPlot plot("Pose error against ground truth", "frame", "translation error (mm)", 640, 420);
+  plot.addCurve("P3P", frameIndex, errP3pMm, vpColor::blue);
+  plot.addCurve("P3P + refinePose()", frameIndex, errRefinedMm, vpColor::red);
+  plot.write(vpIoTools::createFilePath(outputDir, "tracker-gravity-errors.png"));
+
+  const int estimated = static_cast<int>(frameIndex.size());
+  const double meanMm = estimated ? sumMm / estimated : 0, meanDeg = estimated ? sumDeg / estimated : 0;
+  std::cout << std::fixed << std::setprecision(2) << frames << " frames, " << failures << " without pose."
+            << std::endl;
+  if (estimated)
+    std::cout << "P3P alone: mean error " << sumP3pMm / estimated << " mm / " << sumP3pDeg / estimated << " deg"
+              << std::endl;
+  std::cout << "P3P + refinePose(): mean error " << meanMm << " mm / " << meanDeg << " deg, max " << maxMm
+            << " mm / " << maxDeg << " deg" << std::endl;
+  std::cout << "Images written to " << outputDir << "/tracker-gravity-*.png" << std::endl;
+
+  // Bounds. The dots are 1.5 cm disks 0.5-0.7 m away (about 20 px radius); vpDot2's centroid of a
+  // rendered, noisy disk is within ~0.2 px of the projected centre (a perspective bias of the same
+  // order included), i.e. a millimetre or two in depth for dots 10 cm apart; the refinement weighs the
+  // 0.2 deg IMU tilts against the four points. Measured: mean 1.6 mm / 0.2 deg, worst frame 2.7 mm /
+  // 0.7 deg. Bounds: mean 4 mm / 0.5 deg, worst frame 8 mm / 1.5 deg (the P3P alone, which trusts the
+  // IMUs fully, has a mean rotation error of 1.7 deg: the refinement must do better than that).
+  return vpTutorialCheck(failures == 0 && meanMm < 4.0 && meanDeg < 0.5 && maxMm < 8.0 && maxDeg < 1.5,
+                         "pose errors above the bounds (mean 4 mm / 0.5 deg, max 8 mm / 1.5 deg) or frames without "
+                         "pose");
 }
 } // namespace
 
 int main(int argc, char **argv)
 {
-  std::string outputDir = ".";
   int frames = 120;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--output" && i + 1 < argc)
-      outputDir = argv[++i];
-    else if (arg == "--frames" && i + 1 < argc)
-      frames = std::max(2, std::atoi(argv[++i]));
-    else if (arg == "--help" || arg == "-h") {
-      usage(argv[0]);
-      return EXIT_SUCCESS;
-    } else {
-      std::cerr << "Unknown or incomplete option: " << arg << "\n";
-      usage(argv[0]);
-      return EXIT_FAILURE;
-    }
-  }
-
-  try {
-    vpIoTools::makeDirectory(outputDir);
-    const vpCameraParameters cam(800, 800, 320, 240);
-    const double imageNoise = 2.0;     // grey levels
-    const double gravityNoise = 0.003; // per component of a unit vector, about 0.2 deg
-    std::mt19937 rng(7);
-
-    //! [Simulator]
-    const vpImage<unsigned char> texture = makeTargetTexture(400);
-    std::vector<vpPoint> corners = {vpPoint(-kHalfSide, -kHalfSide, 0), vpPoint(kHalfSide, -kHalfSide, 0),
-                                    vpPoint(kHalfSide, kHalfSide, 0), vpPoint(-kHalfSide, kHalfSide, 0)};
-    vpImageSimulator simulator(vpImageSimulator::GRAY_SCALED);
-    simulator.setInterpolationType(vpImageSimulator::BILINEAR_INTERPOLATION);
-    simulator.init(texture, corners);
-    vpImage<unsigned char> I(480, 640);
-    //! [Simulator]
-
-    //! [Init tracking]
-    std::vector<vpPoint> points = dotCentres();
-    renderFrame(simulator, targetPose(0, frames), cam, imageNoise, rng, I);
-    std::vector<vpDot2> dots(points.size());
-    for (size_t k = 0; k < points.size(); ++k) {
-      points[k].project(targetPose(0, frames));
-      vpImagePoint ip;
-      vpMeterPixelConversion::convertPoint(cam, points[k].get_x(), points[k].get_y(), ip);
-      dots[k].setGraphics(false);
-      dots[k].initTracking(I, ip);
-    }
-    //! [Init tracking]
-
-    std::vector<double> frameIndex, errP3pMm, errRefinedMm, errRefinedDeg;
-    double sumMm = 0, sumDeg = 0, maxMm = 0, maxDeg = 0, sumP3pMm = 0, sumP3pDeg = 0;
-    int failures = 0;
-    for (int k = 0; k < frames; ++k) {
-      const vpHomogeneousMatrix cMoTrue = targetPose(k, frames);
-      if (k > 0)
-        renderFrame(simulator, cMoTrue, cam, imageNoise, rng, I);
-
-      //! [Track and estimate]
-      for (size_t d = 0; d < dots.size(); ++d) {
-        dots[d].track(I);
-        double x = 0, y = 0;
-        vpPixelMeterConversion::convertPoint(cam, dots[d].getCog(), x, y);
-        points[d].set_x(x);
-        points[d].set_y(y);
-      }
-      vpPoseGravity pose;
-      pose.setCameraGravity(measureGravity(vpColVector(cMoTrue.getRotationMatrix() * kGravityInTarget),
-                                           gravityNoise, rng));
-      pose.setObjectGravity(measureGravity(kGravityInTarget, gravityNoise, rng));
-      pose.addPoints(points); // P3P uses the first three; refinePose() all four
-      pose.setImageStdDev(0.2 / cam.get_px()); // tracked centres: ~0.2 px, in normalized coordinates
-      pose.setGravityStdDev(gravityNoise);     // refine all 6 DOF, gravity as soft priors
-      vpHomogeneousMatrix cMo;
-      if (!pose.computePose(vpPoseGravity::P3P, cMo)) {
-        std::cerr << "frame " << k << ": " << vpPoseGravity::getStatusMessage(pose.getStatus()) << std::endl;
-        ++failures;
-        continue;
-      }
-      const vpHomogeneousMatrix cMoP3p = cMo;
-      pose.refinePose(cMo);
-      //! [Track and estimate]
-
-      double errMm = 0, errDeg = 0, errP3p = 0, errP3pDeg = 0;
-      poseError(cMo, cMoTrue, errMm, errDeg);
-      poseError(cMoP3p, cMoTrue, errP3p, errP3pDeg);
-      frameIndex.push_back(k);
-      errP3pMm.push_back(errP3p);
-      errRefinedMm.push_back(errMm);
-      errRefinedDeg.push_back(errDeg);
-      sumMm += errMm;
-      sumP3pMm += errP3p;
-      sumP3pDeg += errP3pDeg;
-      sumDeg += errDeg;
-      maxMm = std::max(maxMm, errMm);
-      maxDeg = std::max(maxDeg, errDeg);
-
-      if (k == 0 || k == frames / 2 || k == frames - 1) {
-        char name[64];
-        std::snprintf(name, sizeof(name), "tracker-gravity-frame-%03d.png", k);
-        std::ostringstream caption;
-        caption << std::fixed << std::setprecision(1) << "frame " << k << ": error " << errMm << " mm, "
-                << std::setprecision(2) << errDeg << " deg";
-        writeOverlay(I, dots, cMo, cam, caption.str(), vpIoTools::createFilePath(outputDir, name));
-      }
-    }
-
-    vpPngPlot plot("Pose error against ground truth", "frame", "translation error (mm)", 640, 420);
-    plot.addCurve("P3P", frameIndex, errP3pMm, vpColor::blue);
-    plot.addCurve("P3P + refinePose()", frameIndex, errRefinedMm, vpColor::red);
-    plot.write(vpIoTools::createFilePath(outputDir, "tracker-gravity-errors.png"));
-
-    const int estimated = static_cast<int>(frameIndex.size());
-    const double meanMm = estimated ? sumMm / estimated : 0, meanDeg = estimated ? sumDeg / estimated : 0;
-    std::cout << std::fixed << std::setprecision(2) << frames << " frames, " << failures << " without pose."
-              << std::endl;
-    if (estimated)
-      std::cout << "P3P alone: mean error " << sumP3pMm / estimated << " mm / " << sumP3pDeg / estimated << " deg"
-                << std::endl;
-    std::cout << "P3P + refinePose(): mean error " << meanMm << " mm / " << meanDeg << " deg, max " << maxMm
-              << " mm / " << maxDeg << " deg" << std::endl;
-    std::cout << "Images written to " << outputDir << "/tracker-gravity-*.png" << std::endl;
-
-    // Bounds. The dots are 1.5 cm disks 0.5-0.7 m away (about 20 px radius); vpDot2's centroid of a
-    // rendered, noisy disk is within ~0.2 px of the projected centre (a perspective bias of the same
-    // order included), i.e. a millimetre or two in depth for dots 10 cm apart; the refinement weighs the
-    // 0.2 deg IMU tilts against the four points. Measured: mean 1.6 mm / 0.2 deg, worst frame 2.7 mm /
-    // 0.7 deg. Bounds: mean 4 mm / 0.5 deg, worst frame 8 mm / 1.5 deg (the P3P alone, which trusts the
-    // IMUs fully, has a mean rotation error of ~0.7 deg: the refinement must do better than that).
-    const bool ok = failures == 0 && meanMm < 4.0 && meanDeg < 0.5 && maxMm < 8.0 && maxDeg < 1.5;
-    if (!ok)
-      std::cerr << "FAILED: pose errors above the bounds (mean 4 mm / 0.5 deg, max 8 mm / 1.5 deg) or frames "
-                   "without pose"
-                << std::endl;
-    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
-  } catch (const vpException &e) {
-    std::cerr << "Error: " << e.getMessage() << std::endl;
-    return EXIT_FAILURE;
-  }
+  vpTutorialProgram program("Tracks four dots with vpDot2 in rendered images and estimates the pose with "
+                            "vpPoseGravity; writes tracker-gravity-*.png.");
+  program.addOption("--frames", frames, 2, "number of frames of the sequence");
+  return program.run(argc, argv, [&](const std::string &outputDir) { return runTrackerTutorial(frames, outputDir); });
 }
