@@ -4,7 +4,9 @@
  */
 #include "vpLaserOverlay.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpFont.h>
@@ -34,10 +36,25 @@ int solveQuadratic(double a, double b, double c, double roots[2])
   return 2;
 }
 
+/*!
+  Colours pixel (u, v) when it lies in the image. Pixels are written directly: vpImageDraw::drawPoint()
+  with a thickness of 1 draws an empty rectangle, i.e. nothing. One pixel is thin enough for the
+  detected points (3 pixels wide) to show on both sides of the curve.
+*/
 void plot(vpImage<vpRGBa> &I, double u, double v, const vpColor &color)
 {
   if (u >= 0.0 && v >= 0.0 && u < I.getWidth() && v < I.getHeight())
-    vpImageDraw::drawPoint(I, vpImagePoint(v, u), color, 1);
+    I[static_cast<unsigned int>(v)][static_cast<unsigned int>(u)] = vpRGBa(color.R, color.G, color.B);
+}
+
+//! Replaces \e I by its dimmed grey level, so that every colour left in it is a drawing.
+void dimToGrey(vpImage<vpRGBa> &I)
+{
+  for (unsigned int k = 0; k < I.getSize(); ++k) {
+    vpRGBa &p = I.bitmap[k];
+    const unsigned char grey = static_cast<unsigned char>(0.6 * (0.299 * p.R + 0.587 * p.G + 0.114 * p.B));
+    p = vpRGBa(grey, grey, grey);
+  }
 }
 } // namespace
 
@@ -64,14 +81,33 @@ void vpLaserOverlay::drawConic(vpImage<vpRGBa> &I, const vpMatrix &C, const vpCo
 void vpLaserOverlay::draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
                           const std::vector<unsigned int> &inliers, const vpMatrix &conic, const std::string &caption)
 {
+  // The red laser stripe of the image would read as outliers: the image is shown in grey.
+  dimToGrey(I);
   for (const vpImagePoint &p : points)
     vpImageDraw::drawPoint(I, p, vpColor::red, 3);
   for (unsigned int index : inliers)
     if (index < points.size())
       vpImageDraw::drawPoint(I, points[index], vpColor::green, 3);
-  drawConic(I, conic, vpColor::blue); // last, thinner: visible over the points it fits
-  if (!caption.empty()) {
-    vpFont font(16);
-    font.drawText(I, caption, vpImagePoint(8, 8), vpColor::white, vpColor::black);
+  // A light blue stands out on a dark floor and on the green points; drawn last and thinner, it stays
+  // visible over the points it fits.
+  const vpColor conicColor(70, 140, 255);
+  drawConic(I, conic, conicColor);
+  if (!caption.empty())
+    drawCaption(I, caption,
+                {{"detected points (outliers)", vpColor::red}, {"inliers", vpColor::green}, {"fitted conic", conicColor}});
+}
+
+void vpLaserOverlay::drawCaption(vpImage<vpRGBa> &I, const std::string &caption,
+                                 const std::vector<std::pair<std::string, vpColor> > &legend)
+{
+  // The text height follows the image width, so that the caption stays readable on large images.
+  const unsigned int height = std::max(16u, I.getWidth() / 64);
+  const vpFont font(height);
+  vpImagePoint at(8, 8);
+  font.drawText(I, caption, at, vpColor::white, vpColor::black);
+  at.set_i(at.get_i() + 1.4 * height);
+  for (const auto &entry : legend) { // each entry in the colour it names, one text height apart
+    font.drawText(I, entry.first, at, entry.second, vpColor::black);
+    at.set_j(at.get_j() + font.getMeasure(entry.first).get_j() + height);
   }
 }

@@ -11,6 +11,7 @@
 #define VP_LASER_OVERLAY_H
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <visp3/core/vpColor.h>
@@ -26,11 +27,19 @@ class vpLaserOverlay
 {
 public:
   /*!
-    Draws on \e I: every detected point as a red dot (outlier), the inliers in green over it, and the
-    conic \e conic (3x3, pixel coordinates, x^T C x = 0) in blue when it is not empty, plus a text line.
+    Dims \e I to grey (so that its red laser stripe cannot be mistaken for a drawing), then draws on it
+    every detected point as a red dot (outlier), the inliers in green over it, and the
+    conic \e conic (3x3, pixel coordinates, x^T C x = 0) in blue when it is not empty, plus, when
+    \e caption is not empty, that caption and a legend of the colours in the top-left corner.
   */
   static void draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
                    const std::vector<unsigned int> &inliers, const vpMatrix &conic, const std::string &caption);
+  /*!
+    Writes \e caption in the top-left corner of \e I and, below it, the \e legend entries side by
+    side, each text in its colour (also used by the demo for its gravity-aided pose overlays).
+  */
+  static void drawCaption(vpImage<vpRGBa> &I, const std::string &caption,
+                          const std::vector<std::pair<std::string, vpColor> > &legend);
   //! Draws the image points where the conic crosses each image row and column (works for any conic type).
   static void drawConic(vpImage<vpRGBa> &I, const vpMatrix &conic, const vpColor &color);
 };

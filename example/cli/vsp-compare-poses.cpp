@@ -25,7 +25,7 @@
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpTranslationVector.h>
 
-#include "vpCsvTools.h"
+#include "vpCommandLine.h"
 #include "vpGravityPointsIo.h"
 
 namespace
@@ -54,39 +54,25 @@ void summarize(const std::string &name, const std::vector<double> &v, double sca
             << ", max " << maxValue * scale << " " << unit << std::endl;
 }
 
-int usage(const char *program, const std::string &error)
-{
-  std::cerr << program << ": " << error << "\nUsage: " << program
-            << " --estimate poses.csv --truth groundtruth.csv [--max-median-translation M]"
-               " [--max-median-rotation-deg D]\n";
-  return EXIT_FAILURE;
-}
 } // namespace
 
 int main(int argc, char **argv)
 {
   std::string estimateFile, truthFile, error;
   double maxTranslation = -1.0, maxRotationDeg = -1.0;
-  for (int i = 1; i < argc; i += 2) {
-    const std::string arg = argv[i];
-    if (i + 1 >= argc)
-      return usage(argv[0], "option " + arg + " needs a value");
-    const std::string value = argv[i + 1];
-    if (arg == "--estimate")
-      estimateFile = value;
-    else if (arg == "--truth")
-      truthFile = value;
-    else if (arg == "--max-median-translation") {
-      if (!vpCsvTools::parseDouble(value, maxTranslation, arg, "value", error))
-        return usage(argv[0], error);
-    } else if (arg == "--max-median-rotation-deg") {
-      if (!vpCsvTools::parseDouble(value, maxRotationDeg, arg, "value", error))
-        return usage(argv[0], error);
-    } else
-      return usage(argv[0], "unknown option '" + arg + "'");
-  }
+  vpCommandLine cli("--estimate poses.csv --truth groundtruth.csv [--max-median-translation M]\n"
+                    "          [--max-median-rotation-deg D]",
+                    "Translation and rotation errors of a pose file against a ground-truth pose file.");
+  cli.addString("--estimate", estimateFile, "FILE", "poses 'frame,status,tx,ty,tz,tux,tuy,tuz' (vsp-gravity-pose)");
+  cli.addString("--truth", truthFile, "FILE", "ground-truth poses in the same format");
+  cli.addDouble("--max-median-translation", maxTranslation, "M",
+                "exit status 1 when the median translation error exceeds M metres", vpCommandLine::NON_NEGATIVE);
+  cli.addDouble("--max-median-rotation-deg", maxRotationDeg, "D",
+                "exit status 1 when the median rotation error exceeds D degrees", vpCommandLine::NON_NEGATIVE);
+  if (!cli.parse(argc, argv))
+    return cli.exitStatus();
   if (estimateFile.empty() || truthFile.empty())
-    return usage(argv[0], "--estimate and --truth are required");
+    return cli.fail("--estimate and --truth are required");
 
   std::vector<vpPoseRow> estimates, truth;
   if (!vpGravityPointsIo::readPoses(estimateFile, estimates, error) ||

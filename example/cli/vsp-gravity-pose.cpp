@@ -21,6 +21,7 @@
 
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
+#include "vpCommandLine.h"
 #include "vpCsvTools.h"
 #include "vpGravityPointsIo.h"
 
@@ -29,124 +30,72 @@ namespace
 struct Options
 {
   std::string input, output;
-  vpPoseGravity::vpPoseGravityMethod method = vpPoseGravity::LEAST_SQUARES;
   std::string methodName = "LEAST_SQUARES";
   bool refine = false;
   double threshold = 1e-3;
   unsigned int seed = 0;
 };
 
-void printUsage(std::ostream &os, const char *program)
-{
-  os << "Usage: " << program
-     << " --input points.csv --output poses.csv [--method P3P|LEAST_SQUARES|RANSAC] [--refine]\n"
-        "          [--threshold T] [--seed N]\n"
-        "  --input      per-frame gravity and 2D/3D points (rows 'frame,gravity,gcx,gcy,gcz,gox,goy,goz'\n"
-        "               and 'frame,point,oX,oY,oZ,x,y' with normalized image coordinates x, y)\n"
-        "  --output     CSV 'frame,status,tx,ty,tz,tux,tuy,tuz' (cMo: translation in metres, theta-u in\n"
-        "               radians); never the input file\n"
-        "  --method     P3P (first three points), LEAST_SQUARES (all points, default) or RANSAC\n"
-        "  --refine     maximum-likelihood refinement of each pose on its points (RANSAC: inliers)\n"
-        "  --threshold  RANSAC inlier threshold in normalized coordinates (default 1e-3)\n"
-        "  --seed       RANSAC seed (default 0)\n";
-}
-
-bool parseMethod(const std::string &name, Options &options)
+vpPoseGravity::vpPoseGravityMethod methodId(const std::string &name)
 {
   if (name == "P3P")
-    options.method = vpPoseGravity::P3P;
-  else if (name == "LEAST_SQUARES")
-    options.method = vpPoseGravity::LEAST_SQUARES;
-  else if (name == "RANSAC")
-    options.method = vpPoseGravity::RANSAC;
-  else
-    return false;
-  options.methodName = name;
-  return true;
+    return vpPoseGravity::P3P;
+  return name == "RANSAC" ? vpPoseGravity::RANSAC : vpPoseGravity::LEAST_SQUARES;
 }
 
-//! Parses the command line. \return false with \e error on a bad option.
-bool parseOptions(int argc, char **argv, Options &options, bool &help, std::string &error)
+//! Declares the options of the program; \e options receives their values.
+vpCommandLine commandLine(Options &options)
 {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      help = true;
-      return true;
-    }
-    if (arg == "--refine") {
-      options.refine = true;
-      continue;
-    }
-    if (arg != "--input" && arg != "--output" && arg != "--method" && arg != "--threshold" && arg != "--seed") {
-      error = "unknown option '" + arg + "'";
-      return false;
-    }
-    if (i + 1 >= argc) {
-      error = "option " + arg + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (arg == "--input")
-      options.input = value;
-    else if (arg == "--output")
-      options.output = value;
-    else if (arg == "--method" && !parseMethod(value, options)) {
-      error = "unknown method '" + value + "' (P3P, LEAST_SQUARES or RANSAC)";
-      return false;
-    } else if (arg == "--threshold") {
-      if (!vpCsvTools::parseDouble(value, options.threshold, "--threshold", "value", error) ||
-          !(options.threshold > 0.0)) {
-        error = "--threshold must be a positive number, got '" + value + "'";
-        return false;
-      }
-    } else if (arg == "--seed" && !vpCsvTools::parseIndex(value, options.seed, "--seed", "value", error))
-      return false;
-  }
-  if (options.input.empty() || options.output.empty()) {
-    error = "--input and --output are required";
-    return false;
-  }
-  return vpCsvTools::checkOutputIsNotInput(options.output, {options.input}, error);
+  vpCommandLine cli("--input points.csv --output poses.csv [--method P3P|LEAST_SQUARES|RANSAC] [--refine]\n"
+                    "          [--threshold T] [--seed N]",
+                    "Gravity-aided pose of each frame from its 2D/3D points and the two gravity vectors.");
+  cli.addString("--input", options.input, "FILE",
+                "per-frame gravity and 2D/3D points (rows 'frame,gravity,gcx,gcy,gcz,gox,goy,goz'\n"
+                "and 'frame,point,oX,oY,oZ,x,y' with normalized image coordinates x, y)");
+  cli.addString("--output", options.output, "FILE",
+                "CSV 'frame,status,tx,ty,tz,tux,tuy,tuz' (cMo: translation in metres, theta-u in\n"
+                "radians); never the input file");
+  cli.addChoice("--method", options.methodName, {"P3P", "LEAST_SQUARES", "RANSAC"}, "METHOD",
+                "P3P (first three points), LEAST_SQUARES (all points, default) or RANSAC");
+  cli.addFlag("--refine", options.refine, "maximum-likelihood refinement of each pose on its points (RANSAC: inliers)");
+  cli.addDouble("--threshold", options.threshold, "T",
+                "RANSAC inlier threshold in normalized coordinates (default 1e-3)", vpCommandLine::POSITIVE);
+  cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
+  return cli;
+}
+
+//! The word of \e key in \e table, \e fallback when it is not there.
+template <typename Key>
+std::string lookUp(Key key, const std::vector<std::pair<Key, const char *> > &table, const char *fallback)
+{
+  for (const auto &entry : table)
+    if (entry.first == key)
+      return entry.second;
+  return fallback;
 }
 
 //! Short status word of a vpPoseGravity status, for the CSV.
 std::string statusWord(vpPoseGravity::vpPoseGravityStatus status)
 {
-  switch (status) {
-  case vpPoseGravity::STATUS_OK:
-    return "ok";
-  case vpPoseGravity::STATUS_COINCIDENT_IMAGE_POINTS:
-    return "coincident_image_points";
-  case vpPoseGravity::STATUS_VERTICAL_RAY:
-    return "vertical_ray";
-  case vpPoseGravity::STATUS_NO_SOLUTION:
-    return "no_solution";
-  case vpPoseGravity::STATUS_NO_CONSENSUS:
-    return "no_consensus";
-  case vpPoseGravity::STATUS_REFINEMENT_FAILED:
-    return "refinement_failed";
-  case vpPoseGravity::STATUS_NOT_COMPUTED:
-  default:
-    return "not_computed";
-  }
+  return lookUp<vpPoseGravity::vpPoseGravityStatus>(status,
+                                                    {{vpPoseGravity::STATUS_OK, "ok"},
+                                                     {vpPoseGravity::STATUS_COINCIDENT_IMAGE_POINTS, "coincident_image_points"},
+                                                     {vpPoseGravity::STATUS_VERTICAL_RAY, "vertical_ray"},
+                                                     {vpPoseGravity::STATUS_NO_SOLUTION, "no_solution"},
+                                                     {vpPoseGravity::STATUS_NO_CONSENSUS, "no_consensus"},
+                                                     {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"}},
+                                                    "not_computed");
 }
 
 //! Status word of an input error reported by vpPoseGravity for one frame.
 std::string errorWord(const vpException &e)
 {
-  switch (e.getCode()) {
-  case vpPoseGravityException::badGravityError:
-    return "bad_gravity";
-  case vpPoseGravityException::notEnoughPointError:
-    return "not_enough_points";
-  case vpPoseGravityException::badPointError:
-    return "bad_point";
-  case vpPoseGravityException::degeneratePointsError:
-    return "degenerate_points";
-  default:
-    return "error";
-  }
+  return lookUp<int>(e.getCode(),
+                     {{vpPoseGravityException::badGravityError, "bad_gravity"},
+                      {vpPoseGravityException::notEnoughPointError, "not_enough_points"},
+                      {vpPoseGravityException::badPointError, "bad_point"},
+                      {vpPoseGravityException::degeneratePointsError, "degenerate_points"}},
+                     "error");
 }
 
 vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, const std::string &where)
@@ -161,7 +110,7 @@ vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, con
     pose.setObjectGravity(frame.gObj);
     pose.addPoints(frame.points);
     vpHomogeneousMatrix cMo;
-    if (!pose.computePose(options.method, cMo)) {
+    if (!pose.computePose(methodId(options.methodName), cMo)) {
       row.status = statusWord(pose.getStatus());
       return row;
     }
@@ -181,17 +130,14 @@ vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, con
 int main(int argc, char **argv)
 {
   Options options;
-  bool help = false;
+  vpCommandLine cli = commandLine(options);
+  if (!cli.parse(argc, argv))
+    return cli.exitStatus();
   std::string error;
-  if (!parseOptions(argc, argv, options, help, error)) {
-    std::cerr << argv[0] << ": " << error << "\n";
-    printUsage(std::cerr, argv[0]);
-    return EXIT_FAILURE;
-  }
-  if (help) {
-    printUsage(std::cout, argv[0]);
-    return EXIT_SUCCESS;
-  }
+  if (options.input.empty() || options.output.empty())
+    return cli.fail("--input and --output are required");
+  if (!vpCsvTools::checkOutputIsNotInput(options.output, {options.input}, error))
+    return cli.fail(error);
   std::vector<vpGravityFrame> frames;
   if (!vpGravityPointsIo::readPoints(options.input, frames, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;

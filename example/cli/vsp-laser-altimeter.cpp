@@ -25,11 +25,11 @@
 #include <string>
 #include <vector>
 
-#include <visp3/core/vpXmlParserCamera.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/laser_conic/vpLaserConicDetector.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
+#include "vpCommandLine.h"
 #include "vpCsvTools.h"
 #include "vpLaserOverlay.h"
 #include "vpLaserRigIo.h"
@@ -41,127 +41,51 @@ namespace
 struct Options
 {
   std::string camera, cameraName = "Camera", laser, imagesDir, listFile, output, overlays;
-  vpLaserConicPose::vpLaserConicMethod method = vpLaserConicPose::GP3;
   std::string methodName = "GP3";
   double threshold = 2.0;
   unsigned int seed = 0;
 };
 
-void printUsage(std::ostream &os, const char *program)
+vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
 {
-  os << "Usage: " << program
-     << " --camera camera.xml [--camera-name Camera] --laser laser.txt\n"
-        "          (--images DIR | --list images.txt) --output results.csv\n"
-        "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
-        "  --camera       intrinsics in vpXmlParserCamera format (perspective model without distortion)\n"
-        "  --camera-name  camera name in that file (default Camera)\n"
-        "  --laser        laser calibration: 'opening_angle_deg A' then 'cMl' and its 4 rows\n"
-        "  --images       folder of images (.png .jpg .jpeg .ppm .pgm), processed in name order\n"
-        "  --list         text file with one image path per line (relative to the list's folder)\n"
-        "  --output       CSV 'frame,image,altitude_m,roll_rad,pitch_rad,inliers,status'; never an input\n"
-        "  --method       estimator (default GP3)\n"
-        "  --overlays     folder receiving <image>_overlay.png (points, inliers, fitted conic)\n"
-        "  --threshold    RANSAC inlier threshold in pixels (default 2)\n"
-        "  --seed         RANSAC seed (default 0)\n";
+  if (name == "PP3")
+    return vpLaserConicPose::PP3;
+  if (name == "PP5")
+    return vpLaserConicPose::PP5;
+  return name == "PLANE_PAIR" ? vpLaserConicPose::PLANE_PAIR : vpLaserConicPose::GP3;
 }
 
-bool parseMethod(const std::string &name, Options &options)
+//! Declares the options of the program; \e options receives their values.
+vpCommandLine commandLine(Options &options)
 {
-  const std::pair<const char *, vpLaserConicPose::vpLaserConicMethod> methods[] = {
-      {"GP3", vpLaserConicPose::GP3},
-      {"PP3", vpLaserConicPose::PP3},
-      {"PP5", vpLaserConicPose::PP5},
-      {"PLANE_PAIR", vpLaserConicPose::PLANE_PAIR}};
-  for (const auto &m : methods)
-    if (name == m.first) {
-      options.method = m.second;
-      options.methodName = name;
-      return true;
-    }
-  return false;
+  vpCommandLine cli("--camera camera.xml [--camera-name Camera] --laser laser.txt\n"
+                    "          (--images DIR | --list images.txt) --output results.csv\n"
+                    "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]",
+                    "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
+  cli.addString("--camera", options.camera, "FILE",
+                "intrinsics in vpXmlParserCamera format (perspective model without distortion)");
+  cli.addString("--camera-name", options.cameraName, "NAME", "camera name in that file (default Camera)");
+  cli.addString("--laser", options.laser, "FILE", "laser calibration: 'opening_angle_deg A' then 'cMl' and its 4 rows");
+  cli.addString("--images", options.imagesDir, "DIR", "folder of images (.png .jpg .jpeg .ppm .pgm), processed in name order");
+  cli.addString("--list", options.listFile, "FILE", "text file with one image path per line (relative to the list's folder)");
+  cli.addString("--output", options.output, "FILE",
+                "CSV 'frame,image,altitude_m,roll_rad,pitch_rad,inliers,status'; never an input");
+  cli.addChoice("--method", options.methodName, {"GP3", "PP3", "PP5", "PLANE_PAIR"}, "METHOD", "estimator (default GP3)");
+  cli.addString("--overlays", options.overlays, "DIR", "folder receiving <image>_overlay.png (points, inliers, fitted conic)");
+  cli.addDouble("--threshold", options.threshold, "PX", "RANSAC inlier threshold in pixels (default 2)",
+                vpCommandLine::POSITIVE);
+  cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
+  return cli;
 }
 
-bool parseOptions(int argc, char **argv, Options &options, bool &help, std::string &error)
+//! Checks the options that parsing alone cannot: required ones, exactly one image source.
+bool checkOptions(const Options &options, std::string &error)
 {
-  const std::vector<std::string> valued = {"--camera", "--camera-name", "--laser",     "--images", "--list",
-                                           "--output", "--method",      "--overlays", "--threshold", "--seed"};
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      help = true;
-      return true;
-    }
-    if (std::find(valued.begin(), valued.end(), arg) == valued.end()) {
-      error = "unknown option '" + arg + "'";
-      return false;
-    }
-    if (i + 1 >= argc) {
-      error = "option " + arg + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (arg == "--camera")
-      options.camera = value;
-    else if (arg == "--camera-name")
-      options.cameraName = value;
-    else if (arg == "--laser")
-      options.laser = value;
-    else if (arg == "--images")
-      options.imagesDir = value;
-    else if (arg == "--list")
-      options.listFile = value;
-    else if (arg == "--output")
-      options.output = value;
-    else if (arg == "--overlays")
-      options.overlays = value;
-    else if (arg == "--method" && !parseMethod(value, options)) {
-      error = "unknown method '" + value + "' (GP3, PP3, PP5 or PLANE_PAIR)";
-      return false;
-    } else if (arg == "--threshold" &&
-               (!vpCsvTools::parseDouble(value, options.threshold, "--threshold", "value", error) ||
-                !(options.threshold > 0.0))) {
-      error = "--threshold must be a positive number of pixels, got '" + value + "'";
-      return false;
-    } else if (arg == "--seed" && !vpCsvTools::parseIndex(value, options.seed, "--seed", "value", error))
-      return false;
-  }
-  if (options.camera.empty() || options.laser.empty() || options.output.empty()) {
+  if (options.camera.empty() || options.laser.empty() || options.output.empty())
     error = "--camera, --laser and --output are required";
-    return false;
-  }
-  if (options.imagesDir.empty() == options.listFile.empty()) {
+  else if (options.imagesDir.empty() == options.listFile.empty())
     error = "give exactly one of --images DIR and --list FILE";
-    return false;
-  }
-  return true;
-}
-
-//! Reads the named camera from a vpXmlParserCamera file; the image size must be in the file.
-bool readCamera(const Options &options, vpCameraParameters &cam, std::string &error)
-{
-  if (!fs::is_regular_file(options.camera)) {
-    error = options.camera + ": camera file not found";
-    return false;
-  }
-  vpXmlParserCamera parser;
-  vpCameraParameters parsed;
-  try {
-    if (parser.parse(parsed, options.camera, options.cameraName, vpCameraParameters::perspectiveProjWithoutDistortion) !=
-        vpXmlParserCamera::SEQUENCE_OK) {
-      error = options.camera + ": no camera named '" + options.cameraName +
-              "' with a perspective model without distortion (vpXmlParserCamera format)";
-      return false;
-    }
-  } catch (const vpException &e) {
-    error = options.camera + ": not a vpXmlParserCamera file (" + e.getStringMessage() + ")";
-    return false;
-  }
-  if (!(parsed.get_px() > 0.0) || !(parsed.get_py() > 0.0)) {
-    error = options.camera + ": focal lengths px, py must be positive";
-    return false;
-  }
-  cam = parsed;
-  return true;
+  return error.empty();
 }
 
 bool hasImageExtension(const fs::path &p)
@@ -171,30 +95,33 @@ bool hasImageExtension(const fs::path &p)
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm";
 }
 
-//! Image paths from --images (sorted by name) or --list (one per line, '#' comments, relative to the list).
-bool listImages(const Options &options, std::vector<std::string> &images, std::string &error)
+//! Images of a folder with an image extension, sorted by name.
+bool listFolder(const std::string &folder, std::vector<std::string> &images, std::string &error)
 {
-  if (!options.imagesDir.empty()) {
-    if (!fs::is_directory(options.imagesDir)) {
-      error = options.imagesDir + ": image folder not found";
-      return false;
-    }
-    for (const fs::directory_entry &entry : fs::directory_iterator(options.imagesDir))
-      if (entry.is_regular_file() && hasImageExtension(entry.path()))
-        images.push_back(entry.path().string());
-    std::sort(images.begin(), images.end());
-    if (images.empty()) {
-      error = options.imagesDir + ": no image (.png .jpg .jpeg .ppm .pgm) in this folder";
-      return false;
-    }
-    return true;
-  }
-  std::ifstream in(options.listFile);
-  if (!in) {
-    error = options.listFile + ": cannot open the image list";
+  if (!fs::is_directory(folder)) {
+    error = folder + ": image folder not found";
     return false;
   }
-  const fs::path base = fs::path(options.listFile).parent_path();
+  for (const fs::directory_entry &entry : fs::directory_iterator(folder))
+    if (entry.is_regular_file() && hasImageExtension(entry.path()))
+      images.push_back(entry.path().string());
+  std::sort(images.begin(), images.end());
+  if (images.empty()) {
+    error = folder + ": no image (.png .jpg .jpeg .ppm .pgm) in this folder";
+    return false;
+  }
+  return true;
+}
+
+//! Images named by a list file: one per line, '#' comments, relative to the list's folder.
+bool readList(const std::string &listFile, std::vector<std::string> &images, std::string &error)
+{
+  std::ifstream in(listFile);
+  if (!in) {
+    error = listFile + ": cannot open the image list";
+    return false;
+  }
+  const fs::path base = fs::path(listFile).parent_path();
   std::string line;
   unsigned int lineNumber = 0;
   while (std::getline(in, line)) {
@@ -204,15 +131,30 @@ bool listImages(const Options &options, std::vector<std::string> &images, std::s
       continue;
     const fs::path p = fs::path(entry).is_absolute() ? fs::path(entry) : base / entry;
     if (!fs::is_regular_file(p)) {
-      error = vpCsvTools::location(options.listFile, lineNumber) + ": image '" + p.string() + "' not found";
+      error = vpCsvTools::location(listFile, lineNumber) + ": image '" + p.string() + "' not found";
       return false;
     }
     images.push_back(p.string());
   }
   if (images.empty()) {
-    error = options.listFile + ": the list names no image";
+    error = listFile + ": the list names no image";
     return false;
   }
+  return true;
+}
+
+//! Image paths from --images or --list.
+bool listImages(const Options &options, std::vector<std::string> &images, std::string &error)
+{
+  if (!(options.imagesDir.empty() ? readList(options.listFile, images, error)
+                                  : listFolder(options.imagesDir, images, error)))
+    return false;
+  for (const std::string &image : images)
+    if (image.find(',') != std::string::npos) {
+      // Paths are written unquoted in the results CSV, where a comma would shift the columns.
+      error = "image path '" + image + "' contains a comma, which the CSV output cannot hold: rename it";
+      return false;
+    }
   return true;
 }
 
@@ -253,22 +195,26 @@ FrameResult processImage(const std::string &image, const Options &options, vpLas
 {
   FrameResult result;
   vpImage<vpRGBa> I;
+  std::string why = "empty image";
   try {
     vpImageIo::read(I, image);
   } catch (const vpException &e) {
-    std::cerr << image << ": cannot be read as an image (" << e.getStringMessage() << ")" << std::endl;
+    why = e.getStringMessage();
+  }
+  if (I.getSize() == 0) { // a file that is not an image may also read as an empty image
+    std::cerr << image << ": cannot be read as an image (" << why << ")" << std::endl;
     result.status = "unreadable_image";
     return result;
   }
   const std::vector<vpImagePoint> points = detector.detect(I);
   vpMatrix conic;
   std::vector<unsigned int> inliers;
-  if (points.size() < minimumPoints(options.method)) {
+  if (points.size() < minimumPoints(methodId(options.methodName))) {
     result.status = "not_enough_points";
   } else {
     vpPlane plane;
     try {
-      if (estimator.computePlane(points, options.method, plane)) {
+      if (estimator.computePlane(points, methodId(options.methodName), plane)) {
         result.altitude = estimator.getAltitude();
         result.roll = estimator.getRoll();
         result.pitch = estimator.getPitch();
@@ -292,29 +238,36 @@ FrameResult processImage(const std::string &image, const Options &options, vpLas
   }
   return result;
 }
+//! One row of the results CSV; the numbers are "nan" when the frame has no plane.
+void writeRow(std::ostream &out, size_t frame, const std::string &image, const FrameResult &r)
+{
+  out << frame << "," << image << ",";
+  if (r.status == "ok")
+    out << vpCsvTools::formatDouble(r.altitude) << "," << vpCsvTools::formatDouble(r.roll) << ","
+        << vpCsvTools::formatDouble(r.pitch);
+  else
+    out << "nan,nan,nan";
+  out << "," << r.inliers << "," << r.status << "\n";
+}
 } // namespace
 
 int main(int argc, char **argv)
 {
   Options options;
-  bool help = false;
+  vpCommandLine cli = commandLine(options);
+  if (!cli.parse(argc, argv))
+    return cli.exitStatus();
   std::string error;
-  if (!parseOptions(argc, argv, options, help, error)) {
-    std::cerr << argv[0] << ": " << error << "\n";
-    printUsage(std::cerr, argv[0]);
-    return EXIT_FAILURE;
-  }
-  if (help) {
-    printUsage(std::cout, argv[0]);
-    return EXIT_SUCCESS;
-  }
+  if (!checkOptions(options, error))
+    return cli.fail(error);
   vpCameraParameters cam;
   double openingAngle = 0.0;
   vpHomogeneousMatrix cMl;
   std::vector<std::string> images;
   // The output is checked against the named files first, so that a wrong command line is refused
   // before the image list is read.
-  if (!readCamera(options, cam, error) ||
+  unsigned int width = 0, height = 0; // not needed: images of any size are accepted
+  if (!vpLaserRigIo::readCamera(options.camera, options.cameraName, cam, width, height, error) ||
       !vpLaserRigIo::readLaserCalibration(options.laser, openingAngle, cMl, error) ||
       !checkOutputs(options, images, error) || !listImages(options, images, error) ||
       !checkOutputs(options, images, error)) {
@@ -350,15 +303,8 @@ int main(int argc, char **argv)
   unsigned int found = 0;
   for (size_t k = 0; k < images.size(); ++k) {
     const FrameResult r = processImage(images[k], options, estimator, detector);
-    out << k << "," << images[k] << ",";
-    if (r.status == "ok") {
-      out << vpCsvTools::formatDouble(r.altitude) << "," << vpCsvTools::formatDouble(r.roll) << ","
-          << vpCsvTools::formatDouble(r.pitch);
-      ++found;
-    } else {
-      out << "nan,nan,nan";
-    }
-    out << "," << r.inliers << "," << r.status << "\n";
+    writeRow(out, k, images[k], r);
+    found += r.status == "ok" ? 1 : 0;
   }
   if (!out) {
     std::cerr << argv[0] << ": " << options.output << ": write error" << std::endl;

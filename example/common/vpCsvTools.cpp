@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -36,29 +37,49 @@ std::vector<std::string> split(const std::string &line)
   return fields;
 }
 
+bool toDouble(const std::string &text, double &value)
+{
+  // strtod skips leading blanks: refuse them here so that " 1" is as wrong as "1 ".
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
+    return false;
+  errno = 0;
+  char *end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+    return false;
+  value = v;
+  return true;
+}
+
+bool toInteger(const std::string &text, long long &value)
+{
+  const std::string digits = (!text.empty() && text[0] == '-') ? text.substr(1) : text;
+  // 18 digits always fit a long long: no overflow check needed.
+  if (digits.empty() || digits.size() > 18 || digits.find_first_not_of("0123456789") != std::string::npos)
+    return false;
+  value = std::strtoll(text.c_str(), nullptr, 10);
+  return true;
+}
+
 bool parseDouble(const std::string &field, double &value, const std::string &where, const std::string &column,
                  std::string &error)
 {
-  errno = 0;
-  char *end = nullptr;
-  const double v = std::strtod(field.c_str(), &end);
-  if (field.empty() || end != field.c_str() + field.size() || errno == ERANGE || !std::isfinite(v)) {
+  if (!toDouble(field, value)) {
     error = where + ": column " + column + " ('" + field + "') is not a finite number";
     return false;
   }
-  value = v;
   return true;
 }
 
 bool parseIndex(const std::string &field, unsigned int &value, const std::string &where, const std::string &column,
                 std::string &error)
 {
-  const bool digitsOnly = !field.empty() && field.size() <= 9 && field.find_first_not_of("0123456789") == std::string::npos;
-  if (!digitsOnly) {
+  long long v = 0;
+  if (field.empty() || field[0] == '-' || !toInteger(field, v) || v > 999999999) {
     error = where + ": column " + column + " ('" + field + "') is not a non-negative integer";
     return false;
   }
-  value = static_cast<unsigned int>(std::strtoul(field.c_str(), nullptr, 10));
+  value = static_cast<unsigned int>(v);
   return true;
 }
 

@@ -4,7 +4,7 @@
  */
 /*!
   \file vpCsvTools.h
-  \brief Small helpers shared by the command-line programs and the demo: strict CSV field parsing
+  \brief Small helpers shared by the example programs: strict number conversion, CSV field parsing
   with messages that name the file and line, and the "never overwrite an input" check.
 */
 #ifndef VP_CSV_TOOLS_H
@@ -20,6 +20,12 @@ std::vector<std::string> split(const std::string &line);
 
 //! Removes leading and trailing blanks (spaces, tabs, carriage return).
 std::string trim(const std::string &s);
+
+//! Converts the whole of \e text to a finite double (no blank, no trailing character). \return false otherwise.
+bool toDouble(const std::string &text, double &value);
+
+//! Converts the whole of \e text (an optional '-' and 1 to 18 digits) to an integer. \return false otherwise.
+bool toInteger(const std::string &text, long long &value);
 
 /*!
   Parses a finite double from the whole of \e field (no trailing characters).

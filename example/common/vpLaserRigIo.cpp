@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <sstream>
 
@@ -17,6 +18,8 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpXmlParserCamera.h>
+
+#include "vpCsvTools.h"
 
 namespace
 {
@@ -48,35 +51,18 @@ bool parseNumbers(const std::string &line, unsigned int count, double *values)
   return !(ss >> rest);
 }
 
-//! Parses a full-field double; rejects trailing characters and non-finite values.
-bool parseDouble(const std::string &text, double &value)
+//! Sends std::cout to nowhere while it lives.
+class CoutSilencer
 {
-  char *end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return end != text.c_str() && *end == '\0' && std::isfinite(value);
-}
+public:
+  CoutSilencer() : m_saved(std::cout.rdbuf(nullptr)) {}
+  ~CoutSilencer() { std::cout.rdbuf(m_saved); }
+  CoutSilencer(const CoutSilencer &) = delete;
+  CoutSilencer &operator=(const CoutSilencer &) = delete;
 
-std::vector<std::string> splitCsv(const std::string &line)
-{
-  std::vector<std::string> fields;
-  std::string field;
-  std::istringstream ss(line);
-  while (std::getline(ss, field, ',')) {
-    fields.push_back(field);
-  }
-  if (!line.empty() && line.back() == ',') {
-    fields.push_back(std::string());
-  }
-  return fields;
-}
-
-std::string stripCarriageReturn(std::string line)
-{
-  if (!line.empty() && line.back() == '\r') {
-    line.pop_back();
-  }
-  return line;
-}
+private:
+  std::streambuf *m_saved;
+};
 } // namespace
 
 bool vpLaserRigIo::readLaserCalibration(const std::string &file, double &openingAngleRad, vpHomogeneousMatrix &cMl,
@@ -193,7 +179,7 @@ bool vpLaserRigIo::readGroundTruth(const std::string &file, std::vector<vpLaserG
     return false;
   }
   std::string line;
-  if (!std::getline(in, line) || stripCarriageReturn(line) != kGroundTruthHeader) {
+  if (!std::getline(in, line) || vpCsvTools::trim(line) != kGroundTruthHeader) {
     error = "ground truth '" + file + "': first line must be '" + std::string(kGroundTruthHeader) + "'";
     return false;
   }
@@ -201,19 +187,19 @@ bool vpLaserRigIo::readGroundTruth(const std::string &file, std::vector<vpLaserG
   unsigned int lineNumber = 1;
   while (std::getline(in, line)) {
     ++lineNumber;
-    line = stripCarriageReturn(line);
+    line = vpCsvTools::trim(line);
     if (line.empty()) {
       continue;
     }
     const std::string where = "ground truth '" + file + "' line " + std::to_string(lineNumber);
-    const std::vector<std::string> fields = splitCsv(line);
+    const std::vector<std::string> fields = vpCsvTools::split(line);
     if (fields.size() != 9) {
       error = where + ": expected 9 comma-separated fields, got " + std::to_string(fields.size());
       return false;
     }
     double values[9];
     for (unsigned int i = 0; i < 9; ++i) {
-      if (i != 1 && !parseDouble(fields[i], values[i])) {
+      if (i != 1 && !vpCsvTools::toDouble(fields[i], values[i])) {
         error = where + ": field " + std::to_string(i + 1) + " ('" + fields[i] + "') is not a finite number";
         return false;
       }
@@ -269,22 +255,36 @@ bool vpLaserRigIo::writeGroundTruth(const std::string &file, const std::vector<v
   return true;
 }
 
-bool vpLaserRigIo::readCamera(const std::string &file, vpCameraParameters &cam, unsigned int &width,
-                              unsigned int &height, std::string &error)
+bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, vpCameraParameters &cam,
+                              unsigned int &width, unsigned int &height, std::string &error)
 {
   if (!vpIoTools::checkFilename(file)) {
-    error = "cannot open camera file '" + file + "'";
+    error = file + ": camera file not found";
     return false;
   }
   vpXmlParserCamera parser;
   vpCameraParameters parsed;
-  if (parser.parse(parsed, file, "Camera", vpCameraParameters::perspectiveProjWithoutDistortion) !=
-      vpXmlParserCamera::SEQUENCE_OK) {
-    error = "camera file '" + file + "': no camera named 'Camera' with a perspective projection without distortion";
+  int status = vpXmlParserCamera::SEQUENCE_ERROR;
+  std::string parseError;
+  {
+    // vpXmlParserCamera reports the camera it found on std::cout: keep that out of the programs' output.
+    const CoutSilencer silence;
+    try {
+      status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithoutDistortion);
+    } catch (const vpException &e) {
+      parseError = e.getStringMessage();
+    }
+  }
+  if (!parseError.empty()) {
+    error = file + ": not a vpXmlParserCamera file (" + parseError + ")";
     return false;
   }
-  if (parser.getWidth() == 0 || parser.getHeight() == 0) {
-    error = "camera file '" + file + "': image_width and image_height are missing";
+  if (status != vpXmlParserCamera::SEQUENCE_OK) {
+    error = file + ": no camera named '" + name + "' with a perspective model without distortion (vpXmlParserCamera format)";
+    return false;
+  }
+  if (!(parsed.get_px() > 0.0) || !(parsed.get_py() > 0.0)) {
+    error = file + ": focal lengths px, py must be positive";
     return false;
   }
   cam = parsed;
@@ -314,9 +314,13 @@ bool vpLaserRigIo::readDataset(const std::string &directory, vpLaserDataset &dat
     error = "dataset directory '" + directory + "' does not exist";
     return false;
   }
-  if (!readCamera(directory + "/camera.xml", result.cam, result.width, result.height, error) ||
+  if (!readCamera(directory + "/camera.xml", "Camera", result.cam, result.width, result.height, error) ||
       !readLaserCalibration(directory + "/laser.txt", result.openingAngle, result.cMl, error) ||
       !readGroundTruth(directory + "/groundtruth.csv", result.frames, error)) {
+    return false;
+  }
+  if (result.width == 0 || result.height == 0) {
+    error = directory + "/camera.xml: image_width and image_height are missing";
     return false;
   }
   dataset = result;

@@ -121,11 +121,13 @@ public:
                                std::string &error);
 
   /*!
-    Reads the camera "Camera" (perspective projection without distortion) from a vpXmlParserCamera file.
-    \return false with \e error when the file or the camera is missing or the image size is absent.
+    Reads the camera \e name (perspective projection without distortion) from a vpXmlParserCamera
+    file; \e width and \e height are 0 when the file gives no image size.
+    \return false with \e error (naming the file) when the file is missing or not a vpXmlParserCamera
+    file, the camera is not in it, or its focal lengths are not positive.
   */
-  static bool readCamera(const std::string &file, vpCameraParameters &cam, unsigned int &width,
-                         unsigned int &height, std::string &error);
+  static bool readCamera(const std::string &file, const std::string &name, vpCameraParameters &cam,
+                         unsigned int &width, unsigned int &height, std::string &error);
   //! Writes the camera as "Camera" in vpXmlParserCamera format. \return false with \e error on failure.
   static bool writeCamera(const std::string &file, const vpCameraParameters &cam, unsigned int width,
                           unsigned int height, std::string &error);

@@ -24,6 +24,31 @@ double tickStep(double span, int target)
   return (m < 1.5 ? 1.0 : (m < 3.5 ? 2.0 : (m < 7.5 ? 5.0 : 10.0))) * p;
 }
 
+/*!
+  Draws marker \e shape (0 circle, 1 square, 2 plus, 3 cross, then again) centred on \e p. Series of
+  points get different shapes, so that markers of methods that agree stay visible on top of each other.
+*/
+void drawMarker(vpImage<vpRGBa> &I, const vpImagePoint &p, unsigned int shape, const vpColor &color)
+{
+  const double r = 4.0;
+  switch (shape % 4) {
+  case 0:
+    vpImageDraw::drawCircle(I, p, r, color, 2);
+    break;
+  case 1:
+    vpImageDraw::drawRectangle(I, vpRect(p - vpImagePoint(r, r), p + vpImagePoint(r, r)), color, false, 1);
+    break;
+  case 2:
+    vpImageDraw::drawLine(I, p - vpImagePoint(r + 2, 0), p + vpImagePoint(r + 2, 0), color, 1);
+    vpImageDraw::drawLine(I, p - vpImagePoint(0, r + 2), p + vpImagePoint(0, r + 2), color, 1);
+    break;
+  default:
+    vpImageDraw::drawLine(I, p - vpImagePoint(r + 1, r + 1), p + vpImagePoint(r + 1, r + 1), color, 1);
+    vpImageDraw::drawLine(I, p + vpImagePoint(-r - 1, r + 1), p + vpImagePoint(r + 1, -r - 1), color, 1);
+    break;
+  }
+}
+
 std::string formatTick(double v, double step)
 {
   char buf[32];
@@ -36,7 +61,7 @@ std::string formatTick(double v, double step)
 vpPngPlot::vpPngPlot(const std::string &title, const std::string &xLabel, const std::string &yLabel,
                      unsigned int width, unsigned int height)
   : m_title(title), m_xLabel(xLabel), m_yLabel(yLabel), m_width(std::max(width, 200u)),
-    m_height(std::max(height, 150u)), m_fixedX(false), m_fixedY(false), m_xmin(0), m_xmax(1), m_ymin(0), m_ymax(1)
+    m_height(std::max(height, 150u)), m_fixedX(false), m_fixedY(false), m_logY(false), m_xmin(0), m_xmax(1), m_ymin(0), m_ymax(1)
 {
 }
 
@@ -66,17 +91,45 @@ void vpPngPlot::setYRange(double ymin, double ymax)
   m_ymax = ymax;
 }
 
+void vpPngPlot::setLogY(bool logY) { m_logY = logY; }
+
+double vpPngPlot::plotY(double y) const
+{
+  if (!m_logY)
+    return y;
+  return y > 0.0 ? std::log10(y) : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<double> vpPngPlot::yTicks(double y0, double y1) const
+{
+  std::vector<double> ticks;
+  if (!m_logY || y1 - y0 < 1.0) {
+    // Linear steps (on a log axis spanning less than a decade, steps of the exponent).
+    const double step = tickStep(y1 - y0, 6);
+    for (double v = std::ceil(y0 / step) * step; v <= y1 + 1e-9 * step; v += step)
+      ticks.push_back(v);
+    return ticks;
+  }
+  // Decades, plus 2 and 5 times them when the axis spans few decades.
+  const bool fine = y1 - y0 < 3.0;
+  for (double decade = std::floor(y0); decade <= y1; decade += 1.0)
+    for (const double factor : {1.0, 2.0, 5.0})
+      if ((fine || factor == 1.0) && decade + std::log10(factor) >= y0 && decade + std::log10(factor) <= y1)
+        ticks.push_back(decade + std::log10(factor));
+  return ticks;
+}
+
 void vpPngPlot::dataRange(double &x0, double &x1, double &y0, double &y1) const
 {
   x0 = y0 = std::numeric_limits<double>::infinity();
   x1 = y1 = -std::numeric_limits<double>::infinity();
   for (const Series &s : m_series)
     for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i)
-      if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
+      if (std::isfinite(s.x[i]) && std::isfinite(plotY(s.y[i]))) {
         x0 = std::min(x0, s.x[i]);
         x1 = std::max(x1, s.x[i]);
-        y0 = std::min(y0, s.y[i]);
-        y1 = std::max(y1, s.y[i]);
+        y0 = std::min(y0, plotY(s.y[i]));
+        y1 = std::max(y1, plotY(s.y[i]));
       }
   if (!(x1 >= x0)) {
     x0 = 0;
@@ -102,9 +155,9 @@ void vpPngPlot::dataRange(double &x0, double &x1, double &y0, double &y1) const
     x0 = m_xmin;
     x1 = m_xmax;
   }
-  if (m_fixedY) {
-    y0 = m_ymin;
-    y1 = m_ymax;
+  if (m_fixedY && std::isfinite(plotY(m_ymin)) && std::isfinite(plotY(m_ymax))) {
+    y0 = plotY(m_ymin);
+    y1 = plotY(m_ymax);
   }
 }
 
@@ -128,10 +181,12 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
     const std::string label = formatTick(v, sx);
     font.drawText(I, label, vpImagePoint(bottom + 6, p.get_j() - font.getMeasure(label).get_j() / 2), axis);
   }
-  for (double v = std::ceil(y0 / sy) * sy; v <= y1 + 1e-9 * sy; v += sy) {
+  for (const double v : yTicks(y0, y1)) {
     const vpImagePoint p = toPixel(x0, v);
     vpImageDraw::drawLine(I, vpImagePoint(p.get_i(), left), vpImagePoint(p.get_i(), right), grid);
-    const std::string label = formatTick(v, sy);
+    // On a log axis a tick at v stands for 10^v, labelled with the digits of its own decade.
+    const double value = m_logY ? std::pow(10.0, v) : v;
+    const std::string label = formatTick(value, m_logY ? value : sy);
     font.drawText(I, label, vpImagePoint(p.get_i() - 8, left - 8 - font.getMeasure(label).get_j()), axis);
   }
   vpImageDraw::drawRectangle(I, vpRect(vpImagePoint(top, left), vpImagePoint(bottom, right)), axis);
@@ -140,25 +195,27 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   auto inside = [&](const vpImagePoint &p) {
     return p.get_i() >= top - 0.5 && p.get_i() <= bottom + 0.5 && p.get_j() >= left - 0.5 && p.get_j() <= right + 0.5;
   };
+  unsigned int shape = 0;
   for (const Series &s : m_series) {
     const size_t n = std::min(s.x.size(), s.y.size());
     bool havePrevious = false;
     vpImagePoint previous;
     for (size_t i = 0; i < n; ++i) {
-      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(plotY(s.y[i]))) {
         havePrevious = false;
         continue;
       }
-      const vpImagePoint p = toPixel(s.x[i], s.y[i]);
+      const vpImagePoint p = toPixel(s.x[i], plotY(s.y[i]));
       if (s.markers) {
         if (inside(p))
-          vpImageDraw::drawCircle(I, p, 3, s.color, 2);
+          drawMarker(I, p, shape, s.color);
       } else if (havePrevious && inside(p) && inside(previous)) {
         vpImageDraw::drawLine(I, previous, p, s.color, 2);
       }
       previous = p;
       havePrevious = true;
     }
+    shape += s.markers ? 1 : 0;
   }
 
   // Title, axis labels and legend.
@@ -166,18 +223,39 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   font.drawText(I, m_xLabel, vpImagePoint(m_height - 24, (left + right - font.getMeasure(m_xLabel).get_j()) / 2),
                 vpColor::black);
   font.drawText(I, m_yLabel, vpImagePoint(top - 20, 8), vpColor::black);
-  double row = top + 8;
+  drawLegend(I, font, right, top);
+}
+
+void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, double right, double top) const
+{
+  // One column of samples and one of names, on a white box that hides the data behind it.
+  double nameWidth = 0.0;
+  unsigned int rows = 0;
+  for (const Series &s : m_series)
+    if (!s.name.empty()) {
+      nameWidth = std::max(nameWidth, font.getMeasure(s.name).get_j());
+      ++rows;
+    }
+  if (rows == 0)
+    return;
+  const double rowHeight = 20.0, sampleWidth = 30.0;
+  const vpImagePoint corner(top + 6, right - nameWidth - sampleWidth - 24);
+  const vpRect box(corner, corner + vpImagePoint(rows * rowHeight + 8, nameWidth + sampleWidth + 18));
+  vpImageDraw::drawRectangle(I, box, vpColor::white, true);
+  vpImageDraw::drawRectangle(I, box, vpColor(180, 180, 180), false, 1);
+  double row = corner.get_i() + 4;
+  unsigned int shape = 0;
   for (const Series &s : m_series) {
+    const vpImagePoint sample(row + 8, corner.get_j() + 6 + sampleWidth / 2);
+    if (s.markers)
+      drawMarker(I, sample, shape++, s.color);
+    else if (!s.name.empty())
+      vpImageDraw::drawLine(I, sample - vpImagePoint(0, sampleWidth / 2), sample + vpImagePoint(0, sampleWidth / 2),
+                            s.color, 3);
     if (s.name.empty())
       continue;
-    const double w = font.getMeasure(s.name).get_j();
-    const vpImagePoint at(row, right - w - 40);
-    if (s.markers)
-      vpImageDraw::drawCircle(I, vpImagePoint(row + 8, at.get_j() - 17), 3, s.color, 2);
-    else
-      vpImageDraw::drawLine(I, vpImagePoint(row + 8, at.get_j() - 4), vpImagePoint(row + 8, at.get_j() - 30), s.color, 3);
-    font.drawText(I, s.name, vpImagePoint(row, at.get_j()), vpColor::black);
-    row += 20;
+    font.drawText(I, s.name, vpImagePoint(row, corner.get_j() + sampleWidth + 12), vpColor::black);
+    row += rowHeight;
   }
 }
 

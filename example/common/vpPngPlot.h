@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <visp3/core/vpColor.h>
+#include <visp3/core/vpFont.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpRGBa.h>
 
@@ -29,13 +30,15 @@ public:
   //! Adds a polyline through (x[i], y[i]); non-finite samples break the line.
   void addCurve(const std::string &name, const std::vector<double> &x, const std::vector<double> &y,
                 const vpColor &color);
-  //! Adds markers at (x[i], y[i]).
+  //! Adds markers at (x[i], y[i]); successive point series get a circle, a square, a plus, a cross.
   void addPoints(const std::string &name, const std::vector<double> &x, const std::vector<double> &y,
                  const vpColor &color);
   //! Fixes the x range instead of fitting the data.
   void setXRange(double xmin, double xmax);
   //! Fixes the y range instead of fitting the data.
   void setYRange(double ymin, double ymax);
+  //! Logarithmic y axis (decade ticks); samples <= 0 are then left out.
+  void setLogY(bool logY);
   //! Renders the plot.
   void render(vpImage<vpRGBa> &I) const;
   //! Renders and writes the plot to a PNG file (throws vpException if it cannot be written).
@@ -49,12 +52,18 @@ private:
     vpColor color;
     bool markers;
   };
+  //! The plotted ordinate of \e y: y, or log10(y) on a log axis (NaN for y <= 0).
+  double plotY(double y) const;
+  //! Tick positions (plotted ordinates) between \e y0 and \e y1.
+  std::vector<double> yTicks(double y0, double y1) const;
   void dataRange(double &x0, double &x1, double &y0, double &y1) const;
+  //! Legend box in the top-right corner of the plot area (right edge \e right, top edge \e top).
+  void drawLegend(vpImage<vpRGBa> &I, const vpFont &font, double right, double top) const;
 
   std::string m_title, m_xLabel, m_yLabel;
   unsigned int m_width, m_height;
   std::vector<Series> m_series;
-  bool m_fixedX, m_fixedY;
+  bool m_fixedX, m_fixedY, m_logY;
   double m_xmin, m_xmax, m_ymin, m_ymax;
 };
 

@@ -74,8 +74,12 @@ struct vpAccuracyBound
   std::string why;      //!< where the bound comes from
 };
 
-//! Prints a table: one line per method with success count, mean ± std of each error and time.
-void printSummary(std::ostream &os, const std::string &title, const std::vector<vpMethodSummary> &summaries);
+/*!
+  Prints a table: one line per method with its success count, mean +/- std and median of each error
+  and its time, then \e note (what the reader needs to interpret the table) when it is not empty.
+*/
+void printSummary(std::ostream &os, const std::string &title, const std::vector<vpMethodSummary> &summaries,
+                  const std::string &note);
 
 /*!
   Compares the summaries with the bounds and with a minimum success rate; prints each failure.
@@ -100,12 +104,18 @@ private:
   bool m_terminal;
 };
 
-//! Runs the laser part. \return false (with a message on stderr) when the data cannot be read.
-bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &summaries,
+/*!
+  Runs the laser part; \e note receives a line on the detection for the summary.
+  \return false (with a message on stderr) when the data cannot be read.
+*/
+bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &summaries, std::string &note,
                   std::vector<std::string> &writtenFiles);
 
-//! Runs the gravity-aided pose part. \return false (with a message on stderr) when the data cannot be read.
-bool runGravityDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &summaries,
+/*!
+  Runs the gravity-aided pose part; \e note receives a line on the mismatched points for the summary.
+  \return false (with a message on stderr) when the data cannot be read.
+*/
+bool runGravityDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &summaries, std::string &note,
                     std::vector<std::string> &writtenFiles);
 
 //! Bounds of --check for the laser part (values and reasons in demoLaser.cpp).

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpTime.h>
@@ -105,7 +106,7 @@ std::vector<vpAccuracyBound> laserBounds()
   return bounds;
 }
 
-bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &summaries,
+bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &summaries, std::string &note,
                   std::vector<std::string> &writtenFiles)
 {
   vpLaserDataset dataset;
@@ -136,6 +137,7 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
   const std::vector<size_t> overlayFrames = {0, frames.size() / 2, frames.size() - 1};
 
   vpLaserConicDetector detector;
+  size_t fewestPoints = std::numeric_limits<size_t>::max(), mostPoints = 0;
   vpProgress progress("laser sequence", frames.size());
   for (size_t k = 0; k < frames.size(); ++k) {
     progress.update(k);
@@ -148,6 +150,8 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
       return false;
     }
     const std::vector<vpImagePoint> points = detector.detect(I);
+    fewestPoints = std::min(fewestPoints, points.size());
+    mostPoints = std::max(mostPoints, points.size());
     truth.frame.push_back(gt.frame);
     truth.altitude.push_back(gt.altitude);
     truth.roll.push_back(gt.roll * 180.0 / M_PI);
@@ -194,6 +198,9 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
   }
   progress.done();
   writtenFiles.push_back(csvFile);
+  note = std::to_string(fewestPoints) + " to " + std::to_string(mostPoints) +
+         " trace points detected per frame. laser.txt is a calibrated laser pose, not the one used for\n"
+         "rendering: its small error is part of these errors.";
 
   const vpColor colors[] = {vpColor::red, vpColor::blue, vpColor::darkGreen, vpColor::orange};
   struct PlotSpec

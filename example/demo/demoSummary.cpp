@@ -52,11 +52,12 @@ double vpErrorStats::max() const
 
 namespace
 {
-std::string meanStd(const vpErrorColumn &column)
+//! "mean +/- std, median" in the display unit.
+std::string meanStdMedian(const vpErrorColumn &column)
 {
   std::ostringstream os;
   os << std::fixed << std::setprecision(column.scale >= 100.0 ? 1 : 3) << column.stats.mean() * column.scale
-     << " +/- " << column.stats.stddev() * column.scale;
+     << " +/- " << column.stats.stddev() * column.scale << ", " << column.stats.median() * column.scale;
   return os.str();
 }
 
@@ -70,12 +71,13 @@ double statistic(const vpErrorStats &stats, const std::string &name)
 }
 } // namespace
 
-void printSummary(std::ostream &os, const std::string &title, const std::vector<vpMethodSummary> &summaries)
+void printSummary(std::ostream &os, const std::string &title, const std::vector<vpMethodSummary> &summaries,
+                  const std::string &note)
 {
-  os << "\n" << title << " (absolute errors against ground truth, mean +/- std over the frames with a result)\n";
+  os << "\n" << title << "\n(absolute errors against the ground truth over the frames with a result: mean +/- std, median)\n";
   if (summaries.empty())
     return;
-  const int methodWidth = 22, successWidth = 9, columnWidth = 22;
+  const int methodWidth = 22, successWidth = 9, columnWidth = 26;
   os << std::left << std::setw(methodWidth) << "method" << std::setw(successWidth) << "ok";
   for (const vpErrorColumn &c : summaries.front().errors)
     os << std::setw(columnWidth) << (c.name + " [" + c.unit + "]");
@@ -85,10 +87,12 @@ void printSummary(std::ostream &os, const std::string &title, const std::vector<
     ok << s.successes << "/" << s.frames;
     os << std::left << std::setw(methodWidth) << s.method << std::setw(successWidth) << ok.str();
     for (const vpErrorColumn &c : s.errors)
-      os << std::setw(columnWidth) << meanStd(c);
+      os << std::setw(columnWidth) << meanStdMedian(c);
     os << std::fixed << std::setprecision(3) << (s.frames ? s.totalTimeMs / s.frames : 0.0) << "\n";
   }
   os.unsetf(std::ios::floatfield);
+  if (!note.empty())
+    os << note << "\n";
 }
 
 bool checkBounds(std::ostream &os, const std::vector<vpMethodSummary> &summaries,

@@ -33,6 +33,7 @@
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpTranslationVector.h>
 
+#include "vpCommandLine.h"
 #include "vpGravityPointsIo.h"
 
 namespace
@@ -137,40 +138,21 @@ vpGravityFrame simulateFrame(unsigned int k, unsigned int frames, const vpHomoge
   return frame;
 }
 
-int usage(const char *program, const std::string &error)
-{
-  if (!error.empty())
-    std::cerr << program << ": " << error << "\n";
-  std::cerr << "Usage: " << program << " --output DIR [--seed N] [--frames N]\n"
-            << "Writes DIR/points.csv and DIR/groundtruth.csv (simulated gravity-aided pose sequence).\n";
-  return error.empty() ? EXIT_SUCCESS : EXIT_FAILURE;
-}
 } // namespace
 
 int main(int argc, char **argv)
 {
   std::string output;
   unsigned int seed = 2013, frames = 60;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h")
-      return usage(argv[0], "");
-    if (i + 1 >= argc)
-      return usage(argv[0], "option " + arg + " needs a value");
-    const std::string value = argv[++i];
-    char *end = nullptr;
-    if (arg == "--output")
-      output = value;
-    else if (arg == "--seed" || arg == "--frames") {
-      const unsigned long v = std::strtoul(value.c_str(), &end, 10);
-      if (value.empty() || *end != '\0' || (arg == "--frames" && (v < 1 || v > 100000)))
-        return usage(argv[0], "bad value '" + value + "' for " + arg);
-      (arg == "--seed" ? seed : frames) = static_cast<unsigned int>(v);
-    } else
-      return usage(argv[0], "unknown option " + arg);
-  }
+  vpCommandLine cli("--output DIR [--seed N] [--frames N]",
+                    "Writes DIR/points.csv and DIR/groundtruth.csv (simulated gravity-aided pose sequence).");
+  cli.addString("--output", output, "DIR", "folder of the two files (created if needed)");
+  cli.addUnsigned("--seed", seed, "N", "seed of the random generator (default 2013, that of data/gravity_sequence)");
+  cli.addUnsigned("--frames", frames, "N", "number of frames (default 60)", 1, 100000);
+  if (!cli.parse(argc, argv))
+    return cli.exitStatus();
   if (output.empty())
-    return usage(argv[0], "--output is required");
+    return cli.fail("--output is required");
 
   std::error_code ec;
   std::filesystem::create_directories(output, ec);

@@ -15,6 +15,7 @@
   vsp-demo [--output DIR] [--data DIR] [--frames N] [--check]
   \endverbatim
 */
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -23,48 +24,36 @@
 #include <visp3/core/vpException.h>
 
 #include "demoCommon.h"
-#include "vpCsvTools.h"
+#include "vpCommandLine.h"
 
 namespace
 {
-void printUsage(std::ostream &os, const char *program)
+//! Declares the options of the demo; \e options receives their values.
+vpCommandLine commandLine(vpDemoOptions &options)
 {
-  os << "Usage: " << program << " [--output DIR] [--data DIR] [--frames N] [--check]\n"
-     << "  --output  folder for the CSV results, PNG plots and overlays (default ./demo-output)\n"
-     << "  --data    folder holding laser_sequence/ and gravity_sequence/ (default " << VSP_DATA_DIR << ")\n"
-     << "  --frames  process only the first N frames of each sequence\n"
-     << "  --check   exit with status 1 when an error exceeds its bound (see the bounds printed)\n";
+  vpCommandLine cli("[--output DIR] [--data DIR] [--frames N] [--check]",
+                    "Runs the laser and gravity-aided pose sequences of data/ and compares every method with the "
+                    "ground truth.");
+  cli.addString("--output", options.outputDir, "DIR",
+                "folder for the CSV results, PNG plots and overlays (default ./demo-output)");
+  cli.addString("--data", options.dataDir, "DIR",
+                "folder holding laser_sequence/ and gravity_sequence/ (default " + std::string(VSP_DATA_DIR) + ")");
+  cli.addUnsigned("--frames", options.maxFrames, "N", "process only the first N frames of each sequence", 1);
+  cli.addFlag("--check", options.check, "exit with status 1 when an error exceeds its bound (see the bounds printed)");
+  return cli;
 }
 
-bool parseOptions(int argc, char **argv, vpDemoOptions &options, bool &help, std::string &error)
+//! True when \e path is \e folder or lies below it (paths made absolute, "..", "." and links resolved).
+bool isInside(const std::string &path, const std::string &folder)
 {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      help = true;
-      return true;
-    }
-    if (arg == "--check") {
-      options.check = true;
-      continue;
-    }
-    if (arg != "--output" && arg != "--data" && arg != "--frames") {
-      error = "unknown option '" + arg + "'";
-      return false;
-    }
-    if (i + 1 >= argc) {
-      error = "option " + arg + " needs a value";
-      return false;
-    }
-    const std::string value = argv[++i];
-    if (arg == "--output")
-      options.outputDir = value;
-    else if (arg == "--data")
-      options.dataDir = value;
-    else if (!vpCsvTools::parseIndex(value, options.maxFrames, "--frames", "value", error))
-      return false;
-  }
-  return true;
+  const auto resolve = [](const std::string &name) {
+    std::error_code ec;
+    std::filesystem::path r = std::filesystem::weakly_canonical(std::filesystem::absolute(name), ec);
+    return r.has_filename() ? r : r.parent_path(); // "dir/" and "dir" alike
+  };
+  const std::filesystem::path p = resolve(path), f = resolve(folder);
+  const auto mismatch = std::mismatch(f.begin(), f.end(), p.begin(), p.end());
+  return mismatch.first == f.end();
 }
 
 void printBounds(const std::vector<vpAccuracyBound> &bounds)
@@ -80,39 +69,37 @@ int main(int argc, char **argv)
   vpDemoOptions options;
   options.dataDir = VSP_DATA_DIR;
   options.outputDir = "demo-output";
-  bool help = false;
-  std::string error;
-  if (!parseOptions(argc, argv, options, help, error)) {
-    std::cerr << argv[0] << ": " << error << "\n";
-    printUsage(std::cerr, argv[0]);
-    return EXIT_FAILURE;
-  }
-  if (help) {
-    printUsage(std::cout, argv[0]);
-    return EXIT_SUCCESS;
-  }
+  vpCommandLine cli = commandLine(options);
+  if (!cli.parse(argc, argv))
+    return cli.exitStatus();
+  if (isInside(options.outputDir, options.dataDir))
+    return cli.fail("the output folder '" + options.outputDir + "' is inside the data folder '" + options.dataDir +
+                    "': choose another one (the shipped data is never written)");
   std::error_code ec;
   std::filesystem::create_directories(options.outputDir, ec);
   if (!std::filesystem::is_directory(options.outputDir)) {
     std::cerr << argv[0] << ": cannot create the output folder '" << options.outputDir << "'" << std::endl;
     return EXIT_FAILURE;
   }
-  std::cout << "Data: " << options.dataDir << "\nOutput: " << std::filesystem::absolute(options.outputDir).string()
+  const std::string outputPath = std::filesystem::absolute(options.outputDir).lexically_normal().string();
+  std::cout << "Data: " << std::filesystem::absolute(options.dataDir).lexically_normal().string()
+            << "\nOutput: " << outputPath
             << std::endl;
 
   std::vector<vpMethodSummary> laser, gravity;
+  std::string laserNote, gravityNote;
   std::vector<std::string> files;
   try {
-    if (!runLaserDemo(options, laser, files) || !runGravityDemo(options, gravity, files))
+    if (!runLaserDemo(options, laser, laserNote, files) || !runGravityDemo(options, gravity, gravityNote, files))
       return EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << argv[0] << ": " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;
   }
 
-  printSummary(std::cout, "Summary of the laser sequence", laser);
-  printSummary(std::cout, "Summary of the gravity-aided pose sequence", gravity);
-  std::cout << "\nWrote " << files.size() << " files to " << std::filesystem::absolute(options.outputDir).string()
+  printSummary(std::cout, "Summary of the laser sequence", laser, laserNote);
+  printSummary(std::cout, "Summary of the gravity-aided pose sequence", gravity, gravityNote);
+  std::cout << "\nWrote " << files.size() << " files to " << outputPath
             << ":\n";
   for (const std::string &f : files)
     std::cout << "  " << std::filesystem::path(f).filename().string() << "\n";
@@ -123,8 +110,8 @@ int main(int argc, char **argv)
   printBounds(laserBounds());
   printBounds(gravityBounds());
   // Every estimator must give a result on at least 95 % of the frames of these clean sequences.
-  const bool pass = checkBounds(std::cout, laser, laserBounds(), 0.95) &&
-                    checkBounds(std::cout, gravity, gravityBounds(), 0.95);
+  const bool laserPass = checkBounds(std::cout, laser, laserBounds(), 0.95);
+  const bool pass = checkBounds(std::cout, gravity, gravityBounds(), 0.95) && laserPass;
   std::cout << (pass ? "All checks passed" : "Some checks FAILED") << std::endl;
   return pass ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -26,6 +26,8 @@
 #include <visp3/laser_conic/vpLaserConicPose.h>
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
+#include "laserRigSetup.h"
+#include "vpCommandLine.h"
 #include "vpLaserRigIo.h"
 #include "vpPngPlot.h"
 
@@ -130,52 +132,20 @@ std::string fmt(double x)
 
 double angleDifference(double a, double b) { return std::fabs(std::remainder(a - b, 2.0 * M_PI)); }
 
-void usage(const char *argv0)
+//! Declares the options of the program; \e opt receives their values.
+vpCommandLine commandLine(Options &opt)
 {
-  std::cout << "Usage: " << argv0 << " [--data DIR] [--output DIR] [--threshold PX] [--laser FILE] [--no-local-optimisation]\n       [--verbose] [--check] [--help]\n\n"
-            << "Detection + PP-5 / PP-3 / GP-3 over a laser sequence, errors in the layout of Table 2.\n"
-               "  --data DIR       dataset directory (default " VSP_DATA_DIR "/laser_sequence)\n"
-               "  --output DIR     per-frame CSV and PNG curves (default laser-sequence-results)\n"
-               "  --threshold PX   RANSAC threshold in pixels (default 2)\n"
-               "  --laser FILE     laser calibration to use instead of DIR/laser.txt (e.g. DIR/laser_true.txt)\n"
-               "  --no-local-optimisation  keep the best minimal-sample model (no least-squares refit)\n"
-               "  --verbose        print the estimate, inlier count and RANSAC samples of every frame\n"
-               "  --check          exit non-zero when an error exceeds the bounds justified in the source\n";
-}
-
-bool parseOptions(int argc, char **argv, Options &opt)
-{
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "--help" || arg == "-h") {
-      usage(argv[0]);
-      std::exit(EXIT_SUCCESS);
-    } else if (arg == "--data" && hasValue) {
-      opt.data = argv[++i];
-    } else if (arg == "--output" && hasValue) {
-      opt.output = argv[++i];
-    } else if (arg == "--threshold" && hasValue) {
-      opt.threshold = std::atof(argv[++i]);
-    } else if (arg == "--laser" && hasValue) {
-      opt.laserFile = argv[++i];
-    } else if (arg == "--no-local-optimisation") {
-      opt.localOptimisation = false;
-    } else if (arg == "--verbose") {
-      opt.verbose = true;
-    } else if (arg == "--check") {
-      opt.check = true;
-    } else {
-      std::cerr << "Unknown or incomplete option '" << arg << "'\n";
-      usage(argv[0]);
-      return false;
-    }
-  }
-  if (!(opt.threshold > 0.0)) {
-    std::cerr << "--threshold must be positive\n";
-    return false;
-  }
-  return true;
+  vpCommandLine cli("[--data DIR] [--output DIR] [--threshold PX] [--laser FILE] [--no-local-optimisation]\n"
+                    "       [--verbose] [--check]",
+                    "Detection + PP-5 / PP-3 / GP-3 over a laser sequence, errors in the layout of Table 2.");
+  cli.addString("--data", opt.data, "DIR", "dataset directory (default " VSP_DATA_DIR "/laser_sequence)");
+  cli.addString("--output", opt.output, "DIR", "per-frame CSV and PNG curves (default laser-sequence-results)");
+  cli.addString("--laser", opt.laserFile, "FILE",
+                "laser calibration to use instead of DIR/laser.txt (e.g. DIR/laser_true.txt)");
+  vspLaserRig::addEstimatorOptions(cli, opt.threshold, opt.localOptimisation, "");
+  cli.addFlag("--verbose", opt.verbose, "print the estimate, inlier count and RANSAC samples of every frame");
+  cli.addFlag("--check", opt.check, "exit non-zero when an error exceeds the bounds justified in the source");
+  return cli;
 }
 
 void writeResults(const Options &opt, const vpLaserDataset &dataset, const std::vector<MethodResult> &results,
@@ -225,8 +195,9 @@ void writeResults(const Options &opt, const vpLaserDataset &dataset, const std::
 int main(int argc, char **argv)
 {
   Options opt;
-  if (!parseOptions(argc, argv, opt)) {
-    return EXIT_FAILURE;
+  vpCommandLine cli = commandLine(opt);
+  if (!cli.parse(argc, argv)) {
+    return cli.exitStatus();
   }
   vpLaserDataset dataset;
   std::string error;

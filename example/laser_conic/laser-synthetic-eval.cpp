@@ -32,6 +32,7 @@
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
 #include "laserRigSetup.h"
+#include "vpCommandLine.h"
 #include "vpPngPlot.h"
 
 namespace
@@ -178,17 +179,25 @@ std::vector<double> range(double first, double last, double step)
   return v;
 }
 
+//! A study without its curves: \e quickLevels with --quick, \e levels otherwise.
+CurveStudy makeStudy(const Options &opt, const std::string &name, const std::string &figure, const std::string &xLabel,
+                     const std::vector<double> &quickLevels, const std::vector<double> &levels)
+{
+  CurveStudy study;
+  study.name = name;
+  study.figure = figure;
+  study.xLabel = xLabel;
+  study.levels = opt.quick ? quickLevels : levels;
+  return study;
+}
+
 std::vector<CurveStudy> curveStudies(const Options &opt)
 {
   const unsigned int n = opt.points;
   const double minThreshold = opt.threshold;
   std::vector<CurveStudy> studies;
 
-  CurveStudy noise;
-  noise.name = "noise";
-  noise.figure = "Fig. 7";
-  noise.xLabel = "image noise sigma (px)";
-  noise.levels = opt.quick ? std::vector<double>{0.0, 1.0, 3.0} : range(0.0, 3.0, 0.5);
+  CurveStudy noise = makeStudy(opt, "noise", "Fig. 7", "image noise sigma (px)", {0.0, 1.0, 3.0}, range(0.0, 3.0, 0.5));
   noise.perturb = [n, minThreshold](double sigma, vpLaserConicSimulator &sim, std::mt19937 &) {
     TrialInput in = exactInput(sim, n, 0.0, minThreshold);
     in.points = sim.addNoise(in.points, sigma);
@@ -198,11 +207,8 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   };
   studies.push_back(noise);
 
-  CurveStudy intrinsics;
-  intrinsics.name = "intrinsics";
-  intrinsics.figure = "Fig. 9";
-  intrinsics.xLabel = "sigma of fx, fy, u0, v0 errors (px)";
-  intrinsics.levels = opt.quick ? std::vector<double>{0.0, 5.0, 20.0} : range(0.0, 20.0, 2.5);
+  CurveStudy intrinsics = makeStudy(opt, "intrinsics", "Fig. 9", "sigma of fx, fy, u0, v0 errors (px)",
+                                    {0.0, 5.0, 20.0}, range(0.0, 20.0, 2.5));
   intrinsics.perturb = [n, minThreshold](double sigma, vpLaserConicSimulator &sim, std::mt19937 &rng) {
     TrialInput in = exactInput(sim, n, 0.0, minThreshold);
     std::normal_distribution<double> err(0.0, 1.0);
@@ -212,11 +218,8 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   };
   studies.push_back(intrinsics);
 
-  CurveStudy baseline;
-  baseline.name = "baseline";
-  baseline.figure = "Fig. 10";
-  baseline.xLabel = "sigma of the laser position error (mm)";
-  baseline.levels = opt.quick ? std::vector<double>{0.0, 2.0, 10.0} : range(0.0, 10.0, 1.0);
+  CurveStudy baseline = makeStudy(opt, "baseline", "Fig. 10", "sigma of the laser position error (mm)",
+                                  {0.0, 2.0, 10.0}, range(0.0, 10.0, 1.0));
   baseline.perturb = [n, minThreshold](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &rng) {
     TrialInput in = exactInput(sim, n, 0.0, minThreshold);
     std::normal_distribution<double> err(0.0, sigmaMm * 1e-3);
@@ -226,11 +229,8 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   };
   studies.push_back(baseline);
 
-  CurveStudy roughness;
-  roughness.name = "roughness";
-  roughness.figure = "Fig. 11";
-  roughness.xLabel = "ground roughness sigma (mm)";
-  roughness.levels = opt.quick ? std::vector<double>{0.0, 5.0, 20.0} : range(0.0, 20.0, 2.5);
+  CurveStudy roughness = makeStudy(opt, "roughness", "Fig. 11", "ground roughness sigma (mm)", {0.0, 5.0, 20.0},
+                                   range(0.0, 20.0, 2.5));
   roughness.perturb = [n, minThreshold](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &) {
     return exactInput(sim, n, sigmaMm * 1e-3, minThreshold);
   };
@@ -505,91 +505,49 @@ void checkOutlierStudy(const OutlierStudy &study)
          "PP5 breaks down before PP3 and GP3");
 }
 
-void usage(const char *argv0)
+//! Declares the options of the program; \e opt receives their values.
+vpCommandLine commandLine(Options &opt)
 {
-  std::cout << "Usage: " << argv0
-            << " [--trials N] [--outlier-trials N] [--points N] [--seed S] [--ransac-trials N] [--threshold PX] [--output DIR]\n"
-               "       [--only noise|outliers|intrinsics|baseline|roughness] [--no-local-optimisation]\n"
-               "       [--quick] [--check] [--help]\n\n"
-               "Synthetic evaluation of PP5, PP3 and GP3 (Boutteau et al. 2018, Sec. 7.1).\n"
-               "  --trials N          trials per level of the error curves (default 1000)\n"
-               "  --outlier-trials N  trials per outlier ratio (default: --trials)\n"
-               "  --points N          laser rays per frame (default 360, one per degree)\n"
-               "  --seed S            random seed (default 1)\n"
-               "  --ransac-trials N   RANSAC sample budget (default 1000)\n"
-               "  --output DIR        directory of the CSV and PNG results (default laser-synthetic-results)\n"
-               "  --only STUDY        run one study\n"
-               "  --threshold PX      RANSAC threshold in pixels (default 2; the noise study uses max(PX, 3 sigma))\n"
-               "  --no-local-optimisation  keep the best minimal-sample model (no least-squares refit on its inliers)\n"
-               "  --quick             30 trials per point, 3 levels per curve, outlier ratios by 10 % (for ctest)\n"
-               "  --check             exit non-zero when a sanity assertion fails\n";
+  vpCommandLine cli("[--trials N] [--outlier-trials N] [--points N] [--seed S] [--ransac-trials N] [--threshold PX]\n"
+                    "       [--output DIR] [--only noise|outliers|intrinsics|baseline|roughness]\n"
+                    "       [--no-local-optimisation] [--quick] [--check]",
+                    "Synthetic evaluation of PP5, PP3 and GP3 (Boutteau et al. 2018, Sec. 7.1).");
+  cli.addInt("--trials", opt.trials, "N", "trials per level of the error curves (default 1000)", 1);
+  cli.addInt("--outlier-trials", opt.outlierTrials, "N", "trials per outlier ratio (default: --trials)", 1);
+  cli.addUnsigned("--points", opt.points, "N", "laser rays per frame, at least 20 (default 360, one per degree)", 20);
+  cli.addUnsigned("--seed", opt.seed, "S", "random seed (default 1)");
+  cli.addInt("--ransac-trials", opt.ransacTrials, "N", "RANSAC sample budget (default 1000)", 1);
+  vspLaserRig::addEstimatorOptions(cli, opt.threshold, opt.localOptimisation,
+                                   "; the noise study uses max(PX, 3 sigma of the noise)");
+  cli.addString("--output", opt.output, "DIR", "directory of the CSV and PNG results (default laser-synthetic-results)");
+  cli.addChoice("--only", opt.only, {"noise", "outliers", "intrinsics", "baseline", "roughness"}, "STUDY",
+                "run one study");
+  cli.addFlag("--quick", opt.quick, "30 trials per point, 3 levels per curve, outlier ratios by 10 % (for ctest)");
+  cli.addFlag("--check", opt.check, "exit non-zero when a sanity assertion fails");
+  return cli;
 }
 
-bool parseOptions(int argc, char **argv, Options &opt)
+//! Trial counts implied by --quick and by an absent --outlier-trials.
+void resolveTrialCounts(const vpCommandLine &cli, Options &opt)
 {
-  bool trialsGiven = false, outlierTrialsGiven = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "--help" || arg == "-h") {
-      usage(argv[0]);
-      std::exit(EXIT_SUCCESS);
-    } else if (arg == "--trials" && hasValue) {
-      opt.trials = std::atoi(argv[++i]);
-      trialsGiven = true;
-    } else if (arg == "--outlier-trials" && hasValue) {
-      opt.outlierTrials = std::atoi(argv[++i]);
-      outlierTrialsGiven = true;
-    } else if (arg == "--points" && hasValue) {
-      opt.points = static_cast<unsigned int>(std::atoi(argv[++i]));
-    } else if (arg == "--seed" && hasValue) {
-      opt.seed = static_cast<unsigned int>(std::strtoul(argv[++i], nullptr, 10));
-    } else if (arg == "--ransac-trials" && hasValue) {
-      opt.ransacTrials = std::atoi(argv[++i]);
-    } else if (arg == "--output" && hasValue) {
-      opt.output = argv[++i];
-    } else if (arg == "--only" && hasValue) {
-      opt.only = argv[++i];
-    } else if (arg == "--quick") {
-      opt.quick = true;
-    } else if (arg == "--threshold" && hasValue) {
-      opt.threshold = std::atof(argv[++i]);
-    } else if (arg == "--no-local-optimisation") {
-      opt.localOptimisation = false;
-    } else if (arg == "--check") {
-      opt.check = true;
-    } else {
-      std::cerr << "Unknown or incomplete option '" << arg << "'\n";
-      usage(argv[0]);
-      return false;
-    }
-  }
   if (opt.quick) {
-    opt.trials = trialsGiven ? opt.trials : 30;
-    opt.outlierTrials = outlierTrialsGiven ? opt.outlierTrials : 30;
+    opt.trials = cli.given("--trials") ? opt.trials : 30;
+    opt.outlierTrials = cli.given("--outlier-trials") ? opt.outlierTrials : 30;
   }
   if (opt.outlierTrials < 0) {
     opt.outlierTrials = opt.trials;
   }
-  const std::vector<std::string> studies = {"", "noise", "outliers", "intrinsics", "baseline", "roughness"};
-  if (std::find(studies.begin(), studies.end(), opt.only) == studies.end()) {
-    std::cerr << "--only expects noise, outliers, intrinsics, baseline or roughness\n";
-    return false;
-  }
-  if (opt.trials < 1 || opt.outlierTrials < 1 || opt.points < 20 || opt.ransacTrials < 1 || !(opt.threshold > 0.0)) {
-    std::cerr << "--trials, --outlier-trials and --ransac-trials must be >= 1, --points >= 20\n";
-    return false;
-  }
-  return true;
 }
 } // namespace
 
 int main(int argc, char **argv)
 {
   Options opt;
-  if (!parseOptions(argc, argv, opt)) {
-    return EXIT_FAILURE;
+  vpCommandLine cli = commandLine(opt);
+  if (!cli.parse(argc, argv)) {
+    return cli.exitStatus();
   }
+  resolveTrialCounts(cli, opt);
   try {
     vpIoTools::makeDirectory(opt.output);
     std::cout << "Rig: " << vspLaserRig::kWidth << "x" << vspLaserRig::kHeight << " camera, f = " << vspLaserRig::kFocal

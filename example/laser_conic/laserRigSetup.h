@@ -5,7 +5,8 @@
 /*!
   \file laserRigSetup.h
   \brief The simulated camera/circular-laser rig shared by the laser evaluation programs and the
-  generator of data/laser_sequence, so that the synthetic study and the sequence use the same rig.
+  generator of data/laser_sequence, so that the synthetic study and the sequence use the same rig,
+  and the estimator options of the evaluation programs.
 */
 #ifndef VSP_LASER_RIG_SETUP_H
 #define VSP_LASER_RIG_SETUP_H
@@ -17,6 +18,8 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpRotationMatrix.h>
 #include <visp3/core/vpRxyzVector.h>
+
+#include "vpCommandLine.h"
 
 namespace vspLaserRig
 {
@@ -63,6 +66,18 @@ inline vpHomogeneousMatrix groundPose(double altitude, double roll, double pitch
   foot[2] = 0.0;
   const vpColVector t = altitude * g - vpColVector(cRg * foot);
   return vpHomogeneousMatrix(vpTranslationVector(t[0], t[1], t[2]), cRg);
+}
+/*!
+  Options of the RANSAC estimators shared by the evaluation programs: --threshold (pixels, \e note
+  says what the program does with it) and --no-local-optimisation (keeps the best minimal-sample model).
+*/
+inline void addEstimatorOptions(vpCommandLine &cli, double &threshold, bool &localOptimisation,
+                                const std::string &note)
+{
+  cli.addDouble("--threshold", threshold, "PX", "RANSAC threshold in pixels (default 2" + note + ")",
+                vpCommandLine::POSITIVE);
+  cli.addFlag("--no-local-optimisation", localOptimisation,
+              "keep the best minimal-sample model (no least-squares refit on its inliers)", false);
 }
 } // namespace vspLaserRig
 

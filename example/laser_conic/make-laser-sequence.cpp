@@ -31,6 +31,7 @@
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
 #include "laserRigSetup.h"
+#include "vpCommandLine.h"
 #include "vpLaserRigIo.h"
 
 namespace
@@ -176,55 +177,27 @@ void laserPoseError(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b, 
   axisError = std::acos(std::max(-1.0, std::min(1.0, dot)));
 }
 
-void usage(const char *argv0)
+//! Declares the options of the program; \e opt receives their values.
+vpCommandLine commandLine(Options &opt)
 {
-  std::cout << "Usage: " << argv0
-            << " [--output DIR] [--frames N] [--seed S] [--quality Q] [--sensor-noise GREY] [--help]\n\n"
-               "Writes the simulated hand-held laser sequence (camera.xml, laser.txt, groundtruth.csv, images/).\n"
-               "  --output DIR          default " VSP_DATA_DIR "/laser_sequence\n"
-               "  --frames N            number of frames (default 100)\n"
-               "  --seed S              trajectory and rendering seed (default 2018)\n"
-               "  --quality Q           JPEG quality (default 60)\n"
-               "  --sensor-noise GREY   sensor noise standard deviation, grey levels (default 1)\n";
-}
-
-bool parseOptions(int argc, char **argv, Options &opt)
-{
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (arg == "--help" || arg == "-h") {
-      usage(argv[0]);
-      std::exit(EXIT_SUCCESS);
-    } else if (arg == "--output" && hasValue) {
-      opt.output = argv[++i];
-    } else if (arg == "--frames" && hasValue) {
-      opt.frames = static_cast<unsigned int>(std::atoi(argv[++i]));
-    } else if (arg == "--seed" && hasValue) {
-      opt.seed = static_cast<unsigned int>(std::strtoul(argv[++i], nullptr, 10));
-    } else if (arg == "--quality" && hasValue) {
-      opt.quality = std::atoi(argv[++i]);
-    } else if (arg == "--sensor-noise" && hasValue) {
-      opt.sensorNoise = std::atof(argv[++i]);
-    } else {
-      std::cerr << "Unknown or incomplete option '" << arg << "'\n";
-      usage(argv[0]);
-      return false;
-    }
-  }
-  if (opt.frames < 1 || opt.quality < 1 || opt.quality > 100 || !(opt.sensorNoise >= 0.0)) {
-    std::cerr << "--frames must be >= 1, --quality in [1, 100], --sensor-noise >= 0\n";
-    return false;
-  }
-  return true;
+  vpCommandLine cli("[--output DIR] [--frames N] [--seed S] [--quality Q] [--sensor-noise GREY]",
+                    "Writes the simulated hand-held laser sequence (camera.xml, laser.txt, groundtruth.csv, images/).");
+  cli.addString("--output", opt.output, "DIR", "default " VSP_DATA_DIR "/laser_sequence");
+  cli.addUnsigned("--frames", opt.frames, "N", "number of frames (default 100)", 1);
+  cli.addUnsigned("--seed", opt.seed, "S", "trajectory and rendering seed (default 2018)");
+  cli.addInt("--quality", opt.quality, "Q", "JPEG quality (default 60)", 1, 100);
+  cli.addDouble("--sensor-noise", opt.sensorNoise, "GREY", "sensor noise standard deviation, grey levels (default 1)",
+                vpCommandLine::NON_NEGATIVE);
+  return cli;
 }
 } // namespace
 
 int main(int argc, char **argv)
 {
   Options opt;
-  if (!parseOptions(argc, argv, opt)) {
-    return EXIT_FAILURE;
+  vpCommandLine cli = commandLine(opt);
+  if (!cli.parse(argc, argv)) {
+    return cli.exitStatus();
   }
   try {
     vpIoTools::makeDirectory(opt.output + "/images");

@@ -53,6 +53,8 @@
 #include <visp3/pose_gravity/vpPoseGravity.h>
 #include <visp3/vision/vpPose.h>
 
+#include "vpCommandLine.h"
+
 namespace
 {
 // ---- Experiment constants (paper Sec. VI unless stated otherwise) --------------------------------
@@ -112,70 +114,25 @@ struct Options
   int trials = 8000;
   unsigned int seed = 1;
   bool check = false;
-  bool referenceMeasured = false; // false: error against the noise-free projections
-  CameraModel camera = kCameraVga;
+  std::string camera = "vga";
+  std::string reference = "true"; // "true": error against the noise-free projections
 };
 
-void printUsage(const char *program, std::ostream &os)
+//! Declares the options of the program; \e opt receives their values.
+vpCommandLine commandLine(Options &opt)
 {
-  os << "Usage: " << program
-     << " [--trials N] [--seed S] [--camera vga|uxga] [--reference true|measured] [--check] [--help]\n"
-     << "Reproduces Table I of D'Alfonso et al. (MED 2013): relative reprojection error of P3P with two IMUs\n"
-     << "against a P3P with IMUs + compass and an image-only P4P.\n"
-     << "  --trials N       number of random trials, N >= 1 (default 8000)\n"
-     << "  --seed S         seed of the random generator (default 1)\n"
-     << "  --camera C       'vga' 640x480 px, f = 800 px (default) or 'uxga' 1600x1200 px, f = 2000 px\n"
-     << "  --reference R    pixels the error is measured against: 'true' noise-free projections (default)\n"
-     << "                   or 'measured' noisy image points\n"
-     << "  --check          exit with status 1 unless P3P_IMU meets the bounds checked by ctest\n"
-     << "  --help           this message\n";
-}
-
-//! Parses a whole string as an unsigned integer in [minValue, maxValue]; false on anything else.
-bool parseUnsigned(const std::string &text, unsigned long minValue, unsigned long maxValue, unsigned long &value)
-{
-  if (text.empty() || text[0] == '-' || text[0] == '+')
-    return false;
-  try {
-    std::size_t used = 0;
-    value = std::stoul(text, &used, 10);
-    return used == text.size() && value >= minValue && value <= maxValue;
-  } catch (const std::exception &) {
-    return false;
-  }
-}
-
-//! Returns 0 to run, 1 for a bad command line, 2 when --help was asked.
-int parseOptions(int argc, char **argv, Options &opt)
-{
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool hasValue = i + 1 < argc;
-    unsigned long value = 0;
-    if (arg == "--help" || arg == "-h") {
-      return 2;
-    } else if (arg == "--check") {
-      opt.check = true;
-    } else if (arg == "--trials" && hasValue && parseUnsigned(argv[i + 1], 1, 100000000, value)) {
-      opt.trials = static_cast<int>(value);
-      ++i;
-    } else if (arg == "--seed" && hasValue && parseUnsigned(argv[i + 1], 0, 0xffffffffUL, value)) {
-      opt.seed = static_cast<unsigned int>(value);
-      ++i;
-    } else if (arg == "--camera" && hasValue && (std::string(argv[i + 1]) == "vga" ||
-                                                 std::string(argv[i + 1]) == "uxga")) {
-      opt.camera = std::string(argv[i + 1]) == "vga" ? kCameraVga : kCameraUxga;
-      ++i;
-    } else if (arg == "--reference" && hasValue && (std::string(argv[i + 1]) == "true" ||
-                                                    std::string(argv[i + 1]) == "measured")) {
-      opt.referenceMeasured = std::string(argv[i + 1]) == "measured";
-      ++i;
-    } else {
-      std::cerr << "Bad or incomplete option: " << arg << (hasValue ? std::string(" ") + argv[i + 1] : "") << "\n";
-      return 1;
-    }
-  }
-  return 0;
+  vpCommandLine cli("[--trials N] [--seed S] [--camera vga|uxga] [--reference true|measured] [--check]",
+                    "Reproduces Table I of D'Alfonso et al. (MED 2013): relative reprojection error of P3P with two "
+                    "IMUs\nagainst a P3P with IMUs + compass and an image-only P4P.");
+  cli.addInt("--trials", opt.trials, "N", "number of random trials, N >= 1 (default 8000)", 1, 100000000);
+  cli.addUnsigned("--seed", opt.seed, "S", "seed of the random generator (default 1)");
+  cli.addChoice("--camera", opt.camera, {"vga", "uxga"}, "CAMERA",
+                "'vga' 640x480 px, f = 800 px (default) or 'uxga' 1600x1200 px, f = 2000 px");
+  cli.addChoice("--reference", opt.reference, {"true", "measured"}, "REFERENCE",
+                "pixels the error is measured against: 'true' noise-free projections (default)\n"
+                "or 'measured' noisy image points");
+  cli.addFlag("--check", opt.check, "exit with status 1 unless P3P_IMU meets the bounds checked by ctest");
+  return cli;
 }
 
 // ---- Simulation --------------------------------------------------------------------------------
@@ -574,11 +531,11 @@ bool checkResults(const std::array<MethodStats, kNumMethods> &stats)
 int main(int argc, char **argv)
 {
   Options opt;
-  const int parsed = parseOptions(argc, argv, opt);
-  if (parsed != 0) {
-    printUsage(argv[0], parsed == 2 ? std::cout : std::cerr);
-    return parsed == 2 ? EXIT_SUCCESS : EXIT_FAILURE;
-  }
+  vpCommandLine cli = commandLine(opt);
+  if (!cli.parse(argc, argv))
+    return cli.exitStatus();
+  const CameraModel camera = opt.camera == "uxga" ? kCameraUxga : kCameraVga;
+  const bool referenceMeasured = opt.reference == "measured";
 
   std::array<MethodStats, kNumMethods> stats;
   stats[kP3PIMU].name = "P3P_IMU";
@@ -590,20 +547,20 @@ int main(int argc, char **argv)
   std::mt19937 rng(opt.seed);
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < opt.trials; ++i) {
-    const Trial trial = drawTrial(opt.camera, rng);
+    const Trial trial = drawTrial(camera, rng);
     std::array<Estimate, kNumMethods> estimates;
     estimateGravityP3P(trial, estimates[kP3PIMU], estimates[kP3PIMURefined]);
     estimates[kP3PNM] = estimateNorthMagnetic(trial);
     estimates[kP4P] = estimateP4POpenCV(trial);
     estimates[kP4PViSP] = estimateP4PViSP(trial);
     for (int m = 0; m < kNumMethods; ++m)
-      stats[m].add(relativeReprojectionError(trial, estimates[m], opt.referenceMeasured));
+      stats[m].add(relativeReprojectionError(trial, estimates[m], referenceMeasured));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::cout << "Table I of D'Alfonso et al. (MED 2013), relative reprojection error eps (eq. 17) against the "
-            << (opt.referenceMeasured ? "measured (noisy)" : "noise-free") << " pixels.\n"
-            << "Camera " << opt.camera.width << "x" << opt.camera.height << " px, f = " << opt.camera.focal
+            << (referenceMeasured ? "measured (noisy)" : "noise-free") << " pixels.\n"
+            << "Camera " << camera.width << "x" << camera.height << " px, f = " << camera.focal
             << " px; object in x,y in [-2.5, 2.5] m, z in [" << kCubeNearDepth << ", " << kCubeNearDepth + kCubeSide
             << "] m; sigma_g = " << kSigmaGravity << ", sigma_px = " << kSigmaPixel
             << " px, sigma_compass = 4 deg.\n\n";
