@@ -8,6 +8,7 @@
   only the peers are timed.
 */
 #include <array>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -282,6 +283,33 @@ double successOursFacade(const std::vector<PoseInstance> &in, vpPoseGravity::vpP
 #endif
 
 } // namespace
+
+int runGravityProfileLoop(const std::string &method, int instances, unsigned int seed)
+{
+#ifdef VSP_HAVE_POSE_GRAVITY
+  const int points = method == "p2p" ? 2 : (method == "lsq" ? 10 : 3);
+  const std::vector<PoseInstance> in = makeInstances(seed, instances, points, false, method == "lsq" ? 1e-4 : 0.0, 0.0);
+  double ns = 0.0;
+  if (method == "p2p")
+    ns = timeOursP2P(in);
+  else if (method == "p3p")
+    ns = timeOursP3P(in);
+  else if (method == "lsq")
+    ns = timeOursLeastSquares(in);
+  else if (method == "facade")
+    ns = timeOursFacade(in, vpPoseGravity::P3P, 15);
+  else {
+    std::fprintf(stderr, "unknown gravity method %s (p2p, p3p, lsq, facade)\n", method.c_str());
+    return 1;
+  }
+  std::printf("%s: %.1f ns per call (median over batches of %d instances)\n", method.c_str(), ns, instances);
+  return 0;
+#else
+  std::fprintf(stderr, "bench-peers was built without the pose_gravity module (%s, %d, %u)\n", method.c_str(),
+               instances, seed);
+  return 1;
+#endif
+}
 
 void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick)
 {

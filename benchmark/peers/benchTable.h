@@ -61,6 +61,13 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
 void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 
 /*!
+  Times one of our gravity solvers (p2p, p3p, lsq or facade for vpPoseGravity::computePose(P3P)) on
+  \e instances seeded problems and prints its median time per call: a short loop to run under a
+  profiler (perf record, valgrind --tool=callgrind) or to compare builds.
+*/
+int runGravityProfileLoop(const std::string &method, int instances, unsigned int seed);
+
+/*!
   Runs one laser method on \e frames seeded 1000-point frames and prints its success rate and mean
   RANSAC trial count: a short, deterministic loop to run under a profiler (valgrind --tool=callgrind).
 */

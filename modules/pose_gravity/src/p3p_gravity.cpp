@@ -4,62 +4,95 @@
   point. The pair farthest apart in the image is tried first (the paper's remark: best conditioned
   under pixel noise); when its image points coincide (Lemma 1) or it yields no admissible pose the
   other pairs are tried, in decreasing image distance.
-*/
-#include <limits>
 
-#include "gravityGeometry.h"
+  The gravity-dependent part of the rotation (vpYawFrame) is built once for all pairs, and the
+  third point is compared through cross-multiplied squared errors: no division, no allocation.
+*/
+#include <utility>
+
+#include "gravityPairSolver.h"
 
 namespace vpGravitySolvers
 {
 namespace
 {
-// Squared distance between two image points given as bearings.
-double imageDistance2(const Eigen::Vector3d &a, const Eigen::Vector3d &b)
+/*!
+  Writes the root of \e yaw (pair i, j) that reprojects the third point k closest to its image point
+  (u, v) in normalized coordinates and returns true, or returns false when every root puts a point
+  behind the camera.
+*/
+bool bestRoot(const detail::vpYawFrame &frame, const detail::vpPairYaw &yaw, const Eigen::Vector3d x[3],
+              const Eigen::Vector3d X[3], const Eigen::Vector3d Y[3], int i, int j, int k, double u, double v,
+              Pose &pose)
 {
-  const double dx = a.x() / a.z() - b.x() / b.z();
-  const double dy = a.y() / a.z() - b.y() / b.z();
-  return dx * dx + dy * dy;
+  // P = cRo X_k + t = cRo (X_k - S / 2) + h (qA x_i + qB x_j) with S = X_i + X_j: P = cos Pc + sin Ps + P1.
+  const Eigen::Vector3d e = Y[k] - 0.5 * (Y[i] + Y[j]);
+  const Eigen::Vector3d Pc = frame.toCamera(e.x(), e.y(), 0.0) + yaw.h * (yaw.qA.k[0] * x[i] + yaw.qB.k[0] * x[j]);
+  const Eigen::Vector3d Ps = frame.toCamera(-e.y(), e.x(), 0.0) + yaw.h * (yaw.qA.k[1] * x[i] + yaw.qB.k[1] * x[j]);
+  const Eigen::Vector3d P1 = e.z() * frame.gc + yaw.h * (yaw.qA.k[2] * x[i] + yaw.qB.k[2] * x[j]);
+  // Squared reprojection error num / den of each root (den = P_z^2), compared cross-multiplied;
+  // the double root is stored twice, so both entries are always meaningful.
+  bool valid[2];
+  double num[2], den[2];
+  for (int m = 0; m < 2; ++m) {
+    const double c = yaw.cs[m][0], s = yaw.cs[m][1];
+    const Eigen::Vector3d P = c * Pc + s * Ps + P1;
+    valid[m] = (yaw.qA(c, s) > 0.0) & (yaw.qB(c, s) > 0.0) & (P.z() > 0.0);
+    const double ex = P.x() - u * P.z(), ey = P.y() - v * P.z();
+    num[m] = ex * ex + ey * ey;
+    den[m] = P.z() * P.z();
+  }
+  if (!(valid[0] | valid[1]))
+    return false;
+  const int m = (valid[1] & (!valid[0] | (num[1] * den[0] < num[0] * den[1]))) ? 1 : 0;
+  const double c = yaw.cs[m][0], s = yaw.cs[m][1];
+  pose.R = frame.rotation(c, s);
+  pose.t = yaw.translation(c, s, x[i], x[j], pose.R * (X[i] + X[j]));
+  return true;
 }
 } // namespace
 
 bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[3],
          const Eigen::Vector3d X[3], Pose &pose)
 {
-  // Pairs (i, j) with the third point k, sorted by decreasing image distance (three elements).
+  const Eigen::Vector3d g[2] = {gCam, gObj};
+  if (!detail::allFinite(g, 2) || !detail::allFinite(x, 3) || !detail::allFinite(X, 3) || !(x[0].z() > 0.0) ||
+      !(x[1].z() > 0.0) || !(x[2].z() > 0.0))
+    return false;
+
+  // Normalized image points, and the pairs (i, j) with the third point k sorted by decreasing image
+  // distance (three elements).
+  double u[3], v[3];
+  for (int i = 0; i < 3; ++i) {
+    const double iz = 1.0 / x[i].z();
+    u[i] = x[i].x() * iz;
+    v[i] = x[i].y() * iz;
+  }
   int pairs[3][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}};
   double dist[3];
-  for (int p = 0; p < 3; ++p)
-    dist[p] = imageDistance2(x[pairs[p][0]], x[pairs[p][1]]);
+  for (int p = 0; p < 3; ++p) {
+    const int i = pairs[p][0], j = pairs[p][1];
+    dist[p] = (u[i] - u[j]) * (u[i] - u[j]) + (v[i] - v[j]) * (v[i] - v[j]);
+  }
   for (int p = 0; p < 2; ++p)
     for (int q = p + 1; q < 3; ++q)
       if (dist[q] > dist[p]) {
         std::swap(dist[p], dist[q]);
-        for (int m = 0; m < 3; ++m)
-          std::swap(pairs[p][m], pairs[q][m]);
+        std::swap(pairs[p], pairs[q]);
       }
 
+  // The upright frames and the points in them serve every pair.
+  const detail::vpYawFrame frame(gCam, gObj);
+  const Eigen::Vector3d F[3] = {frame.upCamera(x[0]), frame.upCamera(x[1]), frame.upCamera(x[2])};
+  const Eigen::Vector3d Y[3] = {frame.upObject(X[0]), frame.upObject(X[1]), frame.upObject(X[2])};
   for (int p = 0; p < 3; ++p) {
     const int i = pairs[p][0], j = pairs[p][1], k = pairs[p][2];
-    const Eigen::Vector3d xPair[2] = {x[i], x[j]};
-    const Eigen::Vector3d XPair[2] = {X[i], X[j]};
-    std::array<Pose, 2> candidates;
+    detail::vpPairYaw yaw;
     P2PCase p2pCase = P2PCase::NoSolution;
-    const int count = p2p(gCam, gObj, xPair, XPair, candidates, &p2pCase);
-    if (p2pCase != P2PCase::TwoSolutions)
-      continue; // coincident image points or no admissible yaw: use another pair
-    double bestError = std::numeric_limits<double>::infinity();
-    int best = -1;
-    for (int m = 0; m < count; ++m) {
-      const double e = detail::reprojectionError2(candidates[m], x[k], X[k]);
-      if (e < bestError) {
-        bestError = e;
-        best = m;
-      }
-    }
-    if (best >= 0) {
-      pose = candidates[best];
+    // Coincident image points or no admissible yaw: use another pair.
+    if (detail::solvePairYaw(F[i], F[j], Y[i], Y[j], yaw, p2pCase) > 0 &&
+        bestRoot(frame, yaw, x, X, Y, i, j, k, u[k], v[k], pose))
       return true;
-    }
   }
   return false;
 }

@@ -7,21 +7,14 @@
   Duff et al., "Building an orthonormal basis, revisited" (JCGT 2017): its only division is by
   1 + |g_z| >= 1, so it is exact and well conditioned for every unit direction.
 */
-#include <cmath>
-
-#include <visp3/pose_gravity/vpGravitySolvers.h>
+#include "gravityPairSolver.h"
 
 namespace vpGravitySolvers
 {
 Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g)
 {
-  // Branch on the sign of g_z so that the denominator sign + g_z never comes close to zero.
-  const double sign = std::copysign(1.0, g.z());
-  const double a = -1.0 / (sign + g.z());
-  const double b = g.x() * g.y() * a;
-  const Eigen::Vector3d b1(1.0 + sign * g.x() * g.x() * a, sign * b, -sign * g.x());
-  const Eigen::Vector3d b2(b, sign + g.y() * g.y() * a, -g.y());
-
+  Eigen::Vector3d b1, b2;
+  detail::uprightAxes(g, b1, b2);
   // Rows (b1, b2, g): an orthonormal, right-handed basis (b1 x b2 = g), so the matrix is a
   // rotation and it maps g onto e_z.
   Eigen::Matrix3d wRs;
