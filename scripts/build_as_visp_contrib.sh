@@ -103,7 +103,7 @@ fi
 
 # --- 3. Configure a minimal ViSP with our modules -----------------------------------------------
 build="$work/build"
-off_modules=(ar blob detection gui imgproc klt mbt me sensor tt tt_mi visual_features vs java)
+off_modules=(ar blob detection gui imgproc klt mbt me sensor tt tt_mi visual_features vs java_bindings_generator)
 module_flags=()
 for m in "${off_modules[@]}"; do module_flags+=("-DBUILD_MODULE_visp_$m=OFF"); done
 log "configuring ViSP in $build"
