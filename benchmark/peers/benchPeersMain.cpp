@@ -6,7 +6,7 @@
 
   Usage: bench-peers [--seed S] [--quick] [--only gravity|laser] [--out results.md]
          bench-peers --profile gp3|pp3|pp5|planepair [--outliers 0.5] [--frames 20]
-         bench-peers --profile p2p|p3p|lsq|facade [--frames 1000]
+         bench-peers --profile p2p|p3p|lsq|facade|compute [--frames 1000]
   (the second form only runs one laser method, the third one times one of our gravity solvers on
   --frames seeded problems; both are meant for a profiler).
 */
@@ -89,7 +89,7 @@ int main(int argc, char **argv)
   if (vspBench::hasFlag(argc, argv, "--help")) {
     std::cout << "Usage: bench-peers [--seed S] [--quick] [--only gravity|laser] [--out results.md]\n"
                  "       bench-peers --profile gp3|pp3|pp5|planepair [--outliers 0.5] [--frames 20]\n"
-                 "       bench-peers --profile p2p|p3p|lsq|facade [--frames 1000]\n";
+                 "       bench-peers --profile p2p|p3p|lsq|facade|compute [--frames 1000]\n";
     return 0;
   }
   const unsigned int seed = static_cast<unsigned int>(std::stoul(vspBench::argValue(argc, argv, "--seed", "42")));
@@ -101,7 +101,8 @@ int main(int argc, char **argv)
   // per-core comparison is what matters on a machine that runs several cameras or processes.
   cv::setNumThreads(1);
   const std::string profile = vspBench::argValue(argc, argv, "--profile", "");
-  if (profile == "p2p" || profile == "p3p" || profile == "lsq" || profile == "facade") {
+  if (profile == "p2p" || profile == "p3p" || profile == "lsq" || profile == "facade" ||
+      profile == "compute") {
     return runGravityProfileLoop(profile, std::stoi(vspBench::argValue(argc, argv, "--frames", "1000")), seed);
   }
   if (!profile.empty()) {

@@ -61,9 +61,10 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
 void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 
 /*!
-  Times one of our gravity solvers (p2p, p3p, lsq or facade for vpPoseGravity::computePose(P3P)) on
-  \e instances seeded problems and prints its median time per call: a short loop to run under a
-  profiler (perf record, valgrind --tool=callgrind) or to compare builds.
+  Times one of our gravity solvers on \e instances seeded problems and prints its median time per
+  call: p2p, p3p, lsq, facade (the vpPoseGravity API calls of one pose, ending in computePose(P3P))
+  or compute (computePose(P3P) alone). A short loop to run under a profiler (perf record, valgrind
+  --tool=callgrind) or to compare builds.
 */
 int runGravityProfileLoop(const std::string &method, int instances, unsigned int seed);
 

@@ -197,6 +197,34 @@ inline int solvePairYaw(const Eigen::Vector3d &FA, const Eigen::Vector3d &FB, co
   return roots;
 }
 
+/*!
+  P2P poses of the pair A, B (finite data, bearings of positive depth, checked by the callers): the
+  contract of vpGravitySolvers::p2p() for \e poses (room for two) and \e p2pCase.
+*/
+inline int solvePairPoses(const vpYawFrame &frame, const Eigen::Vector3d &xA, const Eigen::Vector3d &xB,
+                          const Eigen::Vector3d &XA, const Eigen::Vector3d &XB, Pose *poses, P2PCase &p2pCase)
+{
+  vpPairYaw yaw;
+  const int roots =
+      solvePairYaw(frame.upCamera(xA), frame.upCamera(xB), frame.upObject(XA), frame.upObject(XB), yaw, p2pCase);
+  if (roots == kCoincidentPair)
+    return coincidentRays(frame, xA, xB, XA, XB, poses[0], p2pCase);
+  const Eigen::Vector3d S = XA + XB;
+  int count = 0;
+  for (int k = 0; k < roots; ++k) {
+    // Every root is written; one that puts a point behind the camera (cheirality) does not advance
+    // the count, so that the next root takes its slot.
+    const double c = yaw.cs[k][0], s = yaw.cs[k][1];
+    Pose &pose = poses[count];
+    pose.R = frame.rotation(c, s);
+    pose.t = yaw.translation(c, s, xA, xB, pose.R * S);
+    count += static_cast<int>((yaw.qA(c, s) > 0.0) & (yaw.qB(c, s) > 0.0));
+  }
+  if (roots > 0)
+    p2pCase = (count > 0) ? P2PCase::TwoSolutions : P2PCase::NoSolution;
+  return count;
+}
+
 //! True when all \e count vectors of \e v are finite.
 inline bool allFinite(const Eigen::Vector3d *v, int count)
 {

@@ -92,25 +92,6 @@ int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::V
       !(x[1].z() > 0.0))
     return 0;
 
-  const detail::vpYawFrame frame(gCam, gObj);
-  detail::vpPairYaw yaw;
-  const int roots = detail::solvePairYaw(frame.upCamera(x[0]), frame.upCamera(x[1]), frame.upObject(X[0]),
-                                         frame.upObject(X[1]), yaw, result);
-  if (roots == detail::kCoincidentPair)
-    return detail::coincidentRays(frame, x[0], x[1], X[0], X[1], poses[0], result);
-  const Eigen::Vector3d S = X[0] + X[1];
-  int count = 0;
-  for (int k = 0; k < roots; ++k) {
-    // Every root is written; one that puts a point behind the camera (cheirality) does not advance
-    // the count, so that the next root takes its slot.
-    const double c = yaw.cs[k][0], s = yaw.cs[k][1];
-    Pose &pose = poses[count];
-    pose.R = frame.rotation(c, s);
-    pose.t = yaw.translation(c, s, x[0], x[1], pose.R * S);
-    count += static_cast<int>((yaw.qA(c, s) > 0.0) & (yaw.qB(c, s) > 0.0));
-  }
-  if (roots > 0)
-    result = (count > 0) ? P2PCase::TwoSolutions : P2PCase::NoSolution;
-  return count;
+  return detail::solvePairPoses(detail::vpYawFrame(gCam, gObj), x[0], x[1], X[0], X[1], poses.data(), result);
 }
 } // namespace vpGravitySolvers

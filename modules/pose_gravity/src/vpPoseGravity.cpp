@@ -14,6 +14,7 @@
 #include <visp3/robust/vpRansac.h>
 
 #include "gravityGeometry.h"
+#include "gravityPairSolver.h"
 
 namespace
 {
@@ -26,14 +27,22 @@ const double kCollinearTolerance = 1e-10;
 
 Eigen::Vector3d toEigen(const vpColVector &v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
 
-vpHomogeneousMatrix toHomogeneous(const Pose &pose)
+// Writes the pose into cMo in place (no temporary matrix: vpHomogeneousMatrix allocates).
+void storePose(const Pose &pose, vpHomogeneousMatrix &cMo)
 {
-  vpHomogeneousMatrix cMo;
   for (unsigned int r = 0; r < 3; ++r) {
     for (unsigned int c = 0; c < 3; ++c)
       cMo[r][c] = pose.R(static_cast<int>(r), static_cast<int>(c));
     cMo[r][3] = pose.t(static_cast<int>(r));
+    cMo[3][r] = 0.0;
   }
+  cMo[3][3] = 1.0;
+}
+
+vpHomogeneousMatrix toHomogeneous(const Pose &pose)
+{
+  vpHomogeneousMatrix cMo;
+  storePose(pose, cMo);
   return cMo;
 }
 
@@ -48,8 +57,9 @@ Pose toPose(const vpHomogeneousMatrix &cMo)
   return pose;
 }
 
-// Normalized gravity from a user vector; throws on anything that is not a usable direction.
-vpColVector normalizedGravity(const vpColVector &g, const char *which)
+// Writes the normalized gravity of a user vector into unit; throws on anything that is not a usable
+// direction.
+void normalizeGravity(const vpColVector &g, const char *which, vpColVector &unit)
 {
   if (g.size() != 3) {
     std::ostringstream msg;
@@ -63,8 +73,11 @@ vpColVector normalizedGravity(const vpColVector &g, const char *which)
     msg << "vpPoseGravity: " << which << " gravity must be finite and non-zero (got " << g.t() << ")";
     throw vpPoseGravityException(vpPoseGravityException::badGravityError, msg.str());
   }
-  vpColVector unit = g / largest;
-  return unit / std::sqrt(unit[0] * unit[0] + unit[1] * unit[1] + unit[2] * unit[2]);
+  const Eigen::Vector3d v = Eigen::Vector3d(g[0], g[1], g[2]) / largest;
+  const Eigen::Vector3d n = v / v.norm();
+  unit.resize(3, false); // no reallocation: the members are 3-vectors from construction
+  for (unsigned int i = 0; i < 3; ++i)
+    unit[i] = n[static_cast<int>(i)];
 }
 
 // The RANSAC estimator over 2-point minimal samples (see vpRansacLoop()).
@@ -75,24 +88,21 @@ public:
   static constexpr int kSampleSize = 2;
   static constexpr int kMaxModels = 2;
 
+  // The points were validated by checkReady(): the P2P fast path takes them as they are, and the
+  // upright frames of the two gravity vectors are built once for all samples.
   GravityRansacEstimator(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
                          const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X)
-    : m_gCam(gCam), m_gObj(gObj), m_x(x), m_X(X)
+    : m_gCam(gCam), m_gObj(gObj), m_frame(gCam, gObj), m_x(x), m_X(X)
   {
   }
   int size() const { return static_cast<int>(m_x.size()); }
   int solveMinimal(const int *sample, Model *models) const
   {
-    const Eigen::Vector3d x[2] = {m_x[sample[0]], m_x[sample[1]]};
-    const Eigen::Vector3d X[2] = {m_X[sample[0]], m_X[sample[1]]};
-    std::array<Pose, 2> poses;
-    vpGravitySolvers::P2PCase p2pCase;
-    const int count = vpGravitySolvers::p2p(m_gCam, m_gObj, x, X, poses, &p2pCase);
-    if (p2pCase != vpGravitySolvers::P2PCase::TwoSolutions)
-      return 0; // a pose known only up to a ray cannot be scored
-    for (int k = 0; k < count; ++k)
-      models[k] = poses[k];
-    return count;
+    vpGravitySolvers::P2PCase p2pCase = vpGravitySolvers::P2PCase::NoSolution;
+    const int count = vpGravitySolvers::detail::solvePairPoses(m_frame, m_x[sample[0]], m_x[sample[1]],
+                                                               m_X[sample[0]], m_X[sample[1]], models, p2pCase);
+    // A pose known only up to a ray cannot be scored.
+    return (p2pCase == vpGravitySolvers::P2PCase::TwoSolutions) ? count : 0;
   }
   //! Reprojection error in normalized coordinates (infinite behind the camera).
   double residual(const Model &m, int i) const
@@ -116,6 +126,7 @@ public:
 
 private:
   Eigen::Vector3d m_gCam, m_gObj;
+  vpGravitySolvers::detail::vpYawFrame m_frame;
   const std::vector<Eigen::Vector3d> &m_x, &m_X;
 };
 } // namespace
@@ -129,13 +140,13 @@ vpPoseGravity::vpPoseGravity()
 
 void vpPoseGravity::setCameraGravity(const vpColVector &g_cam)
 {
-  m_gCam = normalizedGravity(g_cam, "camera");
+  normalizeGravity(g_cam, "camera", m_gCam);
   m_hasGCam = true;
 }
 
 void vpPoseGravity::setObjectGravity(const vpColVector &g_obj)
 {
-  m_gObj = normalizedGravity(g_obj, "object");
+  normalizeGravity(g_obj, "object", m_gObj);
   m_hasGObj = true;
 }
 
@@ -211,19 +222,32 @@ void vpPoseGravity::checkReady(unsigned int minPoints, unsigned int usedPoints, 
 
 namespace
 {
-// Bearings (x, y, 1) and object points of the first count points.
+// Bearings (x, y, 1) and object points of the first count points, into arrays of that size.
+void collectPoints(const std::vector<vpPoint> &points, unsigned int count, Eigen::Vector3d *x, Eigen::Vector3d *X)
+{
+  for (unsigned int i = 0; i < count; ++i) {
+    const vpPoint &P = points[i];
+    x[i] = Eigen::Vector3d(P.get_x(), P.get_y(), 1.0);
+    X[i] = Eigen::Vector3d(P.get_oX(), P.get_oY(), P.get_oZ());
+  }
+}
+
+// The same into vectors resized to count.
 void collectPoints(const std::vector<vpPoint> &points, unsigned int count, std::vector<Eigen::Vector3d> &x,
                    std::vector<Eigen::Vector3d> &X)
 {
-  x.clear();
-  X.clear();
-  x.reserve(count);
-  X.reserve(count);
-  for (unsigned int i = 0; i < count; ++i) {
-    const vpPoint &P = points[i];
-    x.emplace_back(P.get_x(), P.get_y(), 1.0);
-    X.emplace_back(P.get_oX(), P.get_oY(), P.get_oZ());
-  }
+  x.resize(count);
+  X.resize(count);
+  collectPoints(points, count, x.data(), X.data());
+}
+
+// Common end of the closed-form methods: the pose into cMo and STATUS_OK, or STATUS_NO_SOLUTION.
+bool finishClosedForm(bool found, const Pose &pose, vpHomogeneousMatrix &cMo, vpPoseGravity::vpPoseGravityStatus &status)
+{
+  status = found ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_NO_SOLUTION;
+  if (found)
+    storePose(pose, cMo);
+  return found;
 }
 } // namespace
 
@@ -231,11 +255,11 @@ std::vector<vpHomogeneousMatrix> vpPoseGravity::computePoseCandidates()
 {
   checkReady(2, 2, "computePoseCandidates");
   forgetInliers();
-  std::vector<Eigen::Vector3d> x, X;
+  Eigen::Vector3d x[2], X[2];
   collectPoints(m_points, 2, x, X);
   std::array<Pose, 2> poses;
   vpGravitySolvers::P2PCase p2pCase;
-  const int count = vpGravitySolvers::p2p(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(), poses, &p2pCase);
+  const int count = vpGravitySolvers::p2p(toEigen(m_gCam), toEigen(m_gObj), x, X, poses, &p2pCase);
   std::vector<vpHomogeneousMatrix> candidates;
   switch (p2pCase) {
   case vpGravitySolvers::P2PCase::TwoSolutions:
@@ -273,20 +297,15 @@ bool vpPoseGravity::computeP3P(vpHomogeneousMatrix &cMo)
 {
   checkReady(3, 3, "computePose(P3P)");
   forgetInliers();
-  std::vector<Eigen::Vector3d> x, X;
+  Eigen::Vector3d x[3], X[3];
   collectPoints(m_points, 3, x, X);
   const Eigen::Vector3d AB = X[1] - X[0], AC = X[2] - X[0];
-  if (AB.cross(AC).norm() <= kCollinearTolerance * AB.norm() * AC.norm())
+  // Squared form of |AB x AC| <= tol |AB| |AC|: no square root.
+  if (AB.cross(AC).squaredNorm() <= kCollinearTolerance * kCollinearTolerance * AB.squaredNorm() * AC.squaredNorm())
     throw vpPoseGravityException(vpPoseGravityException::degeneratePointsError,
                                  "vpPoseGravity::computePose(P3P): the three object points are collinear");
   Pose pose;
-  if (!vpGravitySolvers::p3p(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(), pose)) {
-    m_status = STATUS_NO_SOLUTION;
-    return false;
-  }
-  cMo = toHomogeneous(pose);
-  m_status = STATUS_OK;
-  return true;
+  return finishClosedForm(vpGravitySolvers::p3p(toEigen(m_gCam), toEigen(m_gObj), x, X, pose), pose, cMo, m_status);
 }
 
 bool vpPoseGravity::computeLeastSquares(vpHomogeneousMatrix &cMo)
@@ -297,14 +316,9 @@ bool vpPoseGravity::computeLeastSquares(vpHomogeneousMatrix &cMo)
   std::vector<Eigen::Vector3d> x, X;
   collectPoints(m_points, n, x, X);
   Pose pose;
-  if (!vpGravitySolvers::leastSquares(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(), static_cast<int>(n),
-                                      pose)) {
-    m_status = STATUS_NO_SOLUTION;
-    return false;
-  }
-  cMo = toHomogeneous(pose);
-  m_status = STATUS_OK;
-  return true;
+  const bool found = vpGravitySolvers::leastSquares(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
+                                                    static_cast<int>(n), pose);
+  return finishClosedForm(found, pose, cMo, m_status);
 }
 
 bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
@@ -348,7 +362,7 @@ bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
   }
   m_inlierIndex.assign(inliers.begin(), inliers.end());
   m_refineOnInliers = true;
-  cMo = toHomogeneous(best);
+  storePose(best, cMo);
   m_status = STATUS_OK;
   return true;
 }
@@ -374,7 +388,7 @@ bool vpPoseGravity::refinePose(vpHomogeneousMatrix &cMo)
     m_status = STATUS_REFINEMENT_FAILED;
     return false;
   }
-  cMo = toHomogeneous(pose);
+  storePose(pose, cMo);
   m_status = STATUS_OK;
   return true;
 }
