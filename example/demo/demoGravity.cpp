@@ -43,23 +43,10 @@ const double kRansacThreshold = 2.5e-3;
 
 enum class Method { P3P, P3P_REFINED, LEAST_SQUARES, RANSAC, VISP_POSE };
 const Method kMethods[] = {Method::P3P, Method::P3P_REFINED, Method::LEAST_SQUARES, Method::RANSAC, Method::VISP_POSE};
+//! Names as printed, in the order of Method.
+const char *const kMethodNames[] = {"P3P", "P3P+refinePose", "LEAST_SQUARES", "RANSAC", "vpPose DEMENTHON_VVS"};
 
-std::string methodName(Method m)
-{
-  switch (m) {
-  case Method::P3P:
-    return "P3P";
-  case Method::P3P_REFINED:
-    return "P3P+refinePose";
-  case Method::LEAST_SQUARES:
-    return "LEAST_SQUARES";
-  case Method::RANSAC:
-    return "RANSAC";
-  case Method::VISP_POSE:
-  default:
-    return "vpPose DEMENTHON_VVS";
-  }
-}
+std::string methodName(Method m) { return kMethodNames[static_cast<int>(m)]; }
 
 //! Runs one method on one frame. \return false when it gives no pose.
 bool estimate(Method method, const vpGravityFrame &frame, vpHomogeneousMatrix &cMo, std::vector<unsigned int> &inliers)

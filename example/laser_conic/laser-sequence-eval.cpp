@@ -280,7 +280,8 @@ int main(int argc, char **argv)
             << " to " << *std::max_element(detected.begin(), detected.end()) << " trace points detected per frame, "
             << "laser " << (opt.laserFile.empty() ? opt.data + "/laser.txt" : opt.laserFile) << ", RANSAC threshold "
             << opt.threshold << " px, " << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit")
-            << "\n\n";
+            << "\nPer-frame results: " << opt.output << "/sequence.csv, curves: " << opt.output
+            << "/sequence_{altitude,roll,pitch}.png\n\n";
   double rmsResidual = 0.0, outlierFraction = 0.0;
   if (!residuals.empty()) {
     for (double r : residuals) {
