@@ -234,18 +234,12 @@ void writePlots(const ServoRun &gravity, const ServoRun &classic, const vpHomoge
                       oMcd[0][3], oMcd[2][3],
                       vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xz.png"));
 
-  std::vector<double> logT[2], logR[2];
-  const ServoRun *runs[2] = {&gravity, &classic};
-  for (int k = 0; k < 2; ++k)
-    for (size_t i = 0; i < runs[k]->iteration.size(); ++i) {
-      logT[k].push_back(std::log10(std::max(runs[k]->errorTranslationMm[i], 1e-3)));
-      logR[k].push_back(std::log10(std::max(runs[k]->errorRotationDeg[i], 1e-3)));
-    }
-  vpPngPlot errors("True pose error (log10)", "iteration", "log10 error", 640, 420);
-  errors.addCurve("translation (mm), gravity P3P", gravity.iteration, logT[0], vpColor::red);
-  errors.addCurve("translation (mm), vpPose", classic.iteration, logT[1], vpColor::blue);
-  errors.addCurve("rotation (deg), gravity P3P", gravity.iteration, logR[0], vpColor::orange);
-  errors.addCurve("rotation (deg), vpPose", classic.iteration, logR[1], vpColor::cyan);
+  vpPngPlot errors("True pose error", "iteration", "error (mm, deg)", 640, 420);
+  errors.setLogY(true);
+  errors.addCurve("translation (mm), gravity P3P", gravity.iteration, gravity.errorTranslationMm, vpColor::red);
+  errors.addCurve("translation (mm), vpPose", classic.iteration, classic.errorTranslationMm, vpColor::blue);
+  errors.addCurve("rotation (deg), gravity P3P", gravity.iteration, gravity.errorRotationDeg, vpColor::orange);
+  errors.addCurve("rotation (deg), vpPose", classic.iteration, classic.errorRotationDeg, vpColor::cyan);
   errors.write(vpIoTools::createFilePath(outputDir, "servo-gravity-errors.png"));
 }
 //! [Plots]
