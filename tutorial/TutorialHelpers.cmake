@@ -3,14 +3,15 @@ include_guard(GLOBAL)
 
 # vsp_add_tutorial(<name> LIBS <targets...>)
 # Builds tutorial-<name> from tutorial-<name>.cpp of the calling folder, with the shared header
-# tutorial/common/vpTutorialCommon.h and the PNG plots of example/common (vsp_plot). When testing is
+# tutorial/common/vpTutorialCommon.h, the command line and the PNG plots of example/common
+# (vsp_text_tools, vsp_plot). When testing is
 # enabled, ctest runs it headless as tutorial_<name> (dashes become underscores), writing its pictures
 # into <build folder>/output: the program checks its results against the simulation's ground truth
 # and exits non-zero when they are off their bounds. Nothing is added when a target is missing (a
 # module or a helper left out of the build).
 function(vsp_add_tutorial name)
   cmake_parse_arguments(T "" "" "LIBS" ${ARGN})
-  foreach(lib ${T_LIBS} vsp_plot)
+  foreach(lib ${T_LIBS} vsp_plot vsp_text_tools)
     if(NOT TARGET ${lib})
       message(STATUS "Tutorial ${name} skipped: target ${lib} is not available")
       return()
@@ -18,7 +19,7 @@ function(vsp_add_tutorial name)
   endforeach()
 
   set(exe tutorial-${name})
-  vsp_add_program(${exe} ${exe}.cpp LIBS ${T_LIBS} vsp_plot)
+  vsp_add_program(${exe} ${exe}.cpp LIBS ${T_LIBS} vsp_plot vsp_text_tools)
   target_include_directories(${exe} PRIVATE "${PROJECT_SOURCE_DIR}/tutorial/common")
 
   if(BUILD_TESTING)

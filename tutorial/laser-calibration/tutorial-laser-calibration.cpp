@@ -183,7 +183,8 @@ bool runCalibrationTutorial(const std::string &outputDir)
 
 int main(int argc, char **argv)
 {
-  vpTutorialProgram program("Calibrates the laser pose cMl from simulated grid views; "
+  vpTutorialProgram program("",
+                            "Calibrates the laser pose cMl from simulated grid views; "
                             "writes laser-calibration-{before,after}.png.");
   return program.run(argc, argv, [](const std::string &outputDir) { return runCalibrationTutorial(outputDir); });
 }

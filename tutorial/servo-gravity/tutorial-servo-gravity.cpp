@@ -292,7 +292,8 @@ bool runServoTutorial(int seed, const std::string &outputDir)
 int main(int argc, char **argv)
 {
   int seed = 1;
-  vpTutorialProgram program("PBVS loop closed by vpPoseGravity (3 points + IMU) and by vpPose (4 points); "
+  vpTutorialProgram program("[--seed N]",
+                            "PBVS loop closed by vpPoseGravity (3 points + IMU) and by vpPose (4 points); "
                             "writes servo-gravity-*.png.");
   program.addOption("--seed", seed, 0, "seed of the simulated sensor noise");
   return program.run(argc, argv, [&](const std::string &outputDir) { return runServoTutorial(seed, outputDir); });
