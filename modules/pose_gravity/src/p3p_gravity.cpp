@@ -60,37 +60,35 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
       !(x[1].z() > 0.0) || !(x[2].z() > 0.0))
     return false;
 
-  // Normalized image points, and the pairs (i, j) with the third point k sorted by decreasing image
-  // distance (three elements).
+  // Normalized image points; pair p is (p, p + 1) with the third point p + 2 (mod 3), and the pairs
+  // are sorted by decreasing image distance (a three-element sorting network on indices).
   double u[3], v[3];
   for (int i = 0; i < 3; ++i) {
     const double iz = 1.0 / x[i].z();
     u[i] = x[i].x() * iz;
     v[i] = x[i].y() * iz;
   }
-  int pairs[3][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}};
   double dist[3];
   for (int p = 0; p < 3; ++p) {
-    const int i = pairs[p][0], j = pairs[p][1];
-    dist[p] = (u[i] - u[j]) * (u[i] - u[j]) + (v[i] - v[j]) * (v[i] - v[j]);
+    const int q = (p + 1) % 3;
+    dist[p] = (u[p] - u[q]) * (u[p] - u[q]) + (v[p] - v[q]) * (v[p] - v[q]);
   }
-  for (int p = 0; p < 2; ++p)
-    for (int q = p + 1; q < 3; ++q)
-      if (dist[q] > dist[p]) {
-        std::swap(dist[p], dist[q]);
-        std::swap(pairs[p], pairs[q]);
-      }
+  int order[3] = {0, 1, 2};
+  for (int a = 0; a < 2; ++a)
+    for (int b = a + 1; b < 3; ++b)
+      if (dist[order[b]] > dist[order[a]])
+        std::swap(order[a], order[b]);
 
-  // The upright frames and the points in them serve every pair.
+  // The upright frames and the object points in them serve every pair (the bearings of the third
+  // point are not needed in the upright frame).
   const detail::vpYawFrame frame(gCam, gObj);
-  const Eigen::Vector3d F[3] = {frame.upCamera(x[0]), frame.upCamera(x[1]), frame.upCamera(x[2])};
   const Eigen::Vector3d Y[3] = {frame.upObject(X[0]), frame.upObject(X[1]), frame.upObject(X[2])};
-  for (int p = 0; p < 3; ++p) {
-    const int i = pairs[p][0], j = pairs[p][1], k = pairs[p][2];
+  for (int p : order) {
+    const int i = p, j = (p + 1) % 3, k = (p + 2) % 3;
     detail::vpPairYaw yaw;
     P2PCase p2pCase = P2PCase::NoSolution;
     // Coincident image points or no admissible yaw: use another pair.
-    if (detail::solvePairYaw(F[i], F[j], Y[i], Y[j], yaw, p2pCase) > 0 &&
+    if (detail::solvePairYaw(frame.upCamera(x[i]), frame.upCamera(x[j]), Y[i], Y[j], yaw, p2pCase) > 0 &&
         bestRoot(frame, yaw, x, X, Y, i, j, k, u[k], v[k], pose))
       return true;
   }

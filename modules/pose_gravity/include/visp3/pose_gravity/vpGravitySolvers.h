@@ -73,13 +73,15 @@ Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
   \param x : the two bearings (normalized image points, z > 0).
   \param X : the two object points.
   \param poses : receives the candidates, ordered by increasing yaw angle \f$ \alpha \in (-\pi, \pi] \f$
-  (see the file description for the definition of the yaw).
+  (see the file description for the definition of the yaw); entries beyond the returned count are
+  unspecified.
   \param p2pCase : optional, receives the Lemma 1 case.
   \return number of poses written (0, 1 or 2).
 
   The yaw solves \f$ \mathbf{n} \cdot \mathbf{R}_z(\alpha)(\mathbf{Y}_A - \mathbf{Y}_B) = 0 \f$ with
   \f$ \mathbf{n} = \mathbf{f}_A \times \mathbf{f}_B \f$, i.e. \f$ a\cos\alpha + b\sin\alpha + c = 0 \f$
-  (the paper's eq. 12); the depths follow by linear least squares. When noise makes
+  (the paper's eq. 12), solved for \f$ (\cos\alpha, \sin\alpha) \f$ with one square root; the depths
+  follow by linear least squares. When noise makes
   \f$ |c| \f$ exceed \f$ \sqrt{a^2+b^2} \f$ by less than 0.05 (unit vectors: about the angle by
   which the segment misses the plane of the rays), the double root is returned; beyond, NoSolution.
   Roots that put a point behind the camera are discarded (the paper counts both algebraic roots).
