@@ -18,6 +18,7 @@
   format error.
 */
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include <visp3/core/vpMath.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/laser_conic/vpLaserConicDetector.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
@@ -231,8 +233,14 @@ FrameResult processImage(const std::string &image, const Options &options, vpLas
     }
   }
   if (!options.overlays.empty()) {
-    const std::string caption = options.methodName + " " + result.status + " altitude " +
-                                vpCsvTools::formatDouble(std::round(result.altitude * 1000.0) / 1000.0) + " m";
+    char caption[256];
+    if (result.status == "ok")
+      std::snprintf(caption, sizeof(caption), "%s %s: altitude %.3f m, roll %.2f deg, pitch %.2f deg, %u/%zu inliers",
+                    fs::path(image).filename().string().c_str(), options.methodName.c_str(), result.altitude,
+                    vpMath::deg(result.roll), vpMath::deg(result.pitch), result.inliers, points.size());
+    else
+      std::snprintf(caption, sizeof(caption), "%s %s: %s (%zu points)", fs::path(image).filename().string().c_str(),
+                    options.methodName.c_str(), result.status.c_str(), points.size());
     vpLaserOverlay::draw(I, points, inliers, conic, caption);
     vpImageIo::write(I, (fs::path(options.overlays) / (fs::path(image).stem().string() + "_overlay.png")).string());
   }
