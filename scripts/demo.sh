@@ -7,6 +7,6 @@ bash "$here/scripts/install_deps.sh"
 build="${VSP_BUILD_DIR:-$here/build}"
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF
 cmake --build "$build" -j "$(nproc)"
+# The demo creates the output folder itself, after checking that it is not inside data/.
 out="${VSP_DEMO_OUTPUT:-$PWD/demo-output}"
-mkdir -p "$out"
 "$build/example/demo/vsp-demo" --output "$out"
