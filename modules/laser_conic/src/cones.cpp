@@ -7,11 +7,12 @@
 
 #include <cmath>
 
+#include "laser_geometry.h"
+
 namespace vpLaserSolvers
 {
-namespace
+namespace internal
 {
-//! 3x3 form M of the laser cone: (X - apex)^T M (X - apex) = 0 in the camera frame.
 Eigen::Matrix3d laserConeForm(const LaserCone &cone)
 {
   const double tan2 = std::tan(cone.halfAngle) * std::tan(cone.halfAngle);
@@ -19,11 +20,11 @@ Eigen::Matrix3d laserConeForm(const LaserCone &cone)
   // R_las = cRl^T, hence R_las^T d R_las = cRl d cRl^T.
   return cone.cRl * d.asDiagonal() * cone.cRl.transpose();
 }
-} // namespace
+} // namespace internal
 
 Eigen::Matrix4d laserConeQuadric(const LaserCone &cone)
 {
-  const Eigen::Matrix3d M = laserConeForm(cone);
+  const Eigen::Matrix3d M = internal::laserConeForm(cone);
   const Eigen::Vector3d Mt = M * cone.apex;
   Eigen::Matrix4d D;
   D.topLeftCorner<3, 3>() = M;

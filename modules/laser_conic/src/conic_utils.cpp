@@ -11,17 +11,13 @@
 
 #include <Eigen/LU>
 
+#include "laser_geometry.h"
+
 namespace vpLaserSolvers
 {
 Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone)
 {
-  // A ray r meets the plane at X = -d r / (n.r). Up to the factor -(n.r), X - apex = G r with
-  // G = d I + apex n^T, so the trace seen through r satisfies r^T G^T M G r = 0 where M is the
-  // 3x3 form of the laser cone: (X - apex)^T M (X - apex) = 0.
-  const Eigen::Matrix3d M = laserConeQuadric(cone).topLeftCorner<3, 3>();
-  const Eigen::Matrix3d G = plane(3) * Eigen::Matrix3d::Identity() + cone.apex * plane.head<3>().transpose();
-  Eigen::Matrix3d c = G.transpose() * M * G;
-  c = 0.5 * (c + c.transpose());
+  const Eigen::Matrix3d c = internal::traceConic(plane, cone.apex, internal::laserConeForm(cone));
   const double norm = c.norm();
   return norm > 0.0 ? Eigen::Matrix3d(c / norm) : c;
 }

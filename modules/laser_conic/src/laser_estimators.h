@@ -11,11 +11,15 @@
 #ifndef VP_LASER_ESTIMATORS_H
 #define VP_LASER_ESTIMATORS_H
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+#include "laser_geometry.h"
 
 namespace vpLaserEstimators
 {
@@ -44,6 +48,8 @@ public:
   {
     return inliers.size() >= 5 && fitEllipseOn(m_points, inliers, c);
   }
+  //! Final refit: the same least-squares ellipse.
+  bool refineFinal(const std::vector<int> &inliers, Model &c) const { return refine(inliers, c); }
 
 protected:
   const PointList &m_points;
@@ -92,71 +98,108 @@ struct PlaneModel
   Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
 };
 
-//! GP-3: ground planes through 3 ray/cone intersections (Sec. 5.3).
+/*!
+  GP-3: ground planes through 3 ray/cone intersections (Sec. 5.3). The points are also kept as two
+  contiguous coordinate arrays so that scoring a hypothesis is one tight loop of a few flops per
+  point (squared Sampson distance, no square root, no call per point).
+*/
 class Gp3Estimator
 {
 public:
   typedef PlaneModel Model;
   static constexpr int kSampleSize = 3;
   static constexpr int kMaxModels = 8;
-  Gp3Estimator(const PointList &points, const vpLaserSolvers::LaserCone &cone) : m_points(points), m_cone(cone) {}
+  /*!
+    Inliers the local optimisation inside the RANSAC loop refines on at most (evenly spread over the
+    consensus set): the loop only needs a better hypothesis to rank, the final refit uses them all.
+  */
+  static constexpr int kLocalPoints = 128;
+  //! Iterations of the plane refinement inside the RANSAC loop (one pass over the points each).
+  static constexpr int kLocalIterations = 3;
+
+  Gp3Estimator(const PointList &points, const vpLaserSolvers::LaserCone &cone)
+    : m_points(points), m_x(points.size()), m_y(points.size()), m_cone(cone),
+      m_form(vpLaserSolvers::internal::laserConeForm(cone)), m_subset()
+  {
+    for (size_t i = 0; i < points.size(); ++i) {
+      m_x[i] = points[i](0);
+      m_y[i] = points[i](1);
+    }
+    m_subset.reserve(points.size());
+  }
   int size() const { return static_cast<int>(m_points.size()); }
   int solveMinimal(const int *sample, Model *models) const
   {
     const Eigen::Vector2d p[3] = {m_points[sample[0]], m_points[sample[1]], m_points[sample[2]]};
     Eigen::Vector4d planes[8];
     const int n = vpLaserSolvers::gp3Planes(p, m_cone, planes);
-    for (int k = 0; k < n; ++k) {
-      models[k].plane = planes[k];
-      models[k].conic = vpLaserSolvers::conicFromPlane(planes[k], m_cone);
-    }
+    for (int k = 0; k < n; ++k)
+      models[k] = modelOf(planes[k]);
     return n;
   }
   //! Distance of the point to the image of the trace the plane predicts.
-  double residual(const Model &m, int i) const { return vpLaserSolvers::sampsonDistance(m.conic, m_points[i]); }
-  /*!
-    Local optimisation: geometric refinement of the plane on the inliers (refinePlane), started from
-    the hypothesis and from the plane pair of their least-squares ellipse; the better one is kept.
-  */
+  double residual(const Model &m, int i) const
+  {
+    return std::sqrt(vpLaserSolvers::internal::ConicCoefficients(m.conic).squaredSampson(m_x[i], m_y[i]));
+  }
+  //! Inliers among [begin, end) and their truncated squared distances (see vpRansacLoop()).
+  int scoreRange(const Model &m, int begin, int end, double thr2, double &cost) const
+  {
+    const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
+    int count = 0;
+    double sum = 0.0;
+    for (int i = begin; i < end; ++i) {
+      const double r2 = c.squaredSampson(m_x[i], m_y[i]);
+      const bool inlier = r2 < thr2; // NaN (no gradient) is never an inlier
+      count += inlier ? 1 : 0;
+      sum += inlier ? r2 : thr2;
+    }
+    cost += sum;
+    return count;
+  }
+  //! Local optimisation: geometric refinement of the plane (refinePlane) on a subset of the inliers.
   bool refine(const std::vector<int> &inliers, Model &m) const
   {
-    if (inliers.size() < 3)
-      return false;
-    PointList subset;
-    subset.reserve(inliers.size());
-    for (int i : inliers)
-      subset.push_back(m_points[i]);
-    const int n = static_cast<int>(subset.size());
-    Eigen::Vector4d starts[2] = {m.plane, Eigen::Vector4d::Zero()};
-    int nstarts = 1;
-    Eigen::Matrix3d c;
-    if (n >= 5 && fitEllipseOn(m_points, inliers, c) && vpLaserSolvers::planePair(c, m_cone, starts[1]))
-      nstarts = 2;
-    bool refined = false;
-    double bestCost = 0.0;
-    for (int k = 0; k < nstarts; ++k) {
-      Model candidate;
-      candidate.plane = starts[k];
-      if (!vpLaserSolvers::refinePlane(subset.data(), n, m_cone, candidate.plane))
-        continue;
-      candidate.conic = vpLaserSolvers::conicFromPlane(candidate.plane, m_cone);
-      double cost = 0.0;
-      for (int i : inliers) {
-        const double r = residual(candidate, i);
-        cost += r * r;
-      }
-      if (!refined || cost < bestCost) {
-        m = candidate;
-        bestCost = cost;
-        refined = true;
-      }
-    }
-    return refined;
+    return refineOn(inliers, kLocalPoints, kLocalIterations, m);
+  }
+  //! Final refit: the same refinement on every inlier, run to convergence.
+  bool refineFinal(const std::vector<int> &inliers, Model &m) const
+  {
+    return refineOn(inliers, static_cast<int>(inliers.size()), 20, m);
   }
 
 private:
+  Model modelOf(const Eigen::Vector4d &plane) const
+  {
+    Model m;
+    m.plane = plane;
+    const Eigen::Matrix3d c = vpLaserSolvers::internal::traceConic(plane, m_cone.apex, m_form);
+    const double norm = c.norm();
+    m.conic = norm > 0.0 ? Eigen::Matrix3d(c / norm) : c;
+    return m;
+  }
+  //! refinePlane() on at most \e cap inliers taken at a regular stride (all when cap >= their number).
+  bool refineOn(const std::vector<int> &inliers, int cap, int iterations, Model &m) const
+  {
+    const int count = static_cast<int>(inliers.size());
+    if (count < 3 || cap < 3)
+      return false;
+    const int used = std::min(count, cap);
+    m_subset.clear();
+    for (int k = 0; k < used; ++k)
+      m_subset.push_back(m_points[inliers[static_cast<size_t>(k) * count / used]]);
+    Eigen::Vector4d plane = m.plane;
+    if (!vpLaserSolvers::refinePlane(m_subset.data(), used, m_cone, plane, iterations))
+      return false;
+    m = modelOf(plane);
+    return true;
+  }
+
   const PointList &m_points;
+  std::vector<double> m_x, m_y; //!< coordinates of the points, contiguous for the scoring loop
   vpLaserSolvers::LaserCone m_cone;
+  Eigen::Matrix3d m_form;     //!< 3x3 form of the laser cone
+  mutable PointList m_subset; //!< points handed to the refinement (capacity reserved once)
 };
 } // namespace vpLaserEstimators
 

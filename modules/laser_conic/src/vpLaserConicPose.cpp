@@ -73,10 +73,10 @@ double fractionInFront(const PointList &points, const std::vector<int> &indices,
   return double(front) / double(indices.size());
 }
 /*!
-  vpRansacLoop() followed by a final least-squares refit of the best model on its inliers. The
-  loop only keeps a local refit when it scores better on the truncated Sampson cost, which an
-  algebraic least-squares fit need not do even when it is closer to the truth under noise; the
-  final refit is kept unless it loses more than a tenth of the inliers (a sign of a bad consensus).
+  vpRansacLoop() followed by a final refit of the best model on all its inliers (refineFinal()). The
+  loop only keeps a local refit when it scores better on the truncated Sampson cost, which a
+  least-squares fit need not do even when it is closer to the truth under noise; the final refit is
+  kept unless it loses more than a tenth of the inliers (a sign of a bad consensus).
 */
 template <class Estimator>
 bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &options,
@@ -87,12 +87,10 @@ bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &opt
   if (!options.localOptimisation)
     return true;
   typename Estimator::Model refit = best;
-  if (!estimator.refine(report.inliers, refit))
+  if (!estimator.refineFinal(report.inliers, refit))
     return true;
   std::vector<int> inliers;
-  for (int i = 0; i < estimator.size(); ++i)
-    if (estimator.residual(refit, i) < options.threshold)
-      inliers.push_back(i);
+  vpRansacInliers(estimator, refit, options.threshold * options.threshold, inliers);
   if (10 * inliers.size() < 9 * report.inliers.size() || static_cast<int>(inliers.size()) < Estimator::kSampleSize)
     return true;
   best = refit;
@@ -274,6 +272,8 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     inliers = report.inliers;
   } else {
     vpLaserEstimators::PlaneModel model;
+    // The plane refinement is cheap and a refined plane often gathers inliers its start missed.
+    options.localRounds = 3;
     found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, model, report);
     plane = model.plane;
     conic = model.conic;

@@ -10,11 +10,14 @@
 #ifndef VP_SENSOR_RANSAC_H
 #define VP_SENSOR_RANSAC_H
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <visp3/core/vpConfig.h>
@@ -31,6 +34,11 @@ struct vpRansacOptions
   int minTrials = 0;         //!< Samples drawn at least, whatever the adaptive count says.
   unsigned int seed = 0;     //!< Seed of the sampler: the same seed gives the same result.
   bool localOptimisation = true; //!< Refit each new best model on its inliers (LO-RANSAC).
+  /*!
+    Rounds of the local optimisation: after a refit that scores better, its own consensus set is
+    collected and refitted again, up to this many refits, while the score keeps improving.
+  */
+  int localRounds = 1;
 };
 
 /*!
@@ -83,6 +91,114 @@ private:
   std::mt19937 m_rng;
 };
 
+namespace vpRansacDetail
+{
+//! Detects the optional `scoreRange()` member of an estimator (see vpRansacLoop()).
+template <class E, class = void> struct HasScoreRange : std::false_type
+{
+};
+template <class E>
+struct HasScoreRange<E, std::void_t<decltype(std::declval<const E &>().scoreRange(
+                            std::declval<const typename E::Model &>(), 0, 0, 0.0, std::declval<double &>()))> >
+  : std::true_type
+{
+};
+
+/*!
+  Inliers among the data [begin, end) and their truncated squared residuals added to \e cost:
+  the estimator's own scoreRange() when it has one, otherwise one residual() call per datum.
+*/
+template <class Estimator>
+int scoreRange(const Estimator &estimator, const typename Estimator::Model &m, int begin, int end, double thr2,
+               double &cost)
+{
+  if constexpr (HasScoreRange<Estimator>::value) {
+    return estimator.scoreRange(m, begin, end, thr2, cost);
+  } else {
+    int count = 0;
+    for (int i = begin; i < end; ++i) {
+      const double r = estimator.residual(m, i);
+      const double r2 = r * r;
+      const bool inlier = r2 < thr2; // NaN residuals are never inliers
+      count += inlier ? 1 : 0;
+      cost += inlier ? r2 : thr2;
+    }
+    return count;
+  }
+}
+
+//! True when score a ranks before score b: more inliers, then a lower truncated cost.
+inline bool better(const std::pair<int, double> &a, const std::pair<int, double> &b)
+{
+  return a.first > b.first || (a.first == b.first && a.second < b.second);
+}
+} // namespace vpRansacDetail
+
+/*!
+  \ingroup group_robust
+  Scores a model: (inlier count, sum of truncated squared residuals). Scoring stops early, by blocks
+  of data, as soon as the model cannot reach \e mustReach inliers any more; the count returned is
+  then below \e mustReach (the model cannot win a ranking against a model with that many inliers),
+  which leaves the outcome of the ranking unchanged and skips most of the data for bad hypotheses.
+*/
+template <class Estimator>
+std::pair<int, double> vpRansacScore(const Estimator &estimator, const typename Estimator::Model &m, double thr2,
+                                     int mustReach = 0)
+{
+  constexpr int kBlock = 64;
+  const int n = estimator.size();
+  int count = 0;
+  double cost = 0.0;
+  for (int begin = 0; begin < n; begin += kBlock) {
+    const int end = std::min(n, begin + kBlock);
+    count += vpRansacDetail::scoreRange(estimator, m, begin, end, thr2, cost);
+    if (count + (n - end) < mustReach)
+      break; // even if every remaining datum were an inlier, the count would stay below mustReach
+  }
+  return std::make_pair(count, cost);
+}
+
+/*!
+  \ingroup group_robust
+  Collects into \e inliers the indices of the data whose squared residual is below \e thr2, with the
+  same test as vpRansacScore() (so that counts and index lists always agree).
+*/
+template <class Estimator>
+void vpRansacInliers(const Estimator &estimator, const typename Estimator::Model &m, double thr2,
+                     std::vector<int> &inliers)
+{
+  inliers.clear();
+  double cost = 0.0;
+  for (int i = 0; i < estimator.size(); ++i)
+    if (vpRansacDetail::scoreRange(estimator, m, i, i + 1, thr2, cost) > 0)
+      inliers.push_back(i);
+}
+
+namespace vpRansacDetail
+{
+/*!
+  Local optimisation of a new best model (LO-RANSAC): refit on its consensus set and keep the refit
+  only if it scores better; repeated on the consensus set of each kept refit, \e rounds refits at
+  most, since a better model may gather inliers the first set missed. \e inliers is scratch space.
+*/
+template <class Estimator>
+void localOptimisation(const Estimator &estimator, int rounds, double thr2, std::vector<int> &inliers,
+                       typename Estimator::Model &best, std::pair<int, double> &bestScore)
+{
+  for (int round = 0; round < rounds; ++round) {
+    typename Estimator::Model refit = best;
+    vpRansacInliers(estimator, best, thr2, inliers);
+    if (!estimator.refine(inliers, refit))
+      return;
+    const std::pair<int, double> rs = vpRansacScore(estimator, refit, thr2, bestScore.first);
+    if (!better(rs, bestScore))
+      return;
+    best = refit;
+    bestScore = rs;
+  }
+}
+} // namespace vpRansacDetail
+
 /*!
   \ingroup group_robust
   \brief The RANSAC loop of Fischler and Bolles with the adaptive trial count of eq. 28, MSAC-style
@@ -96,11 +212,16 @@ private:
   - `int solveMinimal(const int *sample, Model *models) const`: fills up to kMaxModels hypotheses
     from kSampleSize indices and returns how many (0 for a degenerate sample);
   - `double residual(const Model &m, int i) const`: error of datum i (unit of options.threshold);
-  - `bool refine(const std::vector<int> &inliers, Model &m) const`: refit on inliers (may return false).
+  - `bool refine(const std::vector<int> &inliers, Model &m) const`: refit on inliers (may return false);
+  - optionally `int scoreRange(const Model &m, int begin, int end, double thr2, double &cost) const`:
+    the number of data of [begin, end) whose squared residual is below thr2, adding their squared
+    residual (thr2 for the others) to cost. An estimator provides it to score a block of data in one
+    tight loop (no per-datum call, no square root); it must agree with residual().
 
   A datum is an inlier when residual < threshold. Hypotheses are ranked by inlier count, then by
   the sum of truncated squared residuals. The loop stops after the adaptive count computed from the
   best inlier ratio so far, at least options.minTrials and at most options.maxTrials samples.
+  Local optimisation runs only when a sample gives a new best model.
 
   \return true when a model with at least kSampleSize inliers was found; then \e best and \e report
   describe it.
@@ -117,33 +238,12 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
     return false;
 
   const double thr2 = options.threshold * options.threshold;
-  // Inlier count and truncated squared cost of a model; optionally collects the inlier indices.
-  auto score = [&](const Model &m, std::vector<int> *inliers) {
-    int count = 0;
-    double cost = 0.0;
-    if (inliers)
-      inliers->clear();
-    for (int i = 0; i < n; ++i) {
-      const double r = estimator.residual(m, i);
-      const double r2 = r * r;
-      if (r2 < thr2) { // NaN residuals are never inliers
-        ++count;
-        cost += r2;
-        if (inliers)
-          inliers->push_back(i);
-      } else {
-        cost += thr2;
-      }
-    }
-    return std::make_pair(count, cost);
-  };
-  auto better = [](const std::pair<int, double> &a, const std::pair<int, double> &b) {
-    return a.first > b.first || (a.first == b.first && a.second < b.second);
-  };
+  using vpRansacDetail::better;
 
   vpRansacSampler sampler(n, options.seed);
   std::array<int, s> sample{};
   std::array<Model, Estimator::kMaxModels> hypotheses{};
+  std::vector<int> inliers; // consensus set of the local optimisation, reused across trials
   std::pair<int, double> bestScore(0, std::numeric_limits<double>::infinity());
   int needed = options.maxTrials;
   int trial = 0;
@@ -154,31 +254,21 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
     const int count = estimator.solveMinimal(sample.data(), hypotheses.data());
     for (int k = 0; k < count; ++k) {
       ++report.models;
-      std::pair<int, double> sc = score(hypotheses[k], nullptr);
+      const std::pair<int, double> sc = vpRansacScore(estimator, hypotheses[k], thr2, bestScore.first);
       if (!better(sc, bestScore))
         continue;
       best = hypotheses[k];
       bestScore = sc;
-      if (options.localOptimisation && sc.first > s) {
-        // Local optimisation: refit on the consensus set, keep the refit only if it scores better.
-        Model refit = best;
-        std::vector<int> inliers;
-        score(best, &inliers);
-        if (estimator.refine(inliers, refit)) {
-          std::pair<int, double> rs = score(refit, nullptr);
-          if (better(rs, bestScore)) {
-            best = refit;
-            bestScore = rs;
-          }
-        }
-      }
+      if (options.localOptimisation && sc.first > s)
+        vpRansacDetail::localOptimisation(estimator, options.localRounds, thr2, inliers, best, bestScore);
       needed = vpRansacTrialCount(options.probability, 1.0 - double(bestScore.first) / n, s, options.maxTrials);
     }
   }
   report.trials = trial;
   if (bestScore.first < s)
     return false;
-  const std::pair<int, double> fin = score(best, &report.inliers);
+  const std::pair<int, double> fin = vpRansacScore(estimator, best, thr2);
+  vpRansacInliers(estimator, best, thr2, report.inliers);
   report.inlierCount = fin.first;
   report.score = fin.second;
   return true;

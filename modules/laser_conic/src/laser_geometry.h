@@ -1,0 +1,73 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file laser_geometry.h
+  \brief Private inline kernels of the laser_conic module shared by the solvers and the RANSAC
+  estimators: the 3x3 form of the laser cone, the unnormalised image conic of the trace on a plane
+  and the squared Sampson distance of a point to a conic stored as six coefficients.
+*/
+#ifndef VP_LASER_GEOMETRY_H
+#define VP_LASER_GEOMETRY_H
+
+#include <Eigen/Core>
+
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+namespace vpLaserSolvers
+{
+namespace internal
+{
+//! 3x3 form M of the laser cone: (X - apex)^T M (X - apex) = 0 in the camera frame (defined in cones.cpp).
+Eigen::Matrix3d laserConeForm(const LaserCone &cone);
+
+/*!
+  Image conic of the trace of the cone (apex, form M) on a plane, not normalised. A ray r meets the
+  plane at X = -d r / (n.r); up to that factor, X - apex = G r with G = d I + apex n^T, so the trace
+  seen through r satisfies r^T G^T M G r = 0.
+*/
+inline Eigen::Matrix3d traceConic(const Eigen::Vector4d &plane, const Eigen::Vector3d &apex, const Eigen::Matrix3d &M)
+{
+  const Eigen::Matrix3d G = plane(3) * Eigen::Matrix3d::Identity() + apex * plane.head<3>().transpose();
+  const Eigen::Matrix3d c = G.transpose() * M * G;
+  return 0.5 * (c + c.transpose());
+}
+
+//! The six distinct coefficients of a symmetric conic, laid out for the per-point kernels below.
+struct ConicCoefficients
+{
+  double a, b, d, e, f, g; //!< c = [a b d; b e f; d f g]
+
+  //! Copies the upper triangle of a symmetric conic.
+  explicit ConicCoefficients(const Eigen::Matrix3d &c)
+    : a(c(0, 0)), b(c(0, 1)), d(c(0, 2)), e(c(1, 1)), f(c(1, 2)), g(c(2, 2))
+  {
+  }
+
+  /*!
+    c (x, y, 1): the first two entries are half the gradient of the conic at (x, y); the
+    algebraic value x^T c x is returned.
+  */
+  double apply(double x, double y, double &v0, double &v1) const
+  {
+    v0 = a * x + b * y + d;
+    v1 = b * x + e * y + f;
+    return x * v0 + y * v1 + (d * x + f * y + g);
+  }
+
+  /*!
+    Squared Sampson distance (x^T c x)^2 / |grad|^2 with |grad|^2 = 4 (v0^2 + v1^2): no square root.
+    NaN or infinity when the gradient vanishes (never below a threshold).
+  */
+  double squaredSampson(double x, double y) const
+  {
+    double v0, v1;
+    const double algebraic = apply(x, y, v0, v1);
+    return (algebraic * algebraic) / (4.0 * (v0 * v0 + v1 * v1));
+  }
+};
+} // namespace internal
+} // namespace vpLaserSolvers
+
+#endif
