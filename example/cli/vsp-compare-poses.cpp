@@ -69,10 +69,9 @@ int main(int argc, char **argv)
                 "exit status 1 when the median translation error exceeds M metres", vpCommandLine::NON_NEGATIVE);
   cli.addDouble("--max-median-rotation-deg", maxRotationDeg, "D",
                 "exit status 1 when the median rotation error exceeds D degrees", vpCommandLine::NON_NEGATIVE);
+  cli.require({"--estimate", "--truth"});
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
-  if (estimateFile.empty() || truthFile.empty())
-    return cli.fail("--estimate and --truth are required");
 
   std::vector<vpPoseRow> estimates, truth;
   if (!vpGravityPointsIo::readPoses(estimateFile, estimates, error) ||

@@ -61,6 +61,7 @@ vpCommandLine commandLine(Options &options)
   cli.addDouble("--threshold", options.threshold, "T",
                 "RANSAC inlier threshold in normalized coordinates (default 1e-3)", vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
+  cli.require({"--input", "--output"});
   return cli;
 }
 
@@ -134,8 +135,6 @@ int main(int argc, char **argv)
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
   std::string error;
-  if (options.input.empty() || options.output.empty())
-    return cli.fail("--input and --output are required");
   if (!vpCsvTools::checkOutputIsNotInput(options.output, {options.input}, error))
     return cli.fail(error);
   std::vector<vpGravityFrame> frames;

@@ -77,17 +77,8 @@ vpCommandLine commandLine(Options &options)
   cli.addDouble("--threshold", options.threshold, "PX", "RANSAC inlier threshold in pixels (default 2)",
                 vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
+  cli.require({"--camera", "--laser", "--output"});
   return cli;
-}
-
-//! Checks the options that parsing alone cannot: required ones, exactly one image source.
-bool checkOptions(const Options &options, std::string &error)
-{
-  if (options.camera.empty() || options.laser.empty() || options.output.empty())
-    error = "--camera, --laser and --output are required";
-  else if (options.imagesDir.empty() == options.listFile.empty())
-    error = "give exactly one of --images DIR and --list FILE";
-  return error.empty();
 }
 
 bool hasImageExtension(const fs::path &p)
@@ -265,9 +256,9 @@ int main(int argc, char **argv)
   vpCommandLine cli = commandLine(options);
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
+  if (cli.given("--images") == cli.given("--list"))
+    return cli.fail("give exactly one of --images DIR and --list FILE");
   std::string error;
-  if (!checkOptions(options, error))
-    return cli.fail(error);
   vpCameraParameters cam;
   double openingAngle = 0.0;
   vpHomogeneousMatrix cMl;

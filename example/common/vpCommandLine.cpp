@@ -20,12 +20,12 @@ std::string lowercase(std::string s)
   return s;
 }
 
-//! "A, B or C".
-std::string enumerate(const std::vector<std::string> &items)
+//! "A, B or C" (\e last: "or", "and").
+std::string enumerate(const std::vector<std::string> &items, const std::string &last)
 {
   std::string text;
   for (size_t i = 0; i < items.size(); ++i)
-    text += (i == 0 ? "" : (i + 1 == items.size() ? " or " : ", ")) + items[i];
+    text += (i == 0 ? "" : (i + 1 == items.size() ? " " + last + " " : ", ")) + items[i];
   return text;
 }
 
@@ -82,7 +82,7 @@ void vpCommandLine::addChoice(const std::string &name, std::string &target, cons
   const std::string what = lowercase(valueName);
   addOption(name, valueName, help, [&target, choices, what](const std::string &value, std::string &error) {
     if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
-      error = "unknown " + what + " '" + value + "' (" + enumerate(choices) + ")";
+      error = "unknown " + what + " '" + value + "' (" + enumerate(choices, "or") + ")";
       return false;
     }
     target = value;
@@ -165,7 +165,21 @@ bool vpCommandLine::parse(int argc, const char *const argv[])
     }
     m_given.push_back(arg);
   }
+  std::vector<std::string> missing;
+  for (const std::string &name : m_required)
+    if (!given(name))
+      missing.push_back(name);
+  if (!missing.empty()) {
+    m_exitStatus = fail("missing required option" + std::string(missing.size() > 1 ? "s " : " ") +
+                        enumerate(missing, "and"));
+    return false;
+  }
   return true;
+}
+
+void vpCommandLine::require(const std::vector<std::string> &names)
+{
+  m_required.insert(m_required.end(), names.begin(), names.end());
 }
 
 bool vpCommandLine::given(const std::string &name) const

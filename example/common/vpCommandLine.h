@@ -70,6 +70,9 @@ public:
   void addOption(const std::string &name, const std::string &valueName, const std::string &help,
                  const vpApply &apply);
 
+  //! Makes options \e names mandatory: parse() fails when one of them is absent.
+  void require(const std::vector<std::string> &names);
+
   /*!
     Parses argv[1..argc-1]. --help (or -h) prints the usage on stdout; an error is printed on stderr,
     with a pointer to --help.
@@ -84,7 +87,7 @@ public:
   bool given(const std::string &name) const;
 
   /*!
-    Reports an error found after parsing (a missing required option, incompatible options): prints
+    Reports an error found after parsing (incompatible options, an output naming an input): prints
     "<program>: <error>" and a pointer to --help on stderr. \return EXIT_FAILURE, for main() to return.
   */
   int fail(const std::string &error) const;
@@ -103,7 +106,7 @@ private:
 
   std::string m_synopsis, m_description, m_program;
   std::vector<Option> m_options;
-  std::vector<std::string> m_given;
+  std::vector<std::string> m_given, m_required;
   int m_exitStatus;
 };
 

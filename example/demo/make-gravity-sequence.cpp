@@ -149,10 +149,9 @@ int main(int argc, char **argv)
   cli.addString("--output", output, "DIR", "folder of the two files (created if needed)");
   cli.addUnsigned("--seed", seed, "N", "seed of the random generator (default 2013, that of data/gravity_sequence)");
   cli.addUnsigned("--frames", frames, "N", "number of frames (default 60)", 1, 100000);
+  cli.require({"--output"});
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
-  if (output.empty())
-    return cli.fail("--output is required");
 
   std::error_code ec;
   std::filesystem::create_directories(output, ec);
