@@ -25,14 +25,7 @@ struct BenchRow
 inline BenchRow benchRow(const std::string &problem, const std::string &method, double ns, double referenceNs,
                          bool ours = false, double success = -1.0)
 {
-  BenchRow r;
-  r.problem = problem;
-  r.method = method;
-  r.ns = ns;
-  r.referenceNs = referenceNs;
-  r.ours = ours;
-  r.successRate = success;
-  return r;
+  return BenchRow{problem, method, ns, referenceNs, success, ours}; // the order of the members
 }
 
 //! A titled table of rows.
