@@ -237,6 +237,22 @@ FrameResult processImage(const std::string &image, const Options &options, vpLas
   }
   return result;
 }
+/*!
+  Reads the camera, the laser calibration and the image list, and checks that no output names an
+  input. \return false with \e error naming the file at fault.
+*/
+bool readInputs(const Options &options, vpCameraParameters &cam, double &openingAngle, vpHomogeneousMatrix &cMl,
+                std::vector<std::string> &images, std::string &error)
+{
+  unsigned int width = 0, height = 0; // not needed: images of any size are accepted
+  // The output is checked against the named files first, so that a wrong command line is refused
+  // before the image list is read; then against the images.
+  return vpLaserRigIo::readCamera(options.camera, options.cameraName, cam, width, height, error) &&
+         vpLaserRigIo::readLaserCalibration(options.laser, openingAngle, cMl, error) &&
+         checkOutputs(options, images, error) && listImages(options, images, error) &&
+         checkOutputs(options, images, error);
+}
+
 //! One row of the results CSV; the numbers are "nan" when the frame has no plane.
 void writeRow(std::ostream &out, size_t frame, const std::string &image, const FrameResult &r)
 {
@@ -263,13 +279,7 @@ int main(int argc, char **argv)
   double openingAngle = 0.0;
   vpHomogeneousMatrix cMl;
   std::vector<std::string> images;
-  // The output is checked against the named files first, so that a wrong command line is refused
-  // before the image list is read.
-  unsigned int width = 0, height = 0; // not needed: images of any size are accepted
-  if (!vpLaserRigIo::readCamera(options.camera, options.cameraName, cam, width, height, error) ||
-      !vpLaserRigIo::readLaserCalibration(options.laser, openingAngle, cMl, error) ||
-      !checkOutputs(options, images, error) || !listImages(options, images, error) ||
-      !checkOutputs(options, images, error)) {
+  if (!readInputs(options, cam, openingAngle, cMl, images, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
