@@ -56,11 +56,18 @@ bool isInside(const std::string &path, const std::string &folder)
   return mismatch.first == f.end();
 }
 
-void printBounds(const std::vector<vpAccuracyBound> &bounds)
+//! Prints the bounds of --check, each in the unit of its error column in \e summaries.
+void printBounds(const std::vector<vpAccuracyBound> &bounds, const std::vector<vpMethodSummary> &summaries)
 {
-  for (const vpAccuracyBound &b : bounds)
-    std::cout << "  " << b.method << " " << b.statistic << " " << b.quantity << " error <= " << b.value << "  ("
-              << b.why << ")\n";
+  for (const vpAccuracyBound &b : bounds) {
+    std::string unit;
+    for (const vpMethodSummary &s : summaries)
+      for (const vpErrorColumn &c : s.errors)
+        if (s.method == b.method && c.name == b.quantity)
+          unit = " " + c.unit;
+    std::cout << "  " << b.method << " " << b.statistic << " " << b.quantity << " error <= " << b.value << unit
+              << "  (" << b.why << ")\n";
+  }
 }
 } // namespace
 
@@ -107,8 +114,8 @@ int main(int argc, char **argv)
   if (!options.check)
     return EXIT_SUCCESS;
   std::cout << "\nChecks (--check):\n";
-  printBounds(laserBounds());
-  printBounds(gravityBounds());
+  printBounds(laserBounds(), laser);
+  printBounds(gravityBounds(), gravity);
   // Every estimator must give a result on at least 95 % of the frames of these clean sequences.
   const bool laserPass = checkBounds(std::cout, laser, laserBounds(), 0.95);
   const bool pass = checkBounds(std::cout, gravity, gravityBounds(), 0.95) && laserPass;
