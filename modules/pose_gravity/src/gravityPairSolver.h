@@ -79,13 +79,17 @@ struct vpYawFrame
   //! cRo = wRc^T Rz wRo for the yaw of cosine \e c and sine \e s.
   Eigen::Matrix3d rotation(double c, double s) const
   {
-    // Rows of Rz wRo, then the sum of three outer products.
-    const Eigen::Vector3d m1 = c * b1o - s * b2o, m2 = s * b1o + c * b2o;
     Eigen::Matrix3d R;
-    for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k)
-        R(r, k) = b1c[r] * m1[k] + b2c[r] * m2[k] + gc[r] * go[k];
+    rotation(c, s, R);
     return R;
+  }
+  //! The same, written into \e R.
+  void rotation(double c, double s, Eigen::Matrix3d &R) const
+  {
+    // Rows of Rz wRo, then the sum of three outer products, column by column (storage order).
+    const Eigen::Vector3d m1 = c * b1o - s * b2o, m2 = s * b1o + c * b2o;
+    for (int k = 0; k < 3; ++k)
+      R.col(k) = m1[k] * b1c + m2[k] * b2c + go[k] * gc;
   }
 };
 
@@ -216,7 +220,7 @@ inline int solvePairPoses(const vpYawFrame &frame, const Eigen::Vector3d &xA, co
     // the count, so that the next root takes its slot.
     const double c = yaw.cs[k][0], s = yaw.cs[k][1];
     Pose &pose = poses[count];
-    pose.R = frame.rotation(c, s);
+    frame.rotation(c, s, pose.R);
     pose.t = yaw.translation(c, s, xA, xB, pose.R * S);
     count += static_cast<int>((yaw.qA(c, s) > 0.0) & (yaw.qB(c, s) > 0.0));
   }
@@ -229,10 +233,10 @@ inline int solvePairPoses(const vpYawFrame &frame, const Eigen::Vector3d &xA, co
 inline bool allFinite(const Eigen::Vector3d *v, int count)
 {
   // x - x is 0 for a finite x and NaN otherwise; one comparison for the whole sum.
-  double sum = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int i = 0; i < count; ++i)
-    sum += (v[i] - v[i]).sum();
-  return sum == 0.0;
+    sum += v[i] - v[i];
+  return sum.sum() == 0.0;
 }
 } // namespace detail
 } // namespace vpGravitySolvers

@@ -46,7 +46,7 @@ bool bestRoot(const detail::vpYawFrame &frame, const detail::vpPairYaw &yaw, con
     return false;
   const int m = (valid[1] & (!valid[0] | (num[1] * den[0] < num[0] * den[1]))) ? 1 : 0;
   const double c = yaw.cs[m][0], s = yaw.cs[m][1];
-  pose.R = frame.rotation(c, s);
+  frame.rotation(c, s, pose.R);
   pose.t = yaw.translation(c, s, x[i], x[j], pose.R * (X[i] + X[j]));
   return true;
 }
