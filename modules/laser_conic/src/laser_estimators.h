@@ -113,7 +113,7 @@ public:
     Inliers the local optimisation inside the RANSAC loop refines on at most (evenly spread over the
     consensus set): the loop only needs a better hypothesis to rank, the final refit uses them all.
   */
-  static constexpr int kLocalPoints = 128;
+  static constexpr int kLocalPoints = 64;
   //! Iterations of the plane refinement inside the RANSAC loop (one pass over the points each).
   static constexpr int kLocalIterations = 3;
 
@@ -142,17 +142,30 @@ public:
   {
     return std::sqrt(vpLaserSolvers::internal::ConicCoefficients(m.conic).squaredSampson(m_x[i], m_y[i]));
   }
-  //! Inliers among [begin, end) and their truncated squared distances (see vpRansacLoop()).
-  int scoreRange(const Model &m, int begin, int end, double thr2, double &cost) const
+  /*!
+    Inliers among [begin, end), their truncated squared distances added to \e cost and their indices
+    written to \e inliers when not null (see vpRansacLoop()). The inlier test compares the squared
+    algebraic value with the threshold times the squared gradient: no division for the outliers,
+    which most hypotheses mostly see; NaN (no gradient) is never an inlier.
+  */
+  int scoreRange(const Model &m, int begin, int end, double thr2, double &cost, int *inliers) const
   {
     const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
+    const double thr2Times4 = 4.0 * thr2;
     int count = 0;
     double sum = 0.0;
     for (int i = begin; i < end; ++i) {
-      const double r2 = c.squaredSampson(m_x[i], m_y[i]);
-      const bool inlier = r2 < thr2; // NaN (no gradient) is never an inlier
-      count += inlier ? 1 : 0;
-      sum += inlier ? r2 : thr2;
+      double v0, v1;
+      const double algebraic = c.apply(m_x[i], m_y[i], v0, v1);
+      const double a2 = algebraic * algebraic, g2 = v0 * v0 + v1 * v1;
+      if (a2 < thr2Times4 * g2) {
+        if (inliers)
+          inliers[count] = i;
+        ++count;
+        sum += a2 / (4.0 * g2);
+      } else {
+        sum += thr2;
+      }
     }
     cost += sum;
     return count;

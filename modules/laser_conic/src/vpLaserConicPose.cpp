@@ -76,7 +76,9 @@ double fractionInFront(const PointList &points, const std::vector<int> &indices,
   vpRansacLoop() followed by a final refit of the best model on all its inliers (refineFinal()). The
   loop only keeps a local refit when it scores better on the truncated Sampson cost, which a
   least-squares fit need not do even when it is closer to the truth under noise; the final refit is
-  kept unless it loses more than a tenth of the inliers (a sign of a bad consensus).
+  kept unless it loses more than a tenth of the inliers (a sign of a bad consensus). A refit that
+  gathers more inliers is refitted again on them (a few rounds): a consensus set found by a poor
+  hypothesis misses points on one side of the trace, which biases a refit on that set alone.
 */
 template <class Estimator>
 bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &options,
@@ -86,16 +88,22 @@ bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &opt
     return false;
   if (!options.localOptimisation)
     return true;
-  typename Estimator::Model refit = best;
-  if (!estimator.refineFinal(report.inliers, refit))
-    return true;
+  const int kRounds = 3;
   std::vector<int> inliers;
-  vpRansacInliers(estimator, refit, options.threshold * options.threshold, inliers);
-  if (10 * inliers.size() < 9 * report.inliers.size() || static_cast<int>(inliers.size()) < Estimator::kSampleSize)
-    return true;
-  best = refit;
-  report.inliers = inliers;
-  report.inlierCount = static_cast<int>(inliers.size());
+  for (int round = 0; round < kRounds; ++round) {
+    typename Estimator::Model refit = best;
+    if (!estimator.refineFinal(report.inliers, refit))
+      return true;
+    vpRansacInliers(estimator, refit, options.threshold * options.threshold, inliers);
+    const size_t before = report.inliers.size();
+    if (10 * inliers.size() < 9 * before || static_cast<int>(inliers.size()) < Estimator::kSampleSize)
+      return true;
+    best = refit;
+    report.inliers.swap(inliers);
+    report.inlierCount = static_cast<int>(report.inliers.size());
+    if (report.inliers.size() <= before)
+      return true;
+  }
   return true;
 }
 } // namespace

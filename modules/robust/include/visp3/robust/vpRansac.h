@@ -35,8 +35,8 @@ struct vpRansacOptions
   unsigned int seed = 0;     //!< Seed of the sampler: the same seed gives the same result.
   bool localOptimisation = true; //!< Refit each new best model on its inliers (LO-RANSAC).
   /*!
-    Rounds of the local optimisation: after a refit that scores better, its own consensus set is
-    collected and refitted again, up to this many refits, while the score keeps improving.
+    Refits of the local optimisation at most: a refit that gathers more inliers than the model it
+    started from is refitted again on its own consensus set.
   */
   int localRounds = 1;
 };
@@ -99,29 +99,35 @@ template <class E, class = void> struct HasScoreRange : std::false_type
 };
 template <class E>
 struct HasScoreRange<E, std::void_t<decltype(std::declval<const E &>().scoreRange(
-                            std::declval<const typename E::Model &>(), 0, 0, 0.0, std::declval<double &>()))> >
-  : std::true_type
+                            std::declval<const typename E::Model &>(), 0, 0, 0.0, std::declval<double &>(),
+                            static_cast<int *>(nullptr)))> > : std::true_type
 {
 };
 
 /*!
-  Inliers among the data [begin, end) and their truncated squared residuals added to \e cost:
-  the estimator's own scoreRange() when it has one, otherwise one residual() call per datum.
+  Inliers among the data [begin, end), their truncated squared residuals added to \e cost and, when
+  \e inliers is not null, their indices written there: the estimator's own scoreRange() when it has
+  one, otherwise one residual() call per datum.
 */
 template <class Estimator>
 int scoreRange(const Estimator &estimator, const typename Estimator::Model &m, int begin, int end, double thr2,
-               double &cost)
+               double &cost, int *inliers)
 {
   if constexpr (HasScoreRange<Estimator>::value) {
-    return estimator.scoreRange(m, begin, end, thr2, cost);
+    return estimator.scoreRange(m, begin, end, thr2, cost, inliers);
   } else {
     int count = 0;
     for (int i = begin; i < end; ++i) {
       const double r = estimator.residual(m, i);
       const double r2 = r * r;
-      const bool inlier = r2 < thr2; // NaN residuals are never inliers
-      count += inlier ? 1 : 0;
-      cost += inlier ? r2 : thr2;
+      if (r2 < thr2) { // NaN residuals are never inliers
+        if (inliers)
+          inliers[count] = i;
+        ++count;
+        cost += r2;
+      } else {
+        cost += thr2;
+      }
     }
     return count;
   }
@@ -140,10 +146,12 @@ inline bool better(const std::pair<int, double> &a, const std::pair<int, double>
   of data, as soon as the model cannot reach \e mustReach inliers any more; the count returned is
   then below \e mustReach (the model cannot win a ranking against a model with that many inliers),
   which leaves the outcome of the ranking unchanged and skips most of the data for bad hypotheses.
+  When \e inliers is not null (room for size() indices), the indices of the inliers counted are
+  written there: the whole consensus set whenever the scoring did not stop early.
 */
 template <class Estimator>
 std::pair<int, double> vpRansacScore(const Estimator &estimator, const typename Estimator::Model &m, double thr2,
-                                     int mustReach = 0)
+                                     int mustReach = 0, int *inliers = nullptr)
 {
   constexpr int kBlock = 64;
   const int n = estimator.size();
@@ -151,7 +159,7 @@ std::pair<int, double> vpRansacScore(const Estimator &estimator, const typename 
   double cost = 0.0;
   for (int begin = 0; begin < n; begin += kBlock) {
     const int end = std::min(n, begin + kBlock);
-    count += vpRansacDetail::scoreRange(estimator, m, begin, end, thr2, cost);
+    count += vpRansacDetail::scoreRange(estimator, m, begin, end, thr2, cost, inliers ? inliers + count : nullptr);
     if (count + (n - end) < mustReach)
       break; // even if every remaining datum were an inlier, the count would stay below mustReach
   }
@@ -167,34 +175,51 @@ template <class Estimator>
 void vpRansacInliers(const Estimator &estimator, const typename Estimator::Model &m, double thr2,
                      std::vector<int> &inliers)
 {
-  inliers.clear();
+  inliers.resize(static_cast<size_t>(estimator.size()));
   double cost = 0.0;
-  for (int i = 0; i < estimator.size(); ++i)
-    if (vpRansacDetail::scoreRange(estimator, m, i, i + 1, thr2, cost) > 0)
-      inliers.push_back(i);
+  const int count = vpRansacDetail::scoreRange(estimator, m, 0, estimator.size(), thr2, cost, inliers.data());
+  inliers.resize(static_cast<size_t>(count));
 }
 
 namespace vpRansacDetail
 {
 /*!
-  Local optimisation of a new best model (LO-RANSAC): refit on its consensus set and keep the refit
-  only if it scores better; repeated on the consensus set of each kept refit, \e rounds refits at
-  most, since a better model may gather inliers the first set missed. \e inliers is scratch space.
+  Scores a hypothesis against the best model so far (with its consensus set \e bestInliers) and
+  takes its place when it ranks before it. \e scratch is a buffer of the same kind, swapped in.
+  \return true when the hypothesis became the best model.
 */
 template <class Estimator>
-void localOptimisation(const Estimator &estimator, int rounds, double thr2, std::vector<int> &inliers,
-                       typename Estimator::Model &best, std::pair<int, double> &bestScore)
+bool challenge(const Estimator &estimator, const typename Estimator::Model &candidate, double thr2,
+               typename Estimator::Model &best, std::pair<int, double> &bestScore, std::vector<int> &bestInliers,
+               std::vector<int> &scratch)
+{
+  scratch.resize(static_cast<size_t>(estimator.size()));
+  const std::pair<int, double> sc = vpRansacScore(estimator, candidate, thr2, bestScore.first, scratch.data());
+  if (!better(sc, bestScore))
+    return false;
+  scratch.resize(static_cast<size_t>(sc.first));
+  bestInliers.swap(scratch);
+  best = candidate;
+  bestScore = sc;
+  return true;
+}
+
+/*!
+  Local optimisation of a new best model (LO-RANSAC): refit on its consensus set and keep the refit
+  only if it scores better; while a kept refit gathers more inliers, its own consensus set is refitted
+  again (\e rounds refits at most), since a better model may collect inliers the first set missed.
+*/
+template <class Estimator>
+void localOptimisation(const Estimator &estimator, int rounds, double thr2, typename Estimator::Model &best,
+                       std::pair<int, double> &bestScore, std::vector<int> &bestInliers, std::vector<int> &scratch)
 {
   for (int round = 0; round < rounds; ++round) {
+    const int before = bestScore.first;
     typename Estimator::Model refit = best;
-    vpRansacInliers(estimator, best, thr2, inliers);
-    if (!estimator.refine(inliers, refit))
+    if (!estimator.refine(bestInliers, refit) || !challenge(estimator, refit, thr2, best, bestScore, bestInliers, scratch))
       return;
-    const std::pair<int, double> rs = vpRansacScore(estimator, refit, thr2, bestScore.first);
-    if (!better(rs, bestScore))
+    if (bestScore.first <= before)
       return;
-    best = refit;
-    bestScore = rs;
   }
 }
 } // namespace vpRansacDetail
@@ -213,10 +238,11 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, std:
     from kSampleSize indices and returns how many (0 for a degenerate sample);
   - `double residual(const Model &m, int i) const`: error of datum i (unit of options.threshold);
   - `bool refine(const std::vector<int> &inliers, Model &m) const`: refit on inliers (may return false);
-  - optionally `int scoreRange(const Model &m, int begin, int end, double thr2, double &cost) const`:
+  - optionally `int scoreRange(const Model &m, int begin, int end, double thr2, double &cost, int *inliers) const`:
     the number of data of [begin, end) whose squared residual is below thr2, adding their squared
-    residual (thr2 for the others) to cost. An estimator provides it to score a block of data in one
-    tight loop (no per-datum call, no square root); it must agree with residual().
+    residual (thr2 for the others) to cost and, when inliers is not null, writing their indices
+    there. An estimator provides it to score a block of data in one tight loop (no per-datum call,
+    no square root); it must agree with residual() up to rounding at the threshold.
 
   A datum is an inlier when residual < threshold. Hypotheses are ranked by inlier count, then by
   the sum of truncated squared residuals. The loop stops after the adaptive count computed from the
@@ -238,12 +264,11 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
     return false;
 
   const double thr2 = options.threshold * options.threshold;
-  using vpRansacDetail::better;
 
   vpRansacSampler sampler(n, options.seed);
   std::array<int, s> sample{};
   std::array<Model, Estimator::kMaxModels> hypotheses{};
-  std::vector<int> inliers; // consensus set of the local optimisation, reused across trials
+  std::vector<int> scratch; // consensus set of the hypothesis being scored
   std::pair<int, double> bestScore(0, std::numeric_limits<double>::infinity());
   int needed = options.maxTrials;
   int trial = 0;
@@ -254,23 +279,21 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
     const int count = estimator.solveMinimal(sample.data(), hypotheses.data());
     for (int k = 0; k < count; ++k) {
       ++report.models;
-      const std::pair<int, double> sc = vpRansacScore(estimator, hypotheses[k], thr2, bestScore.first);
-      if (!better(sc, bestScore))
+      if (!vpRansacDetail::challenge(estimator, hypotheses[k], thr2, best, bestScore, report.inliers, scratch))
         continue;
-      best = hypotheses[k];
-      bestScore = sc;
-      if (options.localOptimisation && sc.first > s)
-        vpRansacDetail::localOptimisation(estimator, options.localRounds, thr2, inliers, best, bestScore);
+      if (options.localOptimisation && bestScore.first > s)
+        vpRansacDetail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
+                                          scratch);
       needed = vpRansacTrialCount(options.probability, 1.0 - double(bestScore.first) / n, s, options.maxTrials);
     }
   }
   report.trials = trial;
-  if (bestScore.first < s)
+  if (bestScore.first < s) {
+    report.inliers.clear();
     return false;
-  const std::pair<int, double> fin = vpRansacScore(estimator, best, thr2);
-  vpRansacInliers(estimator, best, thr2, report.inliers);
-  report.inlierCount = fin.first;
-  report.score = fin.second;
+  }
+  report.inlierCount = bestScore.first;
+  report.score = bestScore.second;
   return true;
 }
 
