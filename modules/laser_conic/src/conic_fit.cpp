@@ -7,7 +7,6 @@
 
 #include <cmath>
 
-#include <Eigen/QR>
 #include <Eigen/SVD>
 
 namespace vpLaserSolvers
@@ -45,6 +44,25 @@ Vector6d conicRow(const Eigen::Matrix3d &T, const Eigen::Vector2d &p)
 }
 
 /*!
+  Folds one row of the DLT system into the upper-triangular factor R of the rows seen so far, by
+  Givens rotations: R^T R gains row^T row, as the R of a QR of the stacked rows would.
+*/
+void addRow(Matrix6d &R, Vector6d row)
+{
+  for (int j = 0; j < 6; ++j) {
+    if (row(j) == 0.0)
+      continue;
+    const double r = std::hypot(R(j, j), row(j));
+    const double c = R(j, j) / r, s = row(j) / r;
+    for (int k = j; k < 6; ++k) {
+      const double top = R(j, k), bottom = row(k);
+      R(j, k) = c * top + s * bottom;
+      row(k) = c * bottom - s * top;
+    }
+  }
+}
+
+/*!
   Null vector of the 6x6 triangular factor R (or padded minimal system): smallest right singular
   vector. Fails when the null space has dimension > 1 (e.g. collinear points).
 */
@@ -74,12 +92,9 @@ bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c)
       R.row(i) = conicRow(T, points[i]).transpose();
   } else {
     // Least squares: the triangular factor of a QR has the same right singular vectors as A and
-    // avoids squaring the condition number as A^T A would.
-    Eigen::MatrixXd A(n, 6);
+    // avoids squaring the condition number as A^T A would; built row by row, on the stack.
     for (int i = 0; i < n; ++i)
-      A.row(i) = conicRow(T, points[i]).transpose();
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
-    R = qr.matrixQR().topRows<6>().triangularView<Eigen::Upper>();
+      addRow(R, conicRow(T, points[i]));
   }
   Vector6d k;
   if (!smallestSingularVector(R, k))

@@ -13,17 +13,10 @@
 #include <visp3/core/vpPixelMeterConversion.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
+#include "laser_pose_check.h"
+
 namespace
 {
-bool isFinitePose(const vpHomogeneousMatrix &M)
-{
-  for (unsigned int i = 0; i < 4; ++i)
-    for (unsigned int j = 0; j < 4; ++j)
-      if (!std::isfinite(M[i][j]))
-        return false;
-  return M.isAnHomogeneousMatrix(1e-6);
-}
-
 // Direction of the cone ray gamma in the camera frame, D' = Rx(alpha) Ry(beta) Rz(gamma) (sin h, 0, cos h)
 // with h the half opening angle (paper eq. 58-59).
 template <typename T>
@@ -123,7 +116,7 @@ void vpLaserConicCalibration::setOpeningAngle(double openingAngle)
 
 void vpLaserConicCalibration::setInitialGuess(const vpHomogeneousMatrix &cMl)
 {
-  if (!isFinitePose(cMl))
+  if (!vpLaserPoseCheck::isFinitePose(cMl))
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicCalibration: the initial guess is not a finite rigid transformation");
   m_guess = cMl;
@@ -132,7 +125,7 @@ void vpLaserConicCalibration::setInitialGuess(const vpHomogeneousMatrix &cMl)
 
 void vpLaserConicCalibration::addView(const vpHomogeneousMatrix &cMg, const std::vector<vpImagePoint> &laserPoints)
 {
-  if (!isFinitePose(cMg))
+  if (!vpLaserPoseCheck::isFinitePose(cMg))
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicCalibration: the grid pose is not a finite rigid transformation");
   if (laserPoints.size() < 5) {
@@ -169,7 +162,7 @@ double vpLaserConicCalibration::calibrate(vpHomogeneousMatrix &cMl)
     throw vpLaserConicException(vpLaserConicException::notEnoughPointError,
                                 "vpLaserConicCalibration: no view added, call addView() before calibrate()");
   const vpHomogeneousMatrix guess = m_hasGuess ? m_guess : cMl;
-  if (!isFinitePose(guess))
+  if (!vpLaserPoseCheck::isFinitePose(guess))
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicCalibration: the initial guess is not a finite rigid transformation");
 

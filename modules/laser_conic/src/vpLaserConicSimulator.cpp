@@ -19,6 +19,8 @@
 #include <visp3/laser_conic/vpLaserConicPose.h>
 #include <visp3/robot/vpImageSimulator.h>
 
+#include "laser_pose_check.h"
+
 namespace
 {
 // Standard deviation (pixels) of the optical blur applied by render().
@@ -67,15 +69,6 @@ struct FastRandom
   uint64_t state;
 };
 
-bool isFinitePose(const vpHomogeneousMatrix &M)
-{
-  for (unsigned int i = 0; i < 4; ++i)
-    for (unsigned int j = 0; j < 4; ++j)
-      if (!std::isfinite(M[i][j]))
-        return false;
-  return M.isAnHomogeneousMatrix(1e-6);
-}
-
 // Squared distance from (px, py) to the segment [a, b].
 inline float squaredDistanceToSegment(float px, float py, float ax, float ay, float bx, float by)
 {
@@ -112,7 +105,7 @@ void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMat
   if (!std::isfinite(openingAngle) || openingAngle <= 0.0 || openingAngle >= M_PI)
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicSimulator: the laser opening angle must be in (0, pi) radians");
-  if (!isFinitePose(cMl))
+  if (!vpLaserPoseCheck::isFinitePose(cMl))
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicSimulator: the laser pose is not a finite rigid transformation");
   m_openingAngle = openingAngle;
@@ -121,7 +114,7 @@ void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMat
 
 void vpLaserConicSimulator::setGroundPose(const vpHomogeneousMatrix &cMg)
 {
-  if (!isFinitePose(cMg))
+  if (!vpLaserPoseCheck::isFinitePose(cMg))
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicSimulator: the ground pose is not a finite rigid transformation");
   // Signed distance of the camera centre to the plane Z = 0 of g.
