@@ -93,9 +93,11 @@ public:
   void setRansacSeed(unsigned int seed);
   /*!
     Refit the best model on its inliers (default true), during the RANSAC loop (kept when it scores
-    better) and once after it (kept unless it loses more than a tenth of the inliers): PP5 and PP3
-    refit a least-squares ellipse, GP3 refines the plane geometrically (refinePlane(), 3 degrees of
-    freedom, Sampson distances to the predicted trace).
+    better) and after it (kept unless it loses more than a tenth of the inliers; refitted again, a
+    few rounds at most, while it gathers more inliers): PP5 and PP3 refit a least-squares ellipse,
+    GP3 refines the plane geometrically (refinePlane(), 3 degrees of freedom, Sampson distances to
+    the predicted trace; inside the loop on at most 64 evenly spread inliers, again on the consensus
+    set of a refit that gathers more inliers, 3 refits at most).
   */
   void setLocalOptimisation(bool enable);
 
