@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 
 namespace vpLaserSolvers
@@ -44,22 +45,26 @@ Vector6d conicRow(const Eigen::Matrix3d &T, const Eigen::Vector2d &p)
 }
 
 /*!
-  Folds one row of the DLT system into the upper-triangular factor R of the rows seen so far, by
-  Givens rotations: R^T R gains row^T row, as the R of a QR of the stacked rows would.
+  Upper-triangular factor R (6x6) of a QR of the DLT system of n points, computed by blocks on the
+  stack: each block stacks the R of the rows seen so far over the next rows (zero-padded), and its
+  own R is the R of all those rows (R^T R = A^T A is preserved by orthogonal transformations).
 */
-void addRow(Matrix6d &R, Vector6d row)
+Matrix6d triangularFactor(const Eigen::Matrix3d &T, const Eigen::Vector2d *points, int n)
 {
-  for (int j = 0; j < 6; ++j) {
-    if (row(j) == 0.0)
-      continue;
-    const double r = std::hypot(R(j, j), row(j));
-    const double c = R(j, j) / r, s = row(j) / r;
-    for (int k = j; k < 6; ++k) {
-      const double top = R(j, k), bottom = row(k);
-      R(j, k) = c * top + s * bottom;
-      row(k) = c * bottom - s * top;
+  typedef Eigen::Matrix<double, 64, 6> Block;
+  Block block = Block::Zero();
+  int rows = 6; // the first 6 rows hold the running R
+  for (int i = 0; i < n; ++i) {
+    block.row(rows++) = conicRow(T, points[i]).transpose();
+    if (rows == Block::RowsAtCompileTime || i + 1 == n) {
+      block.bottomRows(Block::RowsAtCompileTime - rows).setZero();
+      const Eigen::HouseholderQR<Block> qr(block);
+      const Matrix6d R = qr.matrixQR().topRows<6>().triangularView<Eigen::Upper>();
+      block.topRows<6>() = R;
+      rows = 6;
     }
   }
+  return block.topRows<6>();
 }
 
 /*!
@@ -92,9 +97,8 @@ bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c)
       R.row(i) = conicRow(T, points[i]).transpose();
   } else {
     // Least squares: the triangular factor of a QR has the same right singular vectors as A and
-    // avoids squaring the condition number as A^T A would; built row by row, on the stack.
-    for (int i = 0; i < n; ++i)
-      addRow(R, conicRow(T, points[i]));
+    // avoids squaring the condition number as A^T A would.
+    R = triangularFactor(T, points, n);
   }
   Vector6d k;
   if (!smallestSingularVector(R, k))
