@@ -16,6 +16,7 @@
 
 #include <fuzzer/FuzzedDataProvider.h>
 
+#include <visp3/core/vpException.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 
 namespace vspFuzz
@@ -101,6 +102,22 @@ inline bool isFiniteRigid(const vpHomogeneousMatrix &M)
 {
   std::fprintf(stderr, "FUZZ FAILURE: %s\n", what);
   std::abort();
+}
+
+/*!
+  The body of LLVMFuzzerTestOneInput: \e run(provider) on the input bytes. A vpException is the
+  documented refusal of invalid input and ends the input quietly; any other exception escapes, and
+  libFuzzer reports it as a crash.
+*/
+template <typename Run> int runInput(const uint8_t *data, size_t size, Run run)
+{
+  FuzzedDataProvider fdp(data, size);
+  try {
+    run(fdp);
+  } catch (const vpException &) {
+    // Invalid input refused with a clear error: the documented behaviour.
+  }
+  return 0;
 }
 } // namespace vspFuzz
 

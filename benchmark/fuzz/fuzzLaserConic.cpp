@@ -85,13 +85,4 @@ void run(FuzzedDataProvider &fdp)
 }
 } // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
-{
-  FuzzedDataProvider fdp(data, size);
-  try {
-    run(fdp);
-  } catch (const vpException &) {
-    // Invalid input refused with a clear error: the documented behaviour.
-  }
-  return 0;
-}
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) { return vspFuzz::runInput(data, size, run); }

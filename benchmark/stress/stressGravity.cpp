@@ -25,6 +25,7 @@
 
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 
+#include "stressCommon.h"
 #include "vspBenchUtils.h"
 
 namespace
@@ -102,12 +103,6 @@ double reprojection(const vpGravitySolvers::Pose &p, const Config &c, int n)
   return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
 }
 
-struct Tally
-{
-  long correct = 0, degenerate = 0, ambiguous = 0, noAnswer = 0, wrong = 0;
-  double worstCorrectError = 0.0;
-};
-
 void dump(const char *what, long index, const Config &c, int n, double error)
 {
   std::printf("  %s at configuration %ld (error %.3g):\n", what, index, error);
@@ -119,48 +114,33 @@ void dump(const char *what, long index, const Config &c, int n, double error)
   }
 }
 
-constexpr double kTolerance = 1e-6;
 constexpr double kExactReprojection = 1e-9;
-constexpr int kMaxDumps = 5;
 
-/*!
-  Classifies one outcome. \e best is the smallest error among the returned poses (inf if none),
-  \e bestReprojection the reprojection error of the returned pose closest to the truth.
-*/
+using vspStress::Tally;
+
 void classify(Tally &tally, long index, const Config &c, int n, bool degenerate, bool answered, double best,
-              double bestReprojection, bool verbose)
+              bool exactAlternative, bool verbose)
 {
-  if (degenerate) {
-    ++tally.degenerate;
-  } else if (!answered) {
-    ++tally.noAnswer;
-    if (verbose && tally.noAnswer <= kMaxDumps) {
-      dump("no answer", index, c, n, best);
-    }
-  } else if (best <= kTolerance) {
-    ++tally.correct;
-    tally.worstCorrectError = std::max(tally.worstCorrectError, best);
-  } else if (bestReprojection <= kExactReprojection) {
-    ++tally.ambiguous;
-  } else {
-    ++tally.wrong;
-    if (tally.wrong <= kMaxDumps) {
-      dump("WRONG", index, c, n, best);
-    }
-  }
+  vspStress::classify(tally, degenerate, answered, best, exactAlternative, verbose,
+                      [&](const char *what) { dump(what, index, c, n, best); });
 }
 
-Tally stressP3P(long count, unsigned long seed, bool verbose)
+/*!
+  Runs \e count configurations of \e n points through a solver that returns one pose,
+  \e solve(config, pose) -> found. A pose that is not the truth but reprojects every point exactly
+  (< 1e-9) is the other solution of ambiguous data.
+*/
+template <typename Solve> Tally stressOnePose(long count, unsigned long seed, int n, bool verbose, Solve solve)
 {
   std::mt19937_64 rng(seed);
   Tally tally;
   Config c;
   for (long k = 0; k < count; ++k) {
-    makeConfig(rng, 3, c);
+    makeConfig(rng, n, c);
     vpGravitySolvers::Pose pose;
-    const bool ok = vpGravitySolvers::p3p(c.gCam, c.gObj, c.x, c.X, pose);
+    const bool ok = solve(c, pose);
     const double e = ok ? poseError(pose, c) : std::numeric_limits<double>::infinity();
-    classify(tally, k, c, 3, isDegenerate(c, 3), ok, e, ok ? reprojection(pose, c, 3) : e, verbose);
+    classify(tally, k, c, n, isDegenerate(c, n), ok, e, ok && reprojection(pose, c, n) <= kExactReprojection, verbose);
   }
   return tally;
 }
@@ -180,51 +160,33 @@ Tally stressP2P(long count, unsigned long seed, bool verbose)
     }
     // Two points: every candidate reprojects both points, so "exact but different" is not an
     // acceptable alternative here: the truth must be among the candidates.
-    classify(tally, k, c, 2, isDegenerate(c, 2), m > 0, best, std::numeric_limits<double>::infinity(), verbose);
+    classify(tally, k, c, 2, isDegenerate(c, 2), m > 0, best, false, verbose);
   }
   return tally;
-}
-
-Tally stressLeastSquares(long count, unsigned long seed, bool verbose)
-{
-  std::mt19937_64 rng(seed);
-  Tally tally;
-  Config c;
-  const int n = 6;
-  for (long k = 0; k < count; ++k) {
-    makeConfig(rng, n, c);
-    vpGravitySolvers::Pose pose;
-    const bool ok = vpGravitySolvers::leastSquares(c.gCam, c.gObj, c.x, c.X, n, pose);
-    const double e = ok ? poseError(pose, c) : std::numeric_limits<double>::infinity();
-    classify(tally, k, c, n, isDegenerate(c, n), ok, e, ok ? reprojection(pose, c, n) : e, verbose);
-  }
-  return tally;
-}
-
-bool report(const char *name, long count, const Tally &t)
-{
-  std::printf("%-14s n=%ld  correct=%ld  degenerate=%ld  ambiguous=%ld  no-answer=%ld  wrong=%ld  "
-              "worst-correct-error=%.2e\n",
-              name, count, t.correct, t.degenerate, t.ambiguous, t.noAnswer, t.wrong, t.worstCorrectError);
-  return t.wrong == 0;
 }
 } // namespace
 
 int main(int argc, char **argv)
 {
-  const std::string solver = vspBench::argValue(argc, argv, "--solver", "p3p");
-  const long count = static_cast<long>(std::stod(vspBench::argValue(argc, argv, "--n", "1e7")));
-  const unsigned long seed = std::stoul(vspBench::argValue(argc, argv, "--seed", "1"));
-  const bool verbose = vspBench::hasFlag(argc, argv, "--verbose");
+  const vspStress::Options o = vspStress::parseOptions(argc, argv, "--solver", "p3p", "1e7");
   bool ok = true;
-  if (solver == "p3p" || solver == "all") {
-    ok = report("P3P", count, stressP3P(count, seed, verbose)) && ok;
+  if (o.solver == "p3p" || o.solver == "all") {
+    ok = vspStress::report("P3P", o.count,
+                           stressOnePose(o.count, o.seed, 3, o.verbose, [](const Config &c, vpGravitySolvers::Pose &p) {
+                             return vpGravitySolvers::p3p(c.gCam, c.gObj, c.x, c.X, p);
+                           })) &&
+         ok;
   }
-  if (solver == "p2p" || solver == "all") {
-    ok = report("P2P", count, stressP2P(count, seed, verbose)) && ok;
+  if (o.solver == "p2p" || o.solver == "all") {
+    ok = vspStress::report("P2P", o.count, stressP2P(o.count, o.seed, o.verbose)) && ok;
   }
-  if (solver == "ls" || solver == "all") {
-    ok = report("LEAST_SQUARES", count, stressLeastSquares(count, seed, verbose)) && ok;
+  if (o.solver == "ls" || o.solver == "all") {
+    const int n = 6;
+    ok = vspStress::report("LEAST_SQUARES", o.count,
+                           stressOnePose(o.count, o.seed, n, o.verbose, [n](const Config &c, vpGravitySolvers::Pose &p) {
+                             return vpGravitySolvers::leastSquares(c.gCam, c.gObj, c.x, c.X, n, p);
+                           })) &&
+         ok;
   }
   return ok ? 0 : 1;
 }

@@ -25,13 +25,12 @@
 
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
+#include "stressCommon.h"
 #include "vspBenchUtils.h"
 #include "vspLaserScene.h"
 
 namespace
 {
-constexpr double kTolerance = 1e-6;
-constexpr int kMaxDumps = 5;
 constexpr int kPlanePairPoints = 50;
 
 struct Config
@@ -95,11 +94,7 @@ double planeError(const Eigen::Vector4d &estimate, const Eigen::Vector4d &truth)
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
-struct Tally
-{
-  long correct = 0, degenerate = 0, noAnswer = 0, wrong = 0, skipped = 0;
-  double worstCorrectError = 0.0;
-};
+using vspStress::Tally;
 
 void dump(const char *what, long index, const Config &c, int n, double error)
 {
@@ -117,22 +112,9 @@ void dump(const char *what, long index, const Config &c, int n, double error)
 
 void classify(Tally &t, long index, const Config &c, int n, bool degenerate, int candidates, double best, bool verbose)
 {
-  if (degenerate) {
-    ++t.degenerate;
-  } else if (candidates == 0) {
-    ++t.noAnswer;
-    if (verbose && t.noAnswer <= kMaxDumps) {
-      dump("no answer", index, c, n, best);
-    }
-  } else if (best <= kTolerance) {
-    ++t.correct;
-    t.worstCorrectError = std::max(t.worstCorrectError, best);
-  } else {
-    ++t.wrong;
-    if (t.wrong <= kMaxDumps) {
-      dump("WRONG", index, c, n, best);
-    }
-  }
+  // A plane is the truth or wrong: the trace of another plane differs from the data.
+  vspStress::classify(t, degenerate, candidates > 0, best, false, verbose,
+                      [&](const char *what) { dump(what, index, c, n, best); });
 }
 
 //! Runs \e count configurations of \e n points through \e solve(config, best) -> number of candidates.
@@ -204,39 +186,27 @@ int solveConicThenPlanePair(const Config &c, int n, double &best)
   return 1;
 }
 
-bool report(const char *name, long count, const Tally &t)
-{
-  std::printf("%-11s n=%ld  correct=%ld  degenerate=%ld  no-answer=%ld  wrong=%ld  skipped=%ld  "
-              "worst-correct-error=%.2e\n",
-              name, count, t.correct, t.degenerate, t.noAnswer, t.wrong, t.skipped, t.worstCorrectError);
-  return t.wrong == 0;
-}
 } // namespace
 
 int main(int argc, char **argv)
 {
-  const std::string method = vspBench::argValue(argc, argv, "--method", "all");
-  const long count = static_cast<long>(std::stod(vspBench::argValue(argc, argv, "--n", "1e6")));
-  const unsigned long seed = std::stoul(vspBench::argValue(argc, argv, "--seed", "1"));
-  const bool verbose = vspBench::hasFlag(argc, argv, "--verbose");
-  const bool all = method == "all";
+  const vspStress::Options o = vspStress::parseOptions(argc, argv, "--method", "all", "1e6");
+  const bool all = o.solver == "all";
   bool ok = true;
-  if (all || method == "gp3") {
-    ok = report("GP3", count, stress(count, seed, 3, verbose, solveGp3)) && ok;
+  if (all || o.solver == "gp3") {
+    ok = vspStress::report("GP3", o.count, stress(o.count, o.seed, 3, o.verbose, solveGp3)) && ok;
   }
-  if (all || method == "pp3") {
-    ok = report("PP3", count, stress(count, seed, 3, verbose, solvePp3, pp3Degenerate)) && ok;
+  if (all || o.solver == "pp3") {
+    ok = vspStress::report("PP3", o.count, stress(o.count, o.seed, 3, o.verbose, solvePp3, pp3Degenerate)) && ok;
   }
-  if (all || method == "pp5") {
-    ok = report("PP5", count,
-                stress(count, seed, 5, verbose, [](const Config &c, double &b) { return solveConicThenPlanePair(c, 5, b); })) &&
-         ok;
+  if (all || o.solver == "pp5") {
+    const auto pp5 = [](const Config &c, double &b) { return solveConicThenPlanePair(c, 5, b); };
+    ok = vspStress::report("PP5", o.count, stress(o.count, o.seed, 5, o.verbose, pp5)) && ok;
   }
-  if (all || method == "planepair") {
-    ok = report("PLANE_PAIR", count,
-                stress(count, seed, kPlanePairPoints, verbose,
-                       [](const Config &c, double &b) { return solveConicThenPlanePair(c, kPlanePairPoints, b); },
-                       neverDegenerate)) &&
+  if (all || o.solver == "planepair") {
+    const auto planePair = [](const Config &c, double &b) { return solveConicThenPlanePair(c, kPlanePairPoints, b); };
+    ok = vspStress::report("PLANE_PAIR", o.count,
+                           stress(o.count, o.seed, kPlanePairPoints, o.verbose, planePair, neverDegenerate)) &&
          ok;
   }
   return ok ? 0 : 1;

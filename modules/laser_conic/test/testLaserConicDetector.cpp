@@ -17,56 +17,12 @@
 
 #include <visp3/core/vpMath.h>
 
+#include "laser_sim_test_utils.h"
+
+using namespace laser_sim_test;
+
 namespace
 {
-const unsigned int kWidth = 1600, kHeight = 1200;
-const double kOpening = vpMath::rad(34.0);
-
-vpCameraParameters camera() { return vpCameraParameters(1500.0, 1500.0, 800.0, 600.0); }
-vpHomogeneousMatrix laserPose()
-{
-  return vpHomogeneousMatrix(0.10, 0.02, 0.0, vpMath::rad(3.0), vpMath::rad(-5.0), vpMath::rad(10.0));
-}
-
-vpLaserConicSimulator makeSimulator(const vpHomogeneousMatrix &cMg, unsigned int seed)
-{
-  vpLaserConicSimulator sim;
-  sim.setCamera(camera(), kWidth, kHeight);
-  sim.setLaser(kOpening, laserPose());
-  sim.setGroundPose(cMg);
-  sim.setSeed(seed);
-  return sim;
-}
-
-// Image conic (pixels) of the cone/plane intersection from the implicit equations (see the simulator test).
-Eigen::Matrix3d pixelConic(const vpPlane &plane)
-{
-  const vpHomogeneousMatrix cMl = laserPose();
-  Eigen::Matrix3d R;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      R(i, j) = cMl[i][j];
-  const Eigen::Vector3d t(cMl[0][3], cMl[1][3], cMl[2][3]);
-  const double tan2 = std::pow(std::tan(0.5 * kOpening), 2);
-  const Eigen::Matrix3d M = R * Eigen::Vector3d(1, 1, -tan2).asDiagonal() * R.transpose();
-  const Eigen::Vector3d n(plane.getA(), plane.getB(), plane.getC());
-  const double D = plane.getD();
-  const Eigen::Matrix3d C =
-      M + (M * t * n.transpose() + n * t.transpose() * M) / D + (t.dot(M * t) / (D * D)) * n * n.transpose();
-  const vpCameraParameters cam = camera();
-  Eigen::Matrix3d Kinv;
-  Kinv << 1.0 / cam.get_px(), 0, -cam.get_u0() / cam.get_px(), 0, 1.0 / cam.get_py(), -cam.get_v0() / cam.get_py(), 0,
-      0, 1;
-  return Kinv.transpose() * C * Kinv;
-}
-
-double sampsonDistance(const Eigen::Matrix3d &C, const vpImagePoint &p)
-{
-  const Eigen::Vector3d x(p.get_u(), p.get_v(), 1.0);
-  const Eigen::Vector3d Cx = C * x;
-  return std::fabs(x.dot(Cx)) / (2.0 * Cx.head<2>().norm());
-}
-
 struct DetectionStats
 {
   double maxError = 0.0, meanError = 0.0, recall = 0.0;
@@ -116,43 +72,44 @@ std::vector<vpHomogeneousMatrix> groundPoses()
           vpHomogeneousMatrix(0.0, 0.0, 0.6, vpMath::rad(-20), vpMath::rad(5), 0.0),
           vpHomogeneousMatrix(-0.1, 0.05, 1.4, vpMath::rad(25), vpMath::rad(20), 1.0)};
 }
+
+/*!
+  Renders the trace on each ground pose (seeds from \e firstSeed) and checks the detections: more than
+  1000 points (about one per pixel of curve), every one within 0.5 px of the exact conic, a mean distance
+  below \e maxMeanError px, and more than 99 % of the trace found.
+*/
+void checkDetections(const char *what, unsigned int firstSeed, double stripeWidth, double noise, double maxMeanError)
+{
+  vpLaserConicDetector detector;
+  unsigned int seed = firstSeed;
+  for (const vpHomogeneousMatrix &cMg : groundPoses()) {
+    const DetectionStats stats = detectAndCompare(cMg, seed++, stripeWidth, noise, detector);
+    std::cout << what << ": " << stats.nbPoints << " points, max error " << stats.maxError << " px, mean "
+              << stats.meanError << " px, recall " << stats.recall << ", detect " << stats.milliseconds << " ms"
+              << std::endl;
+    EXPECT_GT(stats.nbPoints, 1000u) << what;
+    EXPECT_LT(stats.maxError, 0.5) << what;
+    EXPECT_LT(stats.meanError, maxMeanError) << what;
+    EXPECT_GT(stats.recall, 0.99) << what;
+  }
+}
 } // namespace
 
 TEST(LaserConicDetector, FindsTheCleanRenderedTraceWithSubPixelAccuracy)
 {
-  vpLaserConicDetector detector;
-  unsigned int seed = 1;
-  for (const vpHomogeneousMatrix &cMg : groundPoses()) {
-    // Clean render: blur but no sensor noise. The stripe is symmetric across the curve, so the weighted
-    // centre is off the curve only by the curvature of the stripe, the truncation of the run at the mask
-    // threshold and the textured ground under the stripe (grain of ~20 grey levels under a ~250 level
-    // peak): measured at most 0.28 px, 0.03 px on average.
-    const DetectionStats stats = detectAndCompare(cMg, seed++, 3.0, 0.0, detector);
-    std::cout << "clean: " << stats.nbPoints << " points, max error " << stats.maxError << " px, mean "
-              << stats.meanError << " px, recall " << stats.recall << ", detect " << stats.milliseconds << " ms"
-              << std::endl;
-    EXPECT_GT(stats.nbPoints, 1000u);
-    EXPECT_LT(stats.maxError, 0.5);
-    EXPECT_LT(stats.meanError, 0.06);
-    EXPECT_GT(stats.recall, 0.99);
-  }
+  // Clean render: blur but no sensor noise. The stripe is symmetric across the curve, so the weighted
+  // centre is off the curve only by the curvature of the stripe, the truncation of the run at the mask
+  // threshold and the textured ground under the stripe (grain of ~20 grey levels under a ~250 level
+  // peak): measured at most 0.28 px, 0.03 px on average.
+  checkDetections("clean", 1, 3.0, 0.0, 0.06);
 }
 
 TEST(LaserConicDetector, FindsTheNoisyRenderedTrace)
 {
-  vpLaserConicDetector detector;
-  unsigned int seed = 10;
-  for (const vpHomogeneousMatrix &cMg : groundPoses()) {
-    // Sensor noise of 3 grey levels on a stripe of ~250 levels moves a weighted centre of ~5 pixels by
-    // a few hundredths of a pixel; the mask edge pixels flicker, which adds a little more: measured at
-    // most 0.30 px, 0.045 px on average.
-    const DetectionStats stats = detectAndCompare(cMg, seed++, 4.0, 3.0, detector);
-    std::cout << "noisy: " << stats.nbPoints << " points, max error " << stats.maxError << " px, mean "
-              << stats.meanError << " px, recall " << stats.recall << std::endl;
-    EXPECT_LT(stats.maxError, 0.5);
-    EXPECT_LT(stats.meanError, 0.08);
-    EXPECT_GT(stats.recall, 0.99);
-  }
+  // Sensor noise of 3 grey levels on a stripe of ~250 levels moves a weighted centre of ~5 pixels by
+  // a few hundredths of a pixel; the mask edge pixels flicker, which adds a little more: measured at
+  // most 0.30 px, 0.045 px on average.
+  checkDetections("noisy", 10, 4.0, 3.0, 0.08);
 }
 
 TEST(LaserConicDetector, SamplingStepThinsThePoints)

@@ -62,6 +62,16 @@ struct Errors
                 what.c_str(), laser_test::median(normal), laser_test::maximum(normal), laser_test::median(altitude),
                 laser_test::maximum(altitude), failures);
   }
+  //! Prints the errors and checks the exact-data bounds: no failure, median < 1e-9, maximum < 1e-6.
+  void checkExact(const std::string &what) const
+  {
+    print(what);
+    EXPECT_EQ(failures, 0) << what;
+    EXPECT_LT(laser_test::median(normal), 1e-9) << what;
+    EXPECT_LT(laser_test::maximum(normal), 1e-6) << what;
+    EXPECT_LT(laser_test::median(altitude), 1e-9) << what;
+    EXPECT_LT(laser_test::maximum(altitude), 1e-6) << what;
+  }
 };
 
 /*!
@@ -102,6 +112,69 @@ Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigne
   }
   return errors;
 }
+
+/*!
+  Errors of noisy estimates against the first-order model of NoisyPoints (see there): per scene, the
+  altitude and normal errors divided by their predicted scales, and the absolute errors for the log.
+*/
+struct NoiseRatios
+{
+  std::vector<double> altitudeRatio, normalRatio, altitudeMm, normalDeg;
+  int failures = 0;
+
+  /*!
+    Runs \e method on \e points of scene \e s (RANSAC seed \e seed, threshold 3 sigma); a failure is
+    counted when no plane is found. \return true with the plane and the estimator (inliers) otherwise.
+  */
+  bool estimate(const Scene &s, const std::vector<vpImagePoint> &points, vpLaserConicPose::vpLaserConicMethod method,
+                unsigned int seed, double sigma, vpLaserConicPose &estimator, vpPlane &plane)
+  {
+    estimator = makeEstimator(s.rig);
+    estimator.setRansacSeed(seed);
+    estimator.setRansacThreshold(3.0 * sigma);
+    if (estimator.computePlane(points, method, plane))
+      return true;
+    ++failures;
+    return false;
+  }
+
+  //! Adds the errors of \e plane on scene \e s for pixel noise \e sigma averaged over \e n inlier points.
+  void add(const vpPlane &plane, const Scene &s, double sigma, double n)
+  {
+    // Triangulation scale: depth D of the trace centre, baseline component b across the line of sight.
+    const vpLaserSolvers::LaserCone cone = laser_test::toCone(s.rig);
+    const Eigen::Vector3d axis = cone.cRl.col(2);
+    const Eigen::Vector3d centre =
+        cone.apex - (s.plane.head<3>().dot(cone.apex) + s.plane(3)) / s.plane.head<3>().dot(axis) * axis;
+    const double h = centre.norm(), b = cone.apex.cross(centre.normalized()).norm();
+    const double scale = h * h / (b * s.rig.cam.get_px()) * sigma / std::sqrt(n);
+    const Eigen::Vector4d p = toEigen(plane);
+    altitudeMm.push_back(1e3 * laser_test::altitudeError(p, s.plane));
+    normalDeg.push_back(vpMath::deg(laser_test::normalError(p, s.plane)));
+    altitudeRatio.push_back(laser_test::altitudeError(p, s.plane) / scale);
+    normalRatio.push_back(laser_test::normalError(p, s.plane) / (scale / (h * std::tan(cone.halfAngle))));
+  }
+
+  //! Prints the statistics and checks them: no failure, ratios with median < 3 and 95th percentile < 10.
+  void check(const std::string &what)
+  {
+    std::sort(altitudeRatio.begin(), altitudeRatio.end());
+    std::sort(normalRatio.begin(), normalRatio.end());
+    const double alt95 = altitudeRatio[altitudeRatio.size() * 95 / 100];
+    const double nor95 = normalRatio[normalRatio.size() * 95 / 100];
+    std::printf("%-30s altitude mm median %.2f max %.2f | normal deg median %.3f max %.3f | "
+                "ratio to first-order scale: altitude median %.2f p95 %.2f, normal median %.2f p95 %.2f | "
+                "failures %d\n",
+                what.c_str(), laser_test::median(altitudeMm), laser_test::maximum(altitudeMm),
+                laser_test::median(normalDeg), laser_test::maximum(normalDeg), laser_test::median(altitudeRatio),
+                alt95, laser_test::median(normalRatio), nor95, failures);
+    EXPECT_EQ(failures, 0) << what;
+    EXPECT_LT(laser_test::median(altitudeRatio), 3.0) << what;
+    EXPECT_LT(alt95, 10.0) << what;
+    EXPECT_LT(laser_test::median(normalRatio), 3.0) << what;
+    EXPECT_LT(nor95, 10.0) << what;
+  }
+};
 } // namespace
 
 // Exact data: only rounding remains (see testLaserSolvers.cpp for the tolerances). 2000 random
@@ -109,13 +182,7 @@ Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigne
 TEST(LaserConicPose, ExactDataEveryMethod)
 {
   for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
-    const Errors e = evaluate(method, 2000, 30, 0.0, 0.0, 100 + method);
-    e.print("exact " + name(method));
-    EXPECT_EQ(e.failures, 0) << name(method);
-    EXPECT_LT(laser_test::median(e.normal), 1e-9) << name(method);
-    EXPECT_LT(laser_test::maximum(e.normal), 1e-6) << name(method);
-    EXPECT_LT(laser_test::median(e.altitude), 1e-9) << name(method);
-    EXPECT_LT(laser_test::maximum(e.altitude), 1e-6) << name(method);
+    evaluate(method, 2000, 30, 0.0, 0.0, 100 + method).checkExact("exact " + name(method));
   }
 }
 
@@ -172,12 +239,7 @@ TEST(LaserConicPose, FiftyPercentOutliers)
       for (unsigned int i : inliers)
         EXPECT_FALSE(isOutlier[i]);
     }
-    e.print("50% outliers " + name(method));
-    EXPECT_EQ(e.failures, 0) << name(method);
-    EXPECT_LT(laser_test::median(e.normal), 1e-9) << name(method);
-    EXPECT_LT(laser_test::maximum(e.normal), 1e-6) << name(method);
-    EXPECT_LT(laser_test::median(e.altitude), 1e-9) << name(method);
-    EXPECT_LT(laser_test::maximum(e.altitude), 1e-6) << name(method);
+    e.checkExact("50% outliers " + name(method));
   }
 }
 
@@ -194,49 +256,18 @@ TEST(LaserConicPose, NoisyPoints)
   for (double sigma : {0.5, 1.0}) {
     for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
       std::mt19937 rng(300);
-      std::vector<double> altitudeRatio, normalRatio, altitudeMm, normalDeg;
-      int failures = 0;
+      NoiseRatios ratios;
       const unsigned int n = 100;
       for (int k = 0; k < 200; ++k) {
         std::vector<vpImagePoint> points;
         const Scene s = drawScene(rng, method, n, points);
         points = laser_test::addNoise(points, sigma, rng);
-        vpLaserConicPose estimator = makeEstimator(s.rig);
-        estimator.setRansacSeed(k);
-        estimator.setRansacThreshold(3.0 * sigma);
+        vpLaserConicPose estimator;
         vpPlane plane;
-        if (!estimator.computePlane(points, method, plane)) {
-          ++failures;
-          continue;
-        }
-        // Triangulation scale: depth D of the trace centre, baseline component b across the line of sight.
-        const vpLaserSolvers::LaserCone cone = laser_test::toCone(s.rig);
-        const Eigen::Vector3d axis = cone.cRl.col(2);
-        const Eigen::Vector3d centre =
-            cone.apex - (s.plane.head<3>().dot(cone.apex) + s.plane(3)) / s.plane.head<3>().dot(axis) * axis;
-        const double h = centre.norm(), b = cone.apex.cross(centre.normalized()).norm();
-        const double scale = h * h / (b * s.rig.cam.get_px()) * sigma / std::sqrt(double(n));
-        const Eigen::Vector4d p = toEigen(plane);
-        altitudeMm.push_back(1e3 * laser_test::altitudeError(p, s.plane));
-        normalDeg.push_back(vpMath::deg(laser_test::normalError(p, s.plane)));
-        altitudeRatio.push_back(laser_test::altitudeError(p, s.plane) / scale);
-        normalRatio.push_back(laser_test::normalError(p, s.plane) / (scale / (h * std::tan(cone.halfAngle))));
+        if (ratios.estimate(s, points, method, k, sigma, estimator, plane))
+          ratios.add(plane, s, sigma, n);
       }
-      std::sort(altitudeRatio.begin(), altitudeRatio.end());
-      std::sort(normalRatio.begin(), normalRatio.end());
-      const double alt95 = altitudeRatio[altitudeRatio.size() * 95 / 100];
-      const double nor95 = normalRatio[normalRatio.size() * 95 / 100];
-      std::printf("sigma %.1f px %-10s altitude mm median %.2f max %.2f | normal deg median %.3f max %.3f | "
-                  "ratio to first-order scale: altitude median %.2f p95 %.2f, normal median %.2f p95 %.2f | "
-                  "failures %d\n",
-                  sigma, name(method).c_str(), laser_test::median(altitudeMm), laser_test::maximum(altitudeMm),
-                  laser_test::median(normalDeg), laser_test::maximum(normalDeg), laser_test::median(altitudeRatio),
-                  alt95, laser_test::median(normalRatio), nor95, failures);
-      EXPECT_EQ(failures, 0) << name(method);
-      EXPECT_LT(laser_test::median(altitudeRatio), 3.0) << name(method);
-      EXPECT_LT(alt95, 10.0) << name(method);
-      EXPECT_LT(laser_test::median(normalRatio), 3.0) << name(method);
-      EXPECT_LT(nor95, 10.0) << name(method);
+      ratios.check("sigma " + std::to_string(sigma).substr(0, 3) + " px " + name(method));
     }
   }
 }
@@ -251,53 +282,25 @@ TEST(LaserConicPose, NoisyPointsWithFiftyPercentOutliers)
   for (vpLaserConicPose::vpLaserConicMethod method :
        {vpLaserConicPose::PP5, vpLaserConicPose::PP3, vpLaserConicPose::GP3}) {
     std::mt19937 rng(400);
-    std::vector<double> altitudeRatio, normalRatio, altitudeMm, normalDeg;
-    int failures = 0;
+    NoiseRatios ratios;
     for (int k = 0; k < 200; ++k) {
       std::vector<vpImagePoint> points;
       const Scene s = drawScene(rng, method, 100, points);
       std::vector<bool> isOutlier;
       points = laser_test::addOutliers(laser_test::addNoise(points, sigma, rng), 0.5, s, rng, isOutlier);
-      vpLaserConicPose estimator = makeEstimator(s.rig);
-      estimator.setRansacSeed(k);
-      estimator.setRansacThreshold(3.0 * sigma);
+      vpLaserConicPose estimator;
       vpPlane plane;
-      if (!estimator.computePlane(points, method, plane)) {
-        ++failures;
+      if (!ratios.estimate(s, points, method, k, sigma, estimator, plane))
         continue;
-      }
       const std::vector<unsigned int> inliers = estimator.getInliers();
       int wrong = 0;
       for (unsigned int i : inliers)
         wrong += isOutlier[i] ? 1 : 0;
       EXPECT_EQ(wrong, 0) << name(method) << " scene " << k;
       EXPECT_GE(inliers.size(), 45u) << name(method) << " scene " << k;
-      const vpLaserSolvers::LaserCone cone = laser_test::toCone(s.rig);
-      const Eigen::Vector3d axis = cone.cRl.col(2);
-      const Eigen::Vector3d centre =
-          cone.apex - (s.plane.head<3>().dot(cone.apex) + s.plane(3)) / s.plane.head<3>().dot(axis) * axis;
-      const double h = centre.norm(), b = cone.apex.cross(centre.normalized()).norm();
-      const double scale = h * h / (b * s.rig.cam.get_px()) * sigma / std::sqrt(50.0);
-      const Eigen::Vector4d p = toEigen(plane);
-      altitudeMm.push_back(1e3 * laser_test::altitudeError(p, s.plane));
-      normalDeg.push_back(vpMath::deg(laser_test::normalError(p, s.plane)));
-      altitudeRatio.push_back(laser_test::altitudeError(p, s.plane) / scale);
-      normalRatio.push_back(laser_test::normalError(p, s.plane) / (scale / (h * std::tan(cone.halfAngle))));
+      ratios.add(plane, s, sigma, 50.0);
     }
-    std::sort(altitudeRatio.begin(), altitudeRatio.end());
-    std::sort(normalRatio.begin(), normalRatio.end());
-    const double alt95 = altitudeRatio[altitudeRatio.size() * 95 / 100];
-    const double nor95 = normalRatio[normalRatio.size() * 95 / 100];
-    std::printf("sigma 1 px + 50%% outliers %-4s altitude mm median %.2f max %.2f | normal deg median %.3f max %.3f | "
-                "ratio altitude median %.2f p95 %.2f, normal median %.2f p95 %.2f | failures %d\n",
-                name(method).c_str(), laser_test::median(altitudeMm), laser_test::maximum(altitudeMm),
-                laser_test::median(normalDeg), laser_test::maximum(normalDeg), laser_test::median(altitudeRatio), alt95,
-                laser_test::median(normalRatio), nor95, failures);
-    EXPECT_EQ(failures, 0) << name(method);
-    EXPECT_LT(laser_test::median(altitudeRatio), 3.0) << name(method);
-    EXPECT_LT(alt95, 10.0) << name(method);
-    EXPECT_LT(laser_test::median(normalRatio), 3.0) << name(method);
-    EXPECT_LT(nor95, 10.0) << name(method);
+    ratios.check("sigma 1 px + 50% outliers " + name(method));
   }
 }
 

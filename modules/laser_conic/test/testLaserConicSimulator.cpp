@@ -21,68 +21,12 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpPixelMeterConversion.h>
 
+#include "laser_sim_test_utils.h"
+
+using namespace laser_sim_test;
+
 namespace
 {
-const unsigned int kWidth = 1600, kHeight = 1200;
-const double kOpening = vpMath::rad(34.0);
-
-vpCameraParameters camera() { return vpCameraParameters(1500.0, 1500.0, 800.0, 600.0); }
-
-// Laser 10 cm beside the camera, axis tilted by a few degrees (a typical rig).
-vpHomogeneousMatrix laserPose()
-{
-  return vpHomogeneousMatrix(0.10, 0.02, 0.0, vpMath::rad(3.0), vpMath::rad(-5.0), vpMath::rad(10.0));
-}
-
-// Ground 1 m in front, tilted by (10, -8) degrees.
-vpHomogeneousMatrix groundPose() { return vpHomogeneousMatrix(0.05, -0.03, 1.0, vpMath::rad(10), vpMath::rad(-8), 0.3); }
-
-vpLaserConicSimulator makeSimulator(const vpHomogeneousMatrix &cMg = groundPose(), unsigned int seed = 7)
-{
-  vpLaserConicSimulator sim;
-  sim.setCamera(camera(), kWidth, kHeight);
-  sim.setLaser(kOpening, laserPose());
-  sim.setGroundPose(cMg);
-  sim.setSeed(seed);
-  return sim;
-}
-
-Eigen::Matrix3d rotation(const vpHomogeneousMatrix &M)
-{
-  Eigen::Matrix3d R;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      R(i, j) = M[i][j];
-  return R;
-}
-
-// Image conic (pixels) of the intersection of the laser cone with the plane, from the implicit equations:
-// cone (X - t)^T M (X - t) = 0 with M = R diag(1, 1, -tan^2 h) R^T, plane n.X + D = 0, X = lambda K^-1 p.
-Eigen::Matrix3d pixelConic(const vpCameraParameters &cam, double opening, const vpHomogeneousMatrix &cMl,
-                           const vpPlane &plane)
-{
-  const Eigen::Matrix3d R = rotation(cMl);
-  const Eigen::Vector3d t(cMl[0][3], cMl[1][3], cMl[2][3]);
-  const double tan2 = std::pow(std::tan(0.5 * opening), 2);
-  const Eigen::Matrix3d M = R * Eigen::Vector3d(1, 1, -tan2).asDiagonal() * R.transpose();
-  const Eigen::Vector3d n(plane.getA(), plane.getB(), plane.getC());
-  const double D = plane.getD();
-  const Eigen::Matrix3d C =
-      M + (M * t * n.transpose() + n * t.transpose() * M) / D + (t.dot(M * t) / (D * D)) * n * n.transpose();
-  Eigen::Matrix3d Kinv;
-  Kinv << 1.0 / cam.get_px(), 0, -cam.get_u0() / cam.get_px(), 0, 1.0 / cam.get_py(), -cam.get_v0() / cam.get_py(), 0,
-      0, 1;
-  return Kinv.transpose() * C * Kinv;
-}
-
-// First-order (Sampson) distance in pixels of an image point to a conic; exact to first order near the curve.
-double sampsonDistance(const Eigen::Matrix3d &C, const vpImagePoint &p)
-{
-  const Eigen::Vector3d x(p.get_u(), p.get_v(), 1.0);
-  const Eigen::Vector3d Cx = C * x;
-  return std::fabs(x.dot(Cx)) / (2.0 * Cx.head<2>().norm());
-}
-
 // Angle between the cone axis and the ray from the apex to the back-projection of p on the plane.
 double coneAngleOf(const vpImagePoint &p, const vpCameraParameters &cam, const vpHomogeneousMatrix &cMl,
                    const vpPlane &plane)

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 
 #include <Eigen/LU>
 
@@ -34,16 +35,39 @@ struct ExactScene
   std::vector<Eigen::Vector2d> points; // normalized coordinates
 };
 
-/*!
-  A random exact scene. With \e epipolarTangents, only rigs where PP-3 applies: the camera centre
-  outside the (double) laser cone, so that real epipolar tangent planes exist.
-*/
 void print(const char *what, const std::vector<double> &errors)
 {
   std::printf("%-28s median %.2e max %.2e over %zu\n", what, laser_test::median(errors), laser_test::maximum(errors),
               errors.size());
 }
 
+//! Errors of recovered planes against the true ones, checked against the exact-data bounds.
+struct PlaneErrors
+{
+  std::vector<double> normal, altitude;
+
+  void add(const Eigen::Vector4d &plane, const Eigen::Vector4d &truth)
+  {
+    normal.push_back(laser_test::normalError(plane, truth));
+    altitude.push_back(laser_test::altitudeError(plane, truth));
+  }
+
+  //! Prints the errors of \e solver and checks their median and maximum (kMedianTol, kMaxTol).
+  void check(const std::string &solver) const
+  {
+    print((solver + " normal (rad)").c_str(), normal);
+    print((solver + " altitude (m)").c_str(), altitude);
+    EXPECT_LT(laser_test::median(normal), kMedianTol) << solver;
+    EXPECT_LT(laser_test::maximum(normal), kMaxTol) << solver;
+    EXPECT_LT(laser_test::median(altitude), kMedianTol) << solver;
+    EXPECT_LT(laser_test::maximum(altitude), kMaxTol) << solver;
+  }
+};
+
+/*!
+  A random exact scene. With \e epipolarTangents, only rigs where PP-3 applies: the camera centre
+  outside the (double) laser cone, so that real epipolar tangent planes exist.
+*/
 ExactScene drawScene(std::mt19937 &rng, unsigned int n = 40, bool epipolarTangents = false)
 {
   ExactScene e;
@@ -146,22 +170,16 @@ TEST(LaserSolvers, FitConicRejectsDegenerateSets)
 TEST(LaserSolvers, PlanePairOnTheExactConic)
 {
   std::mt19937 rng(4);
-  std::vector<double> normalErr, altitudeErr;
+  PlaneErrors errors;
   for (int k = 0; k < kScenes; ++k) {
     const ExactScene e = drawScene(rng, 3);
     Eigen::Vector4d plane;
     ASSERT_TRUE(planePair(conicFromPlane(e.scene.plane, e.cone), e.cone, plane)) << "scene " << k;
     EXPECT_NEAR(plane.head<3>().norm(), 1.0, 1e-12);
     EXPECT_GT(plane(3), 0.0);
-    normalErr.push_back(laser_test::normalError(plane, e.scene.plane));
-    altitudeErr.push_back(laser_test::altitudeError(plane, e.scene.plane));
+    errors.add(plane, e.scene.plane);
   }
-  print("planePair normal (rad)", normalErr);
-  print("planePair altitude (m)", altitudeErr);
-  EXPECT_LT(laser_test::median(normalErr), kMedianTol);
-  EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
-  EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
-  EXPECT_LT(laser_test::maximum(altitudeErr), kMaxTol);
+  errors.check("planePair");
 }
 
 TEST(LaserSolvers, PlanePairIsScaleAndSignInvariant)
@@ -252,7 +270,7 @@ TEST(LaserSolvers, Gp3FindsTheTruePlane)
 {
   std::mt19937 rng(8);
   std::uniform_int_distribution<int> pick(0, 39);
-  std::vector<double> normalErr, altitudeErr;
+  PlaneErrors errors;
   for (int k = 0; k < kScenes; ++k) {
     const ExactScene e = drawScene(rng);
     const int i0 = pick(rng);
@@ -270,15 +288,9 @@ TEST(LaserSolvers, Gp3FindsTheTruePlane)
       EXPECT_GT(planes[i](3), 0.0);
       EXPECT_GT(planes[i].head<3>().dot(e.cone.apex) + planes[i](3), 0.0); // same side as the camera
     }
-    normalErr.push_back(laser_test::normalError(planes[best], e.scene.plane));
-    altitudeErr.push_back(laser_test::altitudeError(planes[best], e.scene.plane));
+    errors.add(planes[best], e.scene.plane);
   }
-  print("gp3Planes normal (rad)", normalErr);
-  print("gp3Planes altitude (m)", altitudeErr);
-  EXPECT_LT(laser_test::median(normalErr), kMedianTol);
-  EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
-  EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
-  EXPECT_LT(laser_test::maximum(altitudeErr), kMaxTol);
+  errors.check("gp3Planes");
 }
 
 TEST(LaserSolvers, AltitudeRollPitchConvention)
@@ -314,7 +326,7 @@ TEST(LaserSolvers, RefinePlaneConvergesOnExactPoints)
 {
   // From a plane 2 deg and 5 % off, the refinement on exact points recovers the truth.
   std::mt19937 rng(10);
-  std::vector<double> normalErr, altitudeErr;
+  PlaneErrors errors;
   for (int k = 0; k < 300; ++k) {
     const ExactScene e = drawScene(rng, 30);
     Eigen::Vector4d plane = e.scene.plane;
@@ -322,15 +334,9 @@ TEST(LaserSolvers, RefinePlaneConvergesOnExactPoints)
     plane.head<3>() = Eigen::AngleAxisd(vpMath::rad(2.0), tilt) * plane.head<3>();
     plane(3) *= 1.05;
     ASSERT_TRUE(refinePlane(e.points.data(), 30, e.cone, plane));
-    normalErr.push_back(laser_test::normalError(plane, e.scene.plane));
-    altitudeErr.push_back(laser_test::altitudeError(plane, e.scene.plane));
+    errors.add(plane, e.scene.plane);
   }
-  print("refinePlane normal (rad)", normalErr);
-  print("refinePlane altitude (m)", altitudeErr);
-  EXPECT_LT(laser_test::median(normalErr), kMedianTol);
-  EXPECT_LT(laser_test::maximum(normalErr), kMaxTol);
-  EXPECT_LT(laser_test::median(altitudeErr), kMedianTol);
-  EXPECT_LT(laser_test::maximum(altitudeErr), kMaxTol);
+  errors.check("refinePlane");
   // Invalid starts are refused without touching the plane.
   const ExactScene e = drawScene(rng, 30);
   Eigen::Vector4d bad(0.0, 0.0, 0.0, 1.0);

@@ -21,6 +21,7 @@
 #include <visp3/core/vpRotationMatrix.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/pose_gravity/vpGravitySolvers.h>
+#include <visp3/pose_gravity/vpPoseGravity.h>
 
 namespace gravity_test
 {
@@ -219,6 +220,23 @@ inline void toSolverInput(const std::vector<vpPoint> &points, std::vector<Eigen:
     x.emplace_back(P.get_x(), P.get_y(), 1.0);
     X.emplace_back(P.get_oX(), P.get_oY(), P.get_oZ());
   }
+}
+
+/*!
+  An estimator fed with the scene: both gravity directions and the points, each unless told otherwise
+  (the validation tests leave one of them out on purpose).
+*/
+inline vpPoseGravity estimatorFor(const Scene &s, bool cameraGravity = true, bool objectGravity = true,
+                                  bool points = true)
+{
+  vpPoseGravity pose;
+  if (cameraGravity)
+    pose.setCameraGravity(s.gCam);
+  if (objectGravity)
+    pose.setObjectGravity(s.gObj);
+  if (points)
+    pose.addPoints(s.points);
+  return pose;
 }
 
 //! Median of a vector (copied).

@@ -25,9 +25,7 @@ const double kExact = 1e-9;
 // Best P2P candidate error (facade), infinity if none.
 double bestCandidateError(const Scene &s, vpPoseGravity::vpPoseGravityStatus *status = nullptr)
 {
-  vpPoseGravity pose;
-  pose.setCameraGravity(s.gCam);
-  pose.setObjectGravity(s.gObj);
+  vpPoseGravity pose = estimatorFor(s, true, true, false);
   pose.addPoint(s.points[0]);
   pose.addPoint(s.points[1]);
   double best = std::numeric_limits<double>::infinity();
@@ -40,10 +38,7 @@ double bestCandidateError(const Scene &s, vpPoseGravity::vpPoseGravityStatus *st
 
 double methodError(const Scene &s, vpPoseGravity::vpPoseGravityMethod method)
 {
-  vpPoseGravity pose;
-  pose.setCameraGravity(s.gCam);
-  pose.setObjectGravity(s.gObj);
-  pose.addPoints(s.points);
+  vpPoseGravity pose = estimatorFor(s);
   vpHomogeneousMatrix cMo;
   if (!pose.computePose(method, cMo))
     return std::numeric_limits<double>::infinity();
@@ -246,10 +241,7 @@ TEST(pose_gravity_Degenerate, VerticalLineOfPointsHasNoYaw)
     s.gObj = toVisp(gObj);
     s.gCam = SceneGenerator::cameraGravity(s.cMo, s.gObj);
     s.points = SceneGenerator::project(X, s.cMo);
-    vpPoseGravity pose;
-    pose.setCameraGravity(s.gCam);
-    pose.setObjectGravity(s.gObj);
-    pose.addPoints(s.points);
+    vpPoseGravity pose = estimatorFor(s);
     vpHomogeneousMatrix cMo;
     EXPECT_FALSE(pose.computePose(vpPoseGravity::LEAST_SQUARES, cMo));
     EXPECT_EQ(pose.getStatus(), vpPoseGravity::STATUS_NO_SOLUTION);

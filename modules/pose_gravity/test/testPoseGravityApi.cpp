@@ -41,15 +41,6 @@ void expectThrowCode(const std::function<void()> &f, int code, const char *what)
     ADD_FAILURE() << what << ": wrong exception type";
   }
 }
-
-vpPoseGravity readyEstimator(const Scene &s)
-{
-  vpPoseGravity pose;
-  pose.setCameraGravity(s.gCam);
-  pose.setObjectGravity(s.gObj);
-  pose.addPoints(s.points);
-  return pose;
-}
 } // namespace
 
 TEST(pose_gravity_Api, BadGravityThrows)
@@ -77,13 +68,9 @@ TEST(pose_gravity_Api, UnsetGravityThrows)
   const Scene s = gen.scene(4);
   vpHomogeneousMatrix cMo;
   const int code = vpPoseGravityException::badGravityError;
-  vpPoseGravity noCamera;
-  noCamera.setObjectGravity(s.gObj);
-  noCamera.addPoints(s.points);
+  vpPoseGravity noCamera = estimatorFor(s, false, true);
   expectThrowCode([&] { noCamera.computePose(vpPoseGravity::P3P, cMo); }, code, "camera gravity unset");
-  vpPoseGravity noObject;
-  noObject.setCameraGravity(s.gCam);
-  noObject.addPoints(s.points);
+  vpPoseGravity noObject = estimatorFor(s, true, false);
   expectThrowCode([&] { noObject.computePose(vpPoseGravity::LEAST_SQUARES, cMo); }, code, "object gravity unset");
   expectThrowCode([&] { noObject.computePoseCandidates(); }, code, "object gravity unset (candidates)");
   expectThrowCode([&] { noObject.refinePose(cMo); }, code, "object gravity unset (refine)");
@@ -95,9 +82,7 @@ TEST(pose_gravity_Api, TooFewPointsThrows)
   const Scene s = gen.scene(3);
   vpHomogeneousMatrix cMo;
   const int code = vpPoseGravityException::notEnoughPointError;
-  vpPoseGravity pose;
-  pose.setCameraGravity(s.gCam);
-  pose.setObjectGravity(s.gObj);
+  vpPoseGravity pose = estimatorFor(s, true, true, false);
   expectThrowCode([&] { pose.computePoseCandidates(); }, code, "candidates, 0 points");
   pose.addPoint(s.points[0]);
   expectThrowCode([&] { pose.computePoseCandidates(); }, code, "candidates, 1 point");
@@ -135,7 +120,7 @@ TEST(pose_gravity_Api, NonFiniteCoordinatesThrow)
         P.set_x(bad);
       if (which == 4)
         P.set_y(bad);
-      vpPoseGravity pose = readyEstimator(s);
+      vpPoseGravity pose = estimatorFor(s);
       const int code = vpPoseGravityException::badPointError;
       for (vpPoseGravity::vpPoseGravityMethod method :
            {vpPoseGravity::P3P, vpPoseGravity::LEAST_SQUARES, vpPoseGravity::RANSAC})
@@ -155,14 +140,14 @@ TEST(pose_gravity_Api, DuplicateObjectPointsThrow)
   const vpPoint &A = s.points[0];
   const double scale = std::max({std::abs(A.get_oX()), std::abs(A.get_oY()), std::abs(A.get_oZ())});
   s.points[1].setWorldCoordinates(A.get_oX() + 0.5e-12 * scale, A.get_oY(), A.get_oZ());
-  vpPoseGravity pose = readyEstimator(s);
+  vpPoseGravity pose = estimatorFor(s);
   for (vpPoseGravity::vpPoseGravityMethod method : {vpPoseGravity::P3P, vpPoseGravity::LEAST_SQUARES, vpPoseGravity::RANSAC})
     expectThrowCode([&] { pose.computePose(method, cMo); }, code, "duplicate points");
   expectThrowCode([&] { pose.computePoseCandidates(); }, code, "duplicate points (candidates)");
   // Duplicate among later points only matters for the methods that use them.
   Scene s2 = gen.scene(5);
   s2.points[4].setWorldCoordinates(s2.points[3].get_oX(), s2.points[3].get_oY(), s2.points[3].get_oZ());
-  vpPoseGravity pose2 = readyEstimator(s2);
+  vpPoseGravity pose2 = estimatorFor(s2);
   EXPECT_NO_THROW(pose2.computePose(vpPoseGravity::P3P, cMo));
   expectThrowCode([&] { pose2.computePose(vpPoseGravity::LEAST_SQUARES, cMo); }, code, "late duplicate");
   // Distinct but close points (1e-9 relative) are legal.
@@ -170,7 +155,7 @@ TEST(pose_gravity_Api, DuplicateObjectPointsThrow)
   const vpPoint &B = s3.points[0];
   s3.points[1].setWorldCoordinates(B.get_oX() + 1e-9, B.get_oY(), B.get_oZ());
   s3.points[1].track(s3.cMo);
-  vpPoseGravity pose3 = readyEstimator(s3);
+  vpPoseGravity pose3 = estimatorFor(s3);
   EXPECT_NO_THROW(pose3.computePose(vpPoseGravity::LEAST_SQUARES, cMo));
 }
 
@@ -181,7 +166,7 @@ TEST(pose_gravity_Api, CollinearPointsThrowForP3P)
   const Eigen::Vector3d A = toEigen(s.points[0].oP), B = toEigen(s.points[1].oP);
   const Eigen::Vector3d C = A + 2.5 * (B - A);
   s.points[2] = SceneGenerator::project({C}, s.cMo)[0];
-  vpPoseGravity pose = readyEstimator(s);
+  vpPoseGravity pose = estimatorFor(s);
   vpHomogeneousMatrix cMo;
   expectThrowCode([&] { pose.computePose(vpPoseGravity::P3P, cMo); }, vpPoseGravityException::degeneratePointsError,
                   "collinear P3P");
@@ -233,7 +218,7 @@ TEST(pose_gravity_Api, StatusesAndCandidateOrder)
   int twoCandidates = 0;
   for (int trial = 0; trial < 200; ++trial) {
     const Scene s = gen.scene(2);
-    vpPoseGravity p = readyEstimator(s);
+    vpPoseGravity p = estimatorFor(s);
     const std::vector<vpHomogeneousMatrix> candidates = p.computePoseCandidates();
     ASSERT_EQ(p.getStatus(), vpPoseGravity::STATUS_OK);
     ASSERT_FALSE(candidates.empty());
@@ -263,7 +248,7 @@ TEST(pose_gravity_Api, RefineKeepsPoseOnFailure)
 {
   SceneGenerator gen(37);
   const Scene s = gen.scene(5);
-  vpPoseGravity pose = readyEstimator(s);
+  vpPoseGravity pose = estimatorFor(s);
   vpHomogeneousMatrix cMo = s.cMo;
   cMo[0][3] = std::numeric_limits<double>::quiet_NaN();
   const vpHomogeneousMatrix before = cMo;

@@ -30,6 +30,25 @@ void reportAndCheck(const char *what, const std::vector<double> &errors)
   EXPECT_LE(med, 1e-10) << what;
   EXPECT_LE(worst, 1e-6) << what;
 }
+
+/*!
+  On kTrials exact scenes from \e seed (scene k has \e nPoints(k) points), \e solve(scene, x, X, pose)
+  must return a pose, and the errors must meet the exact-data bounds of reportAndCheck().
+*/
+template <typename Count, typename Solve> void checkExactPoses(const char *what, unsigned int seed, Count nPoints, Solve solve)
+{
+  SceneGenerator gen(seed);
+  std::vector<double> errors;
+  std::vector<Eigen::Vector3d> x, X;
+  for (int k = 0; k < kTrials; ++k) {
+    const Scene s = gen.scene(nPoints(k));
+    toSolverInput(s.points, x, X);
+    vpGravitySolvers::Pose pose;
+    ASSERT_TRUE(solve(s, x, X, pose)) << what << ", scene " << k;
+    errors.push_back(poseError(pose, s.cMo));
+  }
+  reportAndCheck(what, errors);
+}
 } // namespace
 
 TEST(pose_gravity_SolversExact, P2PTruthAmongCandidates)
@@ -58,33 +77,21 @@ TEST(pose_gravity_SolversExact, P2PTruthAmongCandidates)
 
 TEST(pose_gravity_SolversExact, P3PGivesTruth)
 {
-  SceneGenerator gen(12);
-  std::vector<double> errors;
-  std::vector<Eigen::Vector3d> x, X;
-  for (int k = 0; k < kTrials; ++k) {
-    const Scene s = gen.scene(3);
-    toSolverInput(s.points, x, X);
-    vpGravitySolvers::Pose pose;
-    ASSERT_TRUE(vpGravitySolvers::p3p(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(), pose));
-    errors.push_back(poseError(pose, s.cMo));
-  }
-  reportAndCheck("P3P", errors);
+  checkExactPoses("P3P", 12, [](int) { return 3; },
+                  [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
+                     vpGravitySolvers::Pose &pose) {
+                    return vpGravitySolvers::p3p(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(), pose);
+                  });
 }
 
 TEST(pose_gravity_SolversExact, LeastSquaresGivesTruth)
 {
-  SceneGenerator gen(13);
-  std::vector<double> errors;
-  std::vector<Eigen::Vector3d> x, X;
-  for (int k = 0; k < kTrials; ++k) {
-    const int n = 3 + k % 8; // 3 to 10 points
-    const Scene s = gen.scene(n);
-    toSolverInput(s.points, x, X);
-    vpGravitySolvers::Pose pose;
-    ASSERT_TRUE(vpGravitySolvers::leastSquares(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(), n, pose));
-    errors.push_back(poseError(pose, s.cMo));
-  }
-  reportAndCheck("LEAST_SQUARES", errors);
+  checkExactPoses("LEAST_SQUARES", 13, [](int k) { return 3 + k % 8; }, // 3 to 10 points
+                  [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
+                     vpGravitySolvers::Pose &pose) {
+                    return vpGravitySolvers::leastSquares(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(),
+                                                          static_cast<int>(x.size()), pose);
+                  });
 }
 
 TEST(pose_gravity_SolversExact, TranslationFromTrueRotation)

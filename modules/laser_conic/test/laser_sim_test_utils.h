@@ -1,0 +1,94 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file laser_sim_test_utils.h
+  \brief The rig rendered by the simulator and detector tests (1600x1200 camera, 34 deg laser 10 cm
+  beside it) and the exact image conic of its trace, computed from the implicit cone/plane equations
+  rather than from the simulator's ray casting, so that it is an independent ground truth.
+*/
+#ifndef VP_LASER_SIM_TEST_UTILS_H
+#define VP_LASER_SIM_TEST_UTILS_H
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpPlane.h>
+#include <visp3/laser_conic/vpLaserConicSimulator.h>
+
+#include "laser_test_utils.h"
+
+namespace laser_sim_test
+{
+const unsigned int kWidth = 1600, kHeight = 1200;
+const double kOpening = vpMath::rad(34.0); //!< full opening angle of the laser cone
+
+inline vpCameraParameters camera() { return vpCameraParameters(1500.0, 1500.0, 800.0, 600.0); }
+
+//! Laser 10 cm beside the camera, axis tilted by a few degrees (a typical rig).
+inline vpHomogeneousMatrix laserPose()
+{
+  return vpHomogeneousMatrix(0.10, 0.02, 0.0, vpMath::rad(3.0), vpMath::rad(-5.0), vpMath::rad(10.0));
+}
+
+//! Ground 1 m in front, tilted by (10, -8) degrees.
+inline vpHomogeneousMatrix groundPose()
+{
+  return vpHomogeneousMatrix(0.05, -0.03, 1.0, vpMath::rad(10), vpMath::rad(-8), 0.3);
+}
+
+//! A simulator of the test rig looking at the ground \e cMg, noise drawn from \e seed.
+inline vpLaserConicSimulator makeSimulator(const vpHomogeneousMatrix &cMg = groundPose(), unsigned int seed = 7)
+{
+  vpLaserConicSimulator sim;
+  sim.setCamera(camera(), kWidth, kHeight);
+  sim.setLaser(kOpening, laserPose());
+  sim.setGroundPose(cMg);
+  sim.setSeed(seed);
+  return sim;
+}
+
+/*!
+  Image conic (pixels) of the intersection of the laser cone with the plane, from the implicit equations:
+  cone (X - t)^T M (X - t) = 0 with M = R diag(1, 1, -tan^2 h) R^T, plane n.X + D = 0, X = lambda K^-1 p.
+*/
+inline Eigen::Matrix3d pixelConic(const vpCameraParameters &cam, double opening, const vpHomogeneousMatrix &cMl,
+                                  const vpPlane &plane)
+{
+  laser_test::Rig rig;
+  rig.cMl = cMl;
+  rig.openingAngle = opening;
+  const vpLaserSolvers::LaserCone cone = laser_test::toCone(rig); // only unpacks cMl: R, t, half angle
+  const Eigen::Matrix3d &R = cone.cRl;
+  const Eigen::Vector3d &t = cone.apex;
+  const double tan2 = std::pow(std::tan(cone.halfAngle), 2);
+  const Eigen::Matrix3d M = R * Eigen::Vector3d(1, 1, -tan2).asDiagonal() * R.transpose();
+  const Eigen::Vector3d n(plane.getA(), plane.getB(), plane.getC());
+  const double D = plane.getD();
+  const Eigen::Matrix3d C =
+      M + (M * t * n.transpose() + n * t.transpose() * M) / D + (t.dot(M * t) / (D * D)) * n * n.transpose();
+  Eigen::Matrix3d Kinv;
+  Kinv << 1.0 / cam.get_px(), 0, -cam.get_u0() / cam.get_px(), 0, 1.0 / cam.get_py(), -cam.get_v0() / cam.get_py(), 0,
+      0, 1;
+  return Kinv.transpose() * C * Kinv;
+}
+
+//! The image conic of the test rig's trace on \e plane.
+inline Eigen::Matrix3d pixelConic(const vpPlane &plane) { return pixelConic(camera(), kOpening, laserPose(), plane); }
+
+//! First-order (Sampson) distance in pixels of an image point to a conic; exact to first order near the curve.
+inline double sampsonDistance(const Eigen::Matrix3d &C, const vpImagePoint &p)
+{
+  const Eigen::Vector3d x(p.get_u(), p.get_v(), 1.0);
+  const Eigen::Vector3d Cx = C * x;
+  return std::fabs(x.dot(Cx)) / (2.0 * Cx.head<2>().norm());
+}
+} // namespace laser_sim_test
+
+#endif
