@@ -84,20 +84,27 @@ struct LineEstimator
     return true;
   }
 };
-} // namespace
 
-TEST(RansacLoop, RecoversALineThroughSixtyPercentOutliers)
+// Line data: nOut uniform outliers first, then noisy inliers of y = 0.5 x - 2.
+LineEstimator makeLineData(int n, int nOut, unsigned int seed)
 {
-  std::mt19937 rng(42);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-10, 10);
   std::normal_distribution<double> noise(0, 0.01);
   LineEstimator est;
-  const int n = 500, nOut = 300;
   for (int i = 0; i < n; ++i) {
     const double xi = u(rng);
     est.x.push_back(xi);
     est.y.push_back(i < nOut ? u(rng) * 5 : 0.5 * xi - 2.0 + noise(rng));
   }
+  return est;
+}
+} // namespace
+
+TEST(RansacLoop, RecoversALineThroughSixtyPercentOutliers)
+{
+  const int n = 500, nOut = 300;
+  const LineEstimator est = makeLineData(n, nOut, 42);
   vpRansacOptions opt;
   opt.threshold = 0.05;
   opt.seed = 3;
@@ -120,4 +127,65 @@ TEST(RansacLoop, RefusesTooFewData)
   vpRansacReport report;
   EXPECT_FALSE(vpRansacLoop(est, vpRansacOptions(), best, report));
   EXPECT_EQ(report.trials, 0);
+}
+
+TEST(RansacScore, EarlyStopNeverChangesTheRanking)
+{
+  const LineEstimator est = makeLineData(500, 300, 11);
+  const double thr2 = 0.05 * 0.05;
+  LineEstimator::Model good, bad;
+  good.a = 0.5;
+  good.b = -2.0;
+  bad.a = -1.0;
+  bad.b = 3.0;
+  const std::pair<int, double> fullGood = vpRansacScore(est, good, thr2), fullBad = vpRansacScore(est, bad, thr2);
+  EXPECT_GE(fullGood.first, 200); // every inlier, and the odd outlier that falls near the line
+  EXPECT_LE(fullGood.first, 210);
+  EXPECT_LT(fullBad.first, 20);
+  // Against a bar the model cannot reach the scoring stops early: the count stays below the bar.
+  const std::pair<int, double> stopped = vpRansacScore(est, bad, thr2, fullGood.first);
+  EXPECT_LT(stopped.first, fullGood.first);
+  EXPECT_LE(stopped.first, fullBad.first);
+  // Against a bar it reaches, the score is the full one.
+  const std::pair<int, double> reached = vpRansacScore(est, good, thr2, fullGood.first);
+  EXPECT_EQ(reached, fullGood);
+}
+
+TEST(RansacScore, InlierListsAgreeWithCounts)
+{
+  const LineEstimator est = makeLineData(500, 300, 12);
+  const double thr2 = 0.05 * 0.05;
+  LineEstimator::Model good;
+  good.a = 0.5;
+  good.b = -2.0;
+  std::vector<int> listed;
+  vpRansacInliers(est, good, thr2, listed);
+  std::vector<int> buffer(500, -1);
+  const std::pair<int, double> sc = vpRansacScore(est, good, thr2, 0, buffer.data());
+  ASSERT_EQ(static_cast<int>(listed.size()), sc.first);
+  for (int k = 0; k < sc.first; ++k) {
+    EXPECT_EQ(buffer[k], listed[k]);
+    EXPECT_LT(est.residual(good, listed[k]), 0.05);
+  }
+}
+
+TEST(RansacLoop, ReportedInliersAreTheConsensusOfTheBestModel)
+{
+  const LineEstimator est = makeLineData(500, 300, 13);
+  for (int rounds : {1, 3}) {
+    vpRansacOptions opt;
+    opt.threshold = 0.05;
+    opt.seed = 5;
+    opt.localRounds = rounds;
+    LineEstimator::Model best;
+    vpRansacReport report;
+    ASSERT_TRUE(vpRansacLoop(est, opt, best, report));
+    std::vector<int> listed;
+    vpRansacInliers(est, best, opt.threshold * opt.threshold, listed);
+    EXPECT_EQ(report.inliers, listed) << rounds << " rounds";
+    EXPECT_EQ(report.inlierCount, static_cast<int>(listed.size()));
+    EXPECT_EQ(report.score, vpRansacScore(est, best, opt.threshold * opt.threshold).second);
+    EXPECT_NEAR(best.a, 0.5, 2e-3);
+    EXPECT_NEAR(best.b, -2.0, 5e-3);
+  }
 }
