@@ -117,6 +117,7 @@ public:
   //! Iterations of the plane refinement inside the RANSAC loop (one pass over the points each).
   static constexpr int kLocalIterations = 3;
 
+  //! Estimator over normalized image points (kept by reference) for the given laser cone.
   Gp3Estimator(const PointList &points, const vpLaserSolvers::LaserCone &cone)
     : m_points(points), m_x(points.size()), m_y(points.size()), m_cone(cone),
       m_form(vpLaserSolvers::internal::laserConeForm(cone)), m_subset()
@@ -127,7 +128,9 @@ public:
     }
     m_subset.reserve(points.size());
   }
+  //! Number of points.
   int size() const { return static_cast<int>(m_points.size()); }
+  //! The GP-3 planes of three points (gp3Planes()), each with its predicted image conic.
   int solveMinimal(const int *sample, Model *models) const
   {
     const Eigen::Vector2d p[3] = {m_points[sample[0]], m_points[sample[1]], m_points[sample[2]]};
