@@ -103,6 +103,8 @@ public:
 
   /*!
     Estimates the ground plane from image points (pixels) with the given method.
+    \param points : image points (pixels) of the laser trace; every method but PLANE_PAIR rejects outliers.
+    \param method : PLANE_PAIR, PP5, PP3 or GP3.
     \param cPlane : the ground plane in the camera frame, unit normal pointing from the plane towards the camera.
     \return false, with getFailureReason() telling why, when no plane was found; cPlane is then untouched.
     The reasons: all points collinear; the least-squares conic is not an ellipse (PLANE_PAIR); no

@@ -25,6 +25,7 @@
 
 #include <visp3/core/vpConfig.h>
 
+//! Pure Eigen solvers of the laser_conic module: cones, conic fit, plane pair, PP-3, GP-3.
 namespace vpLaserSolvers
 {
 //! The laser cone in the camera frame.
