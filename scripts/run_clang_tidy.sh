@@ -22,7 +22,8 @@ fi
   >"$BUILD_DIR/clang-tidy.log" 2>&1 || true
 
 # One line per finding: "path:line:col: warning: message [check]", deduplicated (headers are seen many times).
-grep -E "^/.*: (warning|error): .*\[[a-z0-9.,-]+\]$" "$BUILD_DIR/clang-tidy.log" | sort -u \
+# clang-tidy colours its output even into a file: strip the escape sequences before matching.
+sed -E $'s/\x1b\\[[0-9;]*m//g' "$BUILD_DIR/clang-tidy.log" | grep -E "^/.*: (warning|error): .*\[[a-z0-9.,-]+\]$" | sort -u \
   >"$BUILD_DIR/clang-tidy-findings.txt" || true
 count=$(wc -l <"$BUILD_DIR/clang-tidy-findings.txt")
 echo "clang-tidy: $count findings (full log: $BUILD_DIR/clang-tidy.log)"

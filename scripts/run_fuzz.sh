@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) and fuzzes each for FUZZ_SECONDS.
 #   scripts/run_fuzz.sh [seconds]        (default 60 per target)
-# Environment: BUILD_DIR (default build-bench-fuzz), CXX (default clang++-14 or clang++), JOBS (default 2).
+# Environment: BUILD_DIR (default build-bench-fuzz), CXX (default clang++-14 or clang++), JOBS (default 2),
+# FUZZ_ARGS (extra libFuzzer options; default -len_control=10 so that inputs long enough for tens of
+# points are tried within a one-minute run, instead of a few short ones).
 # Corpora are kept in $BUILD_DIR/corpus/<target>, crashing inputs in $BUILD_DIR/artifacts/<target>/.
 # Replay a crash with: $BUILD_DIR/benchmark/fuzz/fuzz-<target> <artifact file>
 set -euo pipefail
@@ -10,6 +12,7 @@ SECONDS_PER_TARGET="${1:-${FUZZ_SECONDS:-60}}"
 BUILD_DIR="${BUILD_DIR:-build-bench-fuzz}"
 JOBS="${JOBS:-2}"
 CXX_BIN="${CXX:-$(command -v clang++-14 || command -v clang++)}"
+read -r -a EXTRA_FUZZ_ARGS <<<"${FUZZ_ARGS:--len_control=10}"
 SAN_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
 
 cmake -S . -B "$BUILD_DIR" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -27,7 +30,7 @@ for target in pose-gravity laser-conic; do
   # -timeout: one input running longer than 10 s is a hang; -rss_limit_mb: no unbounded memory.
   if ! UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ASAN_OPTIONS=detect_leaks=1 \
       "$BUILD_DIR/benchmark/fuzz/fuzz-$target" "$corpus" -max_total_time="$SECONDS_PER_TARGET" \
-      -timeout=10 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 -artifact_prefix="$artifacts" \
+      -timeout=10 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 -artifact_prefix="$artifacts" "${EXTRA_FUZZ_ARGS[@]}" \
       2>"$BUILD_DIR/fuzz-$target.log"; then
     echo "fuzz-$target FAILED: see $BUILD_DIR/fuzz-$target.log and $artifacts"
     status=1

@@ -179,6 +179,7 @@ inline bool cameraInsideCone(const vpLaserSolvers::LaserCone &cone)
 inline std::vector<Eigen::Vector2d> normalized(const vpCameraParameters &cam, const std::vector<vpImagePoint> &points)
 {
   std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size());
   for (const vpImagePoint &p : points)
     out.emplace_back((p.get_u() - cam.get_u0()) / cam.get_px(), (p.get_v() - cam.get_v0()) / cam.get_py());
   return out;
@@ -189,6 +190,7 @@ inline std::vector<vpImagePoint> addNoise(const std::vector<vpImagePoint> &point
 {
   std::normal_distribution<double> g(0.0, sigma);
   std::vector<vpImagePoint> out;
+  out.reserve(points.size());
   for (const vpImagePoint &p : points)
     out.emplace_back(p.get_i() + g(rng), p.get_j() + g(rng));
   return out;

@@ -404,6 +404,7 @@ TEST(LaserConicPose, CollinearPointsFailWithAReason)
   std::vector<vpImagePoint> points;
   const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 20, points);
   std::vector<vpImagePoint> line;
+  line.reserve(30);
   for (int i = 0; i < 30; ++i)
     line.emplace_back(100.0 + 20.0 * i, 50.0 + 31.0 * i);
   vpLaserConicPose estimator = makeEstimator(s.rig);
@@ -464,6 +465,7 @@ TEST(LaserConicPose, PureOutliersGiveNoConsensus)
   rig.cMl.buildFrom(0.15, 0.0, 0.0, 0.0, 0.0, 0.0);
   std::uniform_real_distribution<double> u(0.0, 1599.0), v(0.0, 1199.0);
   std::vector<vpImagePoint> points;
+  points.reserve(8);
   for (int i = 0; i < 8; ++i)
     points.emplace_back(v(rng), u(rng));
   vpLaserConicPose estimator = makeEstimator(rig);

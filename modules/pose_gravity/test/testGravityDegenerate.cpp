@@ -234,6 +234,7 @@ TEST(pose_gravity_Degenerate, VerticalLineOfPointsHasNoYaw)
     const Eigen::Vector3d gObj = gen.unitVector();
     const Eigen::Vector3d origin(gen.uniform(-1, 1), gen.uniform(-1, 1), gen.uniform(-1, 1));
     std::vector<Eigen::Vector3d> X;
+    X.reserve(5);
     for (int i = 0; i < 5; ++i)
       X.push_back(origin + gen.uniform(-0.5, 0.5) * gObj);
     Scene s;
