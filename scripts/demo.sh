@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the dependencies, builds the project and runs the main demo on the data shipped in data/.
+# Installs the dependencies, builds the project and runs the main demo on the data shipped in data/,
+# then the quick-start program and the reproduction of Table I of the gravity paper.
 # Results (CSV, PNG) go to ./demo-output unless VSP_DEMO_OUTPUT says otherwise.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -10,3 +11,10 @@ cmake --build "$build" -j "$(nproc)"
 # The demo creates the output folder itself, after checking that it is not inside data/.
 out="${VSP_DEMO_OUTPUT:-$PWD/demo-output}"
 "$build/example/demo/vsp-demo" --output "$out"
+# The quick-start snippets of the README, then the paper's Table I (gravity-aided P3P, 8000 trials).
+echo
+echo "== Quick start (example/quickstart) =="
+"$build/example/quickstart/quickstart"
+echo
+echo "== Table I of D'Alfonso et al. (example/pose_gravity/table1-gravity-p3p --trials 8000 --seed 1) =="
+"$build/example/pose_gravity/table1-gravity-p3p" --trials 8000 --seed 1
