@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -264,9 +265,9 @@ void writeRow(std::ostream &out, size_t frame, const std::string &image, const F
     out << "nan,nan,nan";
   out << "," << r.inliers << "," << r.status << "\n";
 }
-} // namespace
 
-int main(int argc, char **argv)
+//! The program; main() only adds a last-resort error report.
+int run(int argc, char **argv)
 {
   Options options;
   vpCommandLine cli = commandLine(options);
@@ -322,4 +323,16 @@ int main(int argc, char **argv)
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
             << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
   return EXIT_SUCCESS;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  // Errors are reported where they happen; this only keeps an unexpected one from escaping main().
+  try {
+    return run(argc, argv);
+  } catch (const std::exception &e) { // vpException included
+    std::cerr << argv[0] << ": " << e.what() << std::endl;
+  }
+  return EXIT_FAILURE;
 }

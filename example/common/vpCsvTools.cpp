@@ -107,7 +107,11 @@ bool checkOutputIsNotInput(const std::string &output, const std::vector<std::str
     const std::filesystem::path in = std::filesystem::weakly_canonical(input, ec2);
     const bool sameName = !ec1 && !ec2 && out == in;
     if (sameName || samePath(output, input)) {
-      error = "refusing to overwrite input file '" + input + "' with the output '" + output + "'";
+      error = "refusing to overwrite input file '";
+      error += input;
+      error += "' with the output '";
+      error += output;
+      error += "'";
       return false;
     }
   }

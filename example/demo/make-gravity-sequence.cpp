@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <random>
@@ -138,9 +139,8 @@ vpGravityFrame simulateFrame(unsigned int k, unsigned int frames, const vpHomoge
   return frame;
 }
 
-} // namespace
-
-int main(int argc, char **argv)
+//! The program; main() only adds a last-resort error report.
+int run(int argc, char **argv)
 {
   std::string output;
   unsigned int seed = 2013, frames = 60;
@@ -175,4 +175,16 @@ int main(int argc, char **argv)
   std::cout << "Wrote " << frames << " frames to " << output << "/points.csv and " << output
             << "/groundtruth.csv (seed " << seed << ")" << std::endl;
   return EXIT_SUCCESS;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  // Errors are reported where they happen; this only keeps an unexpected one from escaping main().
+  try {
+    return run(argc, argv);
+  } catch (const std::exception &e) { // vpException included
+    std::cerr << argv[0] << ": " << e.what() << std::endl;
+  }
+  return EXIT_FAILURE;
 }

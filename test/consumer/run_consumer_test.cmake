@@ -22,6 +22,7 @@ endfunction()
 
 run_step(${CMAKE_COMMAND} --install "${VSP_BUILD_DIR}" --prefix "${prefix}" --config ${VSP_BUILD_TYPE})
 run_step(${CMAKE_COMMAND} -S "${VSP_CONSUMER_SOURCE}" -B "${build}" -DCMAKE_PREFIX_PATH=${prefix}
-         -DCMAKE_BUILD_TYPE=${VSP_BUILD_TYPE})
+         -DCMAKE_BUILD_TYPE=${VSP_BUILD_TYPE} "-DCMAKE_CXX_FLAGS=${VSP_CONSUMER_FLAGS}"
+         "-DCMAKE_EXE_LINKER_FLAGS=${VSP_CONSUMER_FLAGS}")
 run_step(${CMAKE_COMMAND} --build "${build}" --config ${VSP_BUILD_TYPE})
 run_step("${build}/vsp_consumer")

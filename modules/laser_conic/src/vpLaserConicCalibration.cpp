@@ -26,10 +26,10 @@ void coneRay(const T &alpha, const T &beta, const T &gamma, double sinHalf, doub
   using std::sin;
   const T dx = sinHalf * cos(gamma), dy = sinHalf * sin(gamma), dz = T(cosHalf);
   const T cb = cos(beta), sb = sin(beta), ca = cos(alpha), sa = sin(alpha);
-  const T x = cb * dx + sb * dz, y = dy, z = -sb * dx + cb * dz; // Ry(beta)
-  D[0] = x;                                                        // Rx(alpha)
-  D[1] = ca * y - sa * z;
-  D[2] = sa * y + ca * z;
+  const T x = cb * dx + sb * dz, z = -sb * dx + cb * dz; // Ry(beta) leaves y = dy
+  D[0] = x;                                               // Rx(alpha)
+  D[1] = ca * dy - sa * z;
+  D[2] = sa * dy + ca * z;
 }
 
 // Residual of one laser point: predicted minus measured XY on its grid plane (paper eq. 60-65).
