@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -326,13 +325,4 @@ int run(int argc, char **argv)
 }
 } // namespace
 
-int main(int argc, char **argv)
-{
-  // Errors are reported where they happen; this only keeps an unexpected one from escaping main().
-  try {
-    return run(argc, argv);
-  } catch (const std::exception &e) { // vpException included
-    std::cerr << argv[0] << ": " << e.what() << std::endl;
-  }
-  return EXIT_FAILURE;
-}
+int main(int argc, char **argv) { return vpCommandLine::runGuarded(run, argc, argv); }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <sstream>
 
@@ -217,4 +218,14 @@ void vpCommandLine::printUsage(std::ostream &os) const
       head = std::string(width + 4, ' ');
     }
   }
+}
+
+int vpCommandLine::runGuarded(int (*program)(int, char **), int argc, char **argv)
+{
+  try {
+    return program(argc, argv);
+  } catch (const std::exception &e) { // vpException included
+    std::cerr << (argc > 0 ? argv[0] : "program") << ": " << e.what() << std::endl;
+  }
+  return EXIT_FAILURE;
 }

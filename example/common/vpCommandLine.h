@@ -92,6 +92,12 @@ public:
   */
   int fail(const std::string &error) const;
 
+  /*!
+    Runs \e program(argc, argv) and returns its exit status; an exception that escapes it is
+    reported on stderr with the program name and gives EXIT_FAILURE instead of std::terminate().
+  */
+  static int runGuarded(int (*program)(int, char **), int argc, char **argv);
+
   //! Prints the usage: synopsis, description and one aligned line per option.
   void printUsage(std::ostream &os) const;
 
