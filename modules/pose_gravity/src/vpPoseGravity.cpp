@@ -352,9 +352,7 @@ bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
   Pose refit = best;
   if (estimator.refine(inliers, refit)) {
     std::vector<int> refitInliers;
-    for (int i = 0; i < estimator.size(); ++i)
-      if (estimator.residual(refit, i) < m_ransacThreshold)
-        refitInliers.push_back(i);
+    vpRansacInliers(estimator, refit, m_ransacThreshold * m_ransacThreshold, refitInliers);
     if (refitInliers.size() >= inliers.size()) {
       best = refit;
       inliers = refitInliers;
