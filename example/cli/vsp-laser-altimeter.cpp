@@ -151,14 +151,19 @@ bool listImages(const Options &options, std::vector<std::string> &images, std::s
   return true;
 }
 
-//! Refuses outputs that would overwrite an input (results CSV, or overlays in the image folder).
-bool checkOutputs(const Options &options, const std::vector<std::string> &images, std::string &error)
+//! Refuses a results CSV that would overwrite one of the files named on the command line.
+bool checkOutputIsNotNamedInput(const Options &options, std::string &error)
 {
   std::vector<std::string> inputs = {options.camera, options.laser};
   if (!options.listFile.empty())
     inputs.push_back(options.listFile);
-  inputs.insert(inputs.end(), images.begin(), images.end());
-  if (!vpCsvTools::checkOutputIsNotInput(options.output, inputs, error))
+  return vpCsvTools::checkOutputIsNotInput(options.output, inputs, error);
+}
+
+//! Refuses outputs that would overwrite an image (results CSV, or overlays in the image folder).
+bool checkOutputsAgainstImages(const Options &options, const std::vector<std::string> &images, std::string &error)
+{
+  if (!vpCsvTools::checkOutputIsNotInput(options.output, images, error))
     return false;
   if (!options.overlays.empty()) {
     for (const std::string &image : images)
@@ -249,8 +254,8 @@ bool readInputs(const Options &options, vpCameraParameters &cam, double &opening
   // before the image list is read; then against the images.
   return vpLaserRigIo::readCamera(options.camera, options.cameraName, cam, width, height, error) &&
          vpLaserRigIo::readLaserCalibration(options.laser, openingAngle, cMl, error) &&
-         checkOutputs(options, images, error) && listImages(options, images, error) &&
-         checkOutputs(options, images, error);
+         checkOutputIsNotNamedInput(options, error) && listImages(options, images, error) &&
+         checkOutputsAgainstImages(options, images, error);
 }
 
 //! One row of the results CSV; the numbers are "nan" when the frame has no plane.

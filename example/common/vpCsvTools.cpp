@@ -100,10 +100,11 @@ bool samePath(const std::string &a, const std::string &b)
 
 bool checkOutputIsNotInput(const std::string &output, const std::vector<std::string> &inputs, std::string &error)
 {
+  // Lexical comparison first: the output may not exist yet while naming an input the same way.
+  std::error_code ec1;
+  const std::filesystem::path out = std::filesystem::weakly_canonical(output, ec1);
   for (const std::string &input : inputs) {
-    // Lexical comparison first: the output may not exist yet while naming the input the same way.
-    std::error_code ec1, ec2;
-    const std::filesystem::path out = std::filesystem::weakly_canonical(output, ec1);
+    std::error_code ec2;
     const std::filesystem::path in = std::filesystem::weakly_canonical(input, ec2);
     const bool sameName = !ec1 && !ec2 && out == in;
     if (sameName || samePath(output, input)) {
