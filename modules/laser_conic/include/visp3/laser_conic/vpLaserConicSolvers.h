@@ -93,6 +93,19 @@ int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vec
 bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane,
                  int iterations = 20);
 
+/*!
+  refinePlane() minimising the weighted sum of squared Sampson distances (weights >= 0, one per point;
+  nullptr for unit weights): the step of an iteratively reweighted least-squares (IRLS) refit.
+*/
+bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
+                         Eigen::Vector4d &plane, int iterations = 20);
+
+/*!
+  Plane of a ground attitude: altitude h (d), roll and pitch as in altitudeRollPitch() (its inverse):
+  n = -R_x(roll) R_y(pitch) e_z.
+*/
+Eigen::Vector4d planeFromAltitudeRollPitch(double altitude, double roll, double pitch);
+
 //! Image conic (normalized coordinates) of the trace of the laser cone on a ground plane.
 Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone);
 
