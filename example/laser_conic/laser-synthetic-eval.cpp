@@ -242,7 +242,7 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   studies.push_back(intrinsics);
 
   CurveStudy baseline = makeStudy(opt, "baseline", "Fig. 10 (3 axes)", "sigma of the laser position error (mm)",
-                                  {0.0, 2.0, 10.0}, range(0.0, 10.0, 1.0));
+                                  {0.0, 5.0, 10.0}, range(0.0, 10.0, 1.0));
   baseline.perturb = [n, minThreshold, calibrationNoise](double sigmaMm, vpLaserConicSimulator &sim,
                                                          std::mt19937 &rng) {
     TrialInput in = exactInput(sim, n, 0.0, minThreshold);
@@ -256,7 +256,7 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
 
   // The paper's Fig. 10: noise on the extent of the baseline only (the apex moves along the baseline).
   CurveStudy extent = makeStudy(opt, "extent", "Fig. 10", "sigma of the baseline length error (mm)",
-                                {0.0, 2.0, 10.0}, range(0.0, 10.0, 1.0));
+                                {0.0, 5.0, 10.0}, range(0.0, 10.0, 1.0));
   extent.perturb = [n, minThreshold, calibrationNoise](double sigmaMm, vpLaserConicSimulator &sim,
                                                        std::mt19937 &rng) {
     TrialInput in = exactInput(sim, n, 0.0, minThreshold);
@@ -508,19 +508,44 @@ std::string fmt(double x)
   return ss.str();
 }
 
-void checkCurveStudy(const CurveStudy &study)
+bool isCalibrationStudy(const CurveStudy &study)
 {
+  return study.name == "intrinsics" || study.name == "baseline" || study.name == "extent";
+}
+
+void checkCurveStudy(const CurveStudy &study, const Options &opt)
+{
+  const bool noisyLevelZero = isCalibrationStudy(study) && opt.calibrationNoise > 0.0;
   for (const Method &m : methods()) {
     const std::vector<CurvePoint> &c = study.curves.at(m.name);
-    // Level 0 is exact data with exact calibration: the solvers are exact up to rounding.
-    expect(c.front().failures == 0 && c.front().altitudeMm < 1e-3,
-           study.name + " " + m.name + ": exact at level 0 (" + fmt(c.front().altitudeMm) + " mm)");
+    // Level 0 is exact data with exact calibration: the solvers are exact up to rounding (the
+    // calibration studies add image noise at every level: there level 0 is the noise floor).
+    if (!noisyLevelZero) {
+      expect(c.front().failures == 0 && c.front().altitudeMm < 1e-3,
+             study.name + " " + m.name + ": exact at level 0 (" + fmt(c.front().altitudeMm) + " mm)");
+    }
     // The error must grow with the perturbation: the last level is worse than the first non-zero one.
     expect(c.back().altitudeMm > c[1].altitudeMm && c[1].altitudeMm > c.front().altitudeMm,
            study.name + " " + m.name + ": altitude error increases (" + fmt(c.front().altitudeMm) + " < " +
                fmt(c[1].altitudeMm) + " < " + fmt(c.back().altitudeMm) + " mm)");
-    expect(c.back().rollDeg + c.back().pitchDeg > c.front().rollDeg + c.front().pitchDeg,
-           study.name + " " + m.name + ": attitude error increases");
+    // An error on the baseline length alone scales the reconstruction: it moves the altitude, hardly
+    // the attitude (the paper's Fig. 10), which stays at the noise floor.
+    if (study.name != "extent") {
+      expect(c.back().rollDeg + c.back().pitchDeg > c.front().rollDeg + c.front().pitchDeg,
+             study.name + " " + m.name + ": attitude error increases");
+    }
+  }
+  if (isCalibrationStudy(study)) {
+    // With the scale-adaptive final fit, the 3-point methods tolerate calibration errors as well as
+    // PP5 does (the paper's finding): their median normal error stays within 1.5 times PP5's.
+    for (size_t l = 1; l < study.levels.size(); ++l) {
+      const double pp5 = study.curves.at("PP5")[l].medianNormalDeg;
+      for (const std::string name : {"PP3", "GP3"}) {
+        const double e = study.curves.at(name)[l].medianNormalDeg;
+        expect(e <= 1.5 * pp5, study.name + " " + fmt(study.levels[l]) + ": " + name + " median normal error " +
+                                   fmt(e) + " deg <= 1.5 x PP5's " + fmt(pp5) + " deg");
+      }
+    }
   }
   if (study.name == "noise") {
     // At 1 px the paper's errors are a few mm and a fraction of a degree; 2 cm / 1 deg catches a broken solver.
@@ -619,7 +644,7 @@ int main(int argc, char **argv)
       runCurveStudy(study, opt);
       writeCurveStudy(study, opt);
       if (opt.check) {
-        checkCurveStudy(study);
+        checkCurveStudy(study, opt);
       }
     }
     if (opt.only.empty() || opt.only == "outliers") {
