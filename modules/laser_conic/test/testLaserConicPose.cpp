@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include <visp3/io/vpImageIo.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
 #include "laser_test_utils.h"
@@ -772,4 +773,69 @@ TEST(LaserConicPose, StatusAndRansacAccessors)
   EXPECT_FALSE(estimator.computePlane(points, vpLaserConicPose::GP3, plane));
   EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_NO_CONSENSUS);
   EXPECT_EQ(estimator.getRansacNbInliers(), 0u);
+}
+
+// draw(): the overlay lands in the pixels: inliers green, outliers red, the conic yellow through the
+// trace points, for colour and gray images; written to laser-conic-overlay.png for a look.
+TEST(LaserConicPose, DrawOverlay)
+{
+  std::mt19937 rng(31);
+  std::vector<vpImagePoint> points;
+  const Scene s = drawScene(rng, vpLaserConicPose::GP3, 60, points);
+  std::vector<bool> isOutlier;
+  points = laser_test::addOutliers(points, 0.3, s, rng, isOutlier, 30.0);
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  vpPlane plane;
+  ASSERT_TRUE(estimator.computePlane(points, vpLaserConicPose::GP3, plane));
+  vpImage<vpRGBa> I(s.rig.height, s.rig.width, vpRGBa(0, 0, 0));
+  vpLaserConicPose::draw(I, estimator, points, 2);
+  // Crosses first, then the conic over the inliers (yellow there, or the green of the cross); the
+  // outliers, 30 px away from the trace, keep their red centre.
+  // Pixel (row, column) of a point moved by (di, dj), clamped to the image.
+  auto pixel = [&](const vpImagePoint &p, int di, int dj, unsigned int &r, unsigned int &c) {
+    r = static_cast<unsigned int>(std::min<long>(s.rig.height - 1, std::max<long>(0, std::lround(p.get_i()) + di)));
+    c = static_cast<unsigned int>(std::min<long>(s.rig.width - 1, std::max<long>(0, std::lround(p.get_j()) + dj)));
+  };
+  // Colour found within 1 px of a point (the cross strokes are rounded to the pixel grid).
+  auto near = [&](const vpImagePoint &p, bool (*match)(const vpRGBa &)) {
+    for (int di = -1; di <= 1; ++di)
+      for (int dj = -1; dj <= 1; ++dj) {
+        unsigned int r, c;
+        pixel(p, di, dj, r, c);
+        if (match(I[r][c]))
+          return true;
+      }
+    return false;
+  };
+  auto isRed = [](const vpRGBa &px) { return px.R > 200 && px.G < 50 && px.B < 50; };
+  auto isGreen = [](const vpRGBa &px) { return px.G > 100 && px.R < 50 && px.B < 50; };
+  auto isYellow = [](const vpRGBa &px) { return px.R > 200 && px.G > 200 && px.B < 50; };
+  int outliers = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (isOutlier[i]) {
+      ++outliers;
+      EXPECT_TRUE(near(points[i], isRed)) << i;
+      EXPECT_FALSE(near(points[i], isYellow)) << i;
+    } else {
+      EXPECT_TRUE(near(points[i], isGreen)) << i;
+      EXPECT_TRUE(near(points[i], isYellow)) << i;
+    }
+  }
+  EXPECT_EQ(outliers, 18);
+  vpImageIo::write(I, "laser-conic-overlay.png");
+
+  vpImage<unsigned char> G(s.rig.height, s.rig.width, 0);
+  vpLaserConicPose::draw(G, estimator, points, 1);
+  int bright = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    bool found = false;
+    for (int di = -1; di <= 1; ++di)
+      for (int dj = -1; dj <= 1; ++dj) {
+        unsigned int r, c;
+        pixel(points[i], di, dj, r, c);
+        found = found || G[r][c] > 0;
+      }
+    bright += found ? 1 : 0;
+  }
+  EXPECT_EQ(bright, static_cast<int>(points.size()));
 }

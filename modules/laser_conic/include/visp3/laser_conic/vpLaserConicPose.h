@@ -15,9 +15,11 @@
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpPlane.h>
+#include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
 /*!
@@ -230,6 +232,30 @@ public:
     (the status message, with details; empty after a success).
   */
   std::string getFailureReason() const { return m_failure; }
+
+  //! Camera parameters set with setCameraParameters().
+  vpCameraParameters getCameraParameters() const { return m_cam; }
+
+  /*!
+    Displays an estimate with vpDisplay (the image must be shown in a window): the detected \e points
+    (those given to computePlane()) as crosses, inliers green and outliers red, the fitted conic in
+    yellow (through the camera model, distortion included) and an altitude / roll / pitch caption
+    (the status message when computePlane() failed). Call vpDisplay::flush() afterwards.
+  */
+  static void display(const vpImage<unsigned char> &I, const vpLaserConicPose &estimator,
+                      const std::vector<vpImagePoint> &points, unsigned int thickness = 1);
+  //! display() on a colour image.
+  static void display(const vpImage<vpRGBa> &I, const vpLaserConicPose &estimator,
+                      const std::vector<vpImagePoint> &points, unsigned int thickness = 1);
+  /*!
+    Draws the same overlay as display() into the pixels of \e I with vpImageDraw (no window needed:
+    headless overlays, files). In a gray image inliers, conic and caption are white and outliers gray.
+  */
+  static void draw(vpImage<unsigned char> &I, const vpLaserConicPose &estimator,
+                   const std::vector<vpImagePoint> &points, unsigned int thickness = 1);
+  //! draw() on a colour image (inliers green, outliers red, conic yellow).
+  static void draw(vpImage<vpRGBa> &I, const vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points,
+                   unsigned int thickness = 1);
 
   /*! Altitude, roll and pitch of a plane given in the camera frame (normal towards the camera).
       \exception vpLaserConicException::badValueError on a zero normal. */
