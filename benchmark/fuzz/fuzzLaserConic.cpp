@@ -17,7 +17,12 @@ void configure(FuzzedDataProvider &fdp, vpLaserConicPose &estimator)
   if (fdp.ConsumeIntegralInRange<int>(0, 7) != 0) {
     const double px = vspFuzz::consumeDouble(fdp), py = vspFuzz::consumeDouble(fdp);
     const double u0 = vspFuzz::consumeDouble(fdp), v0 = vspFuzz::consumeDouble(fdp);
-    estimator.setCameraParameters(vpCameraParameters(px, py, u0, v0));
+    vpCameraParameters cam(px, py, u0, v0);
+    if (fdp.ConsumeBool()) {
+      const double kud = vspFuzz::consumeDouble(fdp), kdu = vspFuzz::consumeDouble(fdp);
+      cam.initPersProjWithDistortion(px, py, u0, v0, kud, kdu);
+    }
+    estimator.setCameraParameters(cam);
   }
   if (fdp.ConsumeIntegralInRange<int>(0, 7) != 0) {
     const double openingAngle = vspFuzz::consumeDouble(fdp);
@@ -38,6 +43,19 @@ void configure(FuzzedDataProvider &fdp, vpLaserConicPose &estimator)
   if (fdp.ConsumeBool()) {
     estimator.setLocalOptimisation(fdp.ConsumeBool());
   }
+  if (fdp.ConsumeBool()) {
+    estimator.setScaleAdaptive(fdp.ConsumeBool());
+  }
+  if (fdp.ConsumeBool()) {
+    estimator.setFinalFit(static_cast<vpLaserConicPose::vpLaserConicFinalFit>(fdp.ConsumeIntegralInRange<int>(0, 3)));
+  }
+  if (fdp.ConsumeBool()) {
+    estimator.setArcCoverageThreshold(vspFuzz::consumeDouble(fdp));
+  }
+  if (fdp.ConsumeBool()) {
+    estimator.setRansacNbInliersToReachConsensus(fdp.ConsumeIntegralInRange<unsigned int>(0, 400));
+  }
+  estimator.setCovarianceComputation(fdp.ConsumeBool());
 }
 
 void run(FuzzedDataProvider &fdp)
@@ -77,9 +95,24 @@ void run(FuzzedDataProvider &fdp)
       !std::isfinite(estimator.getPitch())) {
     vspFuzz::fail("computePlane returned true with a non-finite altitude or attitude");
   }
-  for (unsigned int i : estimator.getInliers()) {
+  for (unsigned int i : estimator.getRansacInlierIndex()) {
     if (i >= points.size()) {
       vspFuzz::fail("inlier index out of range");
+    }
+  }
+  if (estimator.getStatus() != vpLaserConicPose::STATUS_OK) {
+    vspFuzz::fail("computePlane returned true without STATUS_OK");
+  }
+  const vpMatrix C = estimator.getCovarianceMatrix();
+  if (C.getRows() != 0 && (C.getRows() != 3 || C.getCols() != 3)) {
+    vspFuzz::fail("covariance of the wrong size");
+  }
+  for (unsigned int i = 0; i < C.getRows(); ++i) {
+    for (unsigned int j = 0; j < C.getCols(); ++j) {
+      // NaN marks a covariance that could not be computed; a finite one must be symmetric.
+      if (std::isfinite(C[i][j]) && std::isfinite(C[j][i]) && !(std::abs(C[i][j] - C[j][i]) <= 1e-9 * (std::abs(C[i][j]) + 1e-300))) {
+        vspFuzz::fail("covariance not symmetric");
+      }
     }
   }
 }

@@ -45,6 +45,7 @@ struct BenchTargets
 {
   double oursP3P = -1.0, cvAp3p = -1.0, vpPoseLagrange4 = -1.0;
   double gp3At50 = -1.0;
+  double gp3Vs2000FitEllipse = -1.0; //!< GP-3 on 1000 trace points + 1000 outliers / cv::fitEllipse on them
   double wholeFrame = -1.0, cvtColor = -1.0;
 };
 

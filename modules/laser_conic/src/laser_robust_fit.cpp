@@ -337,9 +337,11 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
     } else if (!freeCovariance(trace, cone, s.focal, freeConic, res.rmsFree * res.rmsFree * n, cov)) {
       cov.setConstant(std::numeric_limits<double>::quiet_NaN());
     }
-    res.covariance = cov;
+    res.covariance = 0.5 * (cov + cov.transpose());
+    cov = res.covariance;
     const Eigen::Matrix<double, 4, 3> P = planeJacobian(attitudeOf(res.plane));
-    res.planeCovariance = P * cov * P.transpose();
+    const Eigen::Matrix4d pc = P * cov * P.transpose();
+    res.planeCovariance = 0.5 * (pc + pc.transpose());
   }
   return Outcome::OK;
 }

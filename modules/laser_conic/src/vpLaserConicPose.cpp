@@ -81,17 +81,18 @@ double fractionInFront(const PointList &points, const std::vector<int> &indices,
   vpRansacLoop() followed by a final refit of the best model on all its inliers (refineFinal()). The
   loop only keeps a local refit when it scores better on the truncated Sampson cost, which a
   least-squares fit need not do even when it is closer to the truth under noise; the final refit is
-  kept unless it loses more than a tenth of the inliers (a sign of a bad consensus). A refit that
+  kept unless it loses more than a tenth of the inliers (a sign of a bad consensus). Skipped when
+  \e finalRefit is false: the scale-adaptive final stage (laser_robust_fit.h) replaces it. A refit that
   gathers more inliers is refitted again on them (a few rounds): a consensus set found by a poor
   hypothesis misses points on one side of the trace, which biases a refit on that set alone.
 */
 template <class Estimator>
-bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &options,
+bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &options, bool finalRefit,
                           typename Estimator::Model &best, vpRansacReport &report)
 {
   if (!vpRansacLoop(estimator, options, best, report))
     return false;
-  if (!options.localOptimisation)
+  if (!options.localOptimisation || !finalRefit)
     return true;
   const int kRounds = 3;
   std::vector<int> inliers;
@@ -337,17 +338,20 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
       inliers.push_back(i);
     found = true;
   } else if (method == PP5) {
-    found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, conic, report);
+    found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, !m_scaleAdaptive, conic,
+                                 report);
   } else if (method == PP3) {
     vpLaserSolvers::EpipolarTangents tangents;
     if (!vpLaserSolvers::epipolarTangents(cone, tangents))
       return fail(STATUS_CAMERA_INSIDE_CONE);
-    found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, conic, report);
+    found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, !m_scaleAdaptive,
+                                 conic, report);
   } else {
     vpLaserEstimators::PlaneModel model;
     // The plane refinement is cheap and a refined plane often gathers inliers its start missed.
     options.localRounds = 3;
-    found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, model, report);
+    found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, !m_scaleAdaptive, model,
+                                 report);
     startPlane = model.plane;
   }
   if (method != PLANE_PAIR)

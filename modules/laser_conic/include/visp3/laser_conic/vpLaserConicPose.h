@@ -150,8 +150,9 @@ public:
 
   /*!
     Refit the best model on its inliers (default true), during the RANSAC loop (kept when it scores
-    better) and after it (kept unless it loses more than a tenth of the inliers; refitted again, a
-    few rounds at most, while it gathers more inliers): PP5 and PP3 refit a least-squares ellipse,
+    better) and, without the scale-adaptive stage (setScaleAdaptive(false)), after it (kept unless
+    it loses more than a tenth of the inliers; refitted again, a few rounds at most, while it gathers
+    more inliers): PP5 and PP3 refit a least-squares ellipse,
     GP3 refines the plane geometrically (refinePlane(), 3 degrees of freedom, Sampson distances to
     the predicted trace; inside the loop on at most 64 evenly spread inliers, again on the consensus
     set of a refit that gathers more inliers, 3 refits at most).
@@ -195,7 +196,8 @@ public:
     Covariance (3x3) of (altitude [m], roll [rad], pitch [rad]) of the last estimate, in that order,
     when setCovarianceComputation(true); empty otherwise. First order: sigma^2 (J^T J)^-1 of the final
     fit (3 plane parameters for a constrained fit; for a free fit the covariance of the 5 conic
-    parameters propagated through the plane pair), sigma^2 the residual variance of the fit.
+    parameters propagated through the plane pair), sigma^2 the residual variance of the fit. NaN
+    entries when it cannot be computed (e.g. a plane pair without a derivative at the estimate).
   */
   vpMatrix getCovarianceMatrix() const { return m_covariance; }
   //! Covariance (4x4) of the plane (a, b, c, d) of the last estimate (unit normal), as getCovarianceMatrix().
