@@ -27,7 +27,9 @@ using vpLaserSolvers::LaserCone;
 
 //! Rounds of trace collection and of reweighting at most.
 constexpr int kCollectRounds = 5;
-constexpr int kIrlsRounds = 4;
+constexpr int kIrlsRounds = 2;
+//! Levenberg-Marquardt iterations per reweighting round (each one pass over the trace).
+constexpr int kIrlsIterations = 5;
 //! Significance of the F-test that rejects the constrained fit against the free one.
 constexpr double kSelectSignificance = 0.01;
 
@@ -40,14 +42,31 @@ double signedSampson(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
   return gn > 0.0 ? x.dot(g) / (2.0 * gn) : std::numeric_limits<double>::quiet_NaN();
 }
 
-//! Residuals (pixels) of the listed points to the conic.
+//! Residuals (pixels, signed Sampson distances) of the listed points to the conic.
 std::vector<double> residualsOf(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &c,
                                 double focal)
 {
+  const vpLaserSolvers::internal::ConicCoefficients k(c);
   std::vector<double> r;
   r.reserve(indices.size());
-  for (int i : indices)
-    r.push_back(focal * signedSampson(c, points[i]));
+  for (int i : indices) {
+    double v0, v1;
+    const double a = k.apply(points[i](0), points[i](1), v0, v1);
+    r.push_back(focal * a / (2.0 * std::sqrt(v0 * v0 + v1 * v1)));
+  }
+  return r;
+}
+
+//! Residuals (pixels) of every point to the conic.
+std::vector<double> allResiduals(const PointList &points, const Eigen::Matrix3d &c, double focal)
+{
+  const vpLaserSolvers::internal::ConicCoefficients k(c);
+  std::vector<double> r(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    double v0, v1;
+    const double a = k.apply(points[i](0), points[i](1), v0, v1);
+    r[i] = focal * a / (2.0 * std::sqrt(v0 * v0 + v1 * v1));
+  }
   return r;
 }
 
@@ -57,14 +76,6 @@ double rms(const std::vector<double> &r)
   for (double v : r)
     s += v * v;
   return r.empty() ? 0.0 : std::sqrt(s / double(r.size()));
-}
-
-std::vector<int> allIndices(int n)
-{
-  std::vector<int> all(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i)
-    all[static_cast<size_t>(i)] = i;
-  return all;
 }
 
 PointList subset(const PointList &points, const std::vector<int> &indices)
@@ -93,10 +104,9 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
 {
   if (!vpLaserEstimators::fitEllipseOn(points, inliers, c))
     return false;
-  const std::vector<int> all = allIndices(static_cast<int>(points.size()));
   std::vector<int> next;
   for (int round = 0; round < kCollectRounds; ++round) {
-    const std::vector<double> r = residualsOf(points, all, c, s.focal);
+    const std::vector<double> r = allResiduals(points, c, s.focal);
     std::vector<double> rin;
     rin.reserve(inliers.size());
     for (int i : inliers)
@@ -126,14 +136,11 @@ bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal,
     return vpLaserSolvers::refinePlane(trace.data(), n, cone, plane);
   std::vector<double> w(trace.size(), 1.0);
   for (int round = 0; round < kIrlsRounds; ++round) {
-    const Eigen::Matrix3d c = vpLaserSolvers::conicFromPlane(plane, cone);
-    std::vector<double> r(trace.size());
-    for (size_t k = 0; k < trace.size(); ++k)
-      r[k] = focal * signedSampson(c, trace[k]);
+    const std::vector<double> r = allResiduals(trace, vpLaserSolvers::conicFromPlane(plane, cone), focal);
     const double sigma = vpRobustMadScale(r);
     for (size_t k = 0; k < trace.size(); ++k)
       w[k] = vpRobustWeight(vpRobustLoss::HUBER, r[k], sigma);
-    if (!vpLaserSolvers::refinePlaneWeighted(trace.data(), w.data(), n, cone, plane, 10))
+    if (!vpLaserSolvers::refinePlaneWeighted(trace.data(), w.data(), n, cone, plane, kIrlsIterations))
       return false;
   }
   return true;
@@ -265,17 +272,28 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
     return 0.0;
   const Eigen::Vector2d centre = -A.inverse() * c.topRightCorner<2, 1>();
   const Eigen::Matrix2d U = llt.matrixU(); // A = U^T U: U (x - centre) lies on a circle
-  std::vector<double> angles;
-  angles.reserve(indices.size());
+  // Occupied bins of 0.5 deg around the ellipse; the coverage is the circle minus its largest empty run.
+  constexpr int kBins = 720;
+  std::vector<char> occupied(kBins, 0);
   for (int i : indices) {
     const Eigen::Vector2d u = U * (points[i] - centre);
-    angles.push_back(std::atan2(u(1), u(0)));
+    const int bin = static_cast<int>(std::floor((std::atan2(u(1), u(0)) + M_PI) * (kBins / (2.0 * M_PI))));
+    occupied[static_cast<size_t>(std::min(kBins - 1, std::max(0, bin)))] = 1;
   }
-  std::sort(angles.begin(), angles.end());
-  double gap = angles.front() + 2.0 * M_PI - angles.back();
-  for (size_t k = 1; k < angles.size(); ++k)
-    gap = std::max(gap, angles[k] - angles[k - 1]);
-  return 2.0 * M_PI - gap;
+  int first = -1, last = -1, gap = 0;
+  for (int b = 0; b < kBins; ++b) {
+    if (!occupied[static_cast<size_t>(b)])
+      continue;
+    if (last >= 0)
+      gap = std::max(gap, b - last - 1);
+    if (first < 0)
+      first = b;
+    last = b;
+  }
+  if (first < 0)
+    return 0.0;
+  gap = std::max(gap, first + kBins - last - 1); // the run across the +-pi cut
+  return 2.0 * M_PI * double(kBins - gap) / kBins;
 }
 
 Outcome fit(const PointList &points, const std::vector<int> &inliers, const LaserCone &cone,
@@ -297,8 +315,7 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
 
   const PointList trace = subset(points, res.inliers);
   const int n = static_cast<int>(trace.size());
-  const std::vector<int> all = allIndices(n);
-  const std::vector<double> rf = residualsOf(trace, all, freeConic, s.focal);
+  const std::vector<double> rf = allResiduals(trace, freeConic, s.focal);
   res.rmsFree = rms(rf);
 
   Eigen::Vector4d freePlane = Eigen::Vector4d::Zero();
@@ -311,7 +328,7 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   const Eigen::Matrix3d constrainedConic =
       hasConstrained ? normalised(vpLaserSolvers::conicFromPlane(constrainedPlane, cone)) : Eigen::Matrix3d::Zero();
   const std::vector<double> rc =
-      hasConstrained ? residualsOf(trace, all, constrainedConic, s.focal) : std::vector<double>();
+      hasConstrained ? allResiduals(trace, constrainedConic, s.focal) : std::vector<double>();
   res.rmsConstrained = hasConstrained ? rms(rc) : std::numeric_limits<double>::quiet_NaN();
 
   bool useConstrained = false;
