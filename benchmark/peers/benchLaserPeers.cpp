@@ -309,9 +309,20 @@ void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, 
           vspBench::consume(plane.getD());
         },
         static_cast<int>(frames.size()), 5, 0.2);
+    // The same without the scale-adaptive final stage (fixed-threshold final refit), for its cost.
+    vpLaserConicPose fixed = makeEstimator(rig);
+    fixed.setScaleAdaptive(false);
+    const double gp3Fixed = vspBench::medianNsPerCall(
+        [&](int i) {
+          vpPlane plane;
+          fixed.computePlane(frames[i].points, vpLaserConicPose::GP3, plane);
+          vspBench::consume(plane.getD());
+        },
+        static_cast<int>(frames.size()), 5, 0.2);
     const double fit = timeFitEllipseOnly(frames, false);
     targets.gp3Vs2000FitEllipse = gp3 / fit;
     table.rows.push_back(row(problem, "ours GP3", gp3, gp3, true, static_cast<double>(good) / frames.size()));
+    table.rows.push_back(row(problem, "ours GP3, fixed-threshold final refit", gp3Fixed, gp3, true, -1.0));
     table.rows.push_back(row(problem, "OpenCV fitEllipse (fit only, not robust)", fit, gp3, false, -1.0));
   }
 #endif

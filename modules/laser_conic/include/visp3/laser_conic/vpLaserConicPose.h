@@ -83,8 +83,14 @@ public:
       the free fit is used.
     - FINAL_FIT_DEFAULT: FREE for PLANE_PAIR and PP5, SELECT for PP3 and GP3.
   */
-  typedef enum { FINAL_FIT_DEFAULT, FINAL_FIT_FREE, FINAL_FIT_CONSTRAINED, FINAL_FIT_SELECT } vpLaserConicFinalFit;
+  typedef enum {
+    FINAL_FIT_DEFAULT,     //!< FREE for PLANE_PAIR and PP5, SELECT for PP3 and GP3
+    FINAL_FIT_FREE,        //!< least-squares conic (5 DOF) on the trace, then its plane pair
+    FINAL_FIT_CONSTRAINED, //!< plane refined on the trace (3 DOF, tangency to the epipolar lines kept)
+    FINAL_FIT_SELECT       //!< CONSTRAINED unless an F-test at 1 % rejects it against FREE
+  } vpLaserConicFinalFit;
 
+  //! Estimator with the default settings (2 px threshold, 1000 samples, p = 0.99, scale-adaptive final stage).
   vpLaserConicPose();
 
   /*!
@@ -165,8 +171,9 @@ public:
     \param method : PLANE_PAIR, PP5, PP3 or GP3.
     \param cPlane : the ground plane in the camera frame, unit normal pointing from the plane towards the camera.
     \return false, with getStatus() telling why, when no plane was found; cPlane is then untouched.
-    The reasons: all points collinear; the least-squares conic is not an ellipse (PLANE_PAIR); no
-    consensus (no hypothesis with enough inliers); the camera centre inside the laser cone, where no
+    The reasons: all points collinear; the least-squares conic is not an ellipse; no consensus (no
+    hypothesis with enough inliers); a trace covering too short an arc (setArcCoverageThreshold());
+    the camera centre inside the laser cone, where no
     epipolar tangent exists (PP3 only); no plane of the plane pair has both optical centres on its side;
     the plane is behind the system (the inliers' rays do not meet it ahead of the camera on the lit
     nappe of the laser cone).
@@ -289,6 +296,7 @@ private:
   bool m_constrainedChosen;
   std::vector<vpImagePoint> m_points;
 
+  //! Records a failure (status and message with \e details) and returns false.
   bool fail(vpLaserConicStatus status, const std::string &details = std::string());
 };
 
