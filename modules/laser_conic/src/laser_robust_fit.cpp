@@ -30,6 +30,11 @@ constexpr int kCollectRounds = 5;
 constexpr int kIrlsRounds = 2;
 //! Levenberg-Marquardt iterations per reweighting round (each one pass over the trace).
 constexpr int kIrlsIterations = 5;
+/*!
+  Iterations of the constrained fit made only for the calibration-health figure (final fit FREE):
+  it starts from the plane of the free conic, already close, and its RMS residual converges first.
+*/
+constexpr int kHealthIterations = 4;
 //! Significance of the F-test that rejects the constrained fit against the free one.
 constexpr double kSelectSignificance = 0.01;
 
@@ -105,6 +110,7 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
   if (!vpLaserEstimators::fitEllipseOn(points, inliers, c))
     return false;
   std::vector<int> next;
+  bool current = false; // sigma is that of the final inliers to the final conic
   for (int round = 0; round < kCollectRounds; ++round) {
     const std::vector<double> r = allResiduals(points, c, s.focal);
     std::vector<double> rin;
@@ -112,14 +118,17 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
     for (int i : inliers)
       rin.push_back(r[static_cast<size_t>(i)]);
     sigma = vpRobustMadScale(rin);
+    current = true;
     vpRobustCollect(r, std::max(s.threshold, s.scaleFactor * sigma), next);
     Eigen::Matrix3d refit;
     if (next.size() < 5 || next == inliers || !vpLaserEstimators::fitEllipseOn(points, next, refit))
       break;
     inliers.swap(next);
     c = refit;
+    current = false;
   }
-  sigma = vpRobustMadScale(residualsOf(points, inliers, c, s.focal));
+  if (!current)
+    sigma = vpRobustMadScale(residualsOf(points, inliers, c, s.focal));
   return true;
 }
 
@@ -129,11 +138,12 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
   near it, and, being quadratic up to 1.345 sigma, does not discard the arc a miscalibrated model
   explains worst (which a redescending loss, or a tight inlier threshold, would do).
 */
-bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal, bool robust, Eigen::Vector4d &plane)
+bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal, bool robust, int iterations,
+                    Eigen::Vector4d &plane)
 {
   const int n = static_cast<int>(trace.size());
   if (!robust)
-    return vpLaserSolvers::refinePlane(trace.data(), n, cone, plane);
+    return vpLaserSolvers::refinePlane(trace.data(), n, cone, plane, iterations);
   std::vector<double> w(trace.size(), 1.0);
   for (int round = 0; round < kIrlsRounds; ++round) {
     const std::vector<double> r = allResiduals(trace, vpLaserSolvers::conicFromPlane(plane, cone), focal);
@@ -323,7 +333,9 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   // The constrained fit starts from the RANSAC plane (GP-3) or from the plane of the free conic.
   Eigen::Vector4d constrainedPlane = startPlane.head<3>().norm() > 0.0 ? startPlane : freePlane;
   const bool hasConstrained = constrainedPlane.head<3>().norm() > 0.0 &&
-                              constrainedFit(trace, cone, s.focal, s.adaptive, constrainedPlane) &&
+                              constrainedFit(trace, cone, s.focal, s.adaptive && s.finalFit != FinalFit::FREE,
+                                             s.finalFit == FinalFit::FREE ? kHealthIterations : 20,
+                                             constrainedPlane) &&
                               constrainedPlane.allFinite();
   const Eigen::Matrix3d constrainedConic =
       hasConstrained ? normalised(vpLaserSolvers::conicFromPlane(constrainedPlane, cone)) : Eigen::Matrix3d::Zero();
