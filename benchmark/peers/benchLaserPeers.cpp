@@ -133,6 +133,18 @@ vpLaserConicPose makeEstimator(const vspBench::LaserRig &rig)
 
 Eigen::Vector4d toEigen(const vpPlane &p) { return Eigen::Vector4d(p.getA(), p.getB(), p.getC(), p.getD()); }
 
+//! Median time of GP-3 per frame with the given estimator settings.
+double timeGp3(vpLaserConicPose &estimator, const std::vector<LaserFrame> &frames)
+{
+  return vspBench::medianNsPerCall(
+      [&](int i) {
+        vpPlane plane;
+        estimator.computePlane(frames[i].points, vpLaserConicPose::GP3, plane);
+        vspBench::consume(plane.getD());
+      },
+      static_cast<int>(frames.size()), 5, 0.2);
+}
+
 //! OpenCV ellipse fit, conic mapped to normalized coordinates (c_n = K^T c_px K), then our plane pair.
 bool baselinePlane(const vspBench::LaserRig &rig, const LaserFrame &f, bool direct, Eigen::Vector4d &plane)
 {
@@ -302,23 +314,11 @@ void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, 
       vpPlane plane;
       good += estimator.computePlane(f.points, vpLaserConicPose::GP3, plane) && planeIsGood(toEigen(plane), f.truth);
     }
-    const double gp3 = vspBench::medianNsPerCall(
-        [&](int i) {
-          vpPlane plane;
-          estimator.computePlane(frames[i].points, vpLaserConicPose::GP3, plane);
-          vspBench::consume(plane.getD());
-        },
-        static_cast<int>(frames.size()), 5, 0.2);
+    const double gp3 = timeGp3(estimator, frames);
     // The same without the scale-adaptive final stage (fixed-threshold final refit), for its cost.
     vpLaserConicPose fixed = makeEstimator(rig);
     fixed.setScaleAdaptive(false);
-    const double gp3Fixed = vspBench::medianNsPerCall(
-        [&](int i) {
-          vpPlane plane;
-          fixed.computePlane(frames[i].points, vpLaserConicPose::GP3, plane);
-          vspBench::consume(plane.getD());
-        },
-        static_cast<int>(frames.size()), 5, 0.2);
+    const double gp3Fixed = timeGp3(fixed, frames);
     const double fit = timeFitEllipseOnly(frames, false);
     targets.gp3Vs2000FitEllipse = gp3 / fit;
     table.rows.push_back(row(problem, "ours GP3", gp3, gp3, true, static_cast<double>(good) / frames.size()));
