@@ -34,8 +34,9 @@
   to normalized coordinates with vpPixelMeterConversion (so the camera model may include ViSP's
   distortion) and back-projected onto the grid plane; the unknowns are the two angles (alpha about X,
   beta about Y) of the cone axis, the apex v, optionally the opening angle A, and one angle gamma_i per
-  point on the cone; the sum of squared XY distances on the grid plane is minimised with Ceres'
-  Levenberg-Marquardt. The rotation about the cone axis is unobservable and returned as zero.
+  point on the cone; the XY distances on the grid planes between measured and predicted points, mapped
+  to pixels by the Jacobian of the grid-to-image projection at each point (the image noise is isotropic
+  in pixels, not on a far or oblique grid), are minimised with Ceres' Levenberg-Marquardt. The rotation about the cone axis is unobservable and returned as zero.
 
   Model (paper Sec. 6, eq. 58-65): the ray i of the cone has the direction
   \f$ \mathbf{D}'_i = R_x(\alpha) R_y(\beta) R_z(\gamma_i) (\sin\frac{A}{2}, 0, \cos\frac{A}{2})^T \f$ in the
@@ -56,9 +57,12 @@
   A Ceres run stopped by the iteration limit (NO_CONVERGENCE) is a failure, not a result. The covariance
   of (alpha, beta, v, A), with the gamma_i eliminated (Schur complement of the normal equations), gives
   the standard deviations and an observability check: when the normal equations, in parameters scaled to
-  metres at the grid distance, are conditioned worse than setMaxConditionNumber(), the view set cannot
-  determine the cone (one view, one grid plane shown several times, views too alike) and compute() refuses
-  with STATUS_DEGENERATE_VIEWS rather than return a cone that fits the points but is wrong.
+  metres at the grid distance, are conditioned worse than setMaxConditionNumber(), or when all the grids
+  lie in one plane (one grid shown several times, fronto-parallel views at one depth: normals within 2
+  degrees and distances within 2 %), the view set cannot determine the cone and compute() refuses with
+  STATUS_DEGENERATE_VIEWS rather than return a cone that fits the points but is wrong (one plane is cut
+  by several cones along the same conic). Fewer than 2 views give STATUS_NOT_ENOUGH_VIEWS. Tilted grids
+  at one distance, or parallel grids at several distances, do determine the cone (opening angle included).
 
   \code
   vpLaserConicCalibration calib;
@@ -82,7 +86,8 @@ public:
     STATUS_NOT_COMPUTED,     //!< compute() not called yet, or views changed since
     STATUS_OK,               //!< calibrated; the covariance and standard deviations are available
     STATUS_NOT_ENOUGH_VIEWS, //!< fewer than 2 views: one conic does not determine the cone reliably
-    STATUS_DEGENERATE_VIEWS, //!< the views do not determine the parameters (ill-conditioned normal equations)
+    STATUS_DEGENERATE_VIEWS, //!< the views do not determine the cone: all the grids in one plane, or
+                             //!< ill-conditioned normal equations (see setMaxConditionNumber())
     STATUS_NO_CONVERGENCE,   //!< Levenberg-Marquardt stopped at the iteration limit
     STATUS_SOLVER_FAILURE,   //!< Ceres failed or the result is not finite
     STATUS_TOO_MANY_OUTLIERS //!< fewer than half the points are within 3 loss scales of the cone
@@ -123,10 +128,10 @@ public:
   */
   void setInitialGuess(const vpHomogeneousMatrix &cMl);
   /*!
-    Robust loss of the second stage and its scale in metres on the grid plane (about 1.5 times the
-    standard deviation of the laser points' back-projection on the grid). A scale of 0 (default) lets
-    compute() take 1.5 times a robust (median) estimate of that standard deviation. Points farther than
-    3 scales from the fitted cone are outliers, excluded from the final fit.
+    Robust loss of the second stage and its scale in pixels (about 1.5 times the standard deviation of
+    the laser points across the trace). A scale of 0 (default) lets compute() take 1.5 times a robust
+    (median) estimate of that standard deviation. Points farther than 3 scales from the fitted cone are
+    outliers, excluded from the final fit.
     \exception vpLaserConicException::badValueError on a negative or non-finite scale.
   */
   void setRobustLoss(vpLaserConicLoss loss, double scale = 0.0);
@@ -138,9 +143,12 @@ public:
   void setMaxIterations(int maxIterations);
   /*!
     Largest accepted condition number of the normal equations of (alpha, beta, v[, A]) with the gamma_i
-    eliminated, the angles scaled to metres at the mean grid distance (default 1e6). Over it, compute()
-    ends with STATUS_DEGENERATE_VIEWS. Measured on the tests' view sets: 8-10 grids at 0.5-1.1 m and
-    +-25 degrees give about 1e3-1e4 (1e4-1e5 with the opening angle), one grid 1e8-1e9.
+    eliminated, the angles scaled to metres at the mean grid distance (default 1e5). Over it, compute()
+    ends with STATUS_DEGENERATE_VIEWS. Measured (test view sets, 0.5 px noise): 10 grids at 0.5-1.1 m
+    tilted up to 25 degrees, about 120 (500 with the opening angle); 8 grids at one distance tilted by
+    20 degrees, 600 (2500); 8 parallel grids at 0.5-1.1 m, 80 (300); 3 grids 3 degrees apart with the
+    opening angle estimated, 2.5e5 (apex 5 mm off). Views of a single plane are refused before, whatever
+    this number (the cone is then ambiguous, not merely ill-conditioned).
     \exception vpLaserConicException::badValueError when it is not greater than 1.
   */
   void setMaxConditionNumber(double maxCondition);
@@ -183,6 +191,8 @@ public:
 
   //! RMS distance (metres) on the grid planes between measured and predicted inlier points, after compute().
   double getRms() const { return m_rms; }
+  //! RMS distance (pixels) in the images between measured and predicted inlier points (first order), after compute().
+  double getRmsPixels() const { return m_rmsPixels; }
   //! RMS error (metres) of the initial cone (after the first stage, which fits only the gamma_i), available
   //! after compute().
   double getInitialRms() const { return m_initialRms; }
@@ -192,7 +202,7 @@ public:
   unsigned int getNbPoints() const;
   //! Number of points kept by the final fit (within 3 loss scales of the cone).
   unsigned int getNbInliers() const { return m_nbInliers; }
-  //! Loss scale (metres on the grid) of the final robust stage (0 with LOSS_NONE).
+  //! Loss scale (pixels) of the final robust stage (0 with LOSS_NONE).
   double getRobustScale() const { return m_lossScale; }
   /*!
     Condition number of the scaled normal equations of the last compute() (see setMaxConditionNumber()),
@@ -204,7 +214,7 @@ public:
     units rad and metres; alpha and beta are the angles of the axis (see the class description), v the
     apex, A the full opening angle (its row and column are zero when it is not estimated). It is the
     inverse of the normal matrix with the gamma_i eliminated, times the residual variance
-    RSS / (N - p) (N inlier points, p = 5 or 6 parameters).
+    RSS / (N - p) (RSS in pixels, N inlier points, p = 5 or 6 parameters).
   */
   vpMatrix getCovarianceMatrix() const { return m_covariance; }
   //! Standard deviations: square roots of the diagonal of getCovarianceMatrix(), same order and units.
@@ -239,7 +249,7 @@ private:
 
   vpLaserConicCalibrationStatus m_status;
   std::string m_statusDetails;
-  double m_rms, m_initialRms, m_openingAngleEstimate, m_lossScale, m_condition;
+  double m_rms, m_rmsPixels, m_initialRms, m_openingAngleEstimate, m_lossScale, m_condition;
   unsigned int m_nbInliers;
   vpMatrix m_covariance;
   std::vector<std::vector<std::pair<double, double> > > m_predicted, m_measured;
