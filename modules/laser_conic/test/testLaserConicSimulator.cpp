@@ -413,6 +413,7 @@ TEST(LaserConicSimulator, ChessboardAndTextureLieAtTheirGroundCoordinates)
   settings.laserOn = false;
   vpImage<vpRGBa> I;
   sim.render(I, settings);
+  dumpIfRequested("sim_chessboard", I);
   // Centre of each square: black when (kx + ky) is even.
   for (unsigned int kx = 0; kx < 9; ++kx)
     for (unsigned int ky = 0; ky < 6; ++ky) {
@@ -469,6 +470,7 @@ TEST(LaserConicSimulator, HardSettingsRenderWhatTheyDescribe)
   settings.whiteCore = 0.6;
   settings.bloom = 0.05;
   sim.render(I, settings);
+  dumpIfRequested("sim_saturated", I);
   size_t white = 0;
   for (const vpImagePoint &p : trace) {
     const vpRGBa &c = at(I, p);
@@ -481,6 +483,7 @@ TEST(LaserConicSimulator, HardSettingsRenderWhatTheyDescribe)
   settings.whiteCore = 0.0;
   settings.bloom = 0.0;
   sim.render(I, settings);
+  dumpIfRequested("sim_dim", I);
   for (const vpImagePoint &p : trace) {
     const vpRGBa &c = at(I, p);
     EXPECT_LT(c.R, 150);

@@ -48,7 +48,7 @@
   several kinds with ambient light and a specular lamp reflection, red distractors and clutter, occluders,
   frames without laser, motion blur and sensor noise.
 
-  Errors are reported with vpLaserConicException (declared in vpLaserConicPose.h), a vpException.
+  Errors are reported with vpLaserConicException (vpLaserConicException.h), a vpException.
 
   All random draws come from one generator seeded by setSeed() (default seed 0): the same sequence of
   calls with the same seed gives the same results.
