@@ -12,6 +12,8 @@
 #define VP_LASER_SIM_TEST_UTILS_H
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include <Eigen/Dense>
 
@@ -20,6 +22,7 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpPlane.h>
+#include <visp3/io/vpImageIo.h>
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
 #include "laser_test_utils.h"
@@ -88,6 +91,13 @@ inline double sampsonDistance(const Eigen::Matrix3d &C, const vpImagePoint &p)
   const Eigen::Vector3d x(p.get_u(), p.get_v(), 1.0);
   const Eigen::Vector3d Cx = C * x;
   return std::fabs(x.dot(Cx)) / (2.0 * Cx.head<2>().norm());
+}
+//! Writes \e I as <dir>/<name>.png when the environment variable VSP_LASER_DUMP_DIR names a folder (to look at).
+inline void dumpIfRequested(const std::string &name, const vpImage<vpRGBa> &I)
+{
+  const char *dir = std::getenv("VSP_LASER_DUMP_DIR");
+  if (dir != nullptr && *dir != '\0')
+    vpImageIo::write(I, std::string(dir) + "/" + name + ".png");
 }
 } // namespace laser_sim_test
 
