@@ -17,12 +17,7 @@
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
-// The module's exception: in its own header when present, else declared with the pose facade.
-#if defined(__has_include) && __has_include(<visp3/laser_conic/vpLaserConicException.h>)
 #include <visp3/laser_conic/vpLaserConicException.h>
-#else
-#include <visp3/laser_conic/vpLaserConicPose.h>
-#endif
 
 /*!
   \ingroup group_laser_conic
