@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -511,5 +512,51 @@ bool vpLaserRigIo::readDataset(const std::string &directory, vpLaserDataset &dat
     return false;
   }
   dataset = result;
+  return true;
+}
+
+bool vpLaserRigIo::listImages(const std::string &source, bool isList, std::vector<std::string> &images,
+                              std::string &error)
+{
+  namespace fs = std::filesystem;
+  std::vector<std::string> found;
+  if (!isList) {
+    if (!fs::is_directory(source)) {
+      error = source + ": image folder not found";
+      return false;
+    }
+    for (const fs::directory_entry &entry : fs::directory_iterator(source)) {
+      std::string ext = entry.path().extension().string();
+      for (char &c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const bool image = ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm";
+      if (image && entry.is_regular_file())
+        found.push_back(entry.path().string());
+    }
+    std::sort(found.begin(), found.end());
+  } else {
+    std::ifstream in(source.c_str());
+    if (!in) {
+      error = source + ": cannot open the image list";
+      return false;
+    }
+    std::string line;
+    for (unsigned int n = 1; std::getline(in, line); ++n) {
+      const std::string name = vpCsvTools::trim(line);
+      if (name.empty() || name[0] == '#')
+        continue;
+      const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : fs::path(source).parent_path() / name;
+      if (!fs::is_regular_file(path)) {
+        error = vpCsvTools::location(source, n) + ": image '" + path.string() + "' not found";
+        return false;
+      }
+      found.push_back(path.string());
+    }
+  }
+  if (found.empty()) {
+    error = source + (isList ? ": the list names no image" : ": no image (.png .jpg .jpeg .ppm .pgm) in this folder");
+    return false;
+  }
+  images.swap(found);
   return true;
 }

@@ -176,6 +176,15 @@ public:
                           unsigned int height, std::string &error);
 
   /*!
+    Image files of a calibration or measurement session: the files of folder \e source with an image
+    extension (.png .jpg .jpeg .ppm .pgm, any case) sorted by name when \e isList is false; otherwise the
+    paths listed in the text file \e source, one a line ('#' comments and blank lines skipped), relative
+    to the list's folder. \return false with \e error on a missing folder/list/image or an empty result.
+  */
+  static bool listImages(const std::string &source, bool isList, std::vector<std::string> &images,
+                         std::string &error);
+
+  /*!
     Reads camera.xml, laser.yaml (laser.txt when there is no laser.yaml) and groundtruth.csv of \e directory.
     \return false with \e error naming the file at fault.
   */

@@ -138,7 +138,7 @@ vpLaserConicCalibration::vpLaserConicCalibration()
     m_loss(LOSS_CAUCHY), m_userLossScale(0.0), m_maxIterations(200), m_maxCondition(1e5), m_views(),
     m_status(STATUS_NOT_COMPUTED), m_statusDetails(), m_rms(0.0), m_rmsPixels(0.0), m_initialRms(0.0), m_openingAngleEstimate(0.0),
     m_lossScale(0.0), m_condition(0.0), m_nbInliers(0), m_covariance(kNbConeParams, kNbConeParams, 0.0),
-    m_predicted(), m_measured(), m_inlier()
+    m_predicted(), m_initialPredicted(), m_measured(), m_inlier()
 {
 }
 
@@ -392,6 +392,21 @@ double gridRms(const std::vector<PointBlock> &blocks, ConeState &s, bool inliers
   return n ? std::sqrt(sum2 / static_cast<double>(n)) : 0.0;
 }
 
+// Predicted grid XY of every point (blocks in view order), for figures.
+std::vector<std::vector<std::pair<double, double> > >
+predictedGridPoints(const std::vector<PointBlock> &blocks, ConeState &s,
+                    const std::vector<std::vector<std::pair<double, double> > > &measured)
+{
+  std::vector<std::vector<std::pair<double, double> > > predicted(measured.size());
+  for (const PointBlock &b : blocks) {
+    double d[2];
+    gridResidual(b, s, d);
+    const std::pair<double, double> &XY = measured[b.view][b.index];
+    predicted[b.view].push_back(std::make_pair(XY.first + d[0], XY.second + d[1]));
+  }
+  return predicted;
+}
+
 /*!
   Normal matrix of the 6 cone parameters with the gamma_i eliminated (Schur complement; each gamma_i
   touches only its own two residuals), summed over the inlier blocks, and the residual sum of squares.
@@ -438,6 +453,7 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   m_nbInliers = 0;
   m_lossScale = 0.0;
   m_predicted.clear();
+  m_initialPredicted.clear();
   m_inlier.clear();
   m_openingAngleEstimate = m_openingAngle;
   backProject();
@@ -539,6 +555,7 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   };
   evaluateResiduals();
   m_initialRms = gridRms(blocks, s, false);
+  m_initialPredicted = predictedGridPoints(blocks, s, m_measured);
 
   // Stage 2: everything under a robust loss whose scale shrinks from the initial residuals to the noise
   // level (1.5 sigma, sigma = 1.4826 x the median residual norm), by at most a factor of 4 per run.
@@ -620,15 +637,10 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   // Results, predicted points and inlier flags for figures.
   m_rmsPixels = std::sqrt(rss / static_cast<double>(m_nbInliers));
   m_rms = gridRms(blocks, s, true);
-  m_predicted.assign(m_views.size(), {});
+  m_predicted = predictedGridPoints(blocks, s, m_measured);
   m_inlier.assign(m_views.size(), {});
-  for (const PointBlock &b : blocks) {
-    double d[2];
-    gridResidual(b, s, d);
-    const std::pair<double, double> &XY = m_measured[b.view][b.index];
-    m_predicted[b.view].push_back(std::make_pair(XY.first + d[0], XY.second + d[1]));
+  for (const PointBlock &b : blocks)
     m_inlier[b.view].push_back(b.inlier);
-  }
   m_openingAngleEstimate = s.opening;
   m_status = STATUS_OK;
   cMl = laserPose(s.angles[0], s.angles[1], s.apex);

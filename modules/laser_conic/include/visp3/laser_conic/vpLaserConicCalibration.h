@@ -216,6 +216,11 @@ public:
   vpColVector getStdDeviations() const;
   //! Predicted trace points on each grid (grid coordinates X, Y) for the calibrated laser, for figures.
   std::vector<std::vector<std::pair<double, double> > > getPredictedGridPoints() const { return m_predicted; }
+  //! Predicted trace points on each grid for the initial guess (after the first stage), for before/after figures.
+  std::vector<std::vector<std::pair<double, double> > > getInitialPredictedGridPoints() const
+  {
+    return m_initialPredicted;
+  }
   //! Measured trace points on each grid (grid coordinates X, Y), for figures.
   std::vector<std::vector<std::pair<double, double> > > getMeasuredGridPoints() const { return m_measured; }
   //! For each view and point, true when the point is an inlier of the last compute().
@@ -247,7 +252,7 @@ private:
   double m_rms, m_rmsPixels, m_initialRms, m_openingAngleEstimate, m_lossScale, m_condition;
   unsigned int m_nbInliers;
   vpMatrix m_covariance;
-  std::vector<std::vector<std::pair<double, double> > > m_predicted, m_measured;
+  std::vector<std::vector<std::pair<double, double> > > m_predicted, m_initialPredicted, m_measured;
   std::vector<std::vector<bool> > m_inlier;
 };
 
