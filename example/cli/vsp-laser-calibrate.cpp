@@ -16,7 +16,9 @@
                       [--report report.txt] [--figure before_after.png] [--robust-scale PX | --no-robust]
                       [--max-reprojection PX]
   \endverbatim
-  Output: the laser calibration in YAML (pose as a vpPoseVector, opening angle, standard deviations),
+  Output: the laser calibration in YAML (pose as a vpPoseVector, opening angle, standard deviations: the
+  leave-one-view-out jackknife, which includes the grid pose errors, or with fewer than 3 views the formal
+  ones from the laser point noise),
   readable by vsp-laser-altimeter --laser and by vpPoseVector::loadYAML(); a report on stdout (and in
   --report) with each image's status, the residuals and the standard deviations. Exit status 0 when the
   calibration succeeded, 1 on a usage or file error or when the calibration failed (the report says why:
@@ -140,8 +142,13 @@ void writeFigure(const vpLaserConicCalibration &calib, size_t v, const std::stri
 //! The calibration part of the report.
 void reportCalibration(std::ostream &os, const vpLaserConicCalibration &calib, const vpHomogeneousMatrix &cMl)
 {
-  const vpColVector s = calib.getStdDeviations();
+  // The jackknife over the views includes the grid pose errors, which the formal covariance ignores.
+  const bool jk = calib.hasJackknifeStdDeviations();
+  const vpColVector s = jk ? calib.getJackknifeStdDeviations() : calib.getStdDeviations();
   os << std::setprecision(6);
+  os << "standard deviations (+-): " << (jk ? "jackknife over the views" : "laser point noise only")
+     << "; laser point noise only: apex " << 1000.0 * calib.getStdDeviations()[2] << ", "
+     << 1000.0 * calib.getStdDeviations()[3] << ", " << 1000.0 * calib.getStdDeviations()[4] << " mm\n";
   os << "views " << calib.getNbViews() << ", laser points " << calib.getNbPoints() << ", inliers "
      << calib.getNbInliers() << " (robust scale " << calib.getRobustScale() << " px)\n";
   os << "RMS residual: " << 1000.0 * calib.getRms() << " mm on the grids, " << calib.getRmsPixels()
@@ -198,6 +205,7 @@ int run(int argc, char **argv)
   vpLaserConicCalibration &calib = grid.getCalibration();
   calib.setOpeningAngle(vpMath::rad(o.openingDeg));
   calib.setOpeningAngleEstimation(o.estimateOpening);
+  calib.setViewJackknife(true);
   calib.setRobustLoss(o.noRobust ? vpLaserConicCalibration::LOSS_NONE : vpLaserConicCalibration::LOSS_CAUCHY,
                       o.robustScale);
 
@@ -242,7 +250,7 @@ int run(int argc, char **argv)
     data.openingAngle = calib.getOpeningAngle();
     data.cMl = cMl;
     data.hasStdDeviations = true;
-    data.stdDeviations = calib.getStdDeviations();
+    data.stdDeviations = calib.hasJackknifeStdDeviations() ? calib.getJackknifeStdDeviations() : calib.getStdDeviations();
     data.rms = calib.getRms();
     data.nbViews = calib.getNbViews();
     if (!vpLaserRigIo::writeLaserCalibrationYaml(o.output, data, error)) {

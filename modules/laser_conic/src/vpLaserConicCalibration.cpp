@@ -134,10 +134,11 @@ double medianAbs(std::vector<double> values)
 } // namespace
 
 vpLaserConicCalibration::vpLaserConicCalibration()
-  : m_cam(), m_hasCam(false), m_hasGuess(false), m_estimateAngle(false), m_openingAngle(0.0), m_guess(),
+  : m_cam(), m_hasCam(false), m_hasGuess(false), m_estimateAngle(false), m_jackknife(false), m_openingAngle(0.0), m_guess(),
     m_loss(LOSS_CAUCHY), m_userLossScale(0.0), m_maxIterations(200), m_maxCondition(1e5), m_views(),
     m_status(STATUS_NOT_COMPUTED), m_statusDetails(), m_rms(0.0), m_rmsPixels(0.0), m_initialRms(0.0), m_openingAngleEstimate(0.0),
-    m_lossScale(0.0), m_condition(0.0), m_nbInliers(0), m_covariance(kNbConeParams, kNbConeParams, 0.0),
+    m_lossScale(0.0), m_condition(0.0), m_nbInliers(0), m_covariance(kNbConeParams, kNbConeParams, 0.0), m_hasJackknifeStd(false),
+    m_jackknifeStd(kNbConeParams, 0.0),
     m_predicted(), m_initialPredicted(), m_measured(), m_inlier()
 {
 }
@@ -449,6 +450,8 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   m_status = STATUS_NOT_COMPUTED;
   m_statusDetails.clear();
   m_covariance = vpMatrix(kNbConeParams, kNbConeParams, 0.0);
+  m_hasJackknifeStd = false;
+  m_jackknifeStd = vpColVector(kNbConeParams, 0.0);
   m_condition = 0.0;
   m_nbInliers = 0;
   m_lossScale = 0.0;
@@ -644,7 +647,45 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   m_openingAngleEstimate = s.opening;
   m_status = STATUS_OK;
   cMl = laserPose(s.angles[0], s.angles[1], s.apex);
+  if (m_jackknife)
+    computeJackknife(cMl);
   return true;
+}
+
+void vpLaserConicCalibration::computeJackknife(const vpHomogeneousMatrix &cMl)
+{
+  const size_t n = m_views.size();
+  std::vector<vpColVector> estimates;
+  for (size_t k = 0; k < n; ++k) {
+    vpLaserConicCalibration without(*this);
+    without.m_jackknife = false;
+    without.m_views.erase(without.m_views.begin() + static_cast<std::ptrdiff_t>(k));
+    without.setInitialGuess(cMl);
+    without.setOpeningAngle(m_openingAngleEstimate);
+    vpHomogeneousMatrix M;
+    if (!without.compute(M))
+      return; // a view set that needs every view: no jackknife
+    double alpha = 0.0, beta = 0.0;
+    axisAngles(M, alpha, beta);
+    vpColVector theta(kNbConeParams);
+    theta[kAlpha] = alpha;
+    theta[kBeta] = beta;
+    for (unsigned int i = 0; i < 3; ++i)
+      theta[kVx + i] = M[i][3];
+    theta[kOpening] = without.getOpeningAngle();
+    estimates.push_back(theta);
+  }
+  vpColVector mean(kNbConeParams, 0.0);
+  for (const vpColVector &theta : estimates)
+    mean += theta / static_cast<double>(n);
+  for (const vpColVector &theta : estimates)
+    for (unsigned int i = 0; i < kNbConeParams; ++i)
+      m_jackknifeStd[i] += (theta[i] - mean[i]) * (theta[i] - mean[i]);
+  for (unsigned int i = 0; i < kNbConeParams; ++i)
+    m_jackknifeStd[i] = std::sqrt(m_jackknifeStd[i] * static_cast<double>(n - 1) / static_cast<double>(n));
+  if (!m_estimateAngle)
+    m_jackknifeStd[kOpening] = 0.0;
+  m_hasJackknifeStd = true;
 }
 
 double vpLaserConicCalibration::calibrate(vpHomogeneousMatrix &cMl)

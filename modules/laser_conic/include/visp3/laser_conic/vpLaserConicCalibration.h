@@ -148,6 +148,11 @@ public:
   */
   void setMaxConditionNumber(double maxCondition);
   /*!
+    When true, compute() also gives getJackknifeStdDeviations(): the calibration is repeated without each
+    view in turn (n more fits, started from the result). Default false.
+  */
+  void setViewJackknife(bool jackknife) { m_jackknife = jackknife; }
+  /*!
     Adds one view: grid pose in the camera frame and the laser points seen on the grid (pixels).
     \exception vpLaserConicException when the pose is not a finite rigid transformation, a point is not
     finite (badPointError) or fewer than 5 points are given (notEnoughPointError).
@@ -212,8 +217,22 @@ public:
     RSS / (N - p) (RSS in pixels, N inlier points, p = 5 or 6 parameters).
   */
   vpMatrix getCovarianceMatrix() const { return m_covariance; }
-  //! Standard deviations: square roots of the diagonal of getCovarianceMatrix(), same order and units.
+  /*!
+    Standard deviations: square roots of the diagonal of getCovarianceMatrix(), same order and units.
+    They account for the noise of the laser points only, the grid poses taken as exact; with grid poses
+    from real corners, the errors of the poses usually dominate: see getJackknifeStdDeviations().
+  */
   vpColVector getStdDeviations() const;
+  /*!
+    Leave-one-view-out jackknife standard deviations (same order and units as getStdDeviations()),
+    \f$ \sqrt{\frac{n-1}{n} \sum_k (\theta_{(k)} - \bar\theta)^2} \f$: they include every error that
+    differs from view to view (grid pose, detection bias), with a relative uncertainty of about
+    \f$ 1/\sqrt{2(n-1)} \f$. Available after a successful compute() with setViewJackknife(true) when every
+    leave-one-out fit succeeded (hasJackknifeStdDeviations()), zeros otherwise.
+  */
+  vpColVector getJackknifeStdDeviations() const { return m_jackknifeStd; }
+  //! True when getJackknifeStdDeviations() was computed by the last compute().
+  bool hasJackknifeStdDeviations() const { return m_hasJackknifeStd; }
   //! Predicted trace points on each grid (grid coordinates X, Y) for the calibrated laser, for figures.
   std::vector<std::vector<std::pair<double, double> > > getPredictedGridPoints() const { return m_predicted; }
   //! Predicted trace points on each grid for the initial guess (after the first stage), for before/after figures.
@@ -234,11 +253,12 @@ private:
     std::vector<vpImagePoint> points;
   };
   void checkReady(const vpHomogeneousMatrix &guess) const;
+  void computeJackknife(const vpHomogeneousMatrix &cMl);
   void backProject();
   bool fail(vpLaserConicCalibrationStatus status, const std::string &details);
 
   vpCameraParameters m_cam;
-  bool m_hasCam, m_hasGuess, m_estimateAngle;
+  bool m_hasCam, m_hasGuess, m_estimateAngle, m_jackknife;
   double m_openingAngle;
   vpHomogeneousMatrix m_guess;
   vpLaserConicLoss m_loss;
@@ -252,6 +272,8 @@ private:
   double m_rms, m_rmsPixels, m_initialRms, m_openingAngleEstimate, m_lossScale, m_condition;
   unsigned int m_nbInliers;
   vpMatrix m_covariance;
+  bool m_hasJackknifeStd;
+  vpColVector m_jackknifeStd;
   std::vector<std::vector<std::pair<double, double> > > m_predicted, m_initialPredicted, m_measured;
   std::vector<std::vector<bool> > m_inlier;
 };
