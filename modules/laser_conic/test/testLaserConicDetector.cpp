@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 
 #include <Eigen/Dense>
 
@@ -45,6 +46,7 @@ DetectionStats detectAndCompare(const vpHomogeneousMatrix &cMg, unsigned int see
   const Eigen::Matrix3d C = pixelConic(sim.getGroundPlane());
   for (const vpImagePoint &p : points) {
     const double e = sampsonDistance(C, p);
+    if (e > 0.5 && std::getenv("VSP_DEBUG")) std::cout << "bad " << p.get_u() << " " << p.get_v() << " " << e << std::endl;
     stats.maxError = std::max(stats.maxError, e);
     stats.meanError += e / std::max<size_t>(1, points.size());
   }
