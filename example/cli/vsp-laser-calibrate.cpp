@@ -14,7 +14,7 @@
                       --board 12x9 --square 0.05 --opening-angle-deg 34 [--estimate-opening-angle]
                       [--guess-apex X,Y,Z] [--guess-axis-deg RX,RY] --output laser.yaml
                       [--report report.txt] [--figure before_after.png] [--robust-scale PX | --no-robust]
-                      [--max-reprojection PX]
+                      [--max-reprojection PX] [--corner-clearance PX]
   \endverbatim
   Output: the laser calibration in YAML (pose as a vpPoseVector, opening angle, standard deviations: the
   leave-one-view-out jackknife, which includes the grid pose errors, or with fewer than 3 views the formal
@@ -50,7 +50,7 @@ struct Options
 {
   std::string camera, cameraName = "Camera", imagesDir, listFile, board, output, report, figure;
   std::string guessApex = "0,0,0", guessAxis = "0,0";
-  double square = 0.0, openingDeg = 0.0, robustScale = 0.0, maxReprojection = 1.0;
+  double square = 0.0, openingDeg = 0.0, robustScale = 0.0, maxReprojection = 1.0, cornerClearance = 8.0;
   bool estimateOpening = false, noRobust = false;
 };
 
@@ -59,7 +59,8 @@ vpCommandLine commandLine(Options &o)
   vpCommandLine cli("--camera camera.xml [--camera-name Camera] (--images DIR | --list images.txt)\n"
                     "          --board NXxNY --square S --opening-angle-deg A [--estimate-opening-angle]\n"
                     "          [--guess-apex X,Y,Z] [--guess-axis-deg RX,RY] --output laser.yaml\n"
-                    "          [--report FILE] [--figure FILE.png] [--robust-scale PX | --no-robust] [--max-reprojection PX]",
+                    "          [--report FILE] [--figure FILE.png] [--robust-scale PX | --no-robust] [--max-reprojection PX]\n"
+                    "          [--corner-clearance PX]",
                     "Laser/camera calibration from images of a chessboard with the laser trace on it.");
   cli.addString("--camera", o.camera, "FILE", "intrinsics in vpXmlParserCamera format (with distortion if it has it)");
   cli.addString("--camera-name", o.cameraName, "NAME", "camera name in that file (default Camera)");
@@ -83,6 +84,9 @@ vpCommandLine commandLine(Options &o)
   cli.addFlag("--no-robust", o.noRobust, "plain least squares (no outlier rejection)");
   cli.addDouble("--max-reprojection", o.maxReprojection, "PX",
                 "views whose corner reprojection RMS exceeds this are left out (default 1)", vpCommandLine::POSITIVE);
+  cli.addDouble("--corner-clearance", o.cornerClearance, "PX",
+                "corners closer than this to the laser trace are left out of the grid pose (default 8)",
+                vpCommandLine::NON_NEGATIVE);
   cli.require({"--camera", "--board", "--square", "--opening-angle-deg", "--output"});
   return cli;
 }
@@ -202,6 +206,7 @@ int run(int argc, char **argv)
   grid.setCameraParameters(cam);
   grid.setChessboard(nx, ny, o.square);
   grid.setMaxReprojectionError(o.maxReprojection);
+  grid.setCornerClearance(o.cornerClearance);
   vpLaserConicCalibration &calib = grid.getCalibration();
   calib.setOpeningAngle(vpMath::rad(o.openingDeg));
   calib.setOpeningAngleEstimation(o.estimateOpening);

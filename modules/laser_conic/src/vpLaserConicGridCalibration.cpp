@@ -15,7 +15,8 @@
 #include <visp3/core/vpThetaUVector.h>
 
 vpLaserConicGridCalibration::vpLaserConicGridCalibration()
-  : m_cam(), m_hasCam(false), m_squaresX(0), m_squaresY(0), m_squareSize(0.0), m_margin(0.5), m_maxReprojection(1.0),
+  : m_cam(), m_hasCam(false), m_squaresX(0), m_squaresY(0), m_squareSize(0.0), m_margin(0.5), m_maxReprojection(1.0), m_cornerClearance(8.0),
+    m_laserClearancePoints(nullptr),
     m_detector(), m_calibration(), m_viewStatus(), m_gridPoses(), m_reprojection(), m_corners(), m_laserPoints(),
     m_viewImage()
 {
@@ -45,6 +46,14 @@ void vpLaserConicGridCalibration::setGridMargin(double squares)
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicGridCalibration: the grid margin must be finite and >= 0");
   m_margin = squares;
+}
+
+void vpLaserConicGridCalibration::setCornerClearance(double pixels)
+{
+  if (!std::isfinite(pixels) || pixels < 0.0)
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicGridCalibration: the corner clearance must be finite and >= 0");
+  m_cornerClearance = pixels;
 }
 
 void vpLaserConicGridCalibration::setMaxReprojectionError(double pixels)
@@ -99,18 +108,32 @@ bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogen
     return false;
 
   // Undistorted normalized coordinates with ViSP's model, then a pinhole PnP with identity intrinsics.
+  // Corners next to the laser trace are left out of the pose: a stripe crossing a corner, above all
+  // with a white saturated core, moves it by pixels.
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> normalized;
   corners.clear();
+  const double clearance2 = m_cornerClearance * m_cornerClearance;
   for (int l = 0; l < pattern.height; ++l)
     for (int k = 0; k < pattern.width; ++k) {
       const cv::Point2f &p = found[static_cast<size_t>(l * pattern.width + k)];
+      corners.push_back(vpImagePoint(p.y, p.x));
+      bool nearLaser = false;
+      if (m_laserClearancePoints != nullptr)
+        for (const vpImagePoint &q : *m_laserClearancePoints)
+          if (vpImagePoint::sqrDistance(q, corners.back()) < clearance2) {
+            nearLaser = true;
+            break;
+          }
+      if (nearLaser)
+        continue;
       double x = 0.0, y = 0.0;
       vpPixelMeterConversion::convertPoint(m_cam, static_cast<double>(p.x), static_cast<double>(p.y), x, y);
       normalized.push_back(cv::Point2d(x, y));
       object.push_back(cv::Point3d((k + 1) * m_squareSize, (l + 1) * m_squareSize, 0.0));
-      corners.push_back(vpImagePoint(p.y, p.x));
     }
+  if (object.size() < 6)
+    return false; // the trace hides nearly the whole board
   const cv::Mat K = cv::Mat::eye(3, 3, CV_64F), noDistortion;
   cv::Mat rvec, tvec;
   if (!cv::solvePnP(object, normalized, K, noDistortion, rvec, tvec, false, cv::SOLVEPNP_IPPE))
@@ -157,17 +180,22 @@ std::vector<vpImagePoint> vpLaserConicGridCalibration::pointsOnGrid(const vpHomo
 
 vpLaserConicGridCalibration::vpGridViewStatus vpLaserConicGridCalibration::addImage(const vpImage<vpRGBa> &I)
 {
+  checkReady(I);
   vpHomogeneousMatrix cMg;
   std::vector<vpImagePoint> corners, onGrid;
   double rms = 0.0;
   vpGridViewStatus status = VIEW_OK;
-  if (!detectGrid(I, cMg, corners, rms)) {
+  const std::vector<vpImagePoint> laserPoints = m_detector.detect(I);
+  m_laserClearancePoints = &laserPoints;
+  const bool found = detectGrid(I, cMg, corners, rms);
+  m_laserClearancePoints = nullptr;
+  if (!found) {
     status = VIEW_NO_GRID;
     cMg = vpHomogeneousMatrix();
   } else if (!(rms <= m_maxReprojection)) {
     status = VIEW_BAD_GRID_POSE;
   } else {
-    onGrid = pointsOnGrid(cMg, m_detector.detect(I));
+    onGrid = pointsOnGrid(cMg, laserPoints);
     if (onGrid.size() < 5)
       status = VIEW_FEW_LASER_POINTS;
   }

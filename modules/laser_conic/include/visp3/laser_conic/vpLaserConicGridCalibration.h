@@ -29,12 +29,13 @@
   -# finds the inner corners of the chessboard with OpenCV's cv::findChessboardCornersSB() on the green
      channel (the red laser barely lights it, so the stripe crossing a black square does not shift the
      corners);
-  -# converts them to normalized coordinates with vpPixelMeterConversion (the camera's ViSP distortion
+  -# detects the laser trace with getDetector() and leaves out the corners closer than setCornerClearance()
+     to it (a stripe across a corner moves it);
+  -# converts the other corners to normalized coordinates with vpPixelMeterConversion (the camera's ViSP distortion
      model, \f$ k_{du} \f$) and computes the grid pose cMg with cv::solvePnP() (IPPE, identity intrinsics,
      no distortion) refined by Levenberg-Marquardt; a view whose corner reprojection RMS exceeds
      setMaxReprojectionError() is refused;
-  -# detects the laser trace with getDetector() and keeps the points whose back-projection on the grid
-     plane lies on the board: within setGridMargin() squares of the rectangle of the inner corners (points
+  -# keeps the laser points whose back-projection on the grid plane lies on the board: within setGridMargin() squares of the rectangle of the inner corners (points
      on the background or the table would be outliers);
   -# adds the view (cMg, points) to getCalibration().
 
@@ -70,7 +71,8 @@ public:
     VIEW_FEW_LASER_POINTS //!< fewer than 5 laser points on the board
   } vpGridViewStatus;
 
-  //! No camera, no chessboard; margin 0.5 square, reprojection error limit 1 px, default detector.
+  //! No camera, no chessboard; margin 0.5 square, reprojection error limit 1 px, corner clearance 8 px,
+  //! default detector.
   vpLaserConicGridCalibration();
 
   /*!
@@ -90,6 +92,13 @@ public:
     \exception vpLaserConicException::badValueError when negative or not finite.
   */
   void setGridMargin(double squares);
+  /*!
+    In addImage(), corners closer than \e pixels to a detected laser point are left out of the grid pose
+    (default 8): the stripe crossing a corner moves it by up to 2 px (measured on rendered boards with a
+    saturated stripe), far more than the 0.05 px the pose needs.
+    \exception vpLaserConicException::badValueError when negative or not finite.
+  */
+  void setCornerClearance(double pixels);
   /*!
     Largest RMS reprojection error of the corners (pixels, normalized residual times px) for a view to
     be used (default 1).
@@ -111,12 +120,13 @@ public:
   */
   vpGridViewStatus addImage(const vpImage<vpRGBa> &I);
   /*!
-    Detects the chessboard and computes its pose, without touching the calibration.
+    Detects the chessboard and computes its pose from all its corners, without touching the calibration
+    (addImage() leaves out the corners near the laser trace).
     \param I : colour image.
     \param cMg : grid pose (grid frame of the class description).
     \param corners : the inner corners found (pixels), row after row.
-    \param rmsPixels : RMS reprojection error of the corners.
-    \return false when the chessboard is not found.
+    \param rmsPixels : RMS reprojection error of the corners used.
+    \return false when the chessboard is not found (or fewer than 6 corners are usable).
     \exception vpLaserConicException when the camera or the chessboard is unset, or the image is empty.
   */
   bool detectGrid(const vpImage<vpRGBa> &I, vpHomogeneousMatrix &cMg, std::vector<vpImagePoint> &corners,
@@ -148,7 +158,9 @@ private:
   vpCameraParameters m_cam;
   bool m_hasCam;
   unsigned int m_squaresX, m_squaresY;
-  double m_squareSize, m_margin, m_maxReprojection;
+  double m_squareSize, m_margin, m_maxReprojection, m_cornerClearance;
+  //! Laser points of the image addImage() is processing (corners near them are left out), else null.
+  const std::vector<vpImagePoint> *m_laserClearancePoints;
   vpLaserConicDetector m_detector;
   vpLaserConicCalibration m_calibration;
   std::vector<vpGridViewStatus> m_viewStatus;
