@@ -301,7 +301,8 @@ TEST(LaserConicCalibration, EstimatesTheOpeningAngleFromThreeDepths)
   std::cout << "opening angle estimated: error " << openingErrorDeg(calib) << " deg (std "
             << vpMath::deg(sigma[5]) << "), axis " << axisErrorDeg(cMl, trueLaserPose()) << " deg, apex "
             << apexErrorMm(cMl, trueLaserPose()) << " mm, condition " << calib.getConditionNumber() << std::endl;
-  // 1350 points at 0.5 px: the predicted standard deviation of A is about 0.005 degree; the target is 0.05.
+  // 1350 points at 0.5 px: the predicted standard deviation of A is 0.003 degree (measured error 0.0042);
+  // the target is 0.05.
   EXPECT_LT(std::fabs(openingErrorDeg(calib)), 0.05);
   EXPECT_LT(axisErrorDeg(cMl, trueLaserPose()), 0.05);
   EXPECT_LT(apexErrorMm(cMl, trueLaserPose()), 0.5);
@@ -377,7 +378,10 @@ TEST(LaserConicCalibration, TiltedViewsAtOneDepthAndParallelViewsAtSeveralDepths
     calib.setInitialGuess(perturbedGuess());
     vpHomogeneousMatrix cMl;
     ASSERT_TRUE(calib.compute(cMl)) << calib.getStatusDetails();
-    // Measured: 0.02 deg / 0.7 mm / 0.022 deg (one depth), 0.008 deg / 0.14 mm / 0.0015 deg (parallel).
+    std::cout << (poses == &oneDepth ? "tilted views at one depth" : "parallel views at several depths") << ": axis "
+              << axisErrorDeg(cMl, trueLaserPose()) << " deg, apex " << apexErrorMm(cMl, trueLaserPose())
+              << " mm, opening angle " << openingErrorDeg(calib) << " deg, condition " << calib.getConditionNumber()
+              << std::endl;
     EXPECT_LT(axisErrorDeg(cMl, trueLaserPose()), 0.1);
     EXPECT_LT(apexErrorMm(cMl, trueLaserPose()), 2.0);
     EXPECT_LT(std::fabs(openingErrorDeg(calib)), 0.1);
@@ -572,7 +576,7 @@ TEST(LaserConicCalibration, JackknifeStandardDeviationsIncludeGridPoseErrors)
               << spread / jackknife[k] << "), formal " << formal[k] << " (ratio " << spread / formal[k] << ")"
               << std::endl;
     // The jackknife over 9 views is itself uncertain by about 1/sqrt(16) = 25 %, plus the Monte-Carlo's 16 %;
-    // measured ratios 0.70-0.91 (the jackknife is slightly conservative), formal 1.1-2.0.
+    // measured ratios 0.65-0.90 (the jackknife is slightly conservative), formal 0.94-1.47.
     EXPECT_GT(spread / jackknife[k], 0.5);
     EXPECT_LT(spread / jackknife[k], 1.6);
   }
