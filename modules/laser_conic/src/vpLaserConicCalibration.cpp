@@ -135,7 +135,7 @@ double medianAbs(std::vector<double> values)
 
 vpLaserConicCalibration::vpLaserConicCalibration()
   : m_cam(), m_hasCam(false), m_hasGuess(false), m_estimateAngle(false), m_jackknife(false), m_openingAngle(0.0), m_guess(),
-    m_loss(LOSS_CAUCHY), m_userLossScale(0.0), m_maxIterations(200), m_maxCondition(1e5), m_views(),
+    m_loss(LOSS_CAUCHY), m_userLossScale(0.0), m_maxIterations(200), m_maxCondition(1e5), m_maxRmsPixels(3.0), m_views(),
     m_status(STATUS_NOT_COMPUTED), m_statusDetails(), m_rms(0.0), m_rmsPixels(0.0), m_initialRms(0.0), m_openingAngleEstimate(0.0),
     m_lossScale(0.0), m_condition(0.0), m_nbInliers(0), m_covariance(kNbConeParams, kNbConeParams, 0.0), m_hasJackknifeStd(false),
     m_jackknifeStd(kNbConeParams, 0.0),
@@ -179,6 +179,14 @@ void vpLaserConicCalibration::setMaxIterations(int maxIterations)
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicCalibration: the iteration limit must be positive");
   m_maxIterations = maxIterations;
+}
+
+void vpLaserConicCalibration::setMaxRmsPixels(double maxRms)
+{
+  if (!std::isfinite(maxRms) || !(maxRms > 0.0))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicCalibration: the largest RMS must be positive and finite");
+  m_maxRmsPixels = maxRms;
 }
 
 void vpLaserConicCalibration::setMaxConditionNumber(double maxCondition)
@@ -263,6 +271,9 @@ std::string vpLaserConicCalibration::getStatusMessage(vpLaserConicCalibrationSta
     return "solver failure: the optimisation failed or gave a non-finite result";
   case STATUS_TOO_MANY_OUTLIERS:
     return "too many outliers: fewer than half the laser points lie on the fitted cone";
+  case STATUS_LARGE_RESIDUALS:
+    return "large residuals: the fitted cone does not explain the laser points (too many outliers, wrong camera "
+           "model or wrong grid poses)";
   }
   return "unknown status";
 }
@@ -454,6 +465,7 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   m_jackknifeStd = vpColVector(kNbConeParams, 0.0);
   m_condition = 0.0;
   m_nbInliers = 0;
+  m_rms = m_rmsPixels = 0.0;
   m_lossScale = 0.0;
   m_predicted.clear();
   m_initialPredicted.clear();
@@ -616,6 +628,8 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   // Observability: conditioning of the reduced normal equations with the angles in metres at the grids.
   double rss = 0.0;
   Eigen::Matrix<double, kNbConeParams, kNbConeParams> S = reducedNormalMatrix(blocks, s, rss);
+  m_rmsPixels = std::sqrt(rss / static_cast<double>(m_nbInliers));
+  m_rms = gridRms(blocks, s, true);
   const int p = m_estimateAngle ? kNbConeParams : kNbConeParams - 1;
   Eigen::VectorXd scaling = Eigen::VectorXd::Ones(p);
   scaling[kAlpha] = scaling[kBeta] = 1.0 / meanDistance;
@@ -637,9 +651,15 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
     for (int c = 0; c < p; ++c)
       m_covariance[r][c] = covariance(r, c);
 
+  // The inliers' residuals must look like detection noise: a cone fitted to mostly outliers (whose
+  // median then sets the loss scale), to a wrong camera model or to wrong grid poses does not.
+  if (!(m_rmsPixels <= m_maxRmsPixels)) {
+    std::ostringstream os;
+    os << "RMS " << m_rmsPixels << " px > " << m_maxRmsPixels << " px over " << m_nbInliers << " points";
+    return fail(STATUS_LARGE_RESIDUALS, os.str());
+  }
+
   // Results, predicted points and inlier flags for figures.
-  m_rmsPixels = std::sqrt(rss / static_cast<double>(m_nbInliers));
-  m_rms = gridRms(blocks, s, true);
   m_predicted = predictedGridPoints(blocks, s, m_measured);
   m_inlier.assign(m_views.size(), {});
   for (const PointBlock &b : blocks)

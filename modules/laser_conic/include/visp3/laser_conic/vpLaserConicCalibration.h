@@ -85,7 +85,8 @@ public:
                              //!< ill-conditioned normal equations (see setMaxConditionNumber())
     STATUS_NO_CONVERGENCE,   //!< Levenberg-Marquardt stopped at the iteration limit
     STATUS_SOLVER_FAILURE,   //!< Ceres failed or the result is not finite
-    STATUS_TOO_MANY_OUTLIERS //!< fewer than half the points are within 3 loss scales of the cone
+    STATUS_TOO_MANY_OUTLIERS, //!< fewer than half the points are within 3 loss scales of the cone
+    STATUS_LARGE_RESIDUALS    //!< the inliers' RMS exceeds setMaxRmsPixels(): the cone does not fit the points
   } vpLaserConicCalibrationStatus;
 
   //! Robust loss applied to the grid residuals in the second stage (see the class description).
@@ -141,8 +142,8 @@ public:
     eliminated, the angles scaled to metres at the mean grid distance (default 1e5). Over it, compute()
     ends with STATUS_DEGENERATE_VIEWS. Measured (test view sets, 0.5 px noise): 10 grids at 0.5-1.1 m
     tilted up to 25 degrees, about 120 (500 with the opening angle); 8 grids at one distance tilted by
-    20 degrees, 600 (2500); 8 parallel grids at 0.5-1.1 m, 80 (300); 3 grids 3 degrees apart with the
-    opening angle estimated, 2.5e5 (apex 5 mm off). Views of a single plane are refused before, whatever
+    20 degrees, 600 (2500); 8 parallel grids at 0.5-1.1 m, 80 (260); 3 grids 3 degrees apart with the
+    opening angle estimated, 2.5e5. Views of a single plane are refused before, whatever
     this number (the cone is then ambiguous, not merely ill-conditioned).
     \exception vpLaserConicException::badValueError when it is not greater than 1.
   */
@@ -152,6 +153,14 @@ public:
     view in turn (n more fits, started from the result). Default false.
   */
   void setViewJackknife(bool jackknife) { m_jackknife = jackknife; }
+  /*!
+    Largest accepted RMS residual of the inliers, in pixels (default 3): over it compute() ends with
+    STATUS_LARGE_RESIDUALS. Laser detectors reach a fraction of a pixel; a larger RMS means that the cone
+    was fitted to outliers (with more than half outliers the robust scale follows them), that the camera
+    model or the grid poses are wrong.
+    \exception vpLaserConicException::badValueError when not positive and finite.
+  */
+  void setMaxRmsPixels(double maxRms);
   /*!
     Adds one view: grid pose in the camera frame and the laser points seen on the grid (pixels).
     \exception vpLaserConicException when the pose is not a finite rigid transformation, a point is not
@@ -264,7 +273,7 @@ private:
   vpLaserConicLoss m_loss;
   double m_userLossScale;
   int m_maxIterations;
-  double m_maxCondition;
+  double m_maxCondition, m_maxRmsPixels;
   std::vector<View> m_views;
 
   vpLaserConicCalibrationStatus m_status;
