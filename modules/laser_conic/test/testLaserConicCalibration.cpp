@@ -285,6 +285,28 @@ vpHomogeneousMatrix tiltedGridAtDistance(double d, double rxDeg, double ryDeg)
 }
 
 double openingErrorDeg(const vpLaserConicCalibration &calib) { return vpMath::deg(calib.getOpeningAngle() - kOpening); }
+
+// Appends the parameters of a calibration in the order of getStdDeviations() (alpha, beta, apex, angle).
+void appendParameters(const vpHomogeneousMatrix &cMl, const vpLaserConicCalibration &calib,
+                      std::vector<std::vector<double> > &estimates)
+{
+  const double values[6] = {std::atan2(-cMl[1][2], cMl[2][2]), std::asin(cMl[0][2]), cMl[0][3], cMl[1][3], cMl[2][3],
+                            calib.getOpeningAngle()};
+  estimates.resize(6);
+  for (unsigned int k = 0; k < 6; ++k)
+    estimates[k].push_back(values[k]);
+}
+
+// Sample standard deviation.
+double sampleStd(const std::vector<double> &values)
+{
+  double mean = 0.0, var = 0.0;
+  for (double v : values)
+    mean += v / static_cast<double>(values.size());
+  for (double v : values)
+    var += (v - mean) * (v - mean) / static_cast<double>(values.size() - 1);
+  return std::sqrt(var);
+}
 } // namespace
 
 TEST(LaserConicCalibration, EstimatesTheOpeningAngleFromThreeDepths)
@@ -509,7 +531,7 @@ TEST(LaserConicCalibration, StandardDeviationsMatchTheMonteCarloSpread)
   // 30 noise draws on the same views: the spread of the estimates against the predicted standard deviations.
   const std::vector<vpHomogeneousMatrix> poses = threeDepthPoses();
   const unsigned int nbTrials = 30;
-  std::vector<std::vector<double> > estimates(6);
+  std::vector<std::vector<double> > estimates;
   vpColVector predicted(6, 0.0);
   for (unsigned int t = 0; t < nbTrials; ++t) {
     vpLaserConicCalibration calib = makeCalibration(poses, laserPoints(poses, 0.5, 60, 1000 + t));
@@ -517,20 +539,12 @@ TEST(LaserConicCalibration, StandardDeviationsMatchTheMonteCarloSpread)
     calib.setInitialGuess(perturbedGuess());
     vpHomogeneousMatrix cMl;
     ASSERT_TRUE(calib.compute(cMl));
-    double alpha = std::atan2(-cMl[1][2], cMl[2][2]), beta = std::asin(cMl[0][2]);
-    const double values[6] = {alpha, beta, cMl[0][3], cMl[1][3], cMl[2][3], calib.getOpeningAngle()};
-    for (unsigned int k = 0; k < 6; ++k)
-      estimates[k].push_back(values[k]);
+    appendParameters(cMl, calib, estimates);
     predicted += calib.getStdDeviations() / nbTrials;
   }
   for (unsigned int k = 0; k < 6; ++k) {
-    double mean = 0.0, var = 0.0;
-    for (double v : estimates[k])
-      mean += v / nbTrials;
-    for (double v : estimates[k])
-      var += (v - mean) * (v - mean) / (nbTrials - 1);
-    const double ratio = std::sqrt(var) / predicted[k];
-    std::cout << "parameter " << k << ": Monte-Carlo std " << std::sqrt(var) << ", predicted " << predicted[k]
+    const double spread = sampleStd(estimates[k]), ratio = spread / predicted[k];
+    std::cout << "parameter " << k << ": Monte-Carlo std " << spread << ", predicted " << predicted[k]
               << ", ratio " << ratio << std::endl;
     // 30 draws: the sample standard deviation is within about +-13 % (1 sigma) of the true one; +-45 %
     // allows 3.5 sigma.
@@ -548,7 +562,7 @@ TEST(LaserConicCalibration, JackknifeStandardDeviationsIncludeGridPoseErrors)
   const unsigned int nbTrials = 20;
   std::mt19937 rng(2024);
   std::normal_distribution<double> rot(0.0, vpMath::rad(0.05)), trans(0.0, 0.2e-3);
-  std::vector<std::vector<double> > estimates(6);
+  std::vector<std::vector<double> > estimates;
   vpColVector formal(6, 0.0), jackknife(6, 0.0);
   for (unsigned int t = 0; t < nbTrials; ++t) {
     const std::vector<std::vector<vpImagePoint> > points = laserPoints(poses, 0.3, 40, 500 + t);
@@ -564,20 +578,12 @@ TEST(LaserConicCalibration, JackknifeStandardDeviationsIncludeGridPoseErrors)
     vpHomogeneousMatrix cMl;
     ASSERT_TRUE(calib.compute(cMl)) << calib.getStatusDetails();
     ASSERT_TRUE(calib.hasJackknifeStdDeviations());
-    const double values[6] = {std::atan2(-cMl[1][2], cMl[2][2]), std::asin(cMl[0][2]), cMl[0][3], cMl[1][3], cMl[2][3],
-                              calib.getOpeningAngle()};
-    for (unsigned int k = 0; k < 6; ++k)
-      estimates[k].push_back(values[k]);
+    appendParameters(cMl, calib, estimates);
     formal += calib.getStdDeviations() / nbTrials;
     jackknife += calib.getJackknifeStdDeviations() / nbTrials;
   }
   for (unsigned int k = 0; k < 6; ++k) {
-    double mean = 0.0, var = 0.0;
-    for (double v : estimates[k])
-      mean += v / nbTrials;
-    for (double v : estimates[k])
-      var += (v - mean) * (v - mean) / (nbTrials - 1);
-    const double spread = std::sqrt(var);
+    const double spread = sampleStd(estimates[k]);
     std::cout << "parameter " << k << ": Monte-Carlo std " << spread << ", jackknife " << jackknife[k] << " (ratio "
               << spread / jackknife[k] << "), formal " << formal[k] << " (ratio " << spread / formal[k] << ")"
               << std::endl;
