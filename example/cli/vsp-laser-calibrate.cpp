@@ -143,6 +143,28 @@ void writeFigure(const vpLaserConicCalibration &calib, size_t v, const std::stri
   plot.write(file);
 }
 
+//! Per view: image, points, inliers and RMS distance (mm) of the inliers to the calibrated trace on the grid.
+void reportViews(std::ostream &os, const vpLaserConicGridCalibration &grid, const std::vector<std::string> &images)
+{
+  const vpLaserConicCalibration &calib = grid.getCalibration();
+  const std::vector<std::vector<std::pair<double, double> > > measured = calib.getMeasuredGridPoints(),
+                                                                predicted = calib.getPredictedGridPoints();
+  const std::vector<std::vector<bool> > inlier = calib.getInlierFlags();
+  os << "view,image,points,inliers,rms_mm\n";
+  for (size_t v = 0; v < measured.size(); ++v) {
+    double sum2 = 0.0;
+    unsigned int n = 0;
+    for (size_t i = 0; i < measured[v].size(); ++i)
+      if (inlier[v][i]) {
+        sum2 += vpMath::sqr(measured[v][i].first - predicted[v][i].first) +
+                vpMath::sqr(measured[v][i].second - predicted[v][i].second);
+        ++n;
+      }
+    os << v << "," << images[grid.getViewImageIndex()[v]] << "," << measured[v].size() << "," << n << ","
+       << (n ? 1000.0 * std::sqrt(sum2 / n) : 0.0) << "\n";
+  }
+}
+
 //! The calibration part of the report.
 void reportCalibration(std::ostream &os, const vpLaserConicCalibration &calib, const vpHomogeneousMatrix &cMl)
 {
@@ -250,6 +272,7 @@ int run(int argc, char **argv)
   if (!ok) {
     report << "calibration failed: " << failure << "\n";
   } else {
+    reportViews(report, grid, images);
     reportCalibration(report, calib, cMl);
     vpLaserCalibrationData data;
     data.openingAngle = calib.getOpeningAngle();
