@@ -31,7 +31,8 @@
   beta about Y) of the cone axis, the apex v, optionally the opening angle A, and one angle gamma_i per
   point on the cone; the XY distances on the grid planes between measured and predicted points, mapped
   to pixels by the Jacobian of the grid-to-image projection at each point (the image noise is isotropic
-  in pixels, not on a far or oblique grid), are minimised with Ceres' Levenberg-Marquardt. The rotation about the cone axis is unobservable and returned as zero.
+  in pixels, not on a far or oblique grid), are minimised with Ceres' Levenberg-Marquardt. The rotation
+  about the cone axis is unobservable and returned as zero.
 
   Model (paper Sec. 6, eq. 58-65): the ray i of the cone has the direction
   \f$ \mathbf{D}'_i = R_x(\alpha) R_y(\beta) R_z(\gamma_i) (\sin\frac{A}{2}, 0, \cos\frac{A}{2})^T \f$ in the
@@ -58,12 +59,15 @@
   STATUS_DEGENERATE_VIEWS rather than return a cone that fits the points but is wrong (one plane is cut
   by several cones along the same conic). Fewer than 2 views give STATUS_NOT_ENOUGH_VIEWS. Tilted grids
   at one distance, or parallel grids at several distances, do determine the cone (opening angle included).
+  A fit whose inliers' RMS exceeds setMaxRmsPixels() (cone fitted to mostly outliers, wrong camera model
+  or grid poses) ends with STATUS_LARGE_RESIDUALS. The formal standard deviations ignore the errors of
+  the grid poses; setViewJackknife(true) adds leave-one-view-out standard deviations that include them.
 
   \code
   vpLaserConicCalibration calib;
   calib.setCameraParameters(cam);              // may include distortion
   calib.setOpeningAngle(vpMath::rad(34));      // known, or the initial value when estimated:
-  calib.setOpeningAngleEstimation(true);       // needs grids at several depths
+  calib.setOpeningAngleEstimation(true);       // needs grids at several distances or tilts
   for (size_t j = 0; j < cMg.size(); ++j)
     calib.addView(cMg[j], laserPoints[j]);     // grid pose, laser points from vpLaserConicDetector
   vpHomogeneousMatrix cMl(0.1, 0, 0, 0, 0, 0); // rough measurement, used as the initial guess
