@@ -42,7 +42,8 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
 vpLaserConicDetector::vpLaserConicDetector()
   : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(30.0),
     m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
-    m_minValue(80), m_region(), m_regionMargin(0.0), m_mask(), m_threshold(0.0), m_noise(0.0), m_score()
+    m_minValue(80), m_region(), m_regionMargin(0.0), m_mask(), m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0),
+    m_noise(0.0), m_score(), m_runs()
 {
 }
 
@@ -147,10 +148,12 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
                                            std::vector<std::vector<std::pair<int, int> > > &rows) const
 {
-  rows.assign(H, std::vector<std::pair<int, int> >());
+  // The band is rasterised in blocks of 16 columns (the width the scans process at once): each point marks
+  // the blocks of the rows within margin + extra of it that its square of half side margin + extra touches.
+  const int block = 16, nbBlocks = (W + block - 1) / block;
+  std::vector<unsigned char> marked(static_cast<size_t>(H) * nbBlocks, 0);
   const double m = m_regionMargin + extra;
-  // Squares of half side m around the points, the points thinned to a spacing of a quarter of the margin
-  // (the same points whatever `extra`, so that a band with a larger extra contains the band with a smaller).
+  // Points closer than a quarter of the margin to the last marked one add nothing.
   const double spacing = 0.25 * m_regionMargin;
   bool first = true;
   double lastU = 0.0, lastV = 0.0;
@@ -166,28 +169,41 @@ void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
     if (j0 > j1)
       continue;
     for (int i = i0; i <= i1; ++i)
-      rows[i].push_back(std::make_pair(j0, j1));
+      std::fill(&marked[static_cast<size_t>(i) * nbBlocks + j0 / block],
+                &marked[static_cast<size_t>(i) * nbBlocks + j1 / block] + 1, 1);
   }
-  // Sorted, merged intervals.
-  for (std::vector<std::pair<int, int> > &spans : rows) {
-    if (spans.size() < 2)
-      continue;
-    std::sort(spans.begin(), spans.end());
-    size_t out = 0;
-    for (size_t k = 1; k < spans.size(); ++k) {
-      if (spans[k].first <= spans[out].second + 1)
-        spans[out].second = std::max(spans[out].second, spans[k].second);
-      else
-        spans[++out] = spans[k];
+  rows.resize(H);
+  for (int i = 0; i < H; ++i) {
+    rows[i].clear();
+    const unsigned char *row = &marked[static_cast<size_t>(i) * nbBlocks];
+    for (int b = 0; b < nbBlocks; ++b) {
+      if (!row[b])
+        continue;
+      const int start = b;
+      while (b + 1 < nbBlocks && row[b + 1])
+        ++b;
+      rows[i].push_back(std::make_pair(start * block, std::min(W - 1, (b + 1) * block - 1)));
     }
-    spans.resize(out + 1);
   }
+}
+
+const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
+{
+  if (m_maskDirty) {
+    vpLaserDetector::drawRuns(m_runs, m_height, m_width, m_mask);
+    m_maskDirty = false;
+  }
+  return m_mask;
 }
 
 std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
 {
   m_threshold = 0.0;
   m_noise = 0.0;
+  m_runs.clear();
+  m_height = I.getHeight();
+  m_width = I.getWidth();
+  m_maskDirty = m_method == DETECTION_RIDGE;
   if (m_method == DETECTION_HSV) {
     const vpLaserDetector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
                                                     static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
@@ -199,14 +215,14 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   vpLaserDetector::RidgeReport report;
   std::vector<vpImagePoint> points;
   if (m_region.empty() || I.getSize() == 0)
-    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, m_score, m_mask, report);
+    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, m_score, m_runs, report);
   else {
     // Everything the ridge tests read lies within the stripe width + 2 of a searched pixel.
     const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
     vpLaserDetector::RowIntervals scoreRows, searchRows;
     regionIntervals(H, W, static_cast<int>(m_maxStripeWidth) + 2, scoreRows);
     regionIntervals(H, W, 0, searchRows);
-    points = vpLaserDetector::detectRidge(I, settings, &scoreRows, &searchRows, m_score, m_mask, report);
+    points = vpLaserDetector::detectRidge(I, settings, &scoreRows, &searchRows, m_score, m_runs, report);
   }
   m_threshold = report.threshold;
   m_noise = report.noise;
