@@ -115,58 +115,78 @@ struct Candidate
   bool operator<(const Candidate &o) const { return line < o.line || (line == o.line && pos < o.pos); }
 };
 
-// Candidate test of one pixel: v exceeds the background bg by threshold, and is a local maximum (first pixel
-// of a plateau) between its neighbours before and after along the scan line.
-inline bool isCandidate(int v, int bg, int before, int after, int threshold)
+// Candidate test of one pixel: v exceeds the background bg (the larger score d pixels away on both sides) by
+// threshold and the score `near` (the larger at d / 2 + 1 pixels) by half of it, and is a local maximum (first
+// pixel of a plateau) between its neighbours before and after along the scan line. The second test is implied
+// by the half-maximum width test of a stripe centred on its peak; it discards early the local maxima of red
+// areas a little wider than a stripe, which would fail that test after a longer look. A saturated pixel
+// (255) is exempt: it may be the first pixel of the plateau of a saturated core.
+inline bool isCandidate(int v, int bg, int near, int before, int after, int threshold, int halfThreshold)
 {
-  return v >= bg + threshold && v > before && v >= after;
+  return v >= bg + threshold && (v >= near + halfThreshold || v == 255) && v > before && v >= after;
 }
 
 #if defined(__SSE2__)
-// isCandidate() on 16 pixels at once (unsigned saturated byte arithmetic); bit k of the result for pixel k.
-inline int candidates16(const unsigned char *v, const unsigned char *bg0, const unsigned char *bg1,
-                        const unsigned char *before, const unsigned char *after, __m128i threshold)
+inline __m128i load16(const unsigned char *p) { return _mm_loadu_si128(reinterpret_cast<const __m128i *>(p)); }
+
+// v - b >= t on unsigned bytes (saturated difference).
+inline __m128i atLeast(__m128i v, __m128i b, __m128i t)
 {
-  const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i *>(v)), zero = _mm_setzero_si128();
-  const __m128i bg = _mm_max_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i *>(bg0)),
-                                  _mm_loadu_si128(reinterpret_cast<const __m128i *>(bg1)));
-  const __m128i excess = _mm_subs_epu8(x, bg);
-  const __m128i high = _mm_cmpeq_epi8(_mm_max_epu8(excess, threshold), excess); // excess >= threshold
-  const __m128i notAbove = _mm_cmpeq_epi8(_mm_subs_epu8(x, _mm_loadu_si128(reinterpret_cast<const __m128i *>(before))), zero);
-  const __m128i notBelow = _mm_cmpeq_epi8(_mm_subs_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i *>(after)), x), zero);
+  const __m128i excess = _mm_subs_epu8(v, b);
+  return _mm_cmpeq_epi8(_mm_max_epu8(excess, t), excess);
+}
+
+// isCandidate() on 16 consecutive pixels (unsigned saturated byte arithmetic); bit k of the result for pixel
+// k. far0/far1, near0/near1: the pixels d and d / 2 + 1 away on each side; before/after: the neighbours.
+inline int candidates16(const unsigned char *v, const unsigned char *far0, const unsigned char *far1,
+                        const unsigned char *near0, const unsigned char *near1, const unsigned char *before,
+                        const unsigned char *after, __m128i threshold, __m128i halfThreshold)
+{
+  const __m128i x = load16(v), zero = _mm_setzero_si128();
+  const __m128i saturated = _mm_cmpeq_epi8(x, _mm_set1_epi8(static_cast<char>(0xFF))); // a plateau of 255 may be wide
+  const __m128i high =
+      _mm_and_si128(atLeast(x, _mm_max_epu8(load16(far0), load16(far1)), threshold),
+                    _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(load16(near0), load16(near1)), halfThreshold)));
+  const __m128i notAbove = _mm_cmpeq_epi8(_mm_subs_epu8(x, load16(before)), zero);
+  const __m128i notBelow = _mm_cmpeq_epi8(_mm_subs_epu8(load16(after), x), zero);
   return _mm_movemask_epi8(_mm_andnot_si128(notAbove, _mm_and_si128(high, notBelow)));
 }
 #endif
 
-// Candidate peaks along row i within [j0, j1]: isCandidate() against the larger score d pixels away on both
-// sides (one side near the image border).
+// Score at offset k along a line of n pixels from position j (0 beyond the ends).
+inline int scoreAt(const unsigned char *line, ptrdiff_t stride, int j, int k, int n)
+{
+  return j + k >= 0 && j + k < n ? line[(j + k) * stride] : 0;
+}
+
+// Candidate peaks along row i within [j0, j1] (near the image border one background side only).
 void rowCandidates(const unsigned char *c, int W, int i, int j0, int j1, int d, int threshold, std::vector<Candidate> &out)
 {
   j0 = std::max(j0, 1);
   j1 = std::min(j1, W - 2);
   const unsigned char *row = c + static_cast<size_t>(i) * W;
+  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
+  auto scalar = [&](int j) {
+    const int bg = std::max(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, d, W));
+    const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
+    if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
+      out.push_back(Candidate{i, j});
+  };
   int j = j0;
 #if defined(__SSE2__)
-  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold));
-  for (; j < d && j <= j1; ++j) {
-    const int bg = std::max<int>(j - d >= 0 ? row[j - d] : 0, j + d < W ? row[j + d] : 0);
-    if (isCandidate(row[j], bg, row[j - 1], row[j + 1], threshold))
-      out.push_back(Candidate{i, j});
-  }
+  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
+  for (; j < d && j <= j1; ++j)
+    scalar(j);
   for (; j + 15 <= j1 && j + 15 + d < W; j += 16) {
-    int bits = candidates16(row + j, row + j - d, row + j + d, row + j - 1, row + j + 1, t);
+    int bits = candidates16(row + j, row + j - d, row + j + d, row + j - dn, row + j + dn, row + j - 1, row + j + 1, t, th);
     while (bits) {
-      const int k = __builtin_ctz(bits);
-      out.push_back(Candidate{i, j + k});
+      out.push_back(Candidate{i, j + __builtin_ctz(bits)});
       bits &= bits - 1;
     }
   }
 #endif
-  for (; j <= j1; ++j) {
-    const int bg = std::max<int>(j - d >= 0 ? row[j - d] : 0, j + d < W ? row[j + d] : 0);
-    if (isCandidate(row[j], bg, row[j - 1], row[j + 1], threshold))
-      out.push_back(Candidate{i, j});
-  }
+  for (; j <= j1; ++j)
+    scalar(j);
 }
 
 // Candidate peaks along the columns (every step-th column) at row i within [j0, j1].
@@ -176,15 +196,15 @@ void columnCandidates(const unsigned char *c, int W, int H, int i, int j0, int j
   if (i < 1 || i > H - 2)
     return;
   const unsigned char *row = c + static_cast<size_t>(i) * W;
-  const unsigned char *up = row - W, *down = row + W;
-  const bool inside = i - d >= 0 && i + d < H;
+  const ptrdiff_t stride = W;
+  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
   int j = j0;
 #if defined(__SSE2__)
-  if (inside) {
-    const __m128i t = _mm_set1_epi8(static_cast<char>(threshold));
-    const unsigned char *far0 = row - static_cast<size_t>(d) * W, *far1 = row + static_cast<size_t>(d) * W;
+  if (i - d >= 0 && i + d < H) {
+    const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
     for (; j + 15 <= j1; j += 16) {
-      int bits = candidates16(row + j, far0 + j, far1 + j, up + j, down + j, t);
+      int bits = candidates16(row + j, row + j - d * stride, row + j + d * stride, row + j - dn * stride,
+                              row + j + dn * stride, row + j - stride, row + j + stride, t, th);
       while (bits) {
         const int k = __builtin_ctz(bits);
         if ((j + k) % step == 0)
@@ -195,9 +215,10 @@ void columnCandidates(const unsigned char *c, int W, int H, int i, int j0, int j
   }
 #endif
   for (; j <= j1; ++j) {
-    const int bg = std::max<int>(i - d >= 0 ? row[j - static_cast<ptrdiff_t>(d) * W] : 0,
-                                 i + d < H ? row[j + static_cast<ptrdiff_t>(d) * W] : 0);
-    if (j % step == 0 && isCandidate(row[j], bg, up[j], down[j], threshold))
+    const unsigned char *column = c + j; // the column j, row 0
+    const int bg = std::max(scoreAt(column, stride, i, -d, H), scoreAt(column, stride, i, d, H));
+    const int near = std::max(scoreAt(column, stride, i, -dn, H), scoreAt(column, stride, i, dn, H));
+    if (j % step == 0 && isCandidate(row[j], bg, near, row[j - stride], row[j + stride], threshold, half))
       out.push_back(Candidate{j, i});
   }
 }
@@ -349,12 +370,14 @@ std::vector<bool> longChains(const std::vector<Crossing> &crossings, int W, int 
   std::vector<bool> keep(n, true);
   if (minLength <= 0.0 || n == 0)
     return keep;
-  // Grid of cells of side `link` with a list of crossings per cell: the neighbours are in the 3 x 3 cells around.
-  const int columns = static_cast<int>(W / link) + 3, rows = static_cast<int>(H / link) + 3;
+  // Grid of cells of side >= link (8 px at least: a small grid) with a list of crossings per cell: the
+  // neighbours are in the 3 x 3 cells around.
+  const double side = std::max(8.0, link);
+  const int columns = static_cast<int>(W / side) + 3, rows = static_cast<int>(H / side) + 3;
   std::vector<int> head(static_cast<size_t>(columns) * rows, -1), next(n, -1), cellOf(n);
   for (int k = 0; k < n; ++k) {
-    const int cx = static_cast<int>(crossings[k].point.get_u() / link) + 1;
-    const int cy = static_cast<int>(crossings[k].point.get_v() / link) + 1;
+    const int cx = static_cast<int>(crossings[k].point.get_u() / side) + 1;
+    const int cy = static_cast<int>(crossings[k].point.get_v() / side) + 1;
     cellOf[k] = std::min(rows - 2, std::max(1, cy)) * columns + std::min(columns - 2, std::max(1, cx));
     next[k] = head[cellOf[k]];
     head[cellOf[k]] = k;
@@ -410,38 +433,45 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     return points;
   const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
 
-  // 1. Score (only over the region when one is given: nothing outside it is read).
-  score.resize(static_cast<size_t>(W) * H);
-  for (int i = 0; i < H; ++i) {
-    const size_t offset = static_cast<size_t>(i) * W;
-    if (scoreRegion == nullptr)
-      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation);
-    else
-      for (const std::pair<int, int> &span : (*scoreRegion)[i])
-        scoreSpan(rgba + 4 * (offset + span.first), &score[offset + span.first], span.second - span.first + 1,
-                  settings.saturation);
-  }
-
-  // 2. Threshold from the image's own noise.
+  // 1. Threshold from the image's own noise (a sparse sample of rows).
   report.noise = estimateNoise(I, scoreRegion);
   report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
   const int threshold = std::min(255, static_cast<int>(std::ceil(report.threshold)));
 
-  // 3. Candidates along the rows and the columns.
+  // 2. Score and candidates in one pass over the rows, while the rows are in cache: row i is scored (only
+  // over the region when one is given: nothing outside it is read) and searched along its length, and the
+  // columns are searched at row i - d, the last row whose neighbours up to d rows away are scored.
   const int d = settings.maxWidth, step = settings.step;
+  score.resize(static_cast<size_t>(W) * H);
   std::vector<Candidate> rowPeaks, columnPeaks;
+  rowPeaks.reserve(4096);
+  columnPeaks.reserve(4096);
+  auto searchColumns = [&](int r) {
+    if (searchRegion == nullptr)
+      columnCandidates(score.data(), W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
+    else
+      for (const std::pair<int, int> &span : (*searchRegion)[r])
+        columnCandidates(score.data(), W, H, r, span.first, span.second, d, threshold, step, columnPeaks);
+  };
   for (int i = 0; i < H; ++i) {
-    if (searchRegion == nullptr) {
+    const size_t offset = static_cast<size_t>(i) * W;
+    if (scoreRegion == nullptr) {
+      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation);
       if (i % step == 0)
         rowCandidates(score.data(), W, i, 0, W - 1, d, threshold, rowPeaks);
-      columnCandidates(score.data(), W, H, i, 0, W - 1, d, threshold, step, columnPeaks);
-    } else
-      for (const std::pair<int, int> &span : (*searchRegion)[i]) {
-        if (i % step == 0)
+    } else {
+      for (const std::pair<int, int> &span : (*scoreRegion)[i])
+        scoreSpan(rgba + 4 * (offset + span.first), &score[offset + span.first], span.second - span.first + 1,
+                  settings.saturation);
+      if (i % step == 0)
+        for (const std::pair<int, int> &span : (*searchRegion)[i])
           rowCandidates(score.data(), W, i, span.first, span.second, d, threshold, rowPeaks);
-        columnCandidates(score.data(), W, H, i, span.first, span.second, d, threshold, step, columnPeaks);
-      }
+    }
+    if (i - d >= 0)
+      searchColumns(i - d);
   }
+  for (int r = std::max(0, H - d); r < H; ++r)
+    searchColumns(r);
 
   // 4. Profiles around the candidates, one crossing per run: a later peak inside a measured run is skipped
   // (the candidates come line by line for the rows, row by row for the columns: one end per column).

@@ -153,17 +153,19 @@ void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
   const int block = 16, nbBlocks = (W + block - 1) / block;
   std::vector<unsigned char> marked(static_cast<size_t>(H) * nbBlocks, 0);
   const double m = m_regionMargin + extra;
-  // Points closer than a quarter of the margin to the last marked one add nothing.
-  const double spacing = 0.25 * m_regionMargin;
-  bool first = true;
-  double lastU = 0.0, lastV = 0.0;
+  // One point per cell of a quarter of the margin marks its square: more points in the cell add nothing
+  // (the band stays at least 3/4 of margin + extra wide around every point).
+  const double cellSize = std::max(1.0, 0.25 * m_regionMargin);
+  const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2, cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
+  std::vector<unsigned char> used(static_cast<size_t>(cellColumns) * cellRows, 0);
   for (const vpImagePoint &p : m_region) {
     const double u = p.get_u(), v = p.get_v();
-    if (!first && std::fabs(u - lastU) < spacing && std::fabs(v - lastV) < spacing)
+    if (u < -m || v < -m || u > W - 1 + m || v > H - 1 + m)
+      continue; // the square does not meet the image
+    unsigned char &cell = used[static_cast<size_t>((v + m) / cellSize) * cellColumns + static_cast<size_t>((u + m) / cellSize)];
+    if (cell)
       continue;
-    first = false;
-    lastU = u;
-    lastV = v;
+    cell = 1;
     const int i0 = std::max(0, static_cast<int>(std::floor(v - m))), i1 = std::min(H - 1, static_cast<int>(std::ceil(v + m)));
     const int j0 = std::max(0, static_cast<int>(std::floor(u - m))), j1 = std::min(W - 1, static_cast<int>(std::ceil(u + m)));
     if (j0 > j1)
