@@ -143,6 +143,9 @@ inline int candidates16(const unsigned char *v, const unsigned char *far0, const
                         const unsigned char *after, __m128i threshold, __m128i halfThreshold)
 {
   const __m128i x = load16(v), zero = _mm_setzero_si128();
+  // Most blocks of a frame have no score reaching the threshold: one test skips the other loads.
+  if (_mm_movemask_epi8(atLeast(x, zero, threshold)) == 0)
+    return 0;
   const __m128i saturated = _mm_cmpeq_epi8(x, _mm_set1_epi8(static_cast<char>(0xFF))); // a plateau of 255 may be wide
   const __m128i high =
       _mm_and_si128(atLeast(x, _mm_max_epu8(load16(far0), load16(far1)), threshold),
@@ -370,12 +373,13 @@ std::vector<bool> longChains(const std::vector<Crossing> &crossings, int W, int 
   std::vector<bool> keep(n, true);
   if (minLength <= 0.0 || n == 0)
     return keep;
-  // Grid of cells of side >= link (8 px at least: a small grid) with a list of crossings per cell: the
-  // neighbours are in the 3 x 3 cells around.
-  const double side = std::max(8.0, link);
+  // Grid of cells of side >= link (4 px at least: a small grid) with a list of crossings per cell: the
+  // neighbours are in the 3 x 3 cells around, each pair seen once from its first cell in scan order (the
+  // cell itself with the later crossings, and the 4 cells after it).
+  const double side = std::max(4.0, link);
   const int columns = static_cast<int>(W / side) + 3, rows = static_cast<int>(H / side) + 3;
   std::vector<int> head(static_cast<size_t>(columns) * rows, -1), next(n, -1), cellOf(n);
-  for (int k = 0; k < n; ++k) {
+  for (int k = n - 1; k >= 0; --k) { // lists in increasing index order
     const int cx = static_cast<int>(crossings[k].point.get_u() / side) + 1;
     const int cy = static_cast<int>(crossings[k].point.get_v() / side) + 1;
     cellOf[k] = std::min(rows - 2, std::max(1, cy)) * columns + std::min(columns - 2, std::max(1, cx));
@@ -385,20 +389,22 @@ std::vector<bool> longChains(const std::vector<Crossing> &crossings, int W, int 
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   const double link2 = link * link;
+  const int after[4] = {1, columns - 1, columns, columns + 1};
+  auto join = [&](int k, int q) {
+    const double du = crossings[k].point.get_u() - crossings[q].point.get_u();
+    const double dv = crossings[k].point.get_v() - crossings[q].point.get_v();
+    if (du * du + dv * dv <= link2) {
+      const int ra = root(parent, k), rb = root(parent, q);
+      if (ra != rb)
+        parent[ra] = rb;
+    }
+  };
   for (int k = 0; k < n; ++k) {
-    const vpImagePoint &p = crossings[k].point;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int q = head[cellOf[k] + dy * columns + dx]; q >= 0; q = next[q]) {
-          if (q <= k)
-            continue; // each pair once
-          const double du = p.get_u() - crossings[q].point.get_u(), dv = p.get_v() - crossings[q].point.get_v();
-          if (du * du + dv * dv <= link2) {
-            const int ra = root(parent, k), rb = root(parent, q);
-            if (ra != rb)
-              parent[ra] = rb;
-          }
-        }
+    for (int q = next[k]; q >= 0; q = next[q])
+      join(k, q);
+    for (int offset : after)
+      for (int q = head[cellOf[k] + offset]; q >= 0; q = next[q])
+        join(k, q);
   }
   // Extent of each chain: bounding-box diagonal.
   std::vector<double> minU(n, 1e30), maxU(n, -1e30), minV(n, 1e30), maxV(n, -1e30);
