@@ -270,7 +270,10 @@ bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, 
     // vpXmlParserCamera reports the camera it found on std::cout: keep that out of the programs' output.
     const CoutSilencer silence;
     try {
-      status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithoutDistortion);
+      // The model with distortion when the file has it (kud, kdu), else the one without.
+      status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithDistortion);
+      if (status != vpXmlParserCamera::SEQUENCE_OK)
+        status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithoutDistortion);
     } catch (const vpException &e) {
       parseError = e.getStringMessage();
     }
@@ -280,7 +283,11 @@ bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, 
     return false;
   }
   if (status != vpXmlParserCamera::SEQUENCE_OK) {
-    error = file + ": no camera named '" + name + "' with a perspective model without distortion (vpXmlParserCamera format)";
+    error = file + ": no camera named '" + name + "' with a perspective model (vpXmlParserCamera format)";
+    return false;
+  }
+  if (!std::isfinite(parsed.get_kud()) || !std::isfinite(parsed.get_kdu())) {
+    error = file + ": distortion coefficients kud, kdu must be finite";
     return false;
   }
   if (!(parsed.get_px() > 0.0) || !(parsed.get_py() > 0.0)) {

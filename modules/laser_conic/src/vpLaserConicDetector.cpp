@@ -40,7 +40,7 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
 } // namespace
 
 vpLaserConicDetector::vpLaserConicDetector()
-  : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(30.0),
+  : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
     m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
     m_minValue(80), m_region(), m_regionMargin(0.0), m_mask(), m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0),
     m_noise(0.0), m_score(), m_runs()

@@ -90,7 +90,7 @@ public:
 
   /*!
     Detector with the defaults: ridge method, minimum contrast 10 grey levels, noise factor 5, stripes of at
-    most 12 pixels, saturation level 250, segments of at least 30 pixels, every row and column, no search
+    most 12 pixels, saturation level 250, segments of at least 50 pixels, every row and column, no search
     region; for the HSV method hue <= 10 or >= 170, saturation >= 80, value >= 80.
   */
   vpLaserConicDetector();
@@ -135,7 +135,7 @@ public:
   unsigned int getSaturationLevel() const { return m_saturationLevel; }
   /*!
     Ridge method: chains of points shorter than this (bounding-box diagonal, pixels) are dropped; default
-    30 (red clutter and the thin corners of red floor patches make shorter chains). 0 keeps every point.
+    50 (red clutter and the thin corners of red floor patches make shorter chains). 0 keeps every point.
     \exception vpLaserConicException::badValueError when negative or not finite.
   */
   void setMinSegmentLength(double pixels);
