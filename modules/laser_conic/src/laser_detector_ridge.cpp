@@ -115,8 +115,8 @@ struct Candidate
   bool operator<(const Candidate &o) const { return line < o.line || (line == o.line && pos < o.pos); }
 };
 
-// Candidate test of one pixel: v exceeds the background bg (the larger score d pixels away on both sides) by
-// threshold and the score `near` (the larger at d / 2 + 1 pixels) by half of it, and is a local maximum (first
+// Candidate test of one pixel: v exceeds the background bg by threshold and the score `near` (the larger at
+// d / 2 + 1 pixels on both sides) by half of it, and is a local maximum (first
 // pixel of a plateau) between its neighbours before and after along the scan line. The second test is implied
 // by the half-maximum width test of a stripe centred on its peak; it discards early the local maxima of red
 // areas a little wider than a stripe, which would fail that test after a longer look. A saturated pixel
@@ -138,6 +138,8 @@ inline __m128i atLeast(__m128i v, __m128i b, __m128i t)
 
 // isCandidate() on 16 consecutive pixels (unsigned saturated byte arithmetic); bit k of the result for pixel
 // k. far0/far1, near0/near1: the pixels d and d / 2 + 1 away on each side; before/after: the neighbours.
+// The background of a side is the lower of its two samples (a neighbouring red patch at d pixels does not
+// hide a stripe whose surroundings at d / 2 + 1 are dark), the background the larger of the two sides.
 inline int candidates16(const unsigned char *v, const unsigned char *far0, const unsigned char *far1,
                         const unsigned char *near0, const unsigned char *near1, const unsigned char *before,
                         const unsigned char *after, __m128i threshold, __m128i halfThreshold)
@@ -147,9 +149,10 @@ inline int candidates16(const unsigned char *v, const unsigned char *far0, const
   if (_mm_movemask_epi8(atLeast(x, zero, threshold)) == 0)
     return 0;
   const __m128i saturated = _mm_cmpeq_epi8(x, _mm_set1_epi8(static_cast<char>(0xFF))); // a plateau of 255 may be wide
+  const __m128i n0 = load16(near0), n1 = load16(near1);
+  const __m128i bg = _mm_max_epu8(_mm_min_epu8(load16(far0), n0), _mm_min_epu8(load16(far1), n1));
   const __m128i high =
-      _mm_and_si128(atLeast(x, _mm_max_epu8(load16(far0), load16(far1)), threshold),
-                    _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(load16(near0), load16(near1)), halfThreshold)));
+      _mm_and_si128(atLeast(x, bg, threshold), _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(n0, n1), halfThreshold)));
   const __m128i notAbove = _mm_cmpeq_epi8(_mm_subs_epu8(x, load16(before)), zero);
   const __m128i notBelow = _mm_cmpeq_epi8(_mm_subs_epu8(load16(after), x), zero);
   return _mm_movemask_epi8(_mm_andnot_si128(notAbove, _mm_and_si128(high, notBelow)));
@@ -170,7 +173,8 @@ void rowCandidates(const unsigned char *c, int W, int i, int j0, int j1, int d, 
   const unsigned char *row = c + static_cast<size_t>(i) * W;
   const int dn = d / 2 + 1, half = (threshold + 1) / 2;
   auto scalar = [&](int j) {
-    const int bg = std::max(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, d, W));
+    const int bg = std::max(std::min(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, -dn, W)),
+                            std::min(scoreAt(row, 1, j, d, W), scoreAt(row, 1, j, dn, W)));
     const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
     if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
       out.push_back(Candidate{i, j});
@@ -219,7 +223,8 @@ void columnCandidates(const unsigned char *c, int W, int H, int i, int j0, int j
 #endif
   for (; j <= j1; ++j) {
     const unsigned char *column = c + j; // the column j, row 0
-    const int bg = std::max(scoreAt(column, stride, i, -d, H), scoreAt(column, stride, i, d, H));
+    const int bg = std::max(std::min(scoreAt(column, stride, i, -d, H), scoreAt(column, stride, i, -dn, H)),
+                            std::min(scoreAt(column, stride, i, d, H), scoreAt(column, stride, i, dn, H)));
     const int near = std::max(scoreAt(column, stride, i, -dn, H), scoreAt(column, stride, i, dn, H));
     if (j % step == 0 && isCandidate(row[j], bg, near, row[j - stride], row[j + stride], threshold, half))
       out.push_back(Candidate{j, i});
@@ -287,9 +292,13 @@ enum Verdict
 // Checks the profile around the candidate peak p and measures its sub-pixel centre.
 Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, Crossing &out)
 {
-  const int n = s.length(), d = settings.maxWidth;
+  const int n = s.length(), d = settings.maxWidth, dn = d / 2 + 1;
   const int peak = s.at(p);
-  const int bg = std::max(p - d >= 0 ? s.at(p - d) : 0, p + d < n ? s.at(p + d) : 0);
+  auto side = [&](int sign) { // the lower of the scores d and d / 2 + 1 pixels away on one side
+    const int a = p + sign * d, b = p + sign * dn;
+    return std::min(a >= 0 && a < n ? s.at(a) : 0, b >= 0 && b < n ? s.at(b) : 0);
+  };
+  const int bg = std::max(side(-1), side(1));
   const int contrast = peak - bg;
   if (contrast < threshold)
     return IGNORED;
