@@ -453,8 +453,7 @@ bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, 
     // vpXmlParserCamera reports the camera it found on std::cout: keep that out of the programs' output.
     const CoutSilencer silence;
     try {
-      // The model with distortion when the file has it (the laser estimators convert pixels with it), else
-      // the one without.
+      // The model with distortion when the file has it (kud, kdu), else the one without.
       status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithDistortion);
       if (status != vpXmlParserCamera::SEQUENCE_OK)
         status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithoutDistortion);
@@ -468,6 +467,10 @@ bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, 
   }
   if (status != vpXmlParserCamera::SEQUENCE_OK) {
     error = file + ": no camera named '" + name + "' with a perspective model (vpXmlParserCamera format)";
+    return false;
+  }
+  if (!std::isfinite(parsed.get_kud()) || !std::isfinite(parsed.get_kdu())) {
+    error = file + ": distortion coefficients kud, kdu must be finite";
     return false;
   }
   if (!(parsed.get_px() > 0.0) || !(parsed.get_py() > 0.0)) {

@@ -164,14 +164,16 @@ public:
                                std::string &error);
 
   /*!
-    Reads the camera \e name from a vpXmlParserCamera file: its perspective model with distortion when
-    the file has one, else the model without distortion; \e width and \e height are 0 when the file gives no image size.
+    Reads the camera \e name from a vpXmlParserCamera file: the perspective projection with distortion
+    (kud, kdu) when the file has it, else the one without; \e width and \e height are 0 when the file
+    gives no image size.
     \return false with \e error (naming the file) when the file is missing or not a vpXmlParserCamera
     file, the camera is not in it, or its focal lengths are not positive.
   */
   static bool readCamera(const std::string &file, const std::string &name, vpCameraParameters &cam,
                          unsigned int &width, unsigned int &height, std::string &error);
-  //! Writes the camera as "Camera" in vpXmlParserCamera format. \return false with \e error on failure.
+  //! Writes the camera (its projection model, with distortion or not) as "Camera" in vpXmlParserCamera format.
+  //! \return false with \e error on failure.
   static bool writeCamera(const std::string &file, const vpCameraParameters &cam, unsigned int width,
                           unsigned int height, std::string &error);
 

@@ -5,7 +5,7 @@
 /*!
   \example vsp-demo.cpp
   The main demo, run without arguments on the data shipped in data/:
-  -# the simulated laser sequence (data/laser_sequence): each image through vpLaserConicDetector,
+  -# the simulated hard laser sequence (data/laser_hard): each image through vpLaserConicDetector,
      then GP3, PP3, PP5 and PLANE_PAIR (vpLaserConicPose), compared with the ground truth;
   -# the simulated gravity-aided pose sequence (data/gravity_sequence): vpPoseGravity with P3P,
      P3P + refinePose, LEAST_SQUARES and RANSAC, and vpPose on the same points for comparison.
@@ -37,7 +37,7 @@ vpCommandLine commandLine(vpDemoOptions &options)
   cli.addString("--output", options.outputDir, "DIR",
                 "folder for the CSV results, PNG plots and overlays (default ./demo-output)");
   cli.addString("--data", options.dataDir, "DIR",
-                "folder holding laser_sequence/ and gravity_sequence/ (default " + std::string(VSP_DATA_DIR) + ")");
+                "folder holding laser_hard/ and gravity_sequence/ (default " + std::string(VSP_DATA_DIR) + ")");
   cli.addUnsigned("--frames", options.maxFrames, "N", "process only the first N frames of each sequence", 1);
   cli.addFlag("--check", options.check, "exit with status 1 when an error exceeds its bound (see the bounds printed)");
   return cli;

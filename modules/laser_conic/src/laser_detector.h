@@ -16,6 +16,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/laser_conic/vpLaserConicDetector.h>
 
 namespace vpLaserDetector
 {
@@ -40,14 +41,21 @@ struct RidgeReport
   double noise = 0.0;     //!< estimated score noise
 };
 
+//! A stripe run measured along a scan line, for the diagnostic mask: along row `line` when alongRow (else
+//! along column `line`), its half-maximum run [first, last], accepted (a returned point) or rejected.
+typedef vpLaserConicDetectorRun StripeRun;
+
+//! Fills \e mask (resized to H x W) from the runs: 255 on the accepted runs, 100 on the rejected ones.
+void drawRuns(const std::vector<StripeRun> &runs, unsigned int H, unsigned int W, vpImage<unsigned char> &mask);
+
 /*!
   Ridge detector. \e scoreRegion / \e searchRegion: null for the whole image, else the rows to score
   (the search region dilated by the background distance) and the rows to search. \e score is a work
-  buffer; \e mask is resized and filled (255 accepted, 100 rejected runs).
+  buffer; \e runs receives the measured stripe runs (see drawRuns()).
 */
 std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSettings &settings,
                                       const RowIntervals *scoreRegion, const RowIntervals *searchRegion,
-                                      std::vector<unsigned char> &score, vpImage<unsigned char> &mask,
+                                      std::vector<unsigned char> &score, std::vector<StripeRun> &runs,
                                       RidgeReport &report);
 
 //! Settings of the HSV detector.

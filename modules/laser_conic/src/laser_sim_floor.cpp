@@ -53,8 +53,8 @@ void brightGrey(double X, double Y, uint32_t seed, float rgb[3], float &gloss)
 
 void mosaic(double X, double Y, uint32_t seed, float rgb[3], float &gloss)
 {
-  // Voronoi patches around jittered points of a 6 cm lattice; grout where two patches meet.
-  const double size = 0.06;
+  // Voronoi patches around jittered points of a 9 cm lattice; grout where two patches meet.
+  const double size = 0.09;
   const int cx = cell(X, size), cy = cell(Y, size);
   double best = 1e30, second = 1e30;
   uint32_t bestHash = 0;

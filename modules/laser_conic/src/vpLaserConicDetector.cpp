@@ -40,9 +40,10 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
 } // namespace
 
 vpLaserConicDetector::vpLaserConicDetector()
-  : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(30.0),
+  : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
     m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
-    m_minValue(80), m_region(), m_regionMargin(0.0), m_mask(), m_threshold(0.0), m_noise(0.0), m_score()
+    m_minValue(80), m_region(), m_regionMargin(0.0), m_mask(), m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0),
+    m_noise(0.0), m_score(), m_runs()
 {
 }
 
@@ -147,47 +148,64 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
                                            std::vector<std::vector<std::pair<int, int> > > &rows) const
 {
-  rows.assign(H, std::vector<std::pair<int, int> >());
+  // The band is rasterised in blocks of 16 columns (the width the scans process at once): each point marks
+  // the blocks of the rows within margin + extra of it that its square of half side margin + extra touches.
+  const int block = 16, nbBlocks = (W + block - 1) / block;
+  std::vector<unsigned char> marked(static_cast<size_t>(H) * nbBlocks, 0);
   const double m = m_regionMargin + extra;
-  // Squares of half side m around the points, the points thinned to a spacing of a quarter of the margin
-  // (the same points whatever `extra`, so that a band with a larger extra contains the band with a smaller).
-  const double spacing = 0.25 * m_regionMargin;
-  bool first = true;
-  double lastU = 0.0, lastV = 0.0;
+  // One point per cell of a quarter of the margin marks its square: more points in the cell add nothing
+  // (the band stays at least 3/4 of margin + extra wide around every point).
+  const double cellSize = std::max(1.0, 0.25 * m_regionMargin);
+  const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2, cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
+  std::vector<unsigned char> used(static_cast<size_t>(cellColumns) * cellRows, 0);
   for (const vpImagePoint &p : m_region) {
     const double u = p.get_u(), v = p.get_v();
-    if (!first && std::fabs(u - lastU) < spacing && std::fabs(v - lastV) < spacing)
+    if (u < -m || v < -m || u > W - 1 + m || v > H - 1 + m)
+      continue; // the square does not meet the image
+    unsigned char &cell = used[static_cast<size_t>((v + m) / cellSize) * cellColumns + static_cast<size_t>((u + m) / cellSize)];
+    if (cell)
       continue;
-    first = false;
-    lastU = u;
-    lastV = v;
+    cell = 1;
     const int i0 = std::max(0, static_cast<int>(std::floor(v - m))), i1 = std::min(H - 1, static_cast<int>(std::ceil(v + m)));
     const int j0 = std::max(0, static_cast<int>(std::floor(u - m))), j1 = std::min(W - 1, static_cast<int>(std::ceil(u + m)));
     if (j0 > j1)
       continue;
     for (int i = i0; i <= i1; ++i)
-      rows[i].push_back(std::make_pair(j0, j1));
+      std::fill(&marked[static_cast<size_t>(i) * nbBlocks + j0 / block],
+                &marked[static_cast<size_t>(i) * nbBlocks + j1 / block] + 1, 1);
   }
-  // Sorted, merged intervals.
-  for (std::vector<std::pair<int, int> > &spans : rows) {
-    if (spans.size() < 2)
-      continue;
-    std::sort(spans.begin(), spans.end());
-    size_t out = 0;
-    for (size_t k = 1; k < spans.size(); ++k) {
-      if (spans[k].first <= spans[out].second + 1)
-        spans[out].second = std::max(spans[out].second, spans[k].second);
-      else
-        spans[++out] = spans[k];
+  rows.resize(H);
+  for (int i = 0; i < H; ++i) {
+    rows[i].clear();
+    const unsigned char *row = &marked[static_cast<size_t>(i) * nbBlocks];
+    for (int b = 0; b < nbBlocks; ++b) {
+      if (!row[b])
+        continue;
+      const int start = b;
+      while (b + 1 < nbBlocks && row[b + 1])
+        ++b;
+      rows[i].push_back(std::make_pair(start * block, std::min(W - 1, (b + 1) * block - 1)));
     }
-    spans.resize(out + 1);
   }
+}
+
+const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
+{
+  if (m_maskDirty) {
+    vpLaserDetector::drawRuns(m_runs, m_height, m_width, m_mask);
+    m_maskDirty = false;
+  }
+  return m_mask;
 }
 
 std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
 {
   m_threshold = 0.0;
   m_noise = 0.0;
+  m_runs.clear();
+  m_height = I.getHeight();
+  m_width = I.getWidth();
+  m_maskDirty = m_method == DETECTION_RIDGE;
   if (m_method == DETECTION_HSV) {
     const vpLaserDetector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
                                                     static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
@@ -199,14 +217,14 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   vpLaserDetector::RidgeReport report;
   std::vector<vpImagePoint> points;
   if (m_region.empty() || I.getSize() == 0)
-    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, m_score, m_mask, report);
+    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, m_score, m_runs, report);
   else {
     // Everything the ridge tests read lies within the stripe width + 2 of a searched pixel.
     const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
     vpLaserDetector::RowIntervals scoreRows, searchRows;
     regionIntervals(H, W, static_cast<int>(m_maxStripeWidth) + 2, scoreRows);
     regionIntervals(H, W, 0, searchRows);
-    points = vpLaserDetector::detectRidge(I, settings, &scoreRows, &searchRows, m_score, m_mask, report);
+    points = vpLaserDetector::detectRidge(I, settings, &scoreRows, &searchRows, m_score, m_runs, report);
   }
   m_threshold = report.threshold;
   m_noise = report.noise;

@@ -464,10 +464,12 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
     stretchTexel = 2.0 * half / std::max(stretchedTexture->getWidth(), stretchedTexture->getHeight());
   }
 
+  const uint32_t sceneSeed = settings.sceneSeed >= 0 ? static_cast<uint32_t>(settings.sceneSeed) : m_seed;
   // Clutter: small red patches at ground positions drawn from the seed only (the same scene every frame).
   std::vector<vpDistractor> objects = settings.distractors;
   for (unsigned int k = 0; k < settings.clutter; ++k) {
-    const uint32_t h1 = vpLaserSimFloor::hash(static_cast<int>(k), 11, m_seed), h2 = vpLaserSimFloor::hash(static_cast<int>(k), 12, m_seed);
+    const uint32_t h1 = vpLaserSimFloor::hash(static_cast<int>(k), 11, sceneSeed),
+                   h2 = vpLaserSimFloor::hash(static_cast<int>(k), 12, sceneSeed);
     vpDistractor d;
     d.shape = (h1 & 1) ? DISTRACTOR_DISC : DISTRACTOR_RECTANGLE;
     const double radius = settings.clutterRadius * std::sqrt(vpLaserSimFloor::unit(h1));
@@ -515,7 +517,7 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
         out[2] = albedo[2];
         continue; // historical path: the texture as is, no lighting
       }
-      vpLaserSimFloor::albedo(settings.floor, X, Y, m_seed, albedo, gloss);
+      vpLaserSimFloor::albedo(settings.floor, X, Y, sceneSeed, albedo, gloss);
       if (m_texture.getSize() != 0 &&
           sampleTexture(m_texture, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
         gloss = 0.2f;

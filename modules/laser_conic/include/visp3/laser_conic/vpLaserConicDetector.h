@@ -19,6 +19,16 @@
 #include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
+#ifndef DOXYGEN_SHOULD_SKIP_THIS
+//! A measured stripe run (internal: the diagnostic mask is drawn from them).
+struct vpLaserConicDetectorRun
+{
+  bool alongRow;
+  int line, first, last;
+  bool accepted;
+};
+#endif
+
 /*!
   \ingroup group_laser_conic
   \brief Extracts the sub-pixel image points of a red laser stripe (the trace of a circular laser).
@@ -80,7 +90,7 @@ public:
 
   /*!
     Detector with the defaults: ridge method, minimum contrast 10 grey levels, noise factor 5, stripes of at
-    most 12 pixels, saturation level 250, segments of at least 30 pixels, every row and column, no search
+    most 12 pixels, saturation level 250, segments of at least 50 pixels, every row and column, no search
     region; for the HSV method hue <= 10 or >= 170, saturation >= 80, value >= 80.
   */
   vpLaserConicDetector();
@@ -125,7 +135,7 @@ public:
   unsigned int getSaturationLevel() const { return m_saturationLevel; }
   /*!
     Ridge method: chains of points shorter than this (bounding-box diagonal, pixels) are dropped; default
-    30 (red clutter and the thin corners of red floor patches make shorter chains). 0 keeps every point.
+    50 (red clutter and the thin corners of red floor patches make shorter chains). 0 keeps every point.
     \exception vpLaserConicException::badValueError when negative or not finite.
   */
   void setMinSegmentLength(double pixels);
@@ -173,8 +183,12 @@ public:
 
   //! Detects the trace points of \e I (pixel coordinates, sub-pixel); empty for an empty image.
   std::vector<vpImagePoint> detect(const vpImage<vpRGBa> &I);
-  //! Diagnostic mask of the last detection (255: accepted stripe runs, 100: rejected candidates, 0: other).
-  const vpImage<unsigned char> &getMask() const { return m_mask; }
+  /*!
+    Diagnostic mask of the last detection, the size of the image (ridge method: 255 on the accepted stripe
+    runs, 100 on the rejected candidate runs, 0 elsewhere; HSV method: 255 on the thresholded pixels). Drawn
+    on the first call after a detection (the detection itself does not pay for it).
+  */
+  const vpImage<unsigned char> &getMask() const;
   //! Contrast threshold T used by the last ridge detection, grey levels.
   double getThreshold() const { return m_threshold; }
   //! Score noise estimated by the last ridge detection, grey levels.
@@ -190,9 +204,12 @@ private:
   int m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue;
   std::vector<vpImagePoint> m_region; //!< sampled search region (empty: whole image)
   double m_regionMargin;
-  vpImage<unsigned char> m_mask;
+  mutable vpImage<unsigned char> m_mask; //!< drawn from m_runs by getMask() when m_maskDirty
+  mutable bool m_maskDirty;
+  unsigned int m_height, m_width;        //!< size of the last image
   double m_threshold, m_noise;
   std::vector<unsigned char> m_score; //!< score buffer, reused from frame to frame
+  std::vector<vpLaserConicDetectorRun> m_runs; //!< stripe runs of the last ridge detection
 };
 
 #endif

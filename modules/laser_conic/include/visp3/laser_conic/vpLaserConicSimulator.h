@@ -101,6 +101,9 @@ public:
   struct vpRenderSettings
   {
     vpFloorType floor = FLOOR_DARK_TILES; //!< procedural floor
+    //! Seed of the floor and of the clutter (negative: the simulator's seed, setSeed()); a fixed value keeps
+    //! the scene of a sequence while setSeed() changes the sensor noise from frame to frame.
+    int sceneSeed = -1;
     double ambient = 1.0;      //!< multiplier of the floor (and distractor) brightness, >= 0
     double specular = 0.0;     //!< peak grey level of the lamp's specular reflection on the floor, >= 0
     double shininess = 60.0;   //!< Phong exponent of that reflection (larger: smaller highlight), > 0
