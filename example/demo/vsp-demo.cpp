@@ -61,7 +61,7 @@ vpCommandLine commandLine(vpDemoOptions &options)
                 "folder for the CSV results, PNG plots and overlays (default ./demo-output)");
   cli.addString("--data", options.dataDir, "DIR",
                 "folder holding laser_sequence/ and gravity_sequence/ (default " + options.dataDir +
-                  ", i.e. " VSP_DATA_RELATIVE_TO_PROGRAM " next to this program)");
+                  ": " VSP_DATA_RELATIVE_TO_PROGRAM " from the folder of this program)");
   cli.addUnsigned("--frames", options.maxFrames, "N", "process only the first N frames of each sequence", 1);
   cli.addFlag("--check", options.check, "exit with status 1 when an error exceeds its bound (see the bounds printed)");
   return cli;
