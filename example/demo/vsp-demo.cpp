@@ -116,7 +116,7 @@ int main(int argc, char **argv)
     return EXIT_FAILURE;
   }
   const std::string outputPath = std::filesystem::absolute(options.outputDir).lexically_normal().string();
-  std::cout << "Data: " << std::filesystem::absolute(options.dataDir).lexically_normal().string()
+  std::cout << "Data: " << std::filesystem::weakly_canonical(std::filesystem::absolute(options.dataDir), ec).string()
             << "\nOutput: " << outputPath
             << std::endl;
 

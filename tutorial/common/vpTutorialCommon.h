@@ -20,11 +20,14 @@
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpFont.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpIoTools.h>
 #include <visp3/core/vpImageConvert.h>
+#include <visp3/core/vpMath.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpTime.h>
 #include <visp3/gui/vpDisplayOpenCV.h>
 #include <visp3/gui/vpDisplayX.h>
@@ -200,6 +203,14 @@ inline vpColVector vpTutorialMeasureGravity(const vpColVector &g, double sigma, 
   for (unsigned int i = 0; i < 3; ++i)
     measured[i] = g[i] + noise(rng);
   return measured;
+}
+
+//! Error of an estimated pose against the truth: translation (mm) and rotation angle (deg) of the difference.
+inline void vpTutorialPoseError(const vpHomogeneousMatrix &cMoEst, const vpHomogeneousMatrix &cMoTrue, double &errMm,
+                                double &errDeg)
+{
+  errMm = 1000.0 * (cMoEst.getTranslationVector() - cMoTrue.getTranslationVector()).frobeniusNorm();
+  errDeg = vpMath::deg(vpThetaUVector((cMoEst * cMoTrue.inverse()).getRotationMatrix()).getTheta());
 }
 
 //! Returns ok; when it is false, prints "FAILED: " and what failed (the bounds) on the error stream.

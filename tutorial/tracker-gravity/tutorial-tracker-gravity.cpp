@@ -94,14 +94,6 @@ void renderFrame(vpImageSimulator &simulator, const vpHomogeneousMatrix &cMo, co
     I.bitmap[n] = static_cast<unsigned char>(vpMath::saturate<unsigned char>(I.bitmap[n] + noise(rng)));
 }
 
-//! Translation (mm) and rotation (deg) of the error between an estimate and the truth.
-void poseError(const vpHomogeneousMatrix &cMoEst, const vpHomogeneousMatrix &cMoTrue, double &errMm, double &errDeg)
-{
-  const vpHomogeneousMatrix delta = cMoEst * cMoTrue.inverse();
-  errMm = 1000.0 * (cMoEst.getTranslationVector() - cMoTrue.getTranslationVector()).frobeniusNorm();
-  errDeg = vpMath::deg(vpThetaUVector(delta.getRotationMatrix()).getTheta());
-}
-
 //! [Overlay]
 //! The frame with the tracked dots and the axes of the estimated target frame.
 void writeOverlay(const vpImage<unsigned char> &I, const std::vector<vpDot2> &dots, const vpHomogeneousMatrix &cMo,
@@ -188,8 +180,8 @@ bool runTrackerTutorial(int frames, const std::string &outputDir, bool display)
     viewer.flush();
 
     double errMm = 0, errDeg = 0, errP3p = 0, errP3pDeg = 0;
-    poseError(cMo, cMoTrue, errMm, errDeg);
-    poseError(cMoP3p, cMoTrue, errP3p, errP3pDeg);
+    vpTutorialPoseError(cMo, cMoTrue, errMm, errDeg);
+    vpTutorialPoseError(cMoP3p, cMoTrue, errP3p, errP3pDeg);
     frameIndex.push_back(k);
     errP3pMm.push_back(errP3p);
     errRefinedMm.push_back(errMm);

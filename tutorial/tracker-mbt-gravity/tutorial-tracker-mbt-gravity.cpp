@@ -149,13 +149,6 @@ vpHomogeneousMatrix boxPose(int k, int frames, int pushFrame)
 }
 //! [Motion]
 
-//! Translation (mm) and rotation (deg) of the error between an estimate and the truth.
-void poseError(const vpHomogeneousMatrix &cMoEst, const vpHomogeneousMatrix &cMoTrue, double &errMm, double &errDeg)
-{
-  errMm = 1000.0 * (cMoEst.getTranslationVector() - cMoTrue.getTranslationVector()).frobeniusNorm();
-  errDeg = vpMath::deg(vpThetaUVector((cMoEst * cMoTrue.inverse()).getRotationMatrix()).getTheta());
-}
-
 //! Three top corners of the box (one of each pair of opposite corners, never collinear).
 const unsigned int kInitCorners[3] = {1, 5, 7};
 
@@ -319,7 +312,7 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
         unaided.initFromPose(I, cMoInit);
       reinitialised = initialised;
       double mm = 0, deg = 0;
-      poseError(cMoInit, cMoTrue, mm, deg);
+      vpTutorialPoseError(cMoInit, cMoTrue, mm, deg);
       (initialised ? reinitError : initError).add(mm, deg);
       initialised = true;
     }
@@ -332,8 +325,8 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
     unaided.getPose(cMoUnaided);
 
     double mm = 0, deg = 0, uMm = 0, uDeg = 0;
-    poseError(cMo, cMoTrue, mm, deg);
-    poseError(cMoUnaided, cMoTrue, uMm, uDeg);
+    vpTutorialPoseError(cMo, cMoTrue, mm, deg);
+    vpTutorialPoseError(cMoUnaided, cMoTrue, uMm, uDeg);
     index.push_back(k);
     errMm.push_back(mm);
     unaidedMm.push_back(uMm);
