@@ -354,7 +354,6 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
       vpTutorialWriteCaptioned(overlay, caption.str(), vpColor::yellow, vpIoTools::createFilePath(outputDir, name));
     }
   }
-  viewer.waitClick();
 
   vpPngPlot plot("Pose error against ground truth (box pushed at frame " + std::to_string(pushFrame) + ")", "frame",
                  "translation error (mm)", 640, 420);
@@ -375,6 +374,7 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
             << afterPush.maxMm << " mm / " << afterPush.maxDeg << " deg\nTracker without re-initialisation: "
             << "largest error after the push " << lostUnaidedMm << " mm\nImages written to " << outputDir
             << "/tracker-mbt-gravity-*.png" << std::endl;
+  viewer.waitClick();
 
   // Bounds. The P3P uses 3 corners with 0.5 px of noise, 15-25 cm apart at 0.55-0.65 m (f = 800 px),
   // and IMU tilts of 0.2 deg: measured 1.8-3.8 mm / 0.3-0.6 deg; bound 10 mm / 1.5 deg, i.e. well within
