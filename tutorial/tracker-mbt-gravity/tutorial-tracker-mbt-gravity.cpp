@@ -237,6 +237,14 @@ bool trackFrame(vpMbGenericTracker &tracker, const vpImage<unsigned char> &I, do
 }
 //! [Track]
 
+//! Pixel position of the normalized image coordinates (x, y) of P.
+vpImagePoint pixelOf(const vpPoint &P, const vpCameraParameters &cam)
+{
+  vpImagePoint ip;
+  vpMeterPixelConversion::convertPoint(cam, P.get_x(), P.get_y(), ip);
+  return ip;
+}
+
 //! Draws the visible model edges of the tracker at cMo and the three points into the image pixels.
 void drawTracking(vpImage<vpRGBa> &I, vpMbGenericTracker &tracker, const vpHomogeneousMatrix &cMo,
                   const vpCameraParameters &cam, const std::vector<vpPoint> &initPoints, const vpColor &color)
@@ -245,11 +253,8 @@ void drawTracking(vpImage<vpRGBa> &I, vpMbGenericTracker &tracker, const vpHomog
     if (line.size() == 5 && line[0] == 0) // a segment: 0, i1, j1, i2, j2
       vpImageDraw::drawLine(I, vpImagePoint(line[1], line[2]), vpImagePoint(line[3], line[4]), color, 2);
   vpImageDraw::drawFrame(I, cMo, cam, 0.05, vpColor::none, 2);
-  for (const vpPoint &P : initPoints) {
-    vpImagePoint ip;
-    vpMeterPixelConversion::convertPoint(cam, P.get_x(), P.get_y(), ip);
-    vpImageDraw::drawCross(I, ip, 14, vpColor::yellow, 2);
-  }
+  for (const vpPoint &P : initPoints)
+    vpImageDraw::drawCross(I, pixelOf(P, cam), 14, vpColor::yellow, 2);
 }
 
 //! Error statistics of a range of frames.
@@ -337,10 +342,12 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
     if (k > pushFrame + 2)
       lostUnaidedMm = std::max(lostUnaidedMm, uMm);
 
-    viewer.show(I);
+    viewer.show(I); // --display: the tracked model, and the three points of a (re-)initialisation
     tracker.display(viewer.image(), cMo, cam, vpColor::red, 2);
     vpDisplay::displayFrame(viewer.image(), cMo, cam, 0.05, vpColor::none, 2);
-    viewer.flush();
+    for (const vpPoint &P : initPoints)
+      vpDisplay::displayCross(viewer.image(), pixelOf(P, cam), 14, vpColor::yellow, 2);
+    viewer.flush(initPoints.empty() ? 30 : 1000);
 
     if (k == 1 || reinitialised || k == frames - 1) {
       vpImage<vpRGBa> overlay;
