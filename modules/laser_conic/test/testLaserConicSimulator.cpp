@@ -500,10 +500,7 @@ TEST(LaserConicSimulator, HardSettingsRenderWhatTheyDescribe)
 
   // A red disc at the ground origin is red in the image.
   settings.occluders.clear();
-  vpLaserConicSimulator::vpDistractor disc;
-  disc.x = -0.05;
-  disc.y = 0.03;
-  disc.size = 0.1;
+  const vpLaserConicSimulator::vpDistractor disc = vpLaserConicSimulator::vpDistractor::disc(-0.05, 0.03, 0.1);
   settings.distractors.push_back(disc);
   sim.render(I, settings);
   const vpRGBa &c = at(I, groundPixel(camera(), groundPose(), disc.x, disc.y));
