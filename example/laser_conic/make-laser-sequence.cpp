@@ -472,11 +472,11 @@ int main(int argc, char **argv)
         std::ostringstream quality;
         quality << points.size();
         if (settings.laserOn) {
-          double coverage = 0.0, rms = 0.0;
-          detectorQuality(sim, settings, points, width, height, coverage, rms);
+          double coverage = 0.0, detectionRms = 0.0;
+          detectorQuality(sim, settings, points, width, height, coverage, detectionRms);
           worstCoverage = std::min(worstCoverage, coverage);
-          worstRms = std::max(worstRms, rms);
-          quality << "," << std::setprecision(4) << coverage << "," << rms;
+          worstRms = std::max(worstRms, detectionRms);
+          quality << "," << std::setprecision(4) << coverage << "," << detectionRms;
         } else
           quality << ",nan,nan";
         qualityLine = quality.str();
