@@ -132,21 +132,9 @@ vpLaserConicSimulator::vpRenderSettings hardSettings(HardCondition c, unsigned i
     s.ambient = 0.8;
     s.clutter = 120;
     s.clutterRadius = 2.5;
-    vpLaserConicSimulator::vpDistractor box, disc, cable;
-    box.shape = vpLaserConicSimulator::DISTRACTOR_RECTANGLE;
-    box.x = 0.4;
-    box.y = -0.3;
-    box.size = 0.3;
-    disc.x = -0.5;
-    disc.y = 0.4;
-    disc.size = 0.4;
-    cable.shape = vpLaserConicSimulator::DISTRACTOR_LINE;
-    cable.x = -1.5;
-    cable.y = -0.6;
-    cable.x2 = 1.5;
-    cable.y2 = 0.2;
-    cable.size = 0.006;
-    s.distractors = {box, disc, cable};
+    typedef vpLaserConicSimulator::vpDistractor Distractor;
+    s.distractors = {Distractor::square(0.4, -0.3, 0.3), Distractor::disc(-0.5, 0.4, 0.4),
+                     Distractor::line(-1.5, -0.6, 1.5, 0.2, 0.006)};
     break;
   }
   case OCCLUDED: {
@@ -206,22 +194,34 @@ private:
   double m_slowPhase = 0.0, m_wobblePhase = 0.0;
 };
 
+/*!
+  The states at \e frames instants of [0, 1] of the signals altitude, roll, pitch, yaw, x, y (in that
+  order), the altitude kept above \e minAltitude.
+*/
+std::vector<RigState> sampleTrajectory(const std::vector<SmoothSignal> &signals, unsigned int frames,
+                                       double minAltitude)
+{
+  std::vector<RigState> states;
+  for (unsigned int k = 0; k < frames; ++k) {
+    const double t = frames > 1 ? k / static_cast<double>(frames - 1) : 0.0;
+    states.push_back({std::max(minAltitude, signals[0](t)), signals[1](t), signals[2](t), signals[3](t),
+                      signals[4](t), signals[5](t)});
+  }
+  return states;
+}
+
 std::vector<RigState> trajectory(unsigned int frames, unsigned int seed)
 {
   std::mt19937 rng(seed);
   // Amplitudes keep the altitude in [0.55, 1.45] m and the tilts within +-(15 + 3) deg.
-  const SmoothSignal altitude(rng, 1.0, 0.38, 1.3, 0.05, 5.0);
-  const SmoothSignal roll(rng, 0.0, vpMath::rad(15.0), 1.7, vpMath::rad(3.0), 6.5);
-  const SmoothSignal pitch(rng, 0.0, vpMath::rad(14.0), 1.1, vpMath::rad(3.0), 7.3);
-  const SmoothSignal yaw(rng, 0.0, vpMath::rad(40.0), 0.6, vpMath::rad(2.0), 4.0);
-  const SmoothSignal x(rng, 0.0, 1.0, 0.5, 0.02, 6.0);
-  const SmoothSignal y(rng, 0.0, 0.6, 0.8, 0.02, 5.5);
-  std::vector<RigState> states;
-  for (unsigned int k = 0; k < frames; ++k) {
-    const double t = frames > 1 ? k / static_cast<double>(frames - 1) : 0.0;
-    states.push_back({altitude(t), roll(t), pitch(t), yaw(t), x(t), y(t)});
-  }
-  return states;
+  std::vector<SmoothSignal> signals;
+  signals.push_back(SmoothSignal(rng, 1.0, 0.38, 1.3, 0.05, 5.0));
+  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(15.0), 1.7, vpMath::rad(3.0), 6.5));
+  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(14.0), 1.1, vpMath::rad(3.0), 7.3));
+  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(40.0), 0.6, vpMath::rad(2.0), 4.0));
+  signals.push_back(SmoothSignal(rng, 0.0, 1.0, 0.5, 0.02, 6.0));
+  signals.push_back(SmoothSignal(rng, 0.0, 0.6, 0.8, 0.02, 5.5));
+  return sampleTrajectory(signals, frames, 0.0);
 }
 
 /*!
@@ -231,18 +231,14 @@ std::vector<RigState> trajectory(unsigned int frames, unsigned int seed)
 std::vector<RigState> hardTrajectory(unsigned int frames, unsigned int seed)
 {
   std::mt19937 rng(seed + 1);
-  const SmoothSignal altitude(rng, 1.7, 1.15, 1.2, 0.08, 4.0);
-  const SmoothSignal roll(rng, 0.0, vpMath::rad(20.0), 1.6, vpMath::rad(4.0), 6.5);
-  const SmoothSignal pitch(rng, 0.0, vpMath::rad(18.0), 1.3, vpMath::rad(4.0), 7.3);
-  const SmoothSignal yaw(rng, 0.0, vpMath::rad(60.0), 0.7, vpMath::rad(3.0), 4.0);
-  const SmoothSignal x(rng, 0.0, 0.6, 0.6, 0.02, 6.0);
-  const SmoothSignal y(rng, 0.0, 0.4, 0.9, 0.02, 5.5);
-  std::vector<RigState> states;
-  for (unsigned int k = 0; k < frames; ++k) {
-    const double t = frames > 1 ? k / static_cast<double>(frames - 1) : 0.0;
-    states.push_back({std::max(0.5, altitude(t)), roll(t), pitch(t), yaw(t), x(t), y(t)});
-  }
-  return states;
+  std::vector<SmoothSignal> signals;
+  signals.push_back(SmoothSignal(rng, 1.7, 1.15, 1.2, 0.08, 4.0));
+  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(20.0), 1.6, vpMath::rad(4.0), 6.5));
+  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(18.0), 1.3, vpMath::rad(4.0), 7.3));
+  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(60.0), 0.7, vpMath::rad(3.0), 4.0));
+  signals.push_back(SmoothSignal(rng, 0.0, 0.6, 0.6, 0.02, 6.0));
+  signals.push_back(SmoothSignal(rng, 0.0, 0.4, 0.9, 0.02, 5.5));
+  return sampleTrajectory(signals, frames, 0.5);
 }
 
 /*!
@@ -476,11 +472,11 @@ int main(int argc, char **argv)
         std::ostringstream quality;
         quality << points.size();
         if (settings.laserOn) {
-          double coverage = 0.0, rms = 0.0;
-          detectorQuality(sim, settings, points, width, height, coverage, rms);
+          double coverage = 0.0, detectionRms = 0.0;
+          detectorQuality(sim, settings, points, width, height, coverage, detectionRms);
           worstCoverage = std::min(worstCoverage, coverage);
-          worstRms = std::max(worstRms, rms);
-          quality << "," << std::setprecision(4) << coverage << "," << rms;
+          worstRms = std::max(worstRms, detectionRms);
+          quality << "," << std::setprecision(4) << coverage << "," << detectionRms;
         } else
           quality << ",nan,nan";
         qualityLine = quality.str();

@@ -10,6 +10,8 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
+#include "laser_geometry.h"
+
 namespace vpLaserSolvers
 {
 namespace
@@ -85,6 +87,9 @@ bool smallestSingularVector(const Matrix6d &R, Vector6d &coefficients)
 bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c)
 {
   if (n < 5 || points == nullptr)
+    return false;
+  // A minimal sample with two nearly coincident points determines its conic by rounding only.
+  if (n == 5 && internal::nearDuplicate(points, 5, 1e-6))
     return false;
   Eigen::Matrix3d T;
   if (!hartleyNormalisation(points, n, T))

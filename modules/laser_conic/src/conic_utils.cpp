@@ -56,3 +56,15 @@ void altitudeRollPitch(const Eigen::Vector4d &plane, double &altitude, double &r
   pitch = std::asin(std::max(-1.0, std::min(1.0, g(0))));
 }
 } // namespace vpLaserSolvers
+
+namespace vpLaserSolvers
+{
+Eigen::Vector4d planeFromAltitudeRollPitch(double altitude, double roll, double pitch)
+{
+  // g = R_x(roll) R_y(pitch) e_z = (sin p, -sin r cos p, cos r cos p).
+  const Eigen::Vector3d g(std::sin(pitch), -std::sin(roll) * std::cos(pitch), std::cos(roll) * std::cos(pitch));
+  Eigen::Vector4d plane;
+  plane << -g, altitude;
+  return plane;
+}
+} // namespace vpLaserSolvers

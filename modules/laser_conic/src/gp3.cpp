@@ -10,6 +10,8 @@
 
 #include <Eigen/Geometry>
 
+#include "laser_geometry.h"
+
 namespace vpLaserSolvers
 {
 namespace
@@ -55,6 +57,9 @@ int rayConeIntersections(const Eigen::Vector2d &p, const LaserCone &cone, const 
 
 int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vector4d planes[8])
 {
+  // Two nearly coincident rays leave the plane turning about the line through them, fixed by rounding.
+  if (internal::nearDuplicate(points, 3, 1e-6))
+    return 0;
   const Eigen::Matrix3d M = laserConeQuadric(cone).topLeftCorner<3, 3>();
   Eigen::Vector3d X[3][2];
   int nx[3];

@@ -453,9 +453,12 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
   const int threshold = std::min(255, static_cast<int>(std::ceil(report.threshold)));
 
-  // 2. Score and candidates in one pass over the rows, while the rows are in cache: row i is scored (only
-  // over the region when one is given: nothing outside it is read) and searched along its length, and the
-  // columns are searched at row i - d, the last row whose neighbours up to d rows away are scored.
+  // 2. Score, candidates and profiles in one pass over the rows, while the rows are in cache: row i is
+  // scored (only over the region when one is given: nothing outside it is read) and searched along its
+  // length; the columns are searched at row i - d, the last row whose neighbours up to d rows away are
+  // scored; the candidates of row i - d - 1 (the last row whose profiles, up to d + 1 rows away, are
+  // scored) are measured: one crossing per run, a later peak inside a measured run is skipped (the
+  // candidates come line by line for the rows, row by row for the columns: one run end per column).
   const int d = settings.maxWidth, step = settings.step;
   score.resize(static_cast<size_t>(W) * H);
   std::vector<Candidate> rowPeaks, columnPeaks;
@@ -467,6 +470,35 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     else
       for (const std::pair<int, int> &span : (*searchRegion)[r])
         columnCandidates(score.data(), W, H, r, span.first, span.second, d, threshold, step, columnPeaks);
+  };
+  std::vector<Crossing> crossings;
+  std::vector<int> lastEnd(W, -1);
+  int lastRow = -1, lastRowEnd = -1;
+  size_t nextRowPeak = 0, nextColumnPeak = 0;
+  auto measure = [&](const Candidate &c, bool alongRow) {
+    if (alongRow && c.line != lastRow) {
+      lastRow = c.line;
+      lastRowEnd = -1;
+    }
+    int &end = alongRow ? lastRowEnd : lastEnd[c.line];
+    if (c.pos <= end)
+      return;
+    const ScanLine s = {score.data(), rgba, W, H, alongRow, c.line};
+    Crossing crossing;
+    const Verdict verdict = analyse(s, c.pos, settings, threshold, crossing);
+    if (verdict == IGNORED)
+      return;
+    end = crossing.last;
+    if (verdict == ACCEPTED)
+      crossings.push_back(crossing);
+    else
+      runs.push_back(StripeRun{alongRow, crossing.line, crossing.first, crossing.last, false});
+  };
+  auto measureUpTo = [&](int r) { // every candidate of the rows <= r
+    for (; nextRowPeak < rowPeaks.size() && rowPeaks[nextRowPeak].line <= r; ++nextRowPeak)
+      measure(rowPeaks[nextRowPeak], true);
+    for (; nextColumnPeak < columnPeaks.size() && columnPeaks[nextColumnPeak].pos <= r; ++nextColumnPeak)
+      measure(columnPeaks[nextColumnPeak], false);
   };
   for (int i = 0; i < H; ++i) {
     const size_t offset = static_cast<size_t>(i) * W;
@@ -484,37 +516,11 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     }
     if (i - d >= 0)
       searchColumns(i - d);
+    measureUpTo(i - d - 1);
   }
   for (int r = std::max(0, H - d); r < H; ++r)
     searchColumns(r);
-
-  // 4. Profiles around the candidates, one crossing per run: a later peak inside a measured run is skipped
-  // (the candidates come line by line for the rows, row by row for the columns: one end per column).
-  std::vector<Crossing> crossings;
-  std::vector<int> lastEnd(W, -1);
-  int lastRow = -1, lastRowEnd = -1;
-  for (int pass = 0; pass < 2; ++pass) {
-    const bool alongRow = pass == 0;
-    for (const Candidate &c : alongRow ? rowPeaks : columnPeaks) {
-      if (alongRow && c.line != lastRow) {
-        lastRow = c.line;
-        lastRowEnd = -1;
-      }
-      int &end = alongRow ? lastRowEnd : lastEnd[c.line];
-      if (c.pos <= end)
-        continue;
-      const ScanLine s = {score.data(), rgba, W, H, alongRow, c.line};
-      Crossing crossing;
-      const Verdict verdict = analyse(s, c.pos, settings, threshold, crossing);
-      if (verdict == IGNORED)
-        continue;
-      end = crossing.last;
-      if (verdict == ACCEPTED)
-        crossings.push_back(crossing);
-      else
-        runs.push_back(StripeRun{alongRow, crossing.line, crossing.first, crossing.last, false});
-    }
-  }
+  measureUpTo(H);
 
   // 5. Continuity: drop the short chains.
   const std::vector<bool> keep = longChains(crossings, W, H, 2.0 * step + 0.5, settings.minSegment);

@@ -11,6 +11,8 @@
 #ifndef VP_LASER_GEOMETRY_H
 #define VP_LASER_GEOMETRY_H
 
+#include <algorithm>
+
 #include <Eigen/Core>
 
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
@@ -67,6 +69,25 @@ struct ConicCoefficients
     return (algebraic * algebraic) / (4.0 * (v0 * v0 + v1 * v1));
   }
 };
+/*!
+  True when two of the \e n points of a minimal sample are closer than \e relative times the largest
+  distance between two of them (or all coincide). Two nearly coincident points of a minimal sample
+  leave the model determined by rounding only: the solvers refuse such samples rather than return
+  an arbitrary model (RANSAC loses nothing, measured points of a trace are pixels apart).
+*/
+template <class Point> inline bool nearDuplicate(const Point *p, int n, double relative)
+{
+  double smallest = 0.0, largest = 0.0;
+  bool first = true;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      const double d = (p[i] - p[j]).squaredNorm();
+      smallest = first ? d : std::min(smallest, d);
+      largest = std::max(largest, d);
+      first = false;
+    }
+  return !(smallest > relative * relative * largest);
+}
 } // namespace internal
 } // namespace vpLaserSolvers
 

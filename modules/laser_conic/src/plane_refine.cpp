@@ -64,7 +64,7 @@ struct NormalEquations
   B = |(c x)_{1,2}|^2, so dr = (dA - A dB / (2 B)) / (2 sqrt(B)) with dA = x^T dc x and
   dB = 2 (c x)_{1,2} . (dc x)_{1,2}. Points where the conic has no gradient are skipped.
 */
-NormalEquations accumulate(const Eigen::Vector2d *points, int n, const PlaneConics &pc)
+NormalEquations accumulate(const Eigen::Vector2d *points, const double *weights, int n, const PlaneConics &pc)
 {
   const ConicCoefficients c(pc.c);
   const ConicCoefficients dc[3] = {ConicCoefficients(pc.dc[0]), ConicCoefficients(pc.dc[1]),
@@ -87,6 +87,23 @@ NormalEquations accumulate(const Eigen::Vector2d *points, int n, const PlaneConi
       J[k] = (dA - ratio * 2.0 * (v0 * w0 + v1 * w1)) * invRoot;
     }
     const double r = A * invRoot;
+    if (weights) {
+      // Weighted least squares: scale the residual and its gradient by the square root of the weight.
+      const double sw = std::sqrt(weights[i]);
+      for (int k = 0; k < 3; ++k)
+        J[k] *= sw;
+      const double rw = r * sw;
+      cost += rw * rw;
+      h[0] += J[0] * J[0];
+      h[1] += J[0] * J[1];
+      h[2] += J[0] * J[2];
+      h[3] += J[1] * J[1];
+      h[4] += J[1] * J[2];
+      h[5] += J[2] * J[2];
+      for (int k = 0; k < 3; ++k)
+        g[k] += J[k] * rw;
+      continue;
+    }
     cost += r * r;
     h[0] += J[0] * J[0];
     h[1] += J[0] * J[1];
@@ -112,14 +129,14 @@ struct Iterate
   NormalEquations ne;
 };
 
-Iterate evaluate(const Eigen::Vector4d &plane, const Eigen::Vector2d *points, int n, const Eigen::Vector3d &apex,
-                 const Eigen::Matrix3d &M)
+Iterate evaluate(const Eigen::Vector4d &plane, const Eigen::Vector2d *points, const double *weights, int n,
+                 const Eigen::Vector3d &apex, const Eigen::Matrix3d &M)
 {
   Iterate it;
   it.plane = plane;
   it.tangents[0] = plane.head<3>().unitOrthogonal();
   it.tangents[1] = plane.head<3>().cross(it.tangents[0]);
-  it.ne = accumulate(points, n, planeConics(plane, it.tangents, apex, M));
+  it.ne = accumulate(points, weights, n, planeConics(plane, it.tangents, apex, M));
   return it;
 }
 
@@ -141,10 +158,16 @@ bool negligible(const Eigen::Vector3d &delta, double altitude)
 
 bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane, int iterations)
 {
+  return refinePlaneWeighted(points, nullptr, n, cone, plane, iterations);
+}
+
+bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
+                         Eigen::Vector4d &plane, int iterations)
+{
   if (n < 3 || points == nullptr || !plane.allFinite() || !(plane.head<3>().norm() > 0.0) || !(plane(3) > 0.0))
     return false;
   const Eigen::Matrix3d M = internal::laserConeForm(cone);
-  Iterate current = evaluate(plane / plane.head<3>().norm(), points, n, cone.apex, M);
+  Iterate current = evaluate(plane / plane.head<3>().norm(), points, weights, n, cone.apex, M);
   if (!std::isfinite(current.ne.cost))
     return false;
   double damping = 1e-3;
@@ -168,7 +191,7 @@ bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Ei
       damping *= 10.0;
       continue;
     }
-    const Iterate next = evaluate(candidate, points, n, cone.apex, M);
+    const Iterate next = evaluate(candidate, points, weights, n, cone.apex, M);
     if (next.ne.cost < current.ne.cost) {
       const double gain = (current.ne.cost - next.ne.cost) / current.ne.cost;
       current = next;

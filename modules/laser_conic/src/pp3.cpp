@@ -14,6 +14,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "laser_geometry.h"
+
 namespace vpLaserSolvers
 {
 namespace
@@ -109,6 +111,9 @@ template <int Deg> int companionRoots(const double *k, std::complex<double> *roo
   return Deg;
 }
 
+//! Largest imaginary part, relative to the modulus, of a quartic root taken as (nearly) real.
+constexpr double kRelativeImaginary = 1e-3;
+
 //! Real roots of a polynomial of degree <= 4 (coefficients k[0] + k[1] u + ...), Newton-polished.
 int realQuarticRoots(const double k[5], double roots[4])
 {
@@ -132,9 +137,20 @@ int realQuarticRoots(const double k[5], double roots[4])
   int count = 0;
   for (int i = 0; i < ncandidates; ++i) {
     const std::complex<double> z = candidates[i];
-    // Keep nearly real roots: a root that is real in exact arithmetic can come out slightly complex.
-    if (std::abs(z.imag()) > 1e-6 * (1.0 + std::abs(z.real())))
+    // Keep nearly real roots: a root that is real in exact arithmetic can come out complex, and a
+    // double root splits into a complex pair whose imaginary part is of the order of the square root
+    // of the rounding, sqrt(eps) |z|. A root whose imaginary part is small relative to its magnitude
+    // is kept (its real part is polished below, the conic polished on the original constraints and
+    // tested as an ellipse by the caller); a conjugate pair gives that real part once.
+    if (std::abs(z.imag()) > kRelativeImaginary * std::max(std::abs(z), 1e-3))
       continue;
+    if (z.imag() < 0.0 && std::abs(z.imag()) > 0.0) {
+      bool conjugateKept = false;
+      for (int j = 0; j < ncandidates; ++j)
+        conjugateKept = conjugateKept || (j != i && std::abs(candidates[j] - std::conj(z)) <= 1e-12 * std::abs(z));
+      if (conjugateKept)
+        continue;
+    }
     // Newton polish, each step kept only if it lowers the residual (safe near double roots).
     double u = z.real(), d = 0.0;
     double residual = std::abs(polynomial(k, degree, u, d));
@@ -154,6 +170,18 @@ int realQuarticRoots(const double k[5], double roots[4])
 }
 typedef Eigen::Matrix<double, 6, 1> Vector6d;
 typedef Eigen::Matrix<double, 6, 6> Matrix6d;
+
+/*!
+  Samples with two points closer than this fraction of their spread are refused: the quartic's
+  roots then merge and the conic is decided by rounding (stress-laser finds 0.5-1.5 rad errors on
+  samples at 1e-5 relative spacing).
+*/
+constexpr double kMinimalSampleSpread = 1e-4;
+
+//! Separation |r - s| / (1 + |r| + |s|) of the tangents in the canonical frame deemed well conditioned.
+constexpr double kGoodTangentSeparation = 0.05;
+//! Below this separation in every order the sample is refused (see pp3Conics()).
+constexpr double kMinTangentSeparation = 1e-3;
 
 //! Symmetric conic from its six distinct entries (c00, c01, c11, c02, c12, c22).
 Eigen::Matrix3d conicOf(const Vector6d &k)
@@ -250,18 +278,42 @@ bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents)
 
 int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents, Eigen::Matrix3d conics[4])
 {
+  if (internal::nearDuplicate(points, 3, kMinimalSampleSpread))
+    return 0;
   const Eigen::Vector3d x[3] = {Eigen::Vector3d(points[0](0), points[0](1), 1.0),
                                 Eigen::Vector3d(points[1](0), points[1](1), 1.0),
                                 Eigen::Vector3d(points[2](0), points[2](1), 1.0)};
+  // The canonical frame of eq. 36 depends on which point goes to (0,0,1), (1,0,1), (0,1,1). When
+  // the two tangents map to nearly the same line (r ~ s), the quartic's leading coefficient (r-s)^2
+  // vanishes and its roots merge: the solutions are then lost to rounding. The three cyclic orders
+  // give the same conics in exact arithmetic; the one with the best-separated tangents is used.
   Eigen::Matrix3d H;
-  if (!canonicalHomography(x, tangents.epipole, H))
+  double r = 0.0, s = 0.0, separation = -1.0;
+  for (int shift = 0; shift < 3 && separation < kGoodTangentSeparation; ++shift) {
+    const Eigen::Vector3d ordered[3] = {x[shift], x[(shift + 1) % 3], x[(shift + 2) % 3]};
+    Eigen::Matrix3d Hs;
+    if (!canonicalHomography(ordered, tangents.epipole, Hs))
+      continue;
+    // Lines map with H^-T (eq. 38-39); both contain (1,1,0), so they read (1, -1, r) and (1, -1, s).
+    const Eigen::Matrix3d Hinv = Hs.inverse();
+    const Eigen::Vector3d up = Hinv.transpose() * tangents.u, vp = Hinv.transpose() * tangents.v;
+    if (!(std::abs(up(0)) > 1e-12 * up.norm()) || !(std::abs(vp(0)) > 1e-12 * vp.norm()))
+      continue;
+    const double rs = up(2) / up(0), ss = vp(2) / vp(0);
+    const double sep = std::abs(rs - ss) / (1.0 + std::abs(rs) + std::abs(ss));
+    if (sep > separation) {
+      separation = sep;
+      H = Hs;
+      r = rs;
+      s = ss;
+    }
+  }
+  // Even the best order separates the tangents poorly when two points are nearly aligned with the
+  // epipole (their epipolar lines merge, and with them the reference lines of the pencil at e): the
+  // quartic then loses the true solution to rounding (stress-laser finds 2 rad errors at 1e-5).
+  // The parametrisation is degenerate there; the sample is refused.
+  if (!(separation > kMinTangentSeparation))
     return 0;
-  // Lines map with H^-T (eq. 38-39); both contain (1,1,0), so they read (1, -1, r) and (1, -1, s).
-  const Eigen::Matrix3d Hinv = H.inverse();
-  const Eigen::Vector3d up = Hinv.transpose() * tangents.u, vp = Hinv.transpose() * tangents.v;
-  if (!(std::abs(up(0)) > 1e-12 * up.norm()) || !(std::abs(vp(0)) > 1e-12 * vp.norm()))
-    return 0;
-  const double r = up(2) / up(0), s = vp(2) / vp(0);
   // Quartic in u (eq. 53), lowest degree first.
   const double k[5] = {16.0 * (r + s) * (r + s), -32.0 * (r + s) * (r * s + 1.0),
                        8.0 * (r * r + 4.0 * r * s + s * s + 2.0), 8.0 * (r + s) * (r * s - 1.0), (r - s) * (r - s)};

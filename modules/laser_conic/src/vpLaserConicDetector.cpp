@@ -148,10 +148,10 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
                                            std::vector<std::vector<std::pair<int, int> > > &rows) const
 {
-  // The band is rasterised in blocks of 16 columns (the width the scans process at once): each point marks
-  // the blocks of the rows within margin + extra of it that its square of half side margin + extra touches.
-  const int block = 16, nbBlocks = (W + block - 1) / block;
-  std::vector<unsigned char> marked(static_cast<size_t>(H) * nbBlocks, 0);
+  // The band is rasterised in blocks of 16 columns (the width the scans process at once) by 8 rows: each
+  // point marks the blocks that its square of half side margin + extra touches.
+  const int blockW = 16, blockH = 8, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
+  std::vector<unsigned char> marked(static_cast<size_t>(nbX) * nbY, 0);
   const double m = m_regionMargin + extra;
   // One point per cell of a quarter of the margin marks its square: more points in the cell add nothing
   // (the band stays at least 3/4 of margin + extra wide around every point).
@@ -168,24 +168,24 @@ void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
     cell = 1;
     const int i0 = std::max(0, static_cast<int>(std::floor(v - m))), i1 = std::min(H - 1, static_cast<int>(std::ceil(v + m)));
     const int j0 = std::max(0, static_cast<int>(std::floor(u - m))), j1 = std::min(W - 1, static_cast<int>(std::ceil(u + m)));
-    if (j0 > j1)
-      continue;
-    for (int i = i0; i <= i1; ++i)
-      std::fill(&marked[static_cast<size_t>(i) * nbBlocks + j0 / block],
-                &marked[static_cast<size_t>(i) * nbBlocks + j1 / block] + 1, 1);
+    for (int bi = i0 / blockH; bi <= i1 / blockH; ++bi)
+      std::fill(&marked[static_cast<size_t>(bi) * nbX + j0 / blockW], &marked[static_cast<size_t>(bi) * nbX + j1 / blockW] + 1, 1);
   }
   rows.resize(H);
-  for (int i = 0; i < H; ++i) {
-    rows[i].clear();
-    const unsigned char *row = &marked[static_cast<size_t>(i) * nbBlocks];
-    for (int b = 0; b < nbBlocks; ++b) {
+  for (int bi = 0; bi < nbY; ++bi) {
+    std::vector<std::pair<int, int> > &spans = rows[bi * blockH];
+    spans.clear();
+    const unsigned char *row = &marked[static_cast<size_t>(bi) * nbX];
+    for (int b = 0; b < nbX; ++b) {
       if (!row[b])
         continue;
       const int start = b;
-      while (b + 1 < nbBlocks && row[b + 1])
+      while (b + 1 < nbX && row[b + 1])
         ++b;
-      rows[i].push_back(std::make_pair(start * block, std::min(W - 1, (b + 1) * block - 1)));
+      spans.push_back(std::make_pair(start * blockW, std::min(W - 1, (b + 1) * blockW - 1)));
     }
+    for (int i = bi * blockH + 1; i < std::min(H, (bi + 1) * blockH); ++i)
+      rows[i] = spans;
   }
 }
 

@@ -5,16 +5,19 @@
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
 
+#include <visp3/core/vpMath.h>
 #include <visp3/core/vpPixelMeterConversion.h>
 
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 #include <visp3/robust/vpRansac.h>
 
 #include "laser_estimators.h"
+#include "laser_robust_fit.h"
 
 namespace
 {
@@ -113,8 +116,64 @@ bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &opt
 vpLaserConicPose::vpLaserConicPose()
   : m_cam(), m_hasCam(false), m_hasLaser(false), m_openingAngle(0.0), m_cMl(), m_threshold(2.0), m_maxTrials(1000),
     m_probability(0.99), m_seed(0), m_localOptimisation(true), m_altitude(0.0), m_roll(0.0), m_pitch(0.0), m_inliers(),
-    m_trials(0), m_conic(3, 3, 0.0), m_failure()
+    m_trials(0), m_conic(3, 3, 0.0), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
+    m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_finalFit(FINAL_FIT_DEFAULT), m_computeCovariance(false),
+    m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0), m_sigma(0.0), m_coverage(0.0),
+    m_constrainedChosen(false), m_points()
 {
+}
+
+std::string vpLaserConicPose::getStatusMessage(vpLaserConicStatus status)
+{
+  switch (status) {
+  case STATUS_NOT_COMPUTED: return "no estimate computed yet";
+  case STATUS_OK: return "plane found";
+  case STATUS_COLLINEAR_POINTS:
+    return "all points are collinear: they cannot lie on the image of the laser ellipse";
+  case STATUS_NOT_AN_ELLIPSE: return "the least-squares conic of the points is not an ellipse";
+  case STATUS_NO_CONSENSUS: return "no consensus: no hypothesis is supported by enough points";
+  case STATUS_CAMERA_INSIDE_CONE:
+    return "no epipolar tangent to the laser cone: the camera centre lies inside the laser cone";
+  case STATUS_NO_PLANE_PAIR:
+    return "no ground plane in the plane pair of the image conic: the conic does not match the laser cone "
+           "(no real plane pair, or no plane with both optical centres on its side)";
+  case STATUS_PLANE_NOT_FINITE: return "the estimated plane is not finite";
+  case STATUS_PLANE_BEHIND: return "the plane is behind the system: the laser or the camera cannot see its trace there";
+  case STATUS_SHORT_ARC:
+    return "the trace found covers too short an arc of the laser cone: its tilt is weakly constrained";
+  }
+  return "unknown status";
+}
+
+bool vpLaserConicPose::fail(vpLaserConicStatus status, const std::string &details)
+{
+  m_status = status;
+  m_failure = getStatusMessage(status) + details;
+  return false;
+}
+
+double vpLaserConicPose::getCalibrationHealth() const
+{
+  if (!(m_rmsFree > 0.0))
+    return m_rmsConstrained > 0.0 ? std::numeric_limits<double>::infinity() : 1.0;
+  return m_rmsConstrained / m_rmsFree;
+}
+
+std::vector<vpImagePoint> vpLaserConicPose::getRansacInliers() const
+{
+  std::vector<vpImagePoint> out;
+  out.reserve(m_inliers.size());
+  for (unsigned int i : m_inliers)
+    out.push_back(m_points[i]);
+  return out;
+}
+
+void vpLaserConicPose::setArcCoverageThreshold(double radians)
+{
+  if (!std::isfinite(radians) || radians < 0.0 || radians > 2.0 * M_PI)
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicPose: the arc coverage threshold must be in [0, 2 pi] rad");
+  m_minCoverage = radians;
 }
 
 void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
@@ -242,10 +301,14 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   m_failure.clear();
   m_inliers.clear();
   m_trials = 0;
-  if (allCollinear(normalized)) {
-    m_failure = "all points are collinear: they cannot lie on the image of the laser ellipse";
-    return false;
-  }
+  m_status = STATUS_NOT_COMPUTED;
+  m_covariance.resize(0, 0);
+  m_planeCovariance.resize(0, 0);
+  m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
+  m_constrainedChosen = false;
+  m_points = points;
+  if (allCollinear(normalized))
+    return fail(STATUS_COLLINEAR_POINTS);
 
   vpLaserSolvers::LaserCone cone;
   for (unsigned int i = 0; i < 3; ++i) {
@@ -255,15 +318,16 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   }
   cone.halfAngle = 0.5 * m_openingAngle;
 
+  const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
   vpRansacOptions options;
-  options.threshold = m_threshold / (0.5 * (m_cam.get_px() + m_cam.get_py()));
+  options.threshold = m_threshold / focal;
   options.probability = m_probability;
   options.maxTrials = m_maxTrials;
   options.seed = m_seed;
   options.localOptimisation = m_localOptimisation;
 
   Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
-  Eigen::Vector4d plane = Eigen::Vector4d::Zero();
+  Eigen::Vector4d startPlane = Eigen::Vector4d::Zero();
   std::vector<int> inliers;
   bool found = false;
   vpRansacReport report;
@@ -271,58 +335,83 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   if (method == PLANE_PAIR) {
     for (int i = 0; i < static_cast<int>(normalized.size()); ++i)
       inliers.push_back(i);
-    if (!vpLaserEstimators::fitEllipseOn(normalized, inliers, conic)) {
-      m_failure = "the least-squares conic of the points is not an ellipse";
-      return false;
-    }
     found = true;
-  } else if (method == PP5 || method == PP3) {
-    if (method == PP5) {
-      found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, conic, report);
-    } else {
-      vpLaserSolvers::EpipolarTangents tangents;
-      if (!vpLaserSolvers::epipolarTangents(cone, tangents)) {
-        m_failure = "no epipolar tangent to the laser cone: the camera centre lies inside the laser cone";
-        return false;
-      }
-      found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, conic, report);
-    }
-    inliers = report.inliers;
+  } else if (method == PP5) {
+    found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, conic, report);
+  } else if (method == PP3) {
+    vpLaserSolvers::EpipolarTangents tangents;
+    if (!vpLaserSolvers::epipolarTangents(cone, tangents))
+      return fail(STATUS_CAMERA_INSIDE_CONE);
+    found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, conic, report);
   } else {
     vpLaserEstimators::PlaneModel model;
     // The plane refinement is cheap and a refined plane often gathers inliers its start missed.
     options.localRounds = 3;
     found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, model, report);
-    plane = model.plane;
-    conic = model.conic;
+    startPlane = model.plane;
+  }
+  if (method != PLANE_PAIR)
     inliers = report.inliers;
-  }
   m_trials = report.trials;
-  if (!found) {
+  const size_t consensus = std::max<size_t>(static_cast<size_t>(needed), m_nbInliersToReachConsensus);
+  if (!found || inliers.size() < consensus) {
     std::ostringstream msg;
-    msg << "no consensus: no " << methodName(method) << " hypothesis is supported by " << needed
-        << " points or more after " << report.trials << " samples";
-    m_failure = msg.str();
-    return false;
+    msg << " (" << methodName(method) << ", " << inliers.size() << " inliers at best, " << consensus
+        << " needed, after " << report.trials << " samples)";
+    return fail(STATUS_NO_CONSENSUS, msg.str());
   }
-  if (method != GP3 && !vpLaserSolvers::planePair(conic, cone, plane)) {
-    m_failure = "no ground plane in the plane pair of the image conic: the conic does not match the laser cone "
-                "(no real plane pair, or no plane with both optical centres on its side)";
-    return false;
+
+  // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
+  vpLaserRobustFit::Settings settings;
+  settings.focal = focal;
+  settings.threshold = m_threshold;
+  settings.adaptive = m_scaleAdaptive && method != PLANE_PAIR;
+  settings.minCoverage = method == PLANE_PAIR ? 0.0 : m_minCoverage;
+  settings.covariance = m_computeCovariance;
+  vpLaserConicFinalFit fit = m_finalFit;
+  if (fit == FINAL_FIT_DEFAULT)
+    fit = (method == PP3 || method == GP3) ? FINAL_FIT_SELECT : FINAL_FIT_FREE;
+  settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vpLaserRobustFit::FinalFit::CONSTRAINED
+                      : fit == FINAL_FIT_SELECT    ? vpLaserRobustFit::FinalFit::SELECT
+                                                   : vpLaserRobustFit::FinalFit::FREE;
+  vpLaserRobustFit::Result result;
+  switch (vpLaserRobustFit::fit(normalized, inliers, cone, startPlane, settings, result)) {
+  case vpLaserRobustFit::Outcome::OK: break;
+  case vpLaserRobustFit::Outcome::SHORT_ARC: {
+    std::ostringstream msg;
+    msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
+    return fail(STATUS_SHORT_ARC, msg.str());
   }
-  if (!plane.allFinite()) {
-    m_failure = "the estimated plane is not finite";
-    return false;
+  case vpLaserRobustFit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
+  case vpLaserRobustFit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
   }
-  if (fractionInFront(normalized, inliers, plane, cone) < 0.5) {
-    m_failure = "the plane is behind the system: the laser or the camera cannot see its trace there";
-    return false;
-  }
+  const Eigen::Vector4d plane = result.plane;
+  conic = result.conic;
+  inliers = result.inliers;
+  if (!plane.allFinite())
+    return fail(STATUS_PLANE_NOT_FINITE);
+  if (fractionInFront(normalized, inliers, plane, cone) < 0.5)
+    return fail(STATUS_PLANE_BEHIND);
 
   cPlane.setABCD(plane(0), plane(1), plane(2), plane(3));
   vpLaserSolvers::altitudeRollPitch(plane, m_altitude, m_roll, m_pitch);
   m_inliers.assign(inliers.begin(), inliers.end());
-  // Image conic in pixels: x_n = K^-1 x_p, so C_p = K^-T C_n K^-1.
+  m_rmsConstrained = result.rmsConstrained;
+  m_rmsFree = result.rmsFree;
+  m_sigma = result.sigma;
+  m_coverage = result.coverage;
+  m_constrainedChosen = result.constrainedChosen;
+  if (m_computeCovariance) {
+    m_covariance.resize(3, 3);
+    m_planeCovariance.resize(4, 4);
+    for (unsigned int i = 0; i < 4; ++i)
+      for (unsigned int j = 0; j < 4; ++j) {
+        if (i < 3 && j < 3)
+          m_covariance[i][j] = result.covariance(i, j);
+        m_planeCovariance[i][j] = result.planeCovariance(i, j);
+      }
+  }
+  // Image conic in pixels (undistorted image): x_n = K^-1 x_p, so C_p = K^-T C_n K^-1.
   Eigen::Matrix3d Kinv;
   Kinv << 1.0 / m_cam.get_px(), 0.0, -m_cam.get_u0() / m_cam.get_px(), 0.0, 1.0 / m_cam.get_py(),
       -m_cam.get_v0() / m_cam.get_py(), 0.0, 0.0, 1.0;
@@ -331,5 +420,6 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j)
       m_conic[i][j] = pixelConic(i, j);
+  m_status = STATUS_OK;
   return true;
 }

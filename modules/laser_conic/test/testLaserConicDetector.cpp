@@ -315,6 +315,14 @@ Quality runCase(const HardCase &c, unsigned int seed, vpLaserConicDetector &dete
   return q;
 }
 
+//! Checks a quality against its bounds: coverage above, RMS and share of points off the trace below.
+void expectQuality(const Quality &q, double minCoverage, double maxRms, double maxOffTrace)
+{
+  EXPECT_GT(q.coverage, minCoverage);
+  EXPECT_LT(q.rms, maxRms);
+  EXPECT_LT(q.offTrace, maxOffTrace);
+}
+
 //! Dim stripe on a dark floor: V 45-110, S 130-255 on the stripe as in the photographs.
 HardCase dimCase()
 {
@@ -344,9 +352,7 @@ TEST(LaserConicDetector, DimStripeOnADarkFloor)
   vpLaserConicDetector detector;
   for (unsigned int seed : {21u, 22u}) {
     const Quality q = runCase(dimCase(), seed, detector);
-    EXPECT_GT(q.coverage, 0.95);
-    EXPECT_LT(q.rms, 0.3);
-    EXPECT_LT(q.offTrace, 0.002);
+    expectQuality(q, 0.95, 0.3, 0.002);
   }
 }
 
@@ -355,9 +361,7 @@ TEST(LaserConicDetector, BrightStripeWithASaturatedCore)
   vpLaserConicDetector detector;
   for (unsigned int seed : {23u, 24u}) {
     const Quality q = runCase(saturatedCase(), seed, detector);
-    EXPECT_GT(q.coverage, 0.95);
-    EXPECT_LT(q.rms, 0.3);
-    EXPECT_LT(q.offTrace, 0.002);
+    expectQuality(q, 0.95, 0.3, 0.002);
   }
 }
 
@@ -388,9 +392,7 @@ TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
   c.settings.bloom = 0.04;
   vpLaserConicDetector detector;
   const Quality q = runCase(c, 25, detector);
-  EXPECT_GT(q.coverage, 0.9);
-  EXPECT_LT(q.rms, 0.5);
-  EXPECT_LT(q.offTrace, 0.01);
+  expectQuality(q, 0.9, 0.5, 0.01);
 }
 
 TEST(LaserConicDetector, StripeOnBrightGreyAndColourfulFloors)
@@ -401,9 +403,7 @@ TEST(LaserConicDetector, StripeOnBrightGreyAndColourfulFloors)
   grey.settings.floor = vpLaserConicSimulator::FLOOR_BRIGHT_GREY;
   grey.settings.laserPower = 120.0;
   const Quality g = runCase(grey, 26, detector);
-  EXPECT_GT(g.coverage, 0.95);
-  EXPECT_LT(g.rms, 0.3);
-  EXPECT_LT(g.offTrace, 0.005);
+  expectQuality(g, 0.95, 0.3, 0.005);
 
   HardCase mosaic;
   mosaic.name = "mosaic";
@@ -411,9 +411,7 @@ TEST(LaserConicDetector, StripeOnBrightGreyAndColourfulFloors)
   mosaic.settings.laserPower = 200.0;
   mosaic.settings.specular = 60.0;
   const Quality m = runCase(mosaic, 27, detector);
-  EXPECT_GT(m.coverage, 0.9);
-  EXPECT_LT(m.rms, 0.3);
-  EXPECT_LT(m.offTrace, 0.05);
+  expectQuality(m, 0.9, 0.3, 0.05);
   EXPECT_LT(m.nbPoints, 4000u); // about one point per pixel of trace (~2700 px), not the floor's texture
 }
 
@@ -421,29 +419,16 @@ TEST(LaserConicDetector, RedDistractorsAreRejectedOrLeftToTheRobustEstimators)
 {
   HardCase c;
   c.name = "distractors";
-  vpLaserConicSimulator::vpDistractor disc, square, cable;
-  disc.x = 0.25;
-  disc.y = 0.05;
-  disc.size = 0.15; // a large red object
-  square.shape = vpLaserConicSimulator::DISTRACTOR_RECTANGLE;
-  square.x = -0.05;
-  square.y = -0.22;
-  square.size = 0.06;
-  cable.shape = vpLaserConicSimulator::DISTRACTOR_LINE; // a thin red cable: stripe-like, an outlier
-  cable.x = -0.3;
-  cable.y = 0.2;
-  cable.x2 = 0.1;
-  cable.y2 = 0.3;
-  cable.size = 0.004;
-  c.settings.distractors = {disc, square, cable};
+  // A large red disc, a red square, and a thin red cable (stripe-like: an outlier for the estimators).
+  typedef vpLaserConicSimulator::vpDistractor Distractor;
+  c.settings.distractors = {Distractor::disc(0.25, 0.05, 0.15), Distractor::square(-0.05, -0.22, 0.06),
+                            Distractor::line(-0.3, 0.2, 0.1, 0.3, 0.004)};
   c.settings.clutter = 80;
   c.settings.clutterRadius = 0.5;
   vpLaserConicDetector detector;
   std::vector<vpImagePoint> points;
   const Quality q = runCase(c, 28, detector, &points);
-  EXPECT_GT(q.coverage, 0.9);
-  EXPECT_LT(q.rms, 0.3);
-  EXPECT_LT(q.offTrace, 0.25); // the cable, and a few clutter edges
+  expectQuality(q, 0.9, 0.3, 0.25); // the cable, and a few clutter edges
 
   // GP-3 with RANSAC rejects them: the plane within 2 mm and 0.2 deg of the truth.
   vpLaserConicPose estimator;
@@ -472,9 +457,7 @@ TEST(LaserConicDetector, OccludedTracePartlyOutOfTheImageWithMotionBlur)
   c.settings.laserPower = 200.0;
   vpLaserConicDetector detector;
   const Quality q = runCase(c, 29, detector);
-  EXPECT_GT(q.coverage, 0.9);
-  EXPECT_LT(q.rms, 0.3);
-  EXPECT_LT(q.offTrace, 0.005);
+  expectQuality(q, 0.9, 0.3, 0.005);
 }
 
 TEST(LaserConicDetector, DimStripeThroughAWideDistortedLens)
@@ -485,9 +468,7 @@ TEST(LaserConicDetector, DimStripeThroughAWideDistortedLens)
   c.cMg = vpHomogeneousMatrix(0.05, -0.03, 0.8, vpMath::rad(10), vpMath::rad(-8), 0.3);
   vpLaserConicDetector detector;
   const Quality q = runCase(c, 30, detector);
-  EXPECT_GT(q.coverage, 0.95);
-  EXPECT_LT(q.rms, 0.3);
-  EXPECT_LT(q.offTrace, 0.002);
+  expectQuality(q, 0.95, 0.3, 0.002);
 }
 
 TEST(LaserConicDetector, FramesWithoutLaserGiveAlmostNoPointAndNoPlane)
@@ -521,14 +502,7 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
   // predict it): the trace is found as in the whole image, the red cable outside the band is ignored.
   HardCase c;
   c.name = "search_region";
-  vpLaserConicSimulator::vpDistractor cable;
-  cable.shape = vpLaserConicSimulator::DISTRACTOR_LINE;
-  cable.x = -0.25;
-  cable.y = -0.05;
-  cable.x2 = 0.05;
-  cable.y2 = 0.1;
-  cable.size = 0.004;
-  c.settings.distractors = {cable};
+  c.settings.distractors = {vpLaserConicSimulator::vpDistractor::line(-0.25, -0.05, 0.05, 0.1, 0.004)};
   vpLaserConicDetector whole, byPoints, byConic;
   const Quality all = runCase(c, 40, whole);
   EXPECT_GT(all.offTrace, 0.05); // the cable is detected in the whole image
@@ -537,9 +511,7 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
   byPoints.setSearchRegion(sim.tracePoints(720), 20.0);
   EXPECT_TRUE(byPoints.hasSearchRegion());
   const Quality q = runCase(c, 40, byPoints);
-  EXPECT_GT(q.coverage, 0.99);
-  EXPECT_LT(q.rms, 0.3);
-  EXPECT_LT(q.offTrace, 0.01);
+  expectQuality(q, 0.99, 0.3, 0.01);
   // The band is rasterised in blocks of 16 columns: no point beyond margin + 16 + stripe width of the trace.
   std::vector<vpImagePoint> points;
   runCase(c, 40, byPoints, &points);

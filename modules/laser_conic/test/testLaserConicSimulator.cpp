@@ -500,10 +500,7 @@ TEST(LaserConicSimulator, HardSettingsRenderWhatTheyDescribe)
 
   // A red disc at the ground origin is red in the image.
   settings.occluders.clear();
-  vpLaserConicSimulator::vpDistractor disc;
-  disc.x = -0.05;
-  disc.y = 0.03;
-  disc.size = 0.1;
+  const vpLaserConicSimulator::vpDistractor disc = vpLaserConicSimulator::vpDistractor::disc(-0.05, 0.03, 0.1);
   settings.distractors.push_back(disc);
   sim.render(I, settings);
   const vpRGBa &c = at(I, groundPixel(camera(), groundPose(), disc.x, disc.y));
@@ -516,4 +513,30 @@ TEST(LaserConicSimulator, HardSettingsRenderWhatTheyDescribe)
   settings.ambient = 1.0;
   settings.bloomWidth = 0.0;
   EXPECT_THROW(sim.render(I, settings), vpLaserConicException);
+}
+
+TEST(LaserConicSimulator, EveryEstimatorRecoversTheExactPlaneFromDistortedTracePoints)
+{
+  // The simulator's distorted pixels and the estimators' vpPixelMeterConversion are the same lens model:
+  // exact points give the exact plane (to rounding) for every method.
+  for (const vpHomogeneousMatrix &cMg :
+       {groundPose(), vpHomogeneousMatrix(-0.1, 0.05, 0.7, vpMath::rad(-15), vpMath::rad(12), 1.0)}) {
+    vpLaserConicSimulator sim = makeSimulator(cMg);
+    sim.setCamera(distortedCamera(), kWidth, kHeight);
+    const std::vector<vpImagePoint> points = sim.tracePoints(400);
+    ASSERT_GT(points.size(), 300u);
+    const vpPlane truth = sim.getGroundPlane();
+    for (vpLaserConicPose::vpLaserConicMethod method :
+         {vpLaserConicPose::GP3, vpLaserConicPose::PP3, vpLaserConicPose::PP5, vpLaserConicPose::PLANE_PAIR}) {
+      vpLaserConicPose estimator;
+      estimator.setCameraParameters(distortedCamera());
+      estimator.setLaser(kOpening, laserPose());
+      estimator.setRansacSeed(1);
+      vpPlane plane;
+      ASSERT_TRUE(estimator.computePlane(points, method, plane)) << method;
+      const double dot = plane.getA() * truth.getA() + plane.getB() * truth.getB() + plane.getC() * truth.getC();
+      EXPECT_NEAR(dot, 1.0, 1e-9) << method;
+      EXPECT_NEAR(plane.getD(), truth.getD(), 1e-9) << method;
+    }
+  }
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include <Eigen/LU>
@@ -343,4 +344,97 @@ TEST(LaserSolvers, RefinePlaneConvergesOnExactPoints)
   EXPECT_FALSE(refinePlane(e.points.data(), 30, e.cone, bad));
   EXPECT_EQ(bad, Eigen::Vector4d(0.0, 0.0, 0.0, 1.0));
   EXPECT_FALSE(refinePlane(e.points.data(), 2, e.cone, bad));
+}
+
+namespace
+{
+//! Rig and plane of a stress-laser configuration, with its three sample points (normalized).
+struct HardCase
+{
+  LaserCone cone;
+  Eigen::Vector4d plane;
+  Eigen::Vector2d x[3];
+};
+
+//! Smallest normal error (rad) of the planes of the PP-3 conics, and their number (-1: no tangent).
+int pp3Planes(const HardCase &h, double &best)
+{
+  EpipolarTangents tangents;
+  if (!epipolarTangents(h.cone, tangents))
+    return -1;
+  Eigen::Matrix3d conics[4];
+  const int m = pp3Conics(h.x, tangents, conics);
+  best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < m; ++i) {
+    Eigen::Vector4d plane;
+    if (planePair(conics[i], h.cone, plane))
+      best = std::min(best, std::max(laser_test::normalError(plane, h.plane), laser_test::altitudeError(plane, h.plane)));
+  }
+  return m;
+}
+} // namespace
+
+// stress-laser configuration 858926 (seed 1): the epipolar tangents map onto nearly the same line in
+// the canonical frame, the quartic has a near-double root that was discarded as complex and no conic
+// was returned; keeping it gave a 2 rad wrong plane. Two points are on epipolar lines 1e-5 rad apart:
+// the sample must be refused, or the true plane be among the answers.
+TEST(LaserSolvers, Pp3NearDoubleQuarticRoot)
+{
+  HardCase h;
+  h.cone.halfAngle = 0.37049545766198144;
+  h.cone.apex << 0.18456300265098208, 0.11138481731100491, -0.03036123592939699;
+  h.cone.cRl << -0.99060719381120577, 0.031938223971125453, -0.13295614848158699, -0.034570549158181425,
+      -0.99924838768124524, 0.017536728524230161, -0.1322961250392064, 0.021968376498981743, 0.99096676318310983;
+  h.plane << -0.3981078847690534, 0.28913096454720894, -0.87058221749856035, 4.1214513986228374;
+  h.x[0] << -0.52368119272977454, 0.074766892057625961;
+  h.x[1] << -0.01187722313514558, 0.41964786918862068;
+  h.x[2] << -0.0143619241976178, -0.33685096816430521;
+  double best = 0.0;
+  const int m = pp3Planes(h, best);
+  ASSERT_GE(m, 0);
+  if (m > 0) {
+    EXPECT_LT(best, 1e-6);
+  }
+}
+
+// stress-laser configuration 267998 (seed 7): two of the points lie on nearly the same epipolar line
+// (1e-4 rad apart), where the canonical frame of eq. 36 degenerates in every point order; the solver
+// returned a 2 rad wrong conic. It must refuse the sample or return the true plane among its answers.
+TEST(LaserSolvers, Pp3PointsOnOneEpipolarLineNeverGiveAWrongPlane)
+{
+  HardCase h;
+  h.cone.halfAngle = 0.21927718056103745;
+  h.cone.apex << 0.012288143671302404, -0.035945773455886149, -0.037831943173196533;
+  h.cone.cRl << 0.25337081560532515, -0.9653006873625164, 0.063228259322438418, 0.95610526260073125,
+      0.23993985923050243, -0.16820104274240774, 0.14719360253312266, 0.10307010686857712, 0.98372282500886454;
+  h.plane << 0.26835906662411302, 0.34211249872767646, -0.90052343088613762, 3.9598502728349998;
+  h.x[0] << 0.079135441002094381, 0.042724025183365884;
+  h.x[1] << 0.2489403991729125, -0.33872802313011646;
+  h.x[2] << 0.27515439963600141, -0.086508784482788786;
+  double best = 0.0;
+  const int m = pp3Planes(h, best);
+  ASSERT_GE(m, 0);
+  if (m > 0) {
+    EXPECT_LT(best, 1e-6);
+  }
+}
+
+// Minimal samples with two (nearly) coincident points determine nothing but rounding: refused.
+TEST(LaserSolvers, MinimalSolversRefuseCoincidentPoints)
+{
+  std::mt19937 rng(77);
+  std::vector<vpImagePoint> pixels;
+  const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 5, pixels);
+  std::vector<Eigen::Vector2d> x = laser_test::normalized(s.rig.cam, pixels);
+  x[1] = x[0] + Eigen::Vector2d(1e-9, -1e-9);
+  const LaserCone cone = laser_test::toCone(s.rig);
+  Eigen::Vector4d planes[8];
+  EXPECT_EQ(gp3Planes(x.data(), cone, planes), 0);
+  Eigen::Matrix3d c;
+  EXPECT_FALSE(fitConic(x.data(), 5, c));
+  EpipolarTangents tangents;
+  if (epipolarTangents(cone, tangents)) {
+    Eigen::Matrix3d conics[4];
+    EXPECT_EQ(pp3Conics(x.data(), tangents, conics), 0);
+  }
 }

@@ -19,15 +19,14 @@
 #include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
-#ifndef DOXYGEN_SHOULD_SKIP_THIS
-//! A measured stripe run (internal: the diagnostic mask is drawn from them).
+//! A stripe run measured by vpLaserConicDetector (the diagnostic mask getMask() is drawn from them).
 struct vpLaserConicDetectorRun
 {
-  bool alongRow;
-  int line, first, last;
-  bool accepted;
+  bool alongRow;   //!< measured along row \e line (else along column \e line)
+  int line;        //!< row or column index
+  int first, last; //!< half-maximum run [first, last] along the line, pixels
+  bool accepted;   //!< a returned point (else a rejected candidate)
 };
-#endif
 
 /*!
   \ingroup group_laser_conic

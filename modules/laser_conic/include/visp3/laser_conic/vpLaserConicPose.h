@@ -15,9 +15,11 @@
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpPlane.h>
+#include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
 /*!
@@ -53,6 +55,36 @@ public:
     GP3         //!< 3-point RANSAC directly on the ground plane from ray/cone intersections (Sec. 5.3).
   } vpLaserConicMethod;
 
+  //! Outcome of the last computePlane() (getStatusMessage() says it in words).
+  typedef enum {
+    STATUS_NOT_COMPUTED,       //!< computePlane() not called yet
+    STATUS_OK,                 //!< a plane was found
+    STATUS_COLLINEAR_POINTS,   //!< all points lie on one line
+    STATUS_NOT_AN_ELLIPSE,     //!< the least-squares conic of the points (or of the trace) is not an ellipse
+    STATUS_NO_CONSENSUS,       //!< no hypothesis gathers enough inliers
+    STATUS_CAMERA_INSIDE_CONE, //!< PP3 only: no epipolar tangent, the camera centre lies inside the laser cone
+    STATUS_NO_PLANE_PAIR,      //!< the plane pair of the conic has no ground plane
+    STATUS_PLANE_NOT_FINITE,   //!< the estimated plane is not finite
+    STATUS_PLANE_BEHIND,       //!< the plane is behind the system (its trace cannot be seen there)
+    STATUS_SHORT_ARC           //!< the trace found covers too short an arc (setArcCoverageThreshold())
+  } vpLaserConicStatus;
+
+  /*!
+    Final fit on the trace, after the RANSAC search (setFinalFit()).
+    - FINAL_FIT_FREE: least-squares conic on the trace (5 degrees of freedom: it ignores the
+      tangency of the image conic to the two epipolar lines of the rig), then its plane pair. This is
+      what PP5 does, and what the paper's PP3 does after its 3-point search: PP3 with this final fit is
+      PP5 on PP3's inliers, it optimises the algebraic conic residual, not the rig's constraints.
+    - FINAL_FIT_CONSTRAINED: the plane refined on the trace (3 degrees of freedom, Sampson distances
+      to the trace it predicts, Huber IRLS): the conic keeps its tangency to the epipolar lines.
+    - FINAL_FIT_SELECT: the constrained fit, unless the data reject it against the free fit (F-test
+      of the two extra degrees of freedom at 1 %): then the calibration cannot explain the trace
+      (getCalibrationHealth()), the constrained fit absorbs the calibration error into the plane, and
+      the free fit is used.
+    - FINAL_FIT_DEFAULT: FREE for PLANE_PAIR and PP5, SELECT for PP3 and GP3.
+  */
+  typedef enum { FINAL_FIT_DEFAULT, FINAL_FIT_FREE, FINAL_FIT_CONSTRAINED, FINAL_FIT_SELECT } vpLaserConicFinalFit;
+
   vpLaserConicPose();
 
   /*!
@@ -87,6 +119,36 @@ public:
   //! Seed of the RANSAC sampler; default 0.
   void setRansacSeed(unsigned int seed);
   /*!
+    Smallest number of inliers a consensus needs (default 0: the method's minimal sample size);
+    fewer gives STATUS_NO_CONSENSUS.
+  */
+  void setRansacNbInliersToReachConsensus(unsigned int n) { m_nbInliersToReachConsensus = n; }
+  /*!
+    Scale-adaptive final stage (default true). The RANSAC threshold separates gross outliers; then
+    the trace is collected around the least-squares conic of the consensus at max(threshold, 3 sigma),
+    sigma being the residual scale of the consensus (MAD, pixels), repeatedly while it grows, and the
+    final fit (setFinalFit()) runs on that trace. Unlike a fixed threshold around the model, this keeps
+    the whole trace when the calibration is imperfect. false: the RANSAC inliers and a plain
+    least-squares final fit.
+  */
+  void setScaleAdaptive(bool enable) { m_scaleAdaptive = enable; }
+  /*!
+    Smallest arc of the trace, in radians around the fitted ellipse (its centre, in the frame where it
+    is a circle), a consensus must cover (default pi/2; 0 disables the test): a short arc leaves the
+    tilt weakly constrained. Fewer gives STATUS_SHORT_ARC.
+    \exception vpLaserConicException::badValueError outside [0, 2 pi].
+  */
+  void setArcCoverageThreshold(double radians);
+  //! Final fit on the trace (see vpLaserConicFinalFit); default FINAL_FIT_DEFAULT.
+  void setFinalFit(vpLaserConicFinalFit fit) { m_finalFit = fit; }
+  /*!
+    Compute the covariance of the estimate (default false): getCovarianceMatrix() and
+    getPlaneCovarianceMatrix(), first order, from the Jacobian of the final fit's residuals and their
+    scale (RMS residual with the fit's degrees of freedom removed).
+  */
+  void setCovarianceComputation(bool enable) { m_computeCovariance = enable; }
+
+  /*!
     Refit the best model on its inliers (default true), during the RANSAC loop (kept when it scores
     better) and after it (kept unless it loses more than a tenth of the inliers; refitted again, a
     few rounds at most, while it gathers more inliers): PP5 and PP3 refit a least-squares ellipse,
@@ -101,7 +163,7 @@ public:
     \param points : image points (pixels) of the laser trace; every method but PLANE_PAIR rejects outliers.
     \param method : PLANE_PAIR, PP5, PP3 or GP3.
     \param cPlane : the ground plane in the camera frame, unit normal pointing from the plane towards the camera.
-    \return false, with getFailureReason() telling why, when no plane was found; cPlane is then untouched.
+    \return false, with getStatus() telling why, when no plane was found; cPlane is then untouched.
     The reasons: all points collinear; the least-squares conic is not an ellipse (PLANE_PAIR); no
     consensus (no hypothesis with enough inliers); the camera centre inside the laser cone, where no
     epipolar tangent exists (PP3 only); no plane of the plane pair has both optical centres on its side;
@@ -118,16 +180,82 @@ public:
   double getRoll() const { return m_roll; }
   //! Pitch of the last estimate, in radians (see the class convention).
   double getPitch() const { return m_pitch; }
-  //! Indices of the inliers of the last estimate (all points for PLANE_PAIR).
+  //! Indices of the inliers (the points of the trace) of the last estimate (all points for PLANE_PAIR).
+  std::vector<unsigned int> getRansacInlierIndex() const { return m_inliers; }
+  //! The inlier points of the last estimate (pixels, as given).
+  std::vector<vpImagePoint> getRansacInliers() const;
+  //! Number of inliers of the last estimate.
+  unsigned int getRansacNbInliers() const { return static_cast<unsigned int>(m_inliers.size()); }
+  //! \deprecated Use getRansacInlierIndex().
   std::vector<unsigned int> getInliers() const { return m_inliers; }
   //! Number of RANSAC samples drawn by the last estimate.
   int getRansacTrials() const { return m_trials; }
+
+  /*!
+    Covariance (3x3) of (altitude [m], roll [rad], pitch [rad]) of the last estimate, in that order,
+    when setCovarianceComputation(true); empty otherwise. First order: sigma^2 (J^T J)^-1 of the final
+    fit (3 plane parameters for a constrained fit; for a free fit the covariance of the 5 conic
+    parameters propagated through the plane pair), sigma^2 the residual variance of the fit.
+  */
+  vpMatrix getCovarianceMatrix() const { return m_covariance; }
+  //! Covariance (4x4) of the plane (a, b, c, d) of the last estimate (unit normal), as getCovarianceMatrix().
+  vpMatrix getPlaneCovarianceMatrix() const { return m_planeCovariance; }
+
+  /*!
+    Calibration-health figure of the last estimate: RMS residual (pixels) of the constrained fit (the
+    trace a plane predicts, 3 DOF) over that of a free conic fit (5 DOF) on the same inliers. Both are
+    the noise level, and the ratio near 1, when the rig is well calibrated; a calibration error leaves
+    the free fit at the noise level but not the constrained one (e.g. 0.5 px noise: ratio ~1.0 exact,
+    several with intrinsics off by 5 px). NaN when no constrained fit could be made.
+  */
+  double getCalibrationHealth() const;
+  //! RMS residual (pixels) of the constrained fit on the inliers of the last estimate.
+  double getConstrainedRms() const { return m_rmsConstrained; }
+  //! RMS residual (pixels) of the free conic fit on the inliers of the last estimate.
+  double getFreeRms() const { return m_rmsFree; }
+  //! Residual scale (pixels, MAD) of the free conic fit on the trace of the last estimate.
+  double getResidualScale() const { return m_sigma; }
+  //! Arc of the trace covered by the inliers of the last estimate (radians around the ellipse).
+  double getArcCoverage() const { return m_coverage; }
+  //! True when the last plane comes from the constrained fit (see vpLaserConicFinalFit).
+  bool isConstrainedFit() const { return m_constrainedChosen; }
   /*! Image conic (pixel coordinates, x^T C x = 0 with x = (u, v, 1)) of the last estimate, for display:
       the fitted ellipse for PLANE_PAIR, PP5 and PP3, the image of the trace on the estimated plane for GP3.
       With a distorted camera it is the conic in the undistorted pixel image (x = K x_n). */
   vpMatrix getImageConic() const { return m_conic; }
-  //! Why the last computePlane() returned false (empty after a success).
+  //! Outcome of the last computePlane().
+  vpLaserConicStatus getStatus() const { return m_status; }
+  //! What a status means, in words.
+  static std::string getStatusMessage(vpLaserConicStatus status);
+  /*!
+    \deprecated Use getStatus() and getStatusMessage(). Why the last computePlane() returned false
+    (the status message, with details; empty after a success).
+  */
   std::string getFailureReason() const { return m_failure; }
+
+  //! Camera parameters set with setCameraParameters().
+  vpCameraParameters getCameraParameters() const { return m_cam; }
+
+  /*!
+    Displays an estimate with vpDisplay (the image must be shown in a window): the detected \e points
+    (those given to computePlane()) as crosses, inliers green and outliers red, the fitted conic in
+    yellow (through the camera model, distortion included) and an altitude / roll / pitch caption
+    (the status message when computePlane() failed). Call vpDisplay::flush() afterwards.
+  */
+  static void display(const vpImage<unsigned char> &I, const vpLaserConicPose &estimator,
+                      const std::vector<vpImagePoint> &points, unsigned int thickness = 1);
+  //! display() on a colour image.
+  static void display(const vpImage<vpRGBa> &I, const vpLaserConicPose &estimator,
+                      const std::vector<vpImagePoint> &points, unsigned int thickness = 1);
+  /*!
+    Draws the same overlay as display() into the pixels of \e I with vpImageDraw (no window needed:
+    headless overlays, files). In a gray image inliers, conic and caption are white and outliers gray.
+  */
+  static void draw(vpImage<unsigned char> &I, const vpLaserConicPose &estimator,
+                   const std::vector<vpImagePoint> &points, unsigned int thickness = 1);
+  //! draw() on a colour image (inliers green, outliers red, conic yellow).
+  static void draw(vpImage<vpRGBa> &I, const vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points,
+                   unsigned int thickness = 1);
 
   /*! Altitude, roll and pitch of a plane given in the camera frame (normal towards the camera).
       \exception vpLaserConicException::badValueError on a zero normal. */
@@ -148,6 +276,18 @@ private:
   int m_trials;
   vpMatrix m_conic;
   std::string m_failure;
+  vpLaserConicStatus m_status;
+  unsigned int m_nbInliersToReachConsensus;
+  bool m_scaleAdaptive;
+  double m_minCoverage;
+  vpLaserConicFinalFit m_finalFit;
+  bool m_computeCovariance;
+  vpMatrix m_covariance, m_planeCovariance;
+  double m_rmsConstrained, m_rmsFree, m_sigma, m_coverage;
+  bool m_constrainedChosen;
+  std::vector<vpImagePoint> m_points;
+
+  bool fail(vpLaserConicStatus status, const std::string &details = std::string());
 };
 
 #endif

@@ -92,6 +92,32 @@ public:
     double x2 = 0.0, y2 = 0.0;                 //!< second end of a line, metres
     double size = 0.1;                         //!< diameter, side or line width, metres
     vpRGBa colour = vpRGBa(200, 25, 20, 255);  //!< albedo under ambient 1 (default: a laser-like red)
+
+    //! A red disc of diameter \e size centred at (x, y).
+    static vpDistractor disc(double x, double y, double size)
+    {
+      vpDistractor d;
+      d.x = x;
+      d.y = y;
+      d.size = size;
+      return d;
+    }
+    //! A red square of side \e size centred at (x, y), sides along the ground axes.
+    static vpDistractor square(double x, double y, double size)
+    {
+      vpDistractor d = disc(x, y, size);
+      d.shape = DISTRACTOR_RECTANGLE;
+      return d;
+    }
+    //! A red line (a cable) from (x, y) to (x2, y2), \e width wide.
+    static vpDistractor line(double x, double y, double x2, double y2, double width)
+    {
+      vpDistractor d = disc(x, y, width);
+      d.shape = DISTRACTOR_LINE;
+      d.x2 = x2;
+      d.y2 = y2;
+      return d;
+    }
   };
 
   /*!

@@ -51,7 +51,8 @@ bool planePair(const Eigen::Matrix3d &c, const LaserCone &cone, Eigen::Vector4d 
 
 /*!
   Conic through n >= 5 points (least squares, DLT on Hartley-normalised coordinates, eq. 29-31).
-  With exactly 5 points it is the minimal interpolating conic. \return false when degenerate.
+  With exactly 5 points it is the minimal interpolating conic. \return false when degenerate (with 5
+  points also when two of them are closer than 1e-6 of the sample's extent).
 */
 bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c);
 
@@ -68,7 +69,8 @@ bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents);
 
 /*!
   PP-3 minimal solver (Sec. 5.2): conics through 3 points tangent to the two epipolar lines, via
-  the canonical homography and the quartic (eq. 53). Only ellipses are returned.
+  the canonical homography and the quartic (eq. 53). Only ellipses are returned. A sample with two
+  points closer than 1e-4 of its extent gives none (the conic would be decided by rounding).
   \return number of conics written (0 to 4).
 */
 int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents, Eigen::Matrix3d conics[4]);
@@ -76,7 +78,8 @@ int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents,
 /*!
   GP-3 minimal solver (Sec. 5.3): intersects the three rays with the laser cone (eq. 57) and forms
   the planes through one intersection per ray, keeping those with both optical centres on the same
-  side. \return number of planes written (0 to 8), each normalised as a ground plane.
+  side. \return number of planes written (0 to 8), each normalised as a ground plane; 0 when two of
+  the points are closer than 1e-6 of the sample's extent.
 */
 int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vector4d planes[8]);
 
@@ -89,6 +92,19 @@ int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vec
 */
 bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane,
                  int iterations = 20);
+
+/*!
+  refinePlane() minimising the weighted sum of squared Sampson distances (weights >= 0, one per point;
+  nullptr for unit weights): the step of an iteratively reweighted least-squares (IRLS) refit.
+*/
+bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
+                         Eigen::Vector4d &plane, int iterations = 20);
+
+/*!
+  Plane of a ground attitude: altitude h (d), roll and pitch as in altitudeRollPitch() (its inverse):
+  n = -R_x(roll) R_y(pitch) e_z.
+*/
+Eigen::Vector4d planeFromAltitudeRollPitch(double altitude, double roll, double pitch);
 
 //! Image conic (normalized coordinates) of the trace of the laser cone on a ground plane.
 Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone);

@@ -1,0 +1,346 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// Scale-adaptive final fit of the circular-laser estimators (see laser_robust_fit.h). Why it exists:
+// with an imperfect calibration no plane explains the whole trace within a RANSAC threshold of a few
+// pixels, so a consensus set collected with that threshold around a plane keeps the arc the plane
+// explains best, and a fit on a partial arc leaves the tilt weakly constrained. The image of the
+// trace, however, remains a conic whatever the calibration error: the trace is collected around the
+// free conic at the scale of its own residuals, then the plane is fitted on the whole trace.
+#include "laser_robust_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+#include <visp3/robust/vpRobustScale.h>
+
+namespace vpLaserRobustFit
+{
+namespace
+{
+using vpLaserSolvers::LaserCone;
+
+//! Rounds of trace collection and of reweighting at most.
+constexpr int kCollectRounds = 5;
+constexpr int kIrlsRounds = 4;
+//! Significance of the F-test that rejects the constrained fit against the free one.
+constexpr double kSelectSignificance = 0.01;
+
+//! Signed Sampson distance (x^T c x) / |grad|, NaN where the conic has no gradient.
+double signedSampson(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
+{
+  const Eigen::Vector3d x(p(0), p(1), 1.0);
+  const Eigen::Vector3d g = c * x;
+  const double gn = g.head<2>().norm();
+  return gn > 0.0 ? x.dot(g) / (2.0 * gn) : std::numeric_limits<double>::quiet_NaN();
+}
+
+//! Residuals (pixels) of the listed points to the conic.
+std::vector<double> residualsOf(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &c,
+                                double focal)
+{
+  std::vector<double> r;
+  r.reserve(indices.size());
+  for (int i : indices)
+    r.push_back(focal * signedSampson(c, points[i]));
+  return r;
+}
+
+double rms(const std::vector<double> &r)
+{
+  double s = 0.0;
+  for (double v : r)
+    s += v * v;
+  return r.empty() ? 0.0 : std::sqrt(s / double(r.size()));
+}
+
+std::vector<int> allIndices(int n)
+{
+  std::vector<int> all(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i)
+    all[static_cast<size_t>(i)] = i;
+  return all;
+}
+
+PointList subset(const PointList &points, const std::vector<int> &indices)
+{
+  PointList out;
+  out.reserve(indices.size());
+  for (int i : indices)
+    out.push_back(points[i]);
+  return out;
+}
+
+Eigen::Matrix3d normalised(const Eigen::Matrix3d &c)
+{
+  const double n = c.norm();
+  return n > 0.0 ? Eigen::Matrix3d(c / n) : c;
+}
+
+/*!
+  The points of the trace: the free conic fitted on the consensus, the residual scale sigma of the
+  consensus to it (MAD), every point within max(threshold, k sigma) collected, and again on the new
+  set while it changes. The free conic extrapolates a partial arc well enough that each round
+  gathers the rest of the trace. \return false when no ellipse fits the consensus.
+*/
+bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &inliers, Eigen::Matrix3d &c,
+                  double &sigma)
+{
+  if (!vpLaserEstimators::fitEllipseOn(points, inliers, c))
+    return false;
+  const std::vector<int> all = allIndices(static_cast<int>(points.size()));
+  std::vector<int> next;
+  for (int round = 0; round < kCollectRounds; ++round) {
+    const std::vector<double> r = residualsOf(points, all, c, s.focal);
+    std::vector<double> rin;
+    rin.reserve(inliers.size());
+    for (int i : inliers)
+      rin.push_back(r[static_cast<size_t>(i)]);
+    sigma = vpRobustMadScale(rin);
+    vpRobustCollect(r, std::max(s.threshold, s.scaleFactor * sigma), next);
+    Eigen::Matrix3d refit;
+    if (next.size() < 5 || next == inliers || !vpLaserEstimators::fitEllipseOn(points, next, refit))
+      break;
+    inliers.swap(next);
+    c = refit;
+  }
+  sigma = vpRobustMadScale(residualsOf(points, inliers, c, s.focal));
+  return true;
+}
+
+/*!
+  Constrained fit: the plane refined on the trace by IRLS with the Huber loss at the scale of its own
+  residuals. The trace is already free of gross outliers; the loss only tempers the few points left
+  near it, and, being quadratic up to 1.345 sigma, does not discard the arc a miscalibrated model
+  explains worst (which a redescending loss, or a tight inlier threshold, would do).
+*/
+bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal, bool robust, Eigen::Vector4d &plane)
+{
+  const int n = static_cast<int>(trace.size());
+  if (!robust)
+    return vpLaserSolvers::refinePlane(trace.data(), n, cone, plane);
+  std::vector<double> w(trace.size(), 1.0);
+  for (int round = 0; round < kIrlsRounds; ++round) {
+    const Eigen::Matrix3d c = vpLaserSolvers::conicFromPlane(plane, cone);
+    std::vector<double> r(trace.size());
+    for (size_t k = 0; k < trace.size(); ++k)
+      r[k] = focal * signedSampson(c, trace[k]);
+    const double sigma = vpRobustMadScale(r);
+    for (size_t k = 0; k < trace.size(); ++k)
+      w[k] = vpRobustWeight(vpRobustLoss::HUBER, r[k], sigma);
+    if (!vpLaserSolvers::refinePlaneWeighted(trace.data(), w.data(), n, cone, plane, 10))
+      return false;
+  }
+  return true;
+}
+
+/*!
+  p-value of the F-test of the constrained model (3 parameters) against the free one (5) on n points:
+  F = ((RSS_c - RSS_f) / 2) / (RSS_f / (n - 5)), whose survival function for 2 numerator degrees of
+  freedom is (1 + 2 F / (n - 5))^(-(n - 5) / 2).
+*/
+double constrainedPValue(double rssConstrained, double rssFree, int n)
+{
+  const double dof = double(n - 5);
+  if (!(dof > 0.0) || !(rssConstrained > rssFree) || !(rssFree > 0.0))
+    return 1.0;
+  const double F = 0.5 * (rssConstrained - rssFree) / (rssFree / dof);
+  return std::pow(1.0 + 2.0 * F / dof, -0.5 * dof);
+}
+
+//! (altitude, roll, pitch) of a plane.
+Eigen::Vector3d attitudeOf(const Eigen::Vector4d &plane)
+{
+  Eigen::Vector3d a;
+  vpLaserSolvers::altitudeRollPitch(plane, a(0), a(1), a(2));
+  return a;
+}
+
+//! Jacobian (4x3) of the plane with respect to (altitude, roll, pitch).
+Eigen::Matrix<double, 4, 3> planeJacobian(const Eigen::Vector3d &a)
+{
+  Eigen::Matrix<double, 4, 3> P;
+  const double h = 1e-7;
+  for (int j = 0; j < 3; ++j) {
+    Eigen::Vector3d plus = a, minus = a;
+    plus(j) += h;
+    minus(j) -= h;
+    P.col(j) = (vpLaserSolvers::planeFromAltitudeRollPitch(plus(0), plus(1), plus(2)) -
+                vpLaserSolvers::planeFromAltitudeRollPitch(minus(0), minus(1), minus(2))) /
+               (2.0 * h);
+  }
+  return P;
+}
+
+/*!
+  Covariance of (altitude, roll, pitch) of the constrained fit: sigma^2 (J^T J)^-1 with J the
+  Jacobian of the residuals (pixels) with respect to those three parameters and sigma^2 = RSS / (n - 3).
+*/
+Eigen::Matrix3d constrainedCovariance(const PointList &trace, const LaserCone &cone, double focal,
+                                      const Eigen::Vector4d &plane, double rss)
+{
+  const Eigen::Vector3d a = attitudeOf(plane);
+  const int n = static_cast<int>(trace.size());
+  Eigen::MatrixXd J(n, 3);
+  for (int j = 0; j < 3; ++j) {
+    const double h = j == 0 ? 1e-7 * std::max(1.0, a(0)) : 1e-7;
+    Eigen::Vector3d plus = a, minus = a;
+    plus(j) += h;
+    minus(j) -= h;
+    const Eigen::Matrix3d cp = vpLaserSolvers::conicFromPlane(
+                                  vpLaserSolvers::planeFromAltitudeRollPitch(plus(0), plus(1), plus(2)), cone),
+                          cm = vpLaserSolvers::conicFromPlane(
+                                  vpLaserSolvers::planeFromAltitudeRollPitch(minus(0), minus(1), minus(2)), cone);
+    for (int i = 0; i < n; ++i)
+      J(i, j) = focal * (signedSampson(cp, trace[i]) - signedSampson(cm, trace[i])) / (2.0 * h);
+  }
+  const double sigma2 = rss / std::max(1, n - 3);
+  return sigma2 * (J.transpose() * J).inverse();
+}
+
+/*!
+  Covariance of (altitude, roll, pitch) of the free fit: the conic moves in the 5 directions of the
+  symmetric matrices orthogonal to it; their covariance sigma^2 (J^T J)^-1 (sigma^2 = RSS / (n - 5))
+  is propagated through the plane pair by its Jacobian (central differences).
+*/
+bool freeCovariance(const PointList &trace, const LaserCone &cone, double focal, const Eigen::Matrix3d &conic,
+                    double rss, Eigen::Matrix3d &cov)
+{
+  const Eigen::Matrix3d c0 = normalised(conic);
+  // Orthonormal basis of the symmetric matrices (Frobenius inner product), then Gram-Schmidt against c0.
+  Eigen::Matrix3d basis[6];
+  int nb = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      Eigen::Matrix3d e = Eigen::Matrix3d::Zero();
+      e(i, j) = e(j, i) = i == j ? 1.0 : std::sqrt(0.5);
+      basis[nb++] = e;
+    }
+  Eigen::Matrix3d dirs[5];
+  int nd = 0;
+  for (int k = 0; k < 6 && nd < 5; ++k) {
+    Eigen::Matrix3d v = basis[k] - (basis[k].cwiseProduct(c0).sum()) * c0;
+    for (int m = 0; m < nd; ++m)
+      v -= v.cwiseProduct(dirs[m]).sum() * dirs[m];
+    const double norm = v.norm();
+    if (norm > 0.3)
+      dirs[nd++] = v / norm;
+  }
+  if (nd < 5)
+    return false;
+  const int n = static_cast<int>(trace.size());
+  const double h = 1e-7;
+  Eigen::MatrixXd J(n, 5);
+  Eigen::Matrix<double, 3, 5> G;
+  for (int k = 0; k < 5; ++k) {
+    const Eigen::Matrix3d cp = c0 + h * dirs[k], cm = c0 - h * dirs[k];
+    for (int i = 0; i < n; ++i)
+      J(i, k) = focal * (signedSampson(cp, trace[i]) - signedSampson(cm, trace[i])) / (2.0 * h);
+    Eigen::Vector4d pp, pm;
+    if (!vpLaserSolvers::planePair(cp, cone, pp) || !vpLaserSolvers::planePair(cm, cone, pm))
+      return false;
+    Eigen::Vector3d ap = attitudeOf(pp), am = attitudeOf(pm);
+    G.col(k) = (ap - am) / (2.0 * h);
+  }
+  const double sigma2 = rss / std::max(1, n - 5);
+  const Eigen::Matrix<double, 5, 5> info = J.transpose() * J;
+  cov = G * (sigma2 * info.inverse()) * G.transpose();
+  return cov.allFinite();
+}
+} // namespace
+
+double arcCoverage(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &conic)
+{
+  Eigen::Matrix3d c = conic;
+  if (c(0, 0) < 0.0)
+    c = -c;
+  const Eigen::Matrix2d A = c.topLeftCorner<2, 2>();
+  const Eigen::LLT<Eigen::Matrix2d> llt(A);
+  if (llt.info() != Eigen::Success || indices.empty())
+    return 0.0;
+  const Eigen::Vector2d centre = -A.inverse() * c.topRightCorner<2, 1>();
+  const Eigen::Matrix2d U = llt.matrixU(); // A = U^T U: U (x - centre) lies on a circle
+  std::vector<double> angles;
+  angles.reserve(indices.size());
+  for (int i : indices) {
+    const Eigen::Vector2d u = U * (points[i] - centre);
+    angles.push_back(std::atan2(u(1), u(0)));
+  }
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + 2.0 * M_PI - angles.back();
+  for (size_t k = 1; k < angles.size(); ++k)
+    gap = std::max(gap, angles[k] - angles[k - 1]);
+  return 2.0 * M_PI - gap;
+}
+
+Outcome fit(const PointList &points, const std::vector<int> &inliers, const LaserCone &cone,
+            const Eigen::Vector4d &startPlane, const Settings &s, Result &res)
+{
+  res.inliers = inliers;
+  Eigen::Matrix3d freeConic;
+  if (s.adaptive) {
+    if (!collectTrace(points, s, res.inliers, freeConic, res.sigma))
+      return Outcome::NOT_AN_ELLIPSE;
+  } else {
+    if (!vpLaserEstimators::fitEllipseOn(points, res.inliers, freeConic))
+      return Outcome::NOT_AN_ELLIPSE;
+    res.sigma = vpRobustMadScale(residualsOf(points, res.inliers, freeConic, s.focal));
+  }
+  res.coverage = arcCoverage(points, res.inliers, freeConic);
+  if (s.minCoverage > 0.0 && res.coverage < s.minCoverage)
+    return Outcome::SHORT_ARC;
+
+  const PointList trace = subset(points, res.inliers);
+  const int n = static_cast<int>(trace.size());
+  const std::vector<int> all = allIndices(n);
+  const std::vector<double> rf = residualsOf(trace, all, freeConic, s.focal);
+  res.rmsFree = rms(rf);
+
+  Eigen::Vector4d freePlane = Eigen::Vector4d::Zero();
+  const bool hasFreePlane = vpLaserSolvers::planePair(freeConic, cone, freePlane);
+  // The constrained fit starts from the RANSAC plane (GP-3) or from the plane of the free conic.
+  Eigen::Vector4d constrainedPlane = startPlane.head<3>().norm() > 0.0 ? startPlane : freePlane;
+  const bool hasConstrained = constrainedPlane.head<3>().norm() > 0.0 &&
+                              constrainedFit(trace, cone, s.focal, s.adaptive, constrainedPlane) &&
+                              constrainedPlane.allFinite();
+  const Eigen::Matrix3d constrainedConic =
+      hasConstrained ? normalised(vpLaserSolvers::conicFromPlane(constrainedPlane, cone)) : Eigen::Matrix3d::Zero();
+  const std::vector<double> rc =
+      hasConstrained ? residualsOf(trace, all, constrainedConic, s.focal) : std::vector<double>();
+  res.rmsConstrained = hasConstrained ? rms(rc) : std::numeric_limits<double>::quiet_NaN();
+
+  bool useConstrained = false;
+  switch (s.finalFit) {
+  case FinalFit::FREE: useConstrained = false; break;
+  case FinalFit::CONSTRAINED: useConstrained = hasConstrained; break;
+  case FinalFit::SELECT: {
+    const double rssC = res.rmsConstrained * res.rmsConstrained * n, rssF = res.rmsFree * res.rmsFree * n;
+    useConstrained = hasConstrained && (!hasFreePlane || constrainedPValue(rssC, rssF, n) >= kSelectSignificance);
+    break;
+  }
+  }
+  if (!useConstrained && !hasFreePlane)
+    return Outcome::NO_PLANE;
+  res.constrainedChosen = useConstrained;
+  res.plane = useConstrained ? constrainedPlane : freePlane;
+  res.conic = useConstrained ? constrainedConic : freeConic;
+
+  if (s.covariance) {
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    if (useConstrained) {
+      cov = constrainedCovariance(trace, cone, s.focal, res.plane, res.rmsConstrained * res.rmsConstrained * n);
+    } else if (!freeCovariance(trace, cone, s.focal, freeConic, res.rmsFree * res.rmsFree * n, cov)) {
+      cov.setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    res.covariance = cov;
+    const Eigen::Matrix<double, 4, 3> P = planeJacobian(attitudeOf(res.plane));
+    res.planeCovariance = P * cov * P.transpose();
+  }
+  return Outcome::OK;
+}
+} // namespace vpLaserRobustFit

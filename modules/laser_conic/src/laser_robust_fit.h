@@ -1,0 +1,75 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file laser_robust_fit.h
+  \brief Private scale-adaptive final fit of the circular-laser estimators, after their RANSAC search:
+  the trace collected at its own residual scale, the arc coverage test, the constrained (3-DOF plane)
+  and free (5-DOF conic) fits with a robust loss, the choice between them, the calibration-health
+  figure and the covariance of the estimate. Pure Eigen, normalized image coordinates.
+*/
+#ifndef VP_LASER_ROBUST_FIT_H
+#define VP_LASER_ROBUST_FIT_H
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+#include "laser_estimators.h"
+
+namespace vpLaserRobustFit
+{
+using vpLaserEstimators::PointList;
+
+//! Which fit gives the final plane.
+enum class FinalFit {
+  FREE,        //!< plane pair of the least-squares conic on the trace (5 DOF; PP-5, PLANE_PAIR)
+  CONSTRAINED, //!< plane refined on the trace (3 DOF, the conic keeps its tangency to the epipolar lines)
+  SELECT       //!< the constrained fit unless the data reject it against the free one (F-test at 1 %)
+};
+
+//! Settings of fit().
+struct Settings
+{
+  double focal = 1.0;       //!< pixels per normalized unit: residuals are reported in pixels
+  double threshold = 2.0;   //!< RANSAC threshold (pixels): the floor of the re-collection threshold
+  double scaleFactor = 3.0; //!< re-collection threshold = max(threshold, scaleFactor * sigma)
+  double minCoverage = 0.0; //!< smallest accepted arc coverage of the trace (rad, 0 disables the test)
+  bool adaptive = true;     //!< false: keep the RANSAC inliers and a plain least-squares final fit
+  bool covariance = false;  //!< compute the covariances
+  FinalFit finalFit = FinalFit::FREE;
+};
+
+//! Outcome of fit().
+enum class Outcome { OK, SHORT_ARC, NOT_AN_ELLIPSE, NO_PLANE };
+
+//! Result of fit().
+struct Result
+{
+  Eigen::Vector4d plane = Eigen::Vector4d::Zero();
+  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero(); //!< image conic of the final plane or free fit
+  std::vector<int> inliers;                        //!< the points of the trace
+  double sigma = 0.0;            //!< residual scale (pixels, MAD) of the free fit on the trace
+  double rmsConstrained = 0.0;   //!< RMS residual (pixels) of the constrained fit on the trace
+  double rmsFree = 0.0;          //!< RMS residual (pixels) of the free fit on the trace
+  double coverage = 0.0;         //!< angular coverage of the trace around the ellipse (rad)
+  bool constrainedChosen = false; //!< the final plane is the constrained fit
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();      //!< of (altitude, roll, pitch)
+  Eigen::Matrix4d planeCovariance = Eigen::Matrix4d::Zero(); //!< of (a, b, c, d)
+};
+
+/*!
+  Final fit from a RANSAC consensus \e inliers (and, for a constrained start, \e startPlane; zero
+  when the RANSAC model was a conic).
+*/
+Outcome fit(const PointList &points, const std::vector<int> &inliers, const vpLaserSolvers::LaserCone &cone,
+            const Eigen::Vector4d &startPlane, const Settings &settings, Result &result);
+
+//! Angular coverage (rad, in [0, 2 pi]) of the points around the centre of the ellipse \e c.
+double arcCoverage(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &c);
+} // namespace vpLaserRobustFit
+
+#endif
