@@ -15,6 +15,7 @@
   w_i = mean depth / depth_i turns the algebraic residual z_i (x_i - P_x / P_z) into the
   reprojection error, so that a few passes approach the maximum-likelihood cost.
 */
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -137,8 +138,9 @@ int pointsInFront(const Problem &p, double alpha)
 }
 
 // Yaw minimising q^T Q q on the unit circle, q = (cos, sin, 1): the lowest of its minima. The
-// algebraic cost does not see which side of the camera a point lies on, so that a minimum putting
-// most points behind the camera (a mirrored pose) is taken only when every minimum does.
+// algebraic cost does not see which side of the camera a point lies on: a global minimum with points
+// behind the camera is still returned (the facade's cheirality check reports it), only exact ties
+// are broken in favour of the points in front.
 double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
 {
   // Reference angle: the unconstrained minimiser over (c, s). For exact data it is the solution,
@@ -168,9 +170,8 @@ double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
 
   // Scale of the cost's curvature: second derivatives below it (relative) are taken as flat.
   const double curvatureScale = Q.norm();
-  double best[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  double bestPhi[2] = {0.0, 0.0};
-  const int majority = problem.n / 2 + 1;
+  double phiMin[5], costMin[5];
+  int minima = 0;
   for (int k = 0; k < count; ++k) {
     // Newton polishing: the companion-matrix roots (or the real part of a nearly real pair) are
     // close to the stationary point; a few steps make it exact. Maxima and inflections are skipped.
@@ -184,15 +185,28 @@ double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
     circleDerivatives(Q, phi, d1, d2);
     if (!(d2 > 1e-12 * curvatureScale))
       continue;
-    const double cost = circleCost(Q, phi);
-    const int mirrored = (pointsInFront(problem, detail::wrapAngle(theta0 + phi)) < majority) ? 1 : 0;
-    if (cost < best[mirrored]) {
-      best[mirrored] = cost;
-      bestPhi[mirrored] = phi;
+    phiMin[minima] = phi;
+    costMin[minima++] = circleCost(Q, phi);
+  }
+  if (minima == 0)
+    return theta0; // a constant cost (unobservable yaw) is rejected by the caller before
+  const double lowest = *std::min_element(costMin, costMin + minima);
+  // The global minimum. Only exact ties (to rounding: the mirrored pose of a degenerate geometry,
+  // e.g. points on one vertical ray, fits as well) are broken by the number of points in front.
+  const double tie = lowest + 1e-9 * std::abs(lowest) + 1e-12 * curvatureScale;
+  double bestPhi = 0.0, bestCost = 0.0;
+  int bestFront = -1;
+  for (int k = 0; k < minima; ++k) {
+    if (costMin[k] > tie)
+      continue;
+    const int front = pointsInFront(problem, detail::wrapAngle(theta0 + phiMin[k]));
+    if (front > bestFront || (front == bestFront && costMin[k] < bestCost)) {
+      bestFront = front;
+      bestPhi = phiMin[k];
+      bestCost = costMin[k];
     }
   }
-  const int pick = (best[0] < std::numeric_limits<double>::infinity()) ? 0 : 1;
-  return detail::wrapAngle(theta0 + bestPhi[pick]);
+  return detail::wrapAngle(theta0 + bestPhi);
 }
 } // namespace
 

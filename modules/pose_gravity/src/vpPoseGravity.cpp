@@ -7,6 +7,7 @@
 */
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -65,12 +66,14 @@ void checkStdDev(double sigma, const char *what)
 /*!
   Consistency of a closed-form pose with the points it came from: STATUS_BEHIND_CAMERA when a point
   is not in front of the camera, STATUS_INCONSISTENT_GRAVITY when the reprojection error (largest
-  when !rms, root mean square when rms) exceeds tol, STATUS_OK otherwise.
+  when !rms, root mean square when rms) exceeds tol, STATUS_OK otherwise; \e error receives it.
 */
 vpPoseGravity::vpPoseGravityStatus checkPose(const Pose &pose, const std::vector<Eigen::Vector3d> &x,
-                                             const std::vector<Eigen::Vector3d> &X, bool rms, double tol)
+                                             const std::vector<Eigen::Vector3d> &X, bool rms, double tol,
+                                             double &error)
 {
   double worst = 0.0, sum = 0.0;
+  error = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < x.size(); ++i) {
     const Eigen::Vector3d P = pose.R * X[i] + pose.t;
     if (!(P.z() > 0.0))
@@ -79,8 +82,8 @@ vpPoseGravity::vpPoseGravityStatus checkPose(const Pose &pose, const std::vector
     worst = std::max(worst, e2);
     sum += e2;
   }
-  const double e2 = rms ? sum / static_cast<double>(x.size()) : worst;
-  return (e2 <= tol * tol) ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_INCONSISTENT_GRAVITY;
+  error = std::sqrt(rms ? sum / static_cast<double>(x.size()) : worst);
+  return (error <= tol) ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_INCONSISTENT_GRAVITY;
 }
 
 vpGravitySolvers::detail::RefineLoss toRefineLoss(vpPoseGravity::vpRobustLoss loss)
@@ -98,7 +101,7 @@ vpGravitySolvers::detail::RefineLoss toRefineLoss(vpPoseGravity::vpRobustLoss lo
 } // namespace
 
 vpPoseGravity::vpPoseGravity()
-  : m_points(), m_gCam(3, 0.0), m_gObj(3, 0.0), m_hasGCam(false), m_hasGObj(false), m_consistencyThreshold(0.02),
+  : m_points(), m_gCam(3, 0.0), m_gObj(3, 0.0), m_hasGCam(false), m_hasGObj(false), m_consistencyThreshold(0.04),
     m_pairRule(P3P_BEST_THIRD_POINT), m_ransacThreshold(4e-3), m_ransacMaxTrials(1000), m_ransacProbability(0.99),
     m_ransacSeed(0), m_ransacNbInliersConsensus(4), m_ransacSignificance(0.01),
     m_ransacFilter(PREFILTER_DEGENERATE_POINTS), m_inlierIndex(), m_ransacTrials(0), m_imageStdDev(1e-3),
@@ -258,7 +261,7 @@ bool vpPoseGravity::computeLeastSquares(vpHomogeneousMatrix &cMo)
 }
 
 vpPoseGravity::vpPoseGravityStatus vpPoseGravity::solveClosedForm(vpPoseGravityMethod method, double cameraSign,
-                                                                  vpHomogeneousMatrix &cMo) const
+                                                                  vpHomogeneousMatrix &cMo, double &error) const
 {
   std::vector<Eigen::Vector3d> x, X;
   std::vector<unsigned int> firstThree = {0, 1, 2};
@@ -271,24 +274,30 @@ vpPoseGravity::vpPoseGravityStatus vpPoseGravity::solveClosedForm(vpPoseGravityM
                                   m_pairRule == P3P_WIDEST_PAIR ? vpGravitySolvers::P3PPairRule::WidestPair
                                                                 : vpGravitySolvers::P3PPairRule::BestThirdPoint)
           : vpGravitySolvers::leastSquares(gCam, gObj, x.data(), X.data(), static_cast<int>(x.size()), pose);
+  error = std::numeric_limits<double>::infinity();
   if (!found)
     return STATUS_NO_SOLUTION;
   storePose(pose, cMo);
-  return checkPose(pose, x, X, method != P3P, m_consistencyThreshold);
+  return checkPose(pose, x, X, method != P3P, m_consistencyThreshold, error);
 }
 
 bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMatrix &cMo)
 {
-  vpHomogeneousMatrix pose;
-  m_status = solveClosedForm(method, 1.0, pose);
-  if (m_status != STATUS_OK) {
-    // Not consistent as given: is it with the camera gravity reversed (equivalently the object one)?
-    // Then the likely cause is a specific force passed as gravity; no pose is returned either way.
-    vpHomogeneousMatrix reversed;
-    if (solveClosedForm(method, -1.0, reversed) == STATUS_OK)
-      m_status = STATUS_GRAVITY_SIGN_REVERSED;
+  // The same solve with the camera gravity reversed (equivalently the object one) tells a sign
+  // mix-up apart: a specific force passed as gravity. With 3 points the two redundant equations
+  // cannot always reject a wrong sign on their own, so a fit that passes the tolerance is still not
+  // trusted when it leaves more error than the noise explains (3 sigma of the image and gravity
+  // noise) and the reversed sign fits with less than half of it.
+  vpHomogeneousMatrix pose, reversed;
+  double error = 0.0, reversedError = 0.0;
+  m_status = solveClosedForm(method, 1.0, pose, error);
+  const vpPoseGravityStatus reversedStatus = solveClosedForm(method, -1.0, reversed, reversedError);
+  const double noise = 3.0 * std::sqrt(m_imageStdDev * m_imageStdDev + m_gCamStdDev * m_gCamStdDev +
+                                       m_gObjStdDev * m_gObjStdDev);
+  if (reversedStatus == STATUS_OK && (m_status != STATUS_OK || (error > noise && 2.0 * reversedError < error)))
+    m_status = STATUS_GRAVITY_SIGN_REVERSED;
+  if (m_status != STATUS_OK)
     return false;
-  }
   cMo = pose;
   updateCovariance(cMo, nullptr);
   return true;

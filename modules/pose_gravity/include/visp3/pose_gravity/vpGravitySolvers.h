@@ -138,9 +138,9 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
   complement) and the remaining quadratic form is minimised on the unit circle exactly: its
   stationary points are the roots of a quartic in \f$ \tan(\phi/2) \f$ (companion matrix), polished
   by Newton steps; only the minima (positive second derivative) are candidates, and the one of lowest
-  cost is returned. A minimum that puts most points behind the camera (the mirrored pose that an
-  algebraic cost cannot tell apart, e.g. points near one vertical ray) is taken only if every
-  minimum does.
+  cost is returned, whatever the side of the camera its points are on (vpPoseGravity checks it).
+  Minima of equal cost to rounding (the mirrored pose of a degenerate geometry, e.g. two points on
+  one vertical ray) are told apart by the number of points in front of the camera.
 
   Since \f$ x_i P_z - P_x = P_z\,(x_i - P_x/P_z) \f$, unit weights weight each point's squared
   reprojection error by its squared depth: far points dominate. Each reweighting pass sets

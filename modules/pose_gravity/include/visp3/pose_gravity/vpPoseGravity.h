@@ -169,8 +169,12 @@ public:
       the whole consensus set; it succeeds only when the consensus reaches both
       setRansacNbInliersToReachConsensus() and the count that chance alone explains with probability
       below setRansacSignificance() (else STATUS_NO_CONSENSUS).
-    When a result is inconsistent the same solve is tried with the camera gravity reversed: if that
-    one is consistent the status is STATUS_GRAVITY_SIGN_REVERSED (no pose is returned either way).
+    The same solve is also run with the camera gravity reversed: if that one is consistent and the
+    given one is not, or leaves more error than the noise explains (3 times the root sum of squares
+    of setImageStdDev() and the two gravity standard deviations) and more than twice the reversed
+    one's, the status is STATUS_GRAVITY_SIGN_REVERSED and no pose is returned (with 3 points the two
+    redundant equations alone cannot always reject a wrong sign). Setting the sensors' standard
+    deviations before computePose() thus makes the test fit their noise.
     \param method : P3P, LEAST_SQUARES or RANSAC.
     \param cMo : receives the pose on success.
     \exception vpPoseGravityException on missing gravity, too few points for the method (3),
@@ -202,10 +206,12 @@ public:
 
   /*!
     Tolerance of the consistency check of computePose(), in normalized units (pixels / focal
-    length); default 0.02 (16 px at f = 800). It must cover the image noise and what the gravity
-    error does to the points: a tilt error of \f$ \delta \f$ rad moves them by about \f$ \delta \f$
-    (0.5 degree = 7 px at f = 800). A reversed gravity sign or a wrong IMU-to-camera rotation leaves
-    errors of the order of the image size. Throws badParameterError unless > 0.
+    length); default 0.04 (32 px at f = 800). It must cover the image noise and what the gravity
+    error does to the points: a relative tilt error of \f$ \delta \f$ rad between the two IMUs moves
+    them by up to about \f$ \delta \f$ (1 degree = 14 px at f = 800); the default covers the 3-sigma
+    tilt of two IMUs of 0.01 per component. A reversed gravity sign or a wrong IMU-to-camera rotation
+    leaves errors of the order of the image size; the sign is also tested by comparison (see
+    computePose()). Throws badParameterError unless > 0.
   */
   void setConsistencyThreshold(double t);
   //! Tolerance of the consistency check (normalized units).
@@ -326,7 +332,8 @@ private:
   bool computeLeastSquares(vpHomogeneousMatrix &cMo);
   bool computeRansac(vpHomogeneousMatrix &cMo);
   // The closed-form result of a method with a given camera gravity sign: pose and consistency status.
-  vpPoseGravityStatus solveClosedForm(vpPoseGravityMethod method, double cameraSign, vpHomogeneousMatrix &cMo) const;
+  vpPoseGravityStatus solveClosedForm(vpPoseGravityMethod method, double cameraSign, vpHomogeneousMatrix &cMo,
+                                      double &error) const;
   bool finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMatrix &cMo);
   void updateCovariance(const vpHomogeneousMatrix &cMo, const std::vector<unsigned int> *used);
 
