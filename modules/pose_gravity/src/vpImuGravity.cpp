@@ -100,7 +100,10 @@ vpRotationMatrix vpImuGravity::loadRotation(const std::string &file)
     if (blankOrComment(line))
       continue;
     std::string content = line;
-    // Kalibr-like YAML rows "[a, b, c, d]": keep the numbers only.
+    // Kalibr's YAML rows "- [a, b, c, d]": drop the list marker and the brackets.
+    const size_t first = content.find_first_not_of(" \t");
+    if (first != std::string::npos && content.compare(first, 2, "- ") == 0)
+      content[first] = ' ';
     std::replace(content.begin(), content.end(), '[', ' ');
     std::replace(content.begin(), content.end(), ']', ' ');
     if (!parseNumbers(content, values))
