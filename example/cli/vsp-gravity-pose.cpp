@@ -32,7 +32,7 @@ struct Options
   std::string input, output;
   std::string methodName = "LEAST_SQUARES";
   bool refine = false;
-  double threshold = 1e-3;
+  double threshold = 4e-3;
   unsigned int seed = 0;
 };
 
@@ -59,7 +59,7 @@ vpCommandLine commandLine(Options &options)
                 "P3P (first three points), LEAST_SQUARES (all points, default) or RANSAC");
   cli.addFlag("--refine", options.refine, "maximum-likelihood refinement of each pose on its points (RANSAC: inliers)");
   cli.addDouble("--threshold", options.threshold, "T",
-                "RANSAC inlier threshold in normalized coordinates (default 1e-3)", vpCommandLine::POSITIVE);
+                "RANSAC inlier threshold in normalized coordinates, pixels / focal (default 4e-3)", vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
   cli.require({"--input", "--output"});
   return cli;
@@ -84,7 +84,10 @@ std::string statusWord(vpPoseGravity::vpPoseGravityStatus status)
                                                      {vpPoseGravity::STATUS_VERTICAL_RAY, "vertical_ray"},
                                                      {vpPoseGravity::STATUS_NO_SOLUTION, "no_solution"},
                                                      {vpPoseGravity::STATUS_NO_CONSENSUS, "no_consensus"},
-                                                     {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"}},
+                                                     {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"},
+                                                     {vpPoseGravity::STATUS_INCONSISTENT_GRAVITY, "inconsistent_gravity"},
+                                                     {vpPoseGravity::STATUS_GRAVITY_SIGN_REVERSED, "gravity_sign_reversed"},
+                                                     {vpPoseGravity::STATUS_BEHIND_CAMERA, "behind_camera"}},
                                                     "not_computed");
 }
 

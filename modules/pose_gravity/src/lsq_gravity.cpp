@@ -124,23 +124,25 @@ Eigen::Vector3d translationForYaw(const Problem &p, double alpha)
   return -p.MssInv * p.Mqs.transpose() * q;
 }
 
-// Number of points in front of the camera for a yaw and its best translation.
-int pointsInFront(const Problem &p, double alpha)
+// Sum of squared reprojection errors of the pose of a yaw and its best translation (infinite when
+// a point is behind the camera).
+double reprojectionCostForYaw(const Problem &p, double alpha)
 {
   const Eigen::Matrix3d Rz = detail::rotationZ(std::cos(alpha), std::sin(alpha));
   const Eigen::Vector3d s = translationForYaw(p, alpha);
-  // Depth along the camera optical axis = (wRc^T P_up).z = (third column of wRc) . P_up.
-  const Eigen::Vector3d axisUp = p.wRc.col(2);
-  int count = 0;
-  for (int i = 0; i < p.n; ++i)
-    count += (axisUp.dot(Rz * (p.wRo * (p.X[i] - p.centroid)) + s) > 0.0);
-  return count;
+  double cost = 0.0;
+  for (int i = 0; i < p.n; ++i) {
+    const Eigen::Vector3d P = p.wRc.transpose() * (Rz * (p.wRo * (p.X[i] - p.centroid)) + s);
+    if (!(P.z() > 0.0))
+      return std::numeric_limits<double>::infinity();
+    const double ex = P.x() / P.z() - p.x[i].x() / p.x[i].z(), ey = P.y() / P.z() - p.x[i].y() / p.x[i].z();
+    cost += ex * ex + ey * ey;
+  }
+  return cost;
 }
 
-// Yaw minimising q^T Q q on the unit circle, q = (cos, sin, 1): the lowest of its minima. The
-// algebraic cost does not see which side of the camera a point lies on: a global minimum with points
-// behind the camera is still returned (the facade's cheirality check reports it), only exact ties
-// are broken in favour of the points in front.
+// Yaw of the best minimum of q^T Q q on the unit circle, q = (cos, sin, 1): among its minima, the
+// one whose pose reprojects the points best.
 double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
 {
   // Reference angle: the unconstrained minimiser over (c, s). For exact data it is the solution,
@@ -190,28 +192,34 @@ double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
   }
   if (minima == 0)
     return theta0; // a constant cost (unobservable yaw) is rejected by the caller before
-  const double lowest = *std::min_element(costMin, costMin + minima);
-  // The global minimum. Only exact ties (to rounding: the mirrored pose of a degenerate geometry,
-  // e.g. points on one vertical ray, fits as well) are broken by the number of points in front.
-  const double tie = lowest + 1e-9 * std::abs(lowest) + 1e-12 * curvatureScale;
-  double bestPhi = 0.0, bestCost = 0.0;
-  int bestFront = -1;
+  // The minima are ranked by the cost that matters, the sum of squared reprojection errors
+  // (infinite with a point behind the camera): the algebraic cost weighs each point by its squared
+  // depth, so that with an outlier its lowest minimum can be a pose squeezed towards the camera or
+  // behind it. Without any minimum in front, the lowest algebraic cost.
+  int best = static_cast<int>(std::min_element(costMin, costMin + minima) - costMin);
+  double bestCost = std::numeric_limits<double>::infinity();
   for (int k = 0; k < minima; ++k) {
-    if (costMin[k] > tie)
-      continue;
-    const int front = pointsInFront(problem, detail::wrapAngle(theta0 + phiMin[k]));
-    if (front > bestFront || (front == bestFront && costMin[k] < bestCost)) {
-      bestFront = front;
-      bestPhi = phiMin[k];
-      bestCost = costMin[k];
+    const double cost = reprojectionCostForYaw(problem, detail::wrapAngle(theta0 + phiMin[k]));
+    if (cost < bestCost) {
+      bestCost = cost;
+      best = k;
     }
   }
-  return detail::wrapAngle(theta0 + bestPhi);
+  return detail::wrapAngle(theta0 + phiMin[best]);
 }
 } // namespace
 
 namespace
 {
+// Sum of squared reprojection errors in normalized coordinates (infinite with a point behind the camera).
+double reprojectionCost(const Pose &pose, const Eigen::Vector3d *x, const Eigen::Vector3d *X, int n)
+{
+  double cost = 0.0;
+  for (int i = 0; i < n; ++i)
+    cost += detail::reprojectionError2(pose, x[i], X[i]);
+  return cost;
+}
+
 // One weighted solve: the global minimum of the weighted algebraic cost (see minimiseOnCircle()).
 // Unit weights without a previous estimate; otherwise w_i = meanDepth / depth_i of *previous (all
 // depths positive, checked by the caller): the weights are recomputed here so that nothing allocates.
@@ -285,8 +293,11 @@ bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, cons
       inFront = inFront && (depth > 0.0);
       mean += depth / n;
     }
+    // A pass is kept only if it lowers the sum of squared reprojection errors (the cost it
+    // approaches): with an outlier, inverse-depth weights can otherwise run away.
     Pose next;
-    if (!inFront || !solveWeighted(wRc, wRo, x, X, n, centroid, &current, mean, next))
+    if (!inFront || !solveWeighted(wRc, wRo, x, X, n, centroid, &current, mean, next) ||
+        !(reprojectionCost(next, x, X, n) <= reprojectionCost(current, x, X, n)))
       break;
     current = next;
   }

@@ -65,24 +65,24 @@ void checkStdDev(double sigma, const char *what)
 
 /*!
   Consistency of a closed-form pose with the points it came from: STATUS_BEHIND_CAMERA when a point
-  is not in front of the camera, STATUS_INCONSISTENT_GRAVITY when the reprojection error (largest
-  when !rms, root mean square when rms) exceeds tol, STATUS_OK otherwise; \e error receives it.
+  is not in front of the camera, STATUS_INCONSISTENT_GRAVITY when the reprojection error (the largest
+  one when !median, the median one otherwise) exceeds tol, STATUS_OK otherwise; \e error receives it.
 */
 vpPoseGravity::vpPoseGravityStatus checkPose(const Pose &pose, const std::vector<Eigen::Vector3d> &x,
-                                             const std::vector<Eigen::Vector3d> &X, bool rms, double tol,
+                                             const std::vector<Eigen::Vector3d> &X, bool median, double tol,
                                              double &error)
 {
-  double worst = 0.0, sum = 0.0;
+  std::vector<double> e2(x.size());
   error = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < x.size(); ++i) {
     const Eigen::Vector3d P = pose.R * X[i] + pose.t;
     if (!(P.z() > 0.0))
       return vpPoseGravity::STATUS_BEHIND_CAMERA;
-    const double e2 = vpGravitySolvers::detail::reprojectionError2(pose, x[i], X[i]);
-    worst = std::max(worst, e2);
-    sum += e2;
+    e2[i] = vpGravitySolvers::detail::reprojectionError2(pose, x[i], X[i]);
   }
-  error = std::sqrt(rms ? sum / static_cast<double>(x.size()) : worst);
+  const size_t k = median ? e2.size() / 2 : e2.size() - 1;
+  std::nth_element(e2.begin(), e2.begin() + static_cast<long>(k), e2.end());
+  error = std::sqrt(e2[k]);
   return (error <= tol) ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_INCONSISTENT_GRAVITY;
 }
 

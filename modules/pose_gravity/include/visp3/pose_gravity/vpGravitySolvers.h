@@ -129,24 +129,26 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
          const Eigen::Vector3d X[3], Pose &pose, P3PPairRule rule = P3PPairRule::BestThirdPoint);
 
 /*!
-  Least squares on n >= 3 points, closed form at each step: the global minimum of a reprojection
-  cost approaching the maximum-likelihood one.
+  Least squares on n >= 3 points, closed form at each step: the best minimum of the algebraic cost,
+  reweighted towards the maximum-likelihood one.
 
   The algebraic residuals \f$ w_i (x_i P_z - P_x) \f$, \f$ w_i (y_i P_z - P_y) \f$ of all points
   (\f$ \mathbf{P} = \mathbf{R}\mathbf{X}_i + \mathbf{t} \f$) are linear in
   \f$ (\cos\alpha, \sin\alpha, \mathbf{t}, 1) \f$; \f$ \mathbf{t} \f$ is eliminated (Schur
   complement) and the remaining quadratic form is minimised on the unit circle exactly: its
   stationary points are the roots of a quartic in \f$ \tan(\phi/2) \f$ (companion matrix), polished
-  by Newton steps; only the minima (positive second derivative) are candidates, and the one of lowest
-  cost is returned, whatever the side of the camera its points are on (vpPoseGravity checks it).
-  Minima of equal cost to rounding (the mirrored pose of a degenerate geometry, e.g. two points on
-  one vertical ray) are told apart by the number of points in front of the camera.
+  by Newton steps. Only its minima (positive second derivative, at most two) are candidates, ranked by
+  the sum of squared reprojection errors of their poses (infinite with a point behind the camera):
+  the algebraic cost itself favours poses squeezed towards the camera, so that with an outlier its
+  lowest minimum can be a pose with points behind it. Without any minimum in front of the camera the
+  lowest algebraic minimum is returned (vpPoseGravity then reports it).
 
   Since \f$ x_i P_z - P_x = P_z\,(x_i - P_x/P_z) \f$, unit weights weight each point's squared
   reprojection error by its squared depth: far points dominate. Each reweighting pass sets
   \f$ w_i = \bar z / z_i \f$ from the depths \f$ z_i \f$ of the current estimate and solves again, so
   that the cost approaches the sum of squared reprojection errors (the maximum-likelihood cost for
-  isotropic image noise). Passes stop early when a depth is not positive.
+  isotropic image noise). A pass is kept only if it lowers the sum of squared reprojection errors;
+  passes stop at the first that does not, or when a depth is not positive.
   \param gCam, gObj : unit gravity in camera and object frames.
   \param x, X : n bearings and object points.
   \param n : number of points (>= 2; 2 points leave the yaw ambiguous, use p2p()).

@@ -161,9 +161,10 @@ public:
     - P3P uses the first three points only; all three must be in front of the camera and reproject
       within setConsistencyThreshold() (the two points of the solved pair do by construction, the
       third one checks the gravity directions: 6 equations for 4 unknowns).
-    - LEAST_SQUARES uses all points: every point in front and the root mean square reprojection
-      error within setConsistencyThreshold() (STATUS_NO_SOLUTION when all the points lie on one
-      vertical line: the yaw is then unobservable).
+    - LEAST_SQUARES uses all points: every point in front and the median reprojection error within
+      setConsistencyThreshold() (STATUS_NO_SOLUTION when all the points lie on one vertical line: the
+      yaw is then unobservable). The median targets what misplaces every point (gravity sign, IMU
+      rotation); a few outliers pull the least-squares pose without failing the check: use RANSAC.
     - RANSAC draws 2-point samples, scores the P2P candidates by reprojection error against
       setRansacThreshold(), refits each new best model by LEAST_SQUARES on its inliers and finally on
       the whole consensus set; it succeeds only when the consensus reaches both
