@@ -76,6 +76,12 @@ bool parsePointRow(const std::vector<std::string> &fields, const std::string &wh
 
 bool vpGravityPointsIo::readPoints(const std::string &file, std::vector<vpGravityFrame> &frames, std::string &error)
 {
+  return readPoints(file, frames, error, true);
+}
+
+bool vpGravityPointsIo::readPoints(const std::string &file, std::vector<vpGravityFrame> &frames, std::string &error,
+                                   bool requireGravity)
+{
   std::ifstream in(file);
   if (!in) {
     error = file + ": cannot open the points file";
@@ -124,7 +130,7 @@ bool vpGravityPointsIo::readPoints(const std::string &file, std::vector<vpGravit
   }
   std::vector<vpGravityFrame> result;
   for (const auto &entry : byIndex) {
-    if (entry.second.gCam.size() != 3) {
+    if (requireGravity && entry.second.gCam.size() != 3) {
       error = vpCsvTools::location(file, entry.second.firstLine) + ": frame " + std::to_string(entry.first) +
               " has no gravity row";
       return false;
@@ -238,6 +244,50 @@ bool vpGravityPointsIo::writePoses(const std::string &file, const std::vector<vp
   }
   if (!out) {
     error = file + ": write error";
+    return false;
+  }
+  return true;
+}
+
+bool vpGravityPointsIo::readFrameTimes(const std::string &file, std::map<unsigned int, double> &times,
+                                       std::string &error)
+{
+  std::ifstream in(file);
+  if (!in) {
+    error = file + ": cannot open the frame times file";
+    return false;
+  }
+  times.clear();
+  std::string line;
+  unsigned int lineNumber = 0;
+  bool seenData = false;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    if (isSkippable(line))
+      continue;
+    const std::vector<std::string> fields = vpCsvTools::split(line);
+    const std::string where = vpCsvTools::location(file, lineNumber);
+    if (!seenData && fields[0] == "frame") { // optional header line
+      seenData = true;
+      continue;
+    }
+    seenData = true;
+    if (fields.size() != 2) {
+      error = where + ": a frame time row has 2 columns (frame,timestamp), found " + std::to_string(fields.size());
+      return false;
+    }
+    unsigned int index = 0;
+    double t = 0.0;
+    if (!vpCsvTools::parseIndex(fields[0], index, where, "frame", error) ||
+        !vpCsvTools::parseDouble(fields[1], t, where, "timestamp", error))
+      return false;
+    if (!times.insert(std::make_pair(index, t)).second) {
+      error = where + ": second time for frame " + std::to_string(index);
+      return false;
+    }
+  }
+  if (times.empty()) {
+    error = file + ": no frame time (expected 'frame,timestamp' rows)";
     return false;
   }
   return true;
