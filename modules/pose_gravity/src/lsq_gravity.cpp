@@ -178,11 +178,14 @@ double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
     // Newton polishing: the companion-matrix roots (or the real part of a nearly real pair) are
     // close to the stationary point; a few steps make it exact. Maxima and inflections are skipped.
     double phi = phis[k], d1 = 0.0, d2 = 0.0;
-    for (int it = 0; it < 3; ++it) {
+    for (int it = 0; it < 20; ++it) {
       circleDerivatives(Q, phi, d1, d2);
       if (!(d2 > 1e-12 * curvatureScale))
         break;
-      phi -= d1 / d2;
+      const double delta = d1 / d2;
+      phi -= delta;
+      if (std::abs(delta) < 1e-14) // quadratic convergence: usually 1 to 3 steps
+        break;
     }
     circleDerivatives(Q, phi, d1, d2);
     if (!(d2 > 1e-12 * curvatureScale))

@@ -323,12 +323,16 @@ TEST(pose_gravity_Checks, P3PAvoidsTheVerticalPair)
   EXPECT_LT(best[450], widest[450]);
 }
 
-TEST(pose_gravity_Checks, LeastSquaresIsTheGlobalMinimum)
+TEST(pose_gravity_Checks, LeastSquaresIsTheBestMinimum)
 {
-  // 8 points, one gross outlier: the unweighted solve is the global minimum of its algebraic cost,
-  // checked against a dense scan of the yaw (translation solved linearly at each yaw).
+  // 8 points, one gross outlier. The unweighted solve must return, among the local minima of its
+  // algebraic cost (found by a dense scan of the yaw, translation solved linearly at each yaw), the
+  // one whose pose has the lowest reprojection error: never a maximum nor another minimum.
   SceneGenerator gen(69);
   std::vector<Eigen::Vector3d> x, X;
+  const int steps = 7200;
+  const double step = 2.0 * 3.14159265358979323846 / steps;
+  int secondMinima = 0;
   for (int k = 0; k < 200; ++k) {
     Scene s = gen.scene(8);
     gen.addImageNoise(s.points, kPixel);
@@ -339,7 +343,8 @@ TEST(pose_gravity_Checks, LeastSquaresIsTheGlobalMinimum)
     vpGravitySolvers::Pose pose;
     ASSERT_TRUE(vpGravitySolvers::leastSquares(gc, go, x.data(), X.data(), 8, pose, 0));
     const Eigen::Matrix3d wRc = vpGravitySolvers::uprightRotation(gc), wRo = vpGravitySolvers::uprightRotation(go);
-    auto cost = [&](double alpha) {
+    // (algebraic cost, reprojection error) at a yaw.
+    auto costs = [&](double alpha) {
       const Eigen::Matrix3d R = wRc.transpose() * Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitZ()) * wRo;
       Eigen::MatrixXd A(16, 3);
       Eigen::VectorXd b(16);
@@ -350,15 +355,48 @@ TEST(pose_gravity_Checks, LeastSquaresIsTheGlobalMinimum)
         b(2 * i) = -u1.dot(RX);
         b(2 * i + 1) = -u2.dot(RX);
       }
-      return (A * A.colPivHouseholderQr().solve(b) - b).squaredNorm();
+      const Eigen::Vector3d t = A.colPivHouseholderQr().solve(b);
+      double reprojection = 0.0;
+      for (int i = 0; i < 8; ++i) {
+        const Eigen::Vector3d P = R * X[i] + t;
+        reprojection += P.z() > 0.0 ? (P.head<2>() / P.z() - x[i].head<2>()).squaredNorm()
+                                    : std::numeric_limits<double>::infinity();
+      }
+      return std::make_pair((A * t - b).squaredNorm(), reprojection);
     };
+    std::vector<std::pair<double, double> > c(steps);
+    for (int a = 0; a < steps; ++a)
+      c[a] = costs(-3.14159265358979323846 + a * step);
+    double bestAlpha = 0.0, bestReprojection = std::numeric_limits<double>::infinity();
+    double lowestAlpha = 0.0, lowest = std::numeric_limits<double>::infinity();
+    int minima = 0;
+    for (int a = 0; a < steps; ++a) {
+      if (!(c[a].first < c[(a + steps - 1) % steps].first && c[a].first <= c[(a + 1) % steps].first))
+        continue;
+      ++minima;
+      const double alpha = -3.14159265358979323846 + a * step;
+      if (c[a].second < bestReprojection) {
+        bestReprojection = c[a].second;
+        bestAlpha = alpha;
+      }
+      if (c[a].first < lowest) {
+        lowest = c[a].first;
+        lowestAlpha = alpha;
+      }
+    }
+    if (!(bestReprojection < std::numeric_limits<double>::infinity()))
+      bestAlpha = lowestAlpha;
+    secondMinima += minima > 1;
+    // At the best minimum of the scan, or (two minima of nearly equal reprojection error, which the
+    // grid evaluates 1e-3 rad off) at a minimum as good to 1 %; a minimum in any case.
     const Eigen::Matrix3d W = wRc * pose.R * wRo.transpose();
-    const double found = cost(std::atan2(W(1, 0), W(0, 0)));
-    double scan = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 7200; ++a)
-      scan = std::min(scan, cost(-3.14159265358979323846 + a * 2.0 * 3.14159265358979323846 / 7200));
-    EXPECT_LE(found, scan * (1.0 + 1e-9) + 1e-20) << "trial " << k;
+    const double found = std::atan2(W(1, 0), W(0, 0));
+    const bool atBest = std::abs(std::remainder(found - bestAlpha, 2.0 * 3.14159265358979323846)) <= 2.0 * step;
+    EXPECT_TRUE(atBest || costs(found).second <= 1.01 * bestReprojection) << "trial " << k;
+    EXPECT_LE(costs(found).first, std::min(costs(found - 1e-4).first, costs(found + 1e-4).first)) << "trial " << k;
   }
+  std::cout << secondMinima << " / 200 scenes have two minima" << std::endl;
+  EXPECT_GT(secondMinima, 10); // the choice between minima was exercised
 }
 
 TEST(pose_gravity_Checks, LeastSquaresReweightingApproachesMaximumLikelihood)
