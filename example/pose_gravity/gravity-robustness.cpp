@@ -13,9 +13,8 @@
   - sign_mixup: the camera gravity passed with the wrong sign (the raw accelerometer reading): share
     of runs returning success with a pose more than 10 degrees off, P3P and LEAST_SQUARES (8 points),
     exact and 1 px image noise.
-  - lsq_global_minimum: LEAST_SQUARES without reweighting against a dense scan of the yaw: it must
-    return, among the minima of its algebraic cost, the one of lowest reprojection error (8 points
-    with one gross outlier).
+  (That LEAST_SQUARES returns the best minimum of its cost is checked against a dense scan of the yaw
+  by the test pose_gravity_Checks.LeastSquaresIsTheBestMinimum.)
   - lsq_near_points: 3D error of the near points (1 to 2 m) of scenes that mix them with far points
     (8 m, 40 m), LEAST_SQUARES (0 and 2 reweighting passes) over the maximum-likelihood pose.
   - p3p_noisy_gravity: P3P median rotation error over the median relative tilt error of the two
@@ -268,87 +267,6 @@ void signMixup(Generator &gen, int trials)
 }
 
 // --- Least squares ---------------------------------------------------------------------------------
-// Algebraic cost of LEAST_SQUARES (unit weights) at yaw alpha, t eliminated by linear least squares,
-// and the sum of squared reprojection errors of that pose (infinite with a point behind the camera).
-std::pair<double, double> yawCosts(const Eigen::Matrix3d &wRc, const Eigen::Matrix3d &wRo,
-                                   const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
-                                   double alpha)
-{
-  const Eigen::Matrix3d R = wRc.transpose() * Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitZ()).toRotationMatrix() * wRo;
-  Eigen::MatrixXd A(2 * x.size(), 3);
-  Eigen::VectorXd b(2 * x.size());
-  for (size_t i = 0; i < x.size(); ++i) {
-    const Eigen::Vector3d u1(-1, 0, x[i].x()), u2(0, -1, x[i].y());
-    const Eigen::Vector3d RX = R * X[i];
-    A.row(2 * i) = u1.transpose();
-    A.row(2 * i + 1) = u2.transpose();
-    b(2 * i) = -u1.dot(RX);
-    b(2 * i + 1) = -u2.dot(RX);
-  }
-  const Eigen::Vector3d t = A.colPivHouseholderQr().solve(b);
-  double reprojection = 0.0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    const Eigen::Vector3d P = R * X[i] + t;
-    reprojection += (P.z() > 0.0) ? (P.head<2>() / P.z() - x[i].head<2>()).squaredNorm()
-                                  : std::numeric_limits<double>::infinity();
-  }
-  return std::make_pair((A * t - b).squaredNorm(), reprojection);
-}
-
-void lsqGlobalMinimum(Generator &gen, int trials)
-{
-  // The best minimum: among the local minima of the algebraic cost found by a dense scan of the yaw,
-  // the one of lowest reprojection error; LEAST_SQUARES (no reweighting) must return it.
-  const int steps = 7200;
-  int atBest = 0, count = 0;
-  for (int k = 0; k < trials; ++k) {
-    Scene s = gen.compact(8);
-    gen.noise(s, 1.0);
-    s.points[3].set_x(gen.uniform(-kHalfWidth, kHalfWidth));
-    s.points[3].set_y(gen.uniform(-kHalfHeight, kHalfHeight));
-    std::vector<Eigen::Vector3d> x, X;
-    for (const vpPoint &P : s.points) {
-      x.emplace_back(P.get_x(), P.get_y(), 1.0);
-      X.emplace_back(P.get_oX(), P.get_oY(), P.get_oZ());
-    }
-    const Eigen::Vector3d gc(s.gCam[0], s.gCam[1], s.gCam[2]), go(s.gObj[0], s.gObj[1], s.gObj[2]);
-    vpGravitySolvers::Pose pose;
-    if (!vpGravitySolvers::leastSquares(gc, go, x.data(), X.data(), 8, pose, 0))
-      continue;
-    ++count;
-    const Eigen::Matrix3d wRc = vpGravitySolvers::uprightRotation(gc), wRo = vpGravitySolvers::uprightRotation(go);
-    const Eigen::Matrix3d W = wRc * pose.R * wRo.transpose();
-    const double found = std::atan2(W(1, 0), W(0, 0));
-    std::vector<std::pair<double, double> > c(steps);
-    for (int a = 0; a < steps; ++a)
-      c[a] = yawCosts(wRc, wRo, x, X, -kPi + a * 2.0 * kPi / steps);
-    // Local minima of the algebraic cost; the best is the one of lowest reprojection error, or of
-    // lowest algebraic cost when every one puts a point behind the camera.
-    double bestAlpha = 0.0, bestReprojection = std::numeric_limits<double>::infinity();
-    double lowestAlpha = 0.0, lowest = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < steps; ++a) {
-      const double prev = c[(a + steps - 1) % steps].first, next = c[(a + 1) % steps].first;
-      if (!(c[a].first < prev && c[a].first <= next))
-        continue;
-      const double alpha = -kPi + a * 2.0 * kPi / steps;
-      if (c[a].second < bestReprojection) {
-        bestReprojection = c[a].second;
-        bestAlpha = alpha;
-      }
-      if (c[a].first < lowest) {
-        lowest = c[a].first;
-        lowestAlpha = alpha;
-      }
-    }
-    if (!(bestReprojection < std::numeric_limits<double>::infinity()))
-      bestAlpha = lowestAlpha;
-    const double gap = std::abs(std::remainder(found - bestAlpha, 2.0 * kPi));
-    atBest += gap <= 2.0 * 2.0 * kPi / steps;
-  }
-  row("lsq_global_minimum", "8 points, 1 outlier: % at the best minimum", 100.0 * atBest / count, "target 100 %",
-      atBest == count);
-}
-
 double nearPointsError(const vpHomogeneousMatrix &M, const Scene &s, int nearCount)
 {
   double e = 0.0;
@@ -491,7 +409,6 @@ int main(int argc, char **argv)
   ransacPureOutliers(gen, trials);
   ransacInlierRecall(gen, trials);
   signMixup(gen, trials);
-  lsqGlobalMinimum(gen, std::max(1, trials / 5));
   lsqNearPoints(gen, trials);
   p3pNoisyGravity(gen, trials);
   p3pExactGravity(gen, trials);

@@ -86,17 +86,27 @@ vpPoseGravity::vpPoseGravityStatus checkPose(const Pose &pose, const std::vector
   return (error <= tol) ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_INCONSISTENT_GRAVITY;
 }
 
-vpGravitySolvers::detail::RefineLoss toRefineLoss(vpPoseGravity::vpRobustLoss loss)
+// The settings of the refinement and of the covariance.
+vpGravitySolvers::detail::RefineOptions refineOptions(double imageSigma, double cameraSigma, double objectSigma,
+                                                      vpPoseGravity::vpRobustLoss loss, double lossScale)
 {
-  switch (loss) {
-  case vpPoseGravity::LOSS_HUBER:
-    return vpGravitySolvers::detail::RefineLoss::Huber;
-  case vpPoseGravity::LOSS_CAUCHY:
-    return vpGravitySolvers::detail::RefineLoss::Cauchy;
-  case vpPoseGravity::LOSS_NONE:
-    break;
-  }
-  return vpGravitySolvers::detail::RefineLoss::None;
+  vpGravitySolvers::detail::RefineOptions options;
+  options.imageSigma = imageSigma;
+  options.cameraGravitySigma = cameraSigma;
+  options.objectGravitySigma = objectSigma;
+  options.loss = (loss == vpPoseGravity::LOSS_HUBER)    ? vpGravitySolvers::detail::RefineLoss::Huber
+                 : (loss == vpPoseGravity::LOSS_CAUCHY) ? vpGravitySolvers::detail::RefineLoss::Cauchy
+                                                        : vpGravitySolvers::detail::RefineLoss::None;
+  options.lossScale = lossScale;
+  return options;
+}
+
+void storeMatrix(const Eigen::Matrix<double, 6, 6> &from, vpMatrix &to)
+{
+  to.resize(6, 6, false);
+  for (unsigned int r = 0; r < 6; ++r)
+    for (unsigned int c = 0; c < 6; ++c)
+      to[r][c] = from(static_cast<int>(r), static_cast<int>(c));
 }
 } // namespace
 
@@ -310,20 +320,14 @@ void vpPoseGravity::updateCovariance(const vpHomogeneousMatrix &cMo, const std::
     return;
   std::vector<Eigen::Vector3d> x, X;
   collectPoints(m_points, used, x, X);
-  vpGravitySolvers::detail::RefineOptions options;
-  options.imageSigma = m_imageStdDev;
-  options.cameraGravitySigma = m_gCamStdDev;
-  options.objectGravitySigma = m_gObjStdDev;
-  options.loss = toRefineLoss(m_loss);
-  options.lossScale = m_lossScale;
   Eigen::Matrix<double, 6, 6> covariance;
   if (!vpGravitySolvers::detail::poseCovariance(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
-                                                static_cast<int>(x.size()), options, toPose(cMo), covariance))
+                                                static_cast<int>(x.size()),
+                                                refineOptions(m_imageStdDev, m_gCamStdDev, m_gObjStdDev, m_loss,
+                                                              m_lossScale),
+                                                toPose(cMo), covariance))
     return;
-  m_covariance.resize(6, 6, false);
-  for (unsigned int r = 0; r < 6; ++r)
-    for (unsigned int c = 0; c < 6; ++c)
-      m_covariance[r][c] = covariance(static_cast<int>(r), static_cast<int>(c));
+  storeMatrix(covariance, m_covariance);
   m_hasCovariance = true;
 }
 
@@ -333,12 +337,8 @@ bool vpPoseGravity::refinePose(vpHomogeneousMatrix &cMo)
   const std::vector<unsigned int> *used = m_refineOnInliers ? &m_inlierIndex : nullptr;
   std::vector<Eigen::Vector3d> x, X;
   collectPoints(m_points, used, x, X);
-  vpGravitySolvers::detail::RefineOptions options;
-  options.imageSigma = m_imageStdDev;
-  options.cameraGravitySigma = m_gCamStdDev;
-  options.objectGravitySigma = m_gObjStdDev;
-  options.loss = toRefineLoss(m_loss);
-  options.lossScale = m_lossScale;
+  const vpGravitySolvers::detail::RefineOptions options =
+      refineOptions(m_imageStdDev, m_gCamStdDev, m_gObjStdDev, m_loss, m_lossScale);
   Pose pose = toPose(cMo);
   Eigen::Matrix<double, 6, 6> covariance;
   if (x.size() < 2 ||
@@ -350,12 +350,8 @@ bool vpPoseGravity::refinePose(vpHomogeneousMatrix &cMo)
   }
   storePose(pose, cMo);
   m_hasCovariance = m_computeCovariance;
-  if (m_computeCovariance) {
-    m_covariance.resize(6, 6, false);
-    for (unsigned int r = 0; r < 6; ++r)
-      for (unsigned int c = 0; c < 6; ++c)
-        m_covariance[r][c] = covariance(static_cast<int>(r), static_cast<int>(c));
-  }
+  if (m_computeCovariance)
+    storeMatrix(covariance, m_covariance);
   m_status = STATUS_OK;
   return true;
 }
