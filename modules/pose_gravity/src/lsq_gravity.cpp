@@ -298,11 +298,16 @@ bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, cons
     }
     // A pass is kept only if it lowers the sum of squared reprojection errors (the cost it
     // approaches): with an outlier, inverse-depth weights can otherwise run away.
+    // A pass that gains less than 0.1 % leaves nothing for the next one.
     Pose next;
-    if (!inFront || !solveWeighted(wRc, wRo, x, X, n, centroid, &current, mean, next) ||
-        !(reprojectionCost(next, x, X, n) <= reprojectionCost(current, x, X, n)))
+    if (!inFront || !solveWeighted(wRc, wRo, x, X, n, centroid, &current, mean, next))
+      break;
+    const double before = reprojectionCost(current, x, X, n), after = reprojectionCost(next, x, X, n);
+    if (!(after <= before))
       break;
     current = next;
+    if (!(after < (1.0 - 1e-3) * before))
+      break;
   }
   pose = current;
   return true;

@@ -28,6 +28,8 @@ namespace
 // Below this observability (see vpPairYaw) a pair's roots follow the noise more than the data: a
 // 1e-3 image error turns the yaw by ~1e-3 / observability.
 constexpr double kWeakYaw = 0.05;
+// Squared third-point error (normalized units) of an exact fit: 1e-12, far below any image noise.
+constexpr double kExactFit2 = 1e-24;
 
 /*!
   Writes the root of \e yaw (pair i, j) that reprojects the third point k closest to its image point
@@ -123,7 +125,8 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
   }
 
   // BestThirdPoint: the pose of smallest third-point error among the pairs that observe the yaw,
-  // the weakly observing ones only as a last resort.
+  // the weakly observing ones only as a last resort. A pair that explains the third point to
+  // rounding (exact data) cannot be beaten: the other pairs are not solved then.
   const double inf = std::numeric_limits<double>::infinity();
   double bestError[2] = {inf, inf}; // [0]: observable pairs, [1]: weak pairs
   Pose best[2];
@@ -137,6 +140,8 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
       bestError[weak] = error2;
       best[weak] = candidate;
     }
+    if (weak == 0 && error2 < kExactFit2)
+      break;
   }
   for (int w = 0; w < 2; ++w)
     if (bestError[w] < inf) {

@@ -34,10 +34,11 @@ vpGravitySolvers::Pose toPose(const vpHomogeneousMatrix &cMo)
   return pose;
 }
 
-void collectPoints(const std::vector<vpPoint> &points, const std::vector<unsigned int> *index,
-                   std::vector<Eigen::Vector3d> &x, std::vector<Eigen::Vector3d> &X)
+namespace
 {
-  const size_t n = index ? index->size() : points.size();
+void collect(const std::vector<vpPoint> &points, const std::vector<unsigned int> *index, size_t n,
+             std::vector<Eigen::Vector3d> &x, std::vector<Eigen::Vector3d> &X)
+{
   x.resize(n);
   X.resize(n);
   for (size_t k = 0; k < n; ++k) {
@@ -45,6 +46,19 @@ void collectPoints(const std::vector<vpPoint> &points, const std::vector<unsigne
     x[k] = Eigen::Vector3d(P.get_x(), P.get_y(), 1.0);
     X[k] = Eigen::Vector3d(P.get_oX(), P.get_oY(), P.get_oZ());
   }
+}
+} // namespace
+
+void collectPoints(const std::vector<vpPoint> &points, const std::vector<unsigned int> *index,
+                   std::vector<Eigen::Vector3d> &x, std::vector<Eigen::Vector3d> &X)
+{
+  collect(points, index, index ? index->size() : points.size(), x, X);
+}
+
+void collectFirst(const std::vector<vpPoint> &points, size_t count, std::vector<Eigen::Vector3d> &x,
+                  std::vector<Eigen::Vector3d> &X)
+{
+  collect(points, nullptr, std::min(count, points.size()), x, X);
 }
 
 double objectScale(const std::vector<vpPoint> &points, unsigned int count)
@@ -61,6 +75,18 @@ void findDuplicates(const std::vector<double> &v, int dim, double tolerance, std
   firstEqual.assign(n, -1);
   if (n < 2)
     return;
+  if (n <= 128) {
+    // Few points: the direct comparison of every pair is faster than sorting (and allocates nothing).
+    for (size_t i = 1; i < n; ++i)
+      for (size_t j = 0; j < i && firstEqual[i] < 0; ++j) {
+        bool within = true;
+        for (int d = 0; d < dim; ++d)
+          within = within && std::abs(v[i * dim + d] - v[j * dim + d]) <= tolerance;
+        if (within)
+          firstEqual[i] = static_cast<int>(j);
+      }
+    return;
+  }
   if (!(tolerance > 0.0)) {
     // Exact equality: the lexicographic order puts equal rows next to each other.
     std::vector<size_t> order(n);

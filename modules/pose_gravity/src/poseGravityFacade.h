@@ -34,10 +34,15 @@ void collectPoints(const std::vector<vpPoint> &points, const std::vector<unsigne
 /*!
   For each row of \e v (n points of dimension dim, row-major), the index of an earlier row equal to it
   within \e tolerance in every coordinate, or -1. O(n log n): coordinates are quantised into cells
-  of side \e tolerance, the cells sorted, and only the 3^dim neighbouring cells of a point searched.
+  of side \e tolerance, the cells sorted, and only the 3^dim neighbouring cells of a point searched
+  (up to 128 rows, the direct comparison of all pairs is faster).
   \e tolerance 0 means exact equality.
 */
 void findDuplicates(const std::vector<double> &v, int dim, double tolerance, std::vector<int> &firstEqual);
+
+//! Bearings and object points of the first \e count points.
+void collectFirst(const std::vector<vpPoint> &points, size_t count, std::vector<Eigen::Vector3d> &x,
+                  std::vector<Eigen::Vector3d> &X);
 
 //! Largest absolute coordinate of the object points (the scale of kDuplicateTolerance).
 double objectScale(const std::vector<vpPoint> &points, unsigned int count);

@@ -72,17 +72,21 @@ vpPoseGravity::vpPoseGravityStatus checkPose(const Pose &pose, const std::vector
                                              const std::vector<Eigen::Vector3d> &X, bool median, double tol,
                                              double &error)
 {
-  std::vector<double> e2(x.size());
   error = std::numeric_limits<double>::infinity();
+  double worst = 0.0;
   for (size_t i = 0; i < x.size(); ++i) {
-    const Eigen::Vector3d P = pose.R * X[i] + pose.t;
-    if (!(P.z() > 0.0))
+    if (!((pose.R * X[i] + pose.t).z() > 0.0))
       return vpPoseGravity::STATUS_BEHIND_CAMERA;
-    e2[i] = vpGravitySolvers::detail::reprojectionError2(pose, x[i], X[i]);
+    worst = std::max(worst, vpGravitySolvers::detail::reprojectionError2(pose, x[i], X[i]));
   }
-  const size_t k = median ? e2.size() / 2 : e2.size() - 1;
-  std::nth_element(e2.begin(), e2.begin() + static_cast<long>(k), e2.end());
-  error = std::sqrt(e2[k]);
+  if (median) {
+    std::vector<double> e2(x.size());
+    for (size_t i = 0; i < x.size(); ++i)
+      e2[i] = vpGravitySolvers::detail::reprojectionError2(pose, x[i], X[i]);
+    std::nth_element(e2.begin(), e2.begin() + static_cast<long>(e2.size() / 2), e2.end());
+    worst = e2[e2.size() / 2];
+  }
+  error = std::sqrt(worst);
   return (error <= tol) ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_INCONSISTENT_GRAVITY;
 }
 
@@ -211,8 +215,7 @@ std::vector<vpHomogeneousMatrix> vpPoseGravity::computePoseCandidates()
   checkReady(2, 2, "computePoseCandidates");
   forgetInliers();
   std::vector<Eigen::Vector3d> x, X;
-  const std::vector<unsigned int> firstTwo = {0, 1};
-  collectPoints(m_points, &firstTwo, x, X);
+  collectFirst(m_points, 2, x, X);
   std::array<Pose, 2> poses;
   vpGravitySolvers::P2PCase p2pCase;
   const int count = vpGravitySolvers::p2p(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(), poses, &p2pCase);
@@ -270,45 +273,53 @@ bool vpPoseGravity::computeLeastSquares(vpHomogeneousMatrix &cMo)
   return finishClosedForm(LEAST_SQUARES, cMo);
 }
 
-vpPoseGravity::vpPoseGravityStatus vpPoseGravity::solveClosedForm(vpPoseGravityMethod method, double cameraSign,
-                                                                  vpHomogeneousMatrix &cMo, double &error) const
+namespace
 {
-  std::vector<Eigen::Vector3d> x, X;
-  std::vector<unsigned int> firstThree = {0, 1, 2};
-  collectPoints(m_points, method == P3P ? &firstThree : nullptr, x, X);
-  const Eigen::Vector3d gCam = cameraSign * toEigen(m_gCam), gObj = toEigen(m_gObj);
-  Pose pose;
+// The closed-form pose of a method (P3P on the 3 points given, least squares on all) with the given
+// gravity directions, and its consistency status (see checkPose()).
+vpPoseGravity::vpPoseGravityStatus solveClosedForm(bool p3p, vpPoseGravity::vpP3PPairRule rule,
+                                                   const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
+                                                   const std::vector<Eigen::Vector3d> &x,
+                                                   const std::vector<Eigen::Vector3d> &X, double tolerance,
+                                                   Pose &pose, double &error)
+{
   const bool found =
-      (method == P3P)
-          ? vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), pose,
-                                  m_pairRule == P3P_WIDEST_PAIR ? vpGravitySolvers::P3PPairRule::WidestPair
-                                                                : vpGravitySolvers::P3PPairRule::BestThirdPoint)
+      p3p ? vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), pose,
+                                  rule == vpPoseGravity::P3P_WIDEST_PAIR ? vpGravitySolvers::P3PPairRule::WidestPair
+                                                                         : vpGravitySolvers::P3PPairRule::BestThirdPoint)
           : vpGravitySolvers::leastSquares(gCam, gObj, x.data(), X.data(), static_cast<int>(x.size()), pose);
   error = std::numeric_limits<double>::infinity();
   if (!found)
-    return STATUS_NO_SOLUTION;
-  storePose(pose, cMo);
-  return checkPose(pose, x, X, method != P3P, m_consistencyThreshold, error);
+    return vpPoseGravity::STATUS_NO_SOLUTION;
+  return checkPose(pose, x, X, !p3p, tolerance, error);
 }
+} // namespace
 
 bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMatrix &cMo)
 {
+  std::vector<Eigen::Vector3d> x, X;
+  collectFirst(m_points, method == P3P ? 3 : m_points.size(), x, X);
+  const Eigen::Vector3d gCam = toEigen(m_gCam), gObj = toEigen(m_gObj);
+  Pose pose, reversed;
+  double error = 0.0, reversedError = 0.0;
+  m_status = solveClosedForm(method == P3P, m_pairRule, gCam, gObj, x, X, m_consistencyThreshold, pose, error);
   // The same solve with the camera gravity reversed (equivalently the object one) tells a sign
   // mix-up apart: a specific force passed as gravity. With 3 points the two redundant equations
   // cannot always reject a wrong sign on their own, so a fit that passes the tolerance is still not
   // trusted when it leaves more error than the noise explains (3 sigma of the image and gravity
-  // noise) and the reversed sign fits with less than half of it.
-  vpHomogeneousMatrix pose, reversed;
-  double error = 0.0, reversedError = 0.0;
-  m_status = solveClosedForm(method, 1.0, pose, error);
-  const vpPoseGravityStatus reversedStatus = solveClosedForm(method, -1.0, reversed, reversedError);
+  // noise) and the reversed sign fits with less than half of it. A fit within the noise needs no
+  // comparison.
   const double noise = 3.0 * std::sqrt(m_imageStdDev * m_imageStdDev + m_gCamStdDev * m_gCamStdDev +
                                        m_gObjStdDev * m_gObjStdDev);
-  if (reversedStatus == STATUS_OK && (m_status != STATUS_OK || (error > noise && 2.0 * reversedError < error)))
-    m_status = STATUS_GRAVITY_SIGN_REVERSED;
+  if (m_status != STATUS_OK || error > noise) {
+    const vpPoseGravityStatus reversedStatus = solveClosedForm(method == P3P, m_pairRule, -gCam, gObj, x, X,
+                                                               m_consistencyThreshold, reversed, reversedError);
+    if (reversedStatus == STATUS_OK && (m_status != STATUS_OK || 2.0 * reversedError < error))
+      m_status = STATUS_GRAVITY_SIGN_REVERSED;
+  }
   if (m_status != STATUS_OK)
     return false;
-  cMo = pose;
+  storePose(pose, cMo);
   updateCovariance(cMo, nullptr);
   return true;
 }

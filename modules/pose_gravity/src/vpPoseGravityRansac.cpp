@@ -59,8 +59,11 @@ public:
   {
     return std::sqrt(vpGravitySolvers::detail::reprojectionError2(m, m_x[i], m_X[i]));
   }
-  //! Local optimisation: the reweighted least squares on the consensus set.
-  bool refine(const std::vector<int> &inliers, Model &m) const
+  //! Local optimisation: the least squares on the consensus set (unweighted: the loop only needs the
+  //! consensus; the final refit reweights, see refit()).
+  bool refine(const std::vector<int> &inliers, Model &m) const { return refit(inliers, m, 0); }
+  //! The least squares on \e inliers with \e passes inverse-depth reweighting passes.
+  bool refit(const std::vector<int> &inliers, Model &m, int passes) const
   {
     if (inliers.size() < 3)
       return false;
@@ -71,7 +74,7 @@ public:
       x.push_back(m_x[i]);
       X.push_back(m_X[i]);
     }
-    return vpGravitySolvers::leastSquares(m_gCam, m_gObj, x.data(), X.data(), static_cast<int>(x.size()), m);
+    return vpGravitySolvers::leastSquares(m_gCam, m_gObj, x.data(), X.data(), static_cast<int>(x.size()), m, passes);
   }
 
 private:
@@ -123,14 +126,18 @@ unsigned int chanceConsensus(int n, double p, int models, double alpha)
   if (!(p < 1.0))
     return static_cast<unsigned int>(n + 1);
   const int N = n - 2;
-  const double logP = std::log(std::max(p, 1e-300)), log1mP = std::log1p(-p);
-  const double logFactN = std::lgamma(N + 1.0);
-  // Tail P(Bin(N, p) >= k) for k = N .. 0, summed from the top so that small tails keep precision.
+  // log P(Bin(N, p) = k) by the recurrence of the binomial terms (one logarithm per term, no
+  // underflow), then the tails P(>= k) summed from the top so that small tails keep precision.
   std::vector<double> tail(static_cast<size_t>(N) + 2, 0.0);
-  for (int k = N; k >= 0; --k) {
-    const double logPmf = logFactN - std::lgamma(k + 1.0) - std::lgamma(N - k + 1.0) + k * logP + (N - k) * log1mP;
-    tail[static_cast<size_t>(k)] = tail[static_cast<size_t>(k) + 1] + std::exp(logPmf);
+  const double logOdds = std::log(std::max(p, 1e-300)) - std::log1p(-p);
+  double logPmf = N * std::log1p(-p);
+  std::vector<double> logPmfs(static_cast<size_t>(N) + 1);
+  for (int k = 0; k <= N; ++k) {
+    logPmfs[static_cast<size_t>(k)] = logPmf;
+    logPmf += std::log(double(N - k) / double(k + 1)) + logOdds;
   }
+  for (int k = N; k >= 0; --k)
+    tail[static_cast<size_t>(k)] = tail[static_cast<size_t>(k) + 1] + std::exp(logPmfs[static_cast<size_t>(k)]);
   const double m = std::max(1, models);
   for (int k = 0; k <= N; ++k)
     if (m * tail[static_cast<size_t>(k)] < alpha)
@@ -188,10 +195,11 @@ bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
     return false;
   }
 
-  // Final refit on the whole consensus set, kept only if it does not lose inliers.
+  // Final refit on the whole consensus set (reweighted towards maximum likelihood), kept only if it
+  // does not lose inliers.
   std::vector<int> inliers = report.inliers;
   Pose refit = best;
-  if (estimator.refine(inliers, refit)) {
+  if (estimator.refit(inliers, refit, 2)) {
     std::vector<int> refitInliers;
     vpRansacInliers(estimator, refit, m_ransacThreshold * m_ransacThreshold, refitInliers);
     if (refitInliers.size() >= inliers.size()) {

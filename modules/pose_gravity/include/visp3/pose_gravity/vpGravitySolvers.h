@@ -148,7 +148,8 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
   \f$ w_i = \bar z / z_i \f$ from the depths \f$ z_i \f$ of the current estimate and solves again, so
   that the cost approaches the sum of squared reprojection errors (the maximum-likelihood cost for
   isotropic image noise). A pass is kept only if it lowers the sum of squared reprojection errors;
-  passes stop at the first that does not, or when a depth is not positive.
+  passes stop at the first that does not, after one that lowers it by less than 0.1 %, or when a
+  depth is not positive.
   \param gCam, gObj : unit gravity in camera and object frames.
   \param x, X : n bearings and object points.
   \param n : number of points (>= 2; 2 points leave the yaw ambiguous, use p2p()).

@@ -332,9 +332,7 @@ private:
   bool computeP3P(vpHomogeneousMatrix &cMo);
   bool computeLeastSquares(vpHomogeneousMatrix &cMo);
   bool computeRansac(vpHomogeneousMatrix &cMo);
-  // The closed-form result of a method with a given camera gravity sign: pose and consistency status.
-  vpPoseGravityStatus solveClosedForm(vpPoseGravityMethod method, double cameraSign, vpHomogeneousMatrix &cMo,
-                                      double &error) const;
+  // The closed-form result of P3P or LEAST_SQUARES, its checks and status.
   bool finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMatrix &cMo);
   void updateCovariance(const vpHomogeneousMatrix &cMo, const std::vector<unsigned int> *used);
 
