@@ -9,6 +9,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <visp3/core/vpPixelMeterConversion.h>
+
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 #include <visp3/robust/vpRansac.h>
 
@@ -117,7 +119,7 @@ vpLaserConicPose::vpLaserConicPose()
 
 void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
 {
-  const double values[4] = {cam.get_px(), cam.get_py(), cam.get_u0(), cam.get_v0()};
+  const double values[6] = {cam.get_px(), cam.get_py(), cam.get_u0(), cam.get_v0(), cam.get_kud(), cam.get_kdu()};
   for (double v : values)
     if (!std::isfinite(v))
       throw vpLaserConicException(vpLaserConicException::badCameraError,
@@ -125,6 +127,11 @@ void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
   if (!(cam.get_px() > 0.0) || !(cam.get_py() > 0.0))
     throw vpLaserConicException(vpLaserConicException::badCameraError,
                                 "vpLaserConicPose: focal lengths px and py must be positive");
+  if (cam.get_projModel() != vpCameraParameters::perspectiveProjWithoutDistortion &&
+      cam.get_projModel() != vpCameraParameters::perspectiveProjWithDistortion)
+    throw vpLaserConicException(vpLaserConicException::badCameraError,
+                                "vpLaserConicPose: only the perspective projection models (with or without "
+                                "distortion) are supported");
   m_cam = cam;
   m_hasCam = true;
 }
@@ -210,7 +217,8 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     throw vpLaserConicException(vpLaserConicException::notEnoughPointError, msg.str());
   }
 
-  // Normalized image coordinates: x = K^-1 (u, v, 1).
+  // Normalized (undistorted) image coordinates, with ViSP's pixel-to-metre model (kdu when the camera
+  // has distortion), as vpLaserConicCalibration converts its points.
   PointList normalized;
   normalized.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
@@ -220,7 +228,9 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
       msg << "vpLaserConicPose: point " << i << " is not finite";
       throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
     }
-    normalized.emplace_back((u - m_cam.get_u0()) / m_cam.get_px(), (v - m_cam.get_v0()) / m_cam.get_py());
+    double x = 0.0, y = 0.0;
+    vpPixelMeterConversion::convertPoint(m_cam, u, v, x, y);
+    normalized.emplace_back(x, y);
     // Squares of the coordinates must stay finite for the conic fits.
     if (!(normalized.back().cwiseAbs().maxCoeff() < 1e100)) {
       std::ostringstream msg;

@@ -23,6 +23,7 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMeterPixelConversion.h>
+#include <visp3/core/vpPixelMeterConversion.h>
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
 namespace laser_test
@@ -120,6 +121,36 @@ inline bool tracePoint(const Scene &s, double gamma, int nappe, Eigen::Vector3d 
 }
 
 /*!
+  Pixel of the normalized point (x, y) that vpPixelMeterConversion maps back onto (x, y) exactly (to
+  rounding): the camera's own projection without distortion, and with distortion the inverse of its
+  pixel-to-metre model (coefficient kdu), found by Newton's method on the distorted radius. This is not
+  vpMeterPixelConversion (coefficient kud), whose one-coefficient model is only an approximate inverse
+  of the kdu one: with it no estimator could recover the plane exactly.
+*/
+inline vpImagePoint exactPixel(const vpCameraParameters &cam, double x, double y)
+{
+  if (cam.get_projModel() != vpCameraParameters::perspectiveProjWithDistortion || cam.get_kdu() == 0.0) {
+    vpImagePoint ip;
+    vpMeterPixelConversion::convertPoint(cam, x, y, ip);
+    return ip;
+  }
+  // Undistorted radius r = rd (1 + kdu rd^2) in normalized units, with the anisotropy of px, py folded
+  // in: (x, y) = (xd, yd) (1 + kdu (xd^2 + yd^2)) with xd = (u - u0) / px, yd = (v - v0) / py.
+  const double r = std::hypot(x, y);
+  double rd = r;
+  for (int it = 0; it < 50 && r > 0.0; ++it) {
+    const double f = rd * (1.0 + cam.get_kdu() * rd * rd) - r;
+    const double df = 1.0 + 3.0 * cam.get_kdu() * rd * rd;
+    const double step = f / df;
+    rd -= step;
+    if (std::abs(step) < 1e-17 * (1.0 + rd))
+      break;
+  }
+  const double scale = r > 0.0 ? rd / r : 1.0;
+  return vpImagePoint(cam.get_v0() + cam.get_py() * y * scale, cam.get_u0() + cam.get_px() * x * scale);
+}
+
+/*!
   \e n image points (pixels) of the trace, azimuths evenly spread from a random phase.
   \return false when one generator misses the plane, falls behind the camera or (when
   \e insideImage) leaves the image.
@@ -134,8 +165,7 @@ inline bool traceImagePoints(const Scene &s, unsigned int n, std::mt19937 &rng, 
     Eigen::Vector3d X;
     if (!tracePoint(s, phase + 2.0 * M_PI * k / n, nappe, X))
       return false;
-    vpImagePoint ip;
-    vpMeterPixelConversion::convertPoint(s.rig.cam, X(0) / X(2), X(1) / X(2), ip);
+    const vpImagePoint ip = exactPixel(s.rig.cam, X(0) / X(2), X(1) / X(2));
     if (insideImage && (ip.get_u() < 0.0 || ip.get_v() < 0.0 || ip.get_u() > s.rig.width - 1.0 ||
                         ip.get_v() > s.rig.height - 1.0))
       return false;
@@ -175,13 +205,16 @@ inline bool cameraInsideCone(const vpLaserSolvers::LaserCone &cone)
   return cosine >= std::cos(cone.halfAngle);
 }
 
-//! Normalized image coordinates of pixel points.
+//! Normalized image coordinates of pixel points (vpPixelMeterConversion, distortion included).
 inline std::vector<Eigen::Vector2d> normalized(const vpCameraParameters &cam, const std::vector<vpImagePoint> &points)
 {
   std::vector<Eigen::Vector2d> out;
   out.reserve(points.size());
-  for (const vpImagePoint &p : points)
-    out.emplace_back((p.get_u() - cam.get_u0()) / cam.get_px(), (p.get_v() - cam.get_v0()) / cam.get_py());
+  for (const vpImagePoint &p : points) {
+    double x = 0.0, y = 0.0;
+    vpPixelMeterConversion::convertPoint(cam, p, x, y);
+    out.emplace_back(x, y);
+  }
   return out;
 }
 

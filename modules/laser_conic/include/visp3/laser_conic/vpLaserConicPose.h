@@ -18,25 +18,7 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpPlane.h>
-
-/*!
-  \ingroup group_laser_conic
-  \brief Error thrown by the laser_conic module on invalid input (the message says what is wrong).
-*/
-class VISP_EXPORT vpLaserConicException : public vpException
-{
-public:
-  //! Error codes.
-  enum errorCodeEnum {
-    badLaserError = 1,     //!< opening angle out of (0, pi), non-finite or degenerate laser pose
-    badCameraError,        //!< camera parameters unset or not positive
-    notEnoughPointError,   //!< fewer points than the method needs
-    badPointError,         //!< non-finite coordinates
-    badValueError          //!< any other invalid setting
-  };
-  //! Builds the exception with a code and a message.
-  vpLaserConicException(int errorCode, const std::string &msg) : vpException(errorCode, msg) {}
-};
+#include <visp3/laser_conic/vpLaserConicException.h>
 
 /*!
   \ingroup group_laser_conic
@@ -73,7 +55,14 @@ public:
 
   vpLaserConicPose();
 
-  //! Camera intrinsics (pinhole, no distortion is applied).
+  /*!
+    Camera intrinsics, with or without radial distortion. Image points are converted to normalized
+    (undistorted) coordinates with vpPixelMeterConversion, i.e. with the distorted-to-undistorted
+    coefficient kdu when the model is vpCameraParameters::perspectiveProjWithDistortion (the
+    conversion vpLaserConicCalibration uses).
+    \exception vpLaserConicException::badCameraError on non-finite parameters, non-positive focal
+    lengths or a projection model other than the two perspective ones.
+  */
   void setCameraParameters(const vpCameraParameters &cam);
   /*!
     Laser cone: \e openingAngle is the full opening angle in radians, in (0, pi); \e cMl the pose of
@@ -83,7 +72,13 @@ public:
   */
   void setLaser(double openingAngle, const vpHomogeneousMatrix &cMl);
 
-  //! RANSAC inlier threshold, in pixels (distance of an image point to the conic); default 2.
+  /*!
+    RANSAC inlier threshold, in pixels; default 2. Residuals are measured in the undistorted image:
+    the geometric (Sampson) distance of a point to the conic in normalized coordinates, multiplied
+    by the mean focal length (px + py) / 2. Without distortion this is the distance in pixels; with
+    distortion it is the distance in the undistorted image, which differs from the distorted one by
+    the local magnification of the distortion, 1 + kdu r^2 to first order.
+  */
   void setRansacThreshold(double pixels);
   //! Maximum number of RANSAC samples; default 1000.
   void setRansacMaxTrials(int trials);
@@ -128,7 +123,8 @@ public:
   //! Number of RANSAC samples drawn by the last estimate.
   int getRansacTrials() const { return m_trials; }
   /*! Image conic (pixel coordinates, x^T C x = 0 with x = (u, v, 1)) of the last estimate, for display:
-      the fitted ellipse for PLANE_PAIR, PP5 and PP3, the image of the trace on the estimated plane for GP3. */
+      the fitted ellipse for PLANE_PAIR, PP5 and PP3, the image of the trace on the estimated plane for GP3.
+      With a distorted camera it is the conic in the undistorted pixel image (x = K x_n). */
   vpMatrix getImageConic() const { return m_conic; }
   //! Why the last computePlane() returned false (empty after a success).
   std::string getFailureReason() const { return m_failure; }
