@@ -38,7 +38,8 @@ namespace
 struct Options
 {
   std::string input, output;
-  std::string methodName = "LEAST_SQUARES";
+  // RANSAC by default: real matches hold mismatches, which LEAST_SQUARES refuses (or is pulled by).
+  std::string methodName = "RANSAC";
   bool refine = false;
   double threshold = 4e-3;
   unsigned int seed = 0;
@@ -70,7 +71,7 @@ vpCommandLine commandLine(Options &options)
                 "CSV 'frame,status,tx,ty,tz,tux,tuy,tuz' (cMo: translation in metres, theta-u in\n"
                 "radians); never the input file");
   cli.addChoice("--method", options.methodName, {"P3P", "LEAST_SQUARES", "RANSAC"}, "METHOD",
-                "P3P (first three points), LEAST_SQUARES (all points, default) or RANSAC");
+                "P3P (first three points), LEAST_SQUARES (all points) or RANSAC (all points, default)");
   cli.addFlag("--refine", options.refine, "maximum-likelihood refinement of each pose on its points (RANSAC: inliers)");
   cli.addDouble("--threshold", options.threshold, "T",
                 "RANSAC inlier threshold in normalized coordinates, pixels / focal (default 4e-3)", vpCommandLine::POSITIVE);
