@@ -3,6 +3,8 @@
 # printed and written to $BUILD_DIR/benchmark-results.md (the tables of doc/results_benchmarks.md).
 #   scripts/run_benchmarks.sh [--quick]      (--quick: fewer instances and 1e5 stress configurations)
 # Environment: BUILD_DIR (default build-bench), JOBS (default 2), SEED (default 42).
+# Each row of the tables is one Google Benchmark run (median over repetitions of the benchmark thread's
+# CPU time, benchmark/peers/benchTimer.cpp); bench-peers also takes Google Benchmark's --benchmark_* flags.
 # Timings are only comparable on an otherwise idle machine: close other jobs first.
 set -euo pipefail
 cd "$(dirname "$0")/.."

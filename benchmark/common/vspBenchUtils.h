@@ -1,8 +1,8 @@
 /* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
 /*!
   \file vspBenchUtils.h
-  \brief Small helpers shared by the benchmark and stress programs: a median-of-batches timer, a
-  sink that keeps results alive, seeded random rotations and a tiny command-line reader.
+  \brief Small helpers shared by the benchmark and stress programs: a median-of-batches timer (Google
+  Benchmark), a sink that keeps results alive, seeded random rotations.
 */
 #ifndef VSP_BENCH_UTILS_H
 #define VSP_BENCH_UTILS_H
@@ -11,11 +11,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <time.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -30,21 +29,17 @@ inline volatile double g_sink = 0.0;
 inline void consume(double v) { g_sink = g_sink + v; }
 
 /*!
-  CPU time of the calling thread, in seconds. The benchmarks use it rather than the wall clock:
-  on a shared machine the wall clock also counts the time the thread waits for a core, the thread
-  CPU time does not (cache pollution by the other processes remains, hence the median).
+  Median time per batch divided by \e nInstances, in nanoseconds: \e batch runs as one Google
+  Benchmark with \e repetitions repetitions lasting about \e minSeconds in all (CPU time of the
+  benchmark thread, median aggregate). Defined in benchmark/peers/benchTimer.cpp (bench-peers links
+  Google Benchmark; the stress programs do not use it).
 */
-inline double threadCpuSeconds()
-{
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+double medianNsPerBatch(const std::function<void()> &batch, int nInstances, int repetitions, double minSeconds);
 
 /*!
   Median time per call (thread CPU time), in nanoseconds, of \e call(i) for i in [0, nInstances): one batch runs every
-  instance once (so that the branch predictor cannot learn a single input), the batch is repeated
-  until it has run \e repetitions times and at least \e minSeconds in total, and the median batch
+  instance once (so that the branch predictor cannot learn a single input); Google Benchmark repeats the
+  batch (after its own warm-up) \e repetitions times for about \e minSeconds in all, and the median batch
   time divided by the batch size is returned. The median resists the occasional preemption by the
   other processes of a shared machine.
 */
@@ -53,19 +48,13 @@ template <typename Call> double medianNsPerCall(Call &&call, int nInstances, int
   for (int i = 0; i < nInstances; ++i) { // warm-up: caches, lazy initialisations, page faults
     call(i);
   }
-  std::vector<double> perCall;
-  double total = 0.0;
-  while (static_cast<int>(perCall.size()) < repetitions || (total < minSeconds && perCall.size() < 10000)) {
-    const double start = threadCpuSeconds();
-    for (int i = 0; i < nInstances; ++i) {
-      call(i);
-    }
-    const double seconds = threadCpuSeconds() - start;
-    total += seconds;
-    perCall.push_back(seconds * 1e9 / nInstances);
-  }
-  std::nth_element(perCall.begin(), perCall.begin() + perCall.size() / 2, perCall.end());
-  return perCall[perCall.size() / 2];
+  return medianNsPerBatch(
+      [&call, nInstances]() {
+        for (int i = 0; i < nInstances; ++i) {
+          call(i);
+        }
+      },
+      nInstances, repetitions, minSeconds);
 }
 
 //! Human-readable duration from nanoseconds ("85 ns", "17.3 us", "1.21 ms").
@@ -110,27 +99,6 @@ inline double rotationAngleBetween(const Eigen::Matrix3d &R1, const Eigen::Matri
   return std::atan2(0.5 * axisSin.norm(), 0.5 * (D.trace() - 1.0));
 }
 
-//! Minimal "--name value" reader: the value after \e name, or \e fallback when absent.
-inline std::string argValue(int argc, char **argv, const char *name, const std::string &fallback)
-{
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) {
-      return argv[i + 1];
-    }
-  }
-  return fallback;
-}
-
-//! True when the flag \e name is on the command line.
-inline bool hasFlag(int argc, char **argv, const char *name)
-{
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) {
-      return true;
-    }
-  }
-  return false;
-}
 } // namespace vspBench
 
 #endif

@@ -6,6 +6,8 @@
   anything else (crash, sanitizer report, hang, a non-finite or non-rigid pose returned as success,
   another exception type) is a failure.
 */
+#include <cmath>
+
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
 #include "fuzzInput.h"
@@ -48,6 +50,24 @@ void configure(FuzzedDataProvider &fdp, vpPoseGravity &pose)
   }
   if (fdp.ConsumeBool()) {
     pose.setGravityStdDev(vspFuzz::consumeDouble(fdp));
+  }
+  // The checks and robust settings (appended so that the existing corpus keeps its meaning).
+  if (fdp.ConsumeBool()) {
+    pose.setRansacNbInliersToReachConsensus(fdp.ConsumeIntegralInRange<unsigned int>(0, 50));
+    pose.setRansacFilterFlag(fdp.ConsumeBool() ? vpPoseGravity::NO_FILTER : vpPoseGravity::PREFILTER_DEGENERATE_POINTS);
+    pose.setP3PPairRule(fdp.ConsumeBool() ? vpPoseGravity::P3P_WIDEST_PAIR : vpPoseGravity::P3P_BEST_THIRD_POINT);
+    pose.setCovarianceComputation(fdp.ConsumeBool());
+    pose.setRefineLoss(static_cast<vpPoseGravity::vpRobustLoss>(fdp.ConsumeIntegralInRange<int>(0, 2)),
+                       vspFuzz::consumeDouble(fdp));
+  }
+  if (fdp.ConsumeBool()) {
+    pose.setRansacSignificance(vspFuzz::consumeDouble(fdp));
+  }
+  if (fdp.ConsumeBool()) {
+    pose.setConsistencyThreshold(vspFuzz::consumeDouble(fdp));
+  }
+  if (fdp.ConsumeBool()) {
+    pose.setCameraGravityStdDev(vspFuzz::consumeDouble(fdp));
   }
 }
 
@@ -92,6 +112,16 @@ void run(FuzzedDataProvider &fdp)
       vspFuzz::fail("refinePose returned true with a non-finite or non-rigid pose");
     }
     (void)pose.computeResidual(cMo);
+  }
+  if (found && pose.getStatus() == vpPoseGravity::STATUS_OK) {
+    try {
+      const vpMatrix C = pose.getCovarianceMatrix();
+      for (unsigned int i = 0; i < C.size(); ++i)
+        if (!std::isfinite(C.data[i]))
+          vspFuzz::fail("getCovarianceMatrix returned a non-finite covariance");
+    } catch (const vpPoseGravityException &) {
+      // Not asked for, or not computable at that pose: a documented exception.
+    }
   }
 }
 } // namespace

@@ -53,6 +53,8 @@ struct BenchTargets
 void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 //! Laser-conic benchmarks (1000-point frames and whole 1600x1200 frames).
 void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
+//! The whole-frame part of the laser benchmarks alone (detection + GP-3 against cvtColor, three floors, ROI).
+void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 
 /*!
   Times one of our gravity solvers on \e instances seeded problems and prints its median time per

@@ -8,9 +8,14 @@
 #define VSP_STRESS_COMMON_H
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
+#include "vpCommandLine.h"
+#include "vpCsvTools.h"
 #include "vspBenchUtils.h"
 
 namespace vspStress
@@ -79,15 +84,42 @@ struct Options
   bool verbose = false;
 };
 
-inline Options parseOptions(int argc, char **argv, const char *solverOption, const char *defaultSolver,
-                            const char *defaultCount)
+/*!
+  Reads the command line strictly (vpCommandLine): \e solverOption must be one of \e solvers, --n a
+  whole number of configurations in [1, 1e12] (scientific notation accepted: 1e7), --seed a whole
+  number; an unknown option, a missing or malformed value is an error naming the option.
+  \return true when the program should run; otherwise main() returns \e exitStatus (0 after --help).
+*/
+inline bool parseOptions(int argc, char **argv, const char *solverOption, const std::vector<std::string> &solvers,
+                         const char *defaultSolver, const char *defaultCount, Options &o, int &exitStatus)
 {
-  Options o;
-  o.solver = vspBench::argValue(argc, argv, solverOption, defaultSolver);
-  o.count = static_cast<long>(std::stod(vspBench::argValue(argc, argv, "--n", defaultCount)));
-  o.seed = std::stoul(vspBench::argValue(argc, argv, "--seed", "1"));
-  o.verbose = vspBench::hasFlag(argc, argv, "--verbose");
-  return o;
+  o.solver = defaultSolver;
+  double count = std::atof(defaultCount);
+  unsigned int seed = 1;
+  std::string choices;
+  for (const std::string &s : solvers)
+    choices += (choices.empty() ? "" : "|") + s;
+  vpCommandLine cli(std::string("[") + solverOption + " " + choices + "] [--n N] [--seed S] [--verbose]",
+                    "Random exact configurations through the minimal solvers; counts wrong answers "
+                    "(exit status 1 when there is one).");
+  cli.addChoice(solverOption, o.solver, solvers, "solver", std::string("solver to stress (default ") + defaultSolver + ")");
+  cli.addOption("--n", "N", std::string("number of configurations (default ") + defaultCount + ")",
+                [&count](const std::string &value, std::string &error) {
+                  if (!vpCsvTools::toDouble(value, count) || count < 1 || count > 1e12 || count != std::floor(count)) {
+                    error = "--n expects a whole number in [1, 1e12], got '" + value + "'";
+                    return false;
+                  }
+                  return true;
+                });
+  cli.addUnsigned("--seed", seed, "S", "seed of the random configurations (default 1)");
+  cli.addFlag("--verbose", o.verbose, "print the first failing configurations of each kind");
+  if (!cli.parse(argc, argv)) {
+    exitStatus = cli.exitStatus();
+    return false;
+  }
+  o.count = static_cast<long>(count);
+  o.seed = seed;
+  return true;
 }
 } // namespace vspStress
 

@@ -168,7 +168,10 @@ Tally stressP2P(long count, unsigned long seed, bool verbose)
 
 int main(int argc, char **argv)
 {
-  const vspStress::Options o = vspStress::parseOptions(argc, argv, "--solver", "p3p", "1e7");
+  vspStress::Options o;
+  int exitStatus = 0;
+  if (!vspStress::parseOptions(argc, argv, "--solver", {"p3p", "p2p", "ls", "all"}, "p3p", "1e7", o, exitStatus))
+    return exitStatus;
   bool ok = true;
   if (o.solver == "p3p" || o.solver == "all") {
     ok = vspStress::report("P3P", o.count,

@@ -284,7 +284,11 @@ int solveConicThenPlanePair(const Config &c, int n, double &best)
 
 int main(int argc, char **argv)
 {
-  const vspStress::Options o = vspStress::parseOptions(argc, argv, "--method", "all", "1e6");
+  vspStress::Options o;
+  int exitStatus = 0;
+  if (!vspStress::parseOptions(argc, argv, "--method", {"gp3", "pp3", "pp5", "planepair", "all"}, "all", "1e6", o,
+                               exitStatus))
+    return exitStatus;
   const bool all = o.solver == "all";
   bool ok = true;
   if (all || o.solver == "gp3") {

@@ -36,6 +36,38 @@ bool parseNumbers(const std::vector<std::string> &fields, size_t first, const st
   return true;
 }
 
+/*!
+  Calls \e row(fields, where) for every data row of a CSV file (comments, blank lines and an optional
+  first header line starting with "frame" skipped) until it returns false. \e what names the file in
+  the message when it cannot be opened. \return false with \e error set on failure.
+*/
+template <typename RowFunction>
+bool forEachRow(const std::string &file, const std::string &what, std::string &error, RowFunction row)
+{
+  std::ifstream in(file);
+  if (!in) {
+    error = file + ": cannot open the " + what + " file";
+    return false;
+  }
+  std::string line;
+  unsigned int lineNumber = 0;
+  bool seenData = false;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    if (isSkippable(line))
+      continue;
+    const std::vector<std::string> fields = vpCsvTools::split(line);
+    if (!seenData && fields[0] == "frame") { // optional header line
+      seenData = true;
+      continue;
+    }
+    seenData = true;
+    if (!row(fields, vpCsvTools::location(file, lineNumber), lineNumber))
+      return false;
+  }
+  return true;
+}
+
 bool parseGravityRow(const std::vector<std::string> &fields, const std::string &where, vpGravityFrame &frame,
                      std::string &error)
 {
@@ -76,26 +108,15 @@ bool parsePointRow(const std::vector<std::string> &fields, const std::string &wh
 
 bool vpGravityPointsIo::readPoints(const std::string &file, std::vector<vpGravityFrame> &frames, std::string &error)
 {
-  std::ifstream in(file);
-  if (!in) {
-    error = file + ": cannot open the points file";
-    return false;
-  }
+  return readPoints(file, frames, error, true);
+}
+
+bool vpGravityPointsIo::readPoints(const std::string &file, std::vector<vpGravityFrame> &frames, std::string &error,
+                                   bool requireGravity)
+{
   std::map<unsigned int, vpGravityFrame> byIndex;
-  std::string line;
-  unsigned int lineNumber = 0;
-  bool seenData = false;
-  while (std::getline(in, line)) {
-    ++lineNumber;
-    if (isSkippable(line))
-      continue;
-    const std::vector<std::string> fields = vpCsvTools::split(line);
-    const std::string where = vpCsvTools::location(file, lineNumber);
-    if (!seenData && fields[0] == "frame") { // optional header line
-      seenData = true;
-      continue;
-    }
-    seenData = true;
+  const bool read = forEachRow(file, "points", error, [&](const std::vector<std::string> &fields,
+                                                           const std::string &where, unsigned int lineNumber) {
     if (fields.size() < 2) {
       error = where + ": expected 'frame,gravity,...' or 'frame,point,...', found 1 column";
       return false;
@@ -108,23 +129,22 @@ bool vpGravityPointsIo::readPoints(const std::string &file, std::vector<vpGravit
       frame.frame = index;
       frame.firstLine = lineNumber;
     }
-    bool ok = false;
     if (fields[1] == "gravity")
-      ok = parseGravityRow(fields, where, frame, error);
-    else if (fields[1] == "point")
-      ok = parsePointRow(fields, where, frame, error);
-    else
-      error = where + ": column kind ('" + fields[1] + "') must be 'gravity' or 'point'";
-    if (!ok)
-      return false;
-  }
+      return parseGravityRow(fields, where, frame, error);
+    if (fields[1] == "point")
+      return parsePointRow(fields, where, frame, error);
+    error = where + ": column kind ('" + fields[1] + "') must be 'gravity' or 'point'";
+    return false;
+  });
+  if (!read)
+    return false;
   if (byIndex.empty()) {
     error = file + ": no data row (expected 'frame,gravity,...' and 'frame,point,...' rows)";
     return false;
   }
   std::vector<vpGravityFrame> result;
   for (const auto &entry : byIndex) {
-    if (entry.second.gCam.size() != 3) {
+    if (requireGravity && entry.second.gCam.size() != 3) {
       error = vpCsvTools::location(file, entry.second.firstLine) + ": frame " + std::to_string(entry.first) +
               " has no gravity row";
       return false;
@@ -238,6 +258,36 @@ bool vpGravityPointsIo::writePoses(const std::string &file, const std::vector<vp
   }
   if (!out) {
     error = file + ": write error";
+    return false;
+  }
+  return true;
+}
+
+bool vpGravityPointsIo::readFrameTimes(const std::string &file, std::map<unsigned int, double> &times,
+                                       std::string &error)
+{
+  times.clear();
+  const bool read = forEachRow(file, "frame times", error, [&](const std::vector<std::string> &fields,
+                                                                const std::string &where, unsigned int) {
+    if (fields.size() != 2) {
+      error = where + ": a frame time row has 2 columns (frame,timestamp), found " + std::to_string(fields.size());
+      return false;
+    }
+    unsigned int index = 0;
+    double t = 0.0;
+    if (!vpCsvTools::parseIndex(fields[0], index, where, "frame", error) ||
+        !vpCsvTools::parseDouble(fields[1], t, where, "timestamp", error))
+      return false;
+    if (!times.insert(std::make_pair(index, t)).second) {
+      error = where + ": second time for frame " + std::to_string(index);
+      return false;
+    }
+    return true;
+  });
+  if (!read)
+    return false;
+  if (times.empty()) {
+    error = file + ": no frame time (expected 'frame,timestamp' rows)";
     return false;
   }
   return true;

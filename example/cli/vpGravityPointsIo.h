@@ -24,6 +24,7 @@
 #ifndef VP_GRAVITY_POINTS_IO_H
 #define VP_GRAVITY_POINTS_IO_H
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,19 @@ public:
     count, a field that is not a number, a frame without or with two gravity rows, no frame at all.
   */
   static bool readPoints(const std::string &file, std::vector<vpGravityFrame> &frames, std::string &error);
+  /*!
+    The same; with \e requireGravity false a frame may have no gravity row (its gravity then comes
+    from IMU streams, see vsp-gravity-pose --camera-imu), and gCam, gObj stay empty.
+  */
+  static bool readPoints(const std::string &file, std::vector<vpGravityFrame> &frames, std::string &error,
+                         bool requireGravity);
+  /*!
+    Reads a frame times file: CSV rows \verbatim frame,timestamp \endverbatim (optional header line
+    starting with "frame,", '#' comments), the exposure time of each frame in the unit of the IMU
+    stream's timestamps.
+    \return false with \e error naming the file and line on a malformed row or a repeated frame.
+  */
+  static bool readFrameTimes(const std::string &file, std::map<unsigned int, double> &times, std::string &error);
   //! Writes a points file (with a header line and a comment saying the format). \return false with \e error on failure.
   static bool writePoints(const std::string &file, const std::vector<vpGravityFrame> &frames, std::string &error);
 

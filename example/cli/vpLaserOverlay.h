@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
@@ -35,13 +36,29 @@ public:
   static void draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
                    const std::vector<unsigned int> &inliers, const vpMatrix &conic, const std::string &caption);
   /*!
+    As above for a camera with lens distortion: \e conic is in the undistorted pixel image of \e cam
+    (x = K x_n, as vpLaserConicPose::getImageConic() gives it), drawn through the camera model
+    (vpMeterPixelConversion) so that it lies on the distorted trace.
+  */
+  static void draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
+                   const std::vector<unsigned int> &inliers, const vpMatrix &conic, const vpCameraParameters &cam,
+                   const std::string &caption);
+  /*!
     Writes \e caption in the top-left corner of \e I and, below it, the \e legend entries side by
     side, each text in its colour (also used by the demo for its gravity-aided pose overlays).
   */
   static void drawCaption(vpImage<vpRGBa> &I, const std::string &caption,
                           const std::vector<std::pair<std::string, vpColor> > &legend);
-  //! Draws the image points where the conic crosses each image row and column (works for any conic type).
+  //! Draws the conic (pixel coordinates without distortion) with vpImageDraw, see the overload below.
   static void drawConic(vpImage<vpRGBa> &I, const vpMatrix &conic, const vpColor &color);
+  /*!
+    Draws the conic \e conic of the undistorted pixel image of \e cam with vpImageDraw::drawLine(): an
+    ellipse as a closed polyline of 360 points, any other conic as the segments between its crossings of
+    the rows (and columns) of a region three times the image size; each point is mapped to the image by
+    vpMeterPixelConversion (the camera's distortion).
+  */
+  static void drawConic(vpImage<vpRGBa> &I, const vpMatrix &conic, const vpCameraParameters &cam,
+                        const vpColor &color);
 };
 
 #endif

@@ -60,8 +60,9 @@ int main(int argc, char **argv)
 {
   std::string estimateFile, truthFile, error;
   double maxTranslation = -1.0, maxRotationDeg = -1.0;
+  unsigned int maxMissing = 0;
   vpCommandLine cli("--estimate poses.csv --truth groundtruth.csv [--max-median-translation M]\n"
-                    "          [--max-median-rotation-deg D]",
+                    "          [--max-median-rotation-deg D] [--max-missing N]",
                     "Translation and rotation errors of a pose file against a ground-truth pose file.");
   cli.addString("--estimate", estimateFile, "FILE", "poses 'frame,status,tx,ty,tz,tux,tuy,tuz' (vsp-gravity-pose)");
   cli.addString("--truth", truthFile, "FILE", "ground-truth poses in the same format");
@@ -69,6 +70,8 @@ int main(int argc, char **argv)
                 "exit status 1 when the median translation error exceeds M metres", vpCommandLine::NON_NEGATIVE);
   cli.addDouble("--max-median-rotation-deg", maxRotationDeg, "D",
                 "exit status 1 when the median rotation error exceeds D degrees", vpCommandLine::NON_NEGATIVE);
+  cli.addUnsigned("--max-missing", maxMissing, "N",
+                  "frames allowed without a pose (a status word instead: refused, in motion, ...); default 0");
   cli.require({"--estimate", "--truth"});
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
@@ -100,7 +103,7 @@ int main(int argc, char **argv)
   summarize("translation error", translationErrors, 1000.0, "mm");
   summarize("rotation error", rotationErrors, 180.0 / M_PI, "deg");
 
-  bool pass = missing == 0 && !translationErrors.empty();
+  bool pass = missing <= maxMissing && !translationErrors.empty();
   if (maxTranslation >= 0.0 && !(median(translationErrors) <= maxTranslation)) {
     std::cerr << "median translation error above " << maxTranslation << " m" << std::endl;
     pass = false;

@@ -10,15 +10,23 @@
   \verbatim
   vsp-gravity-pose --input points.csv --output poses.csv [--method P3P|LEAST_SQUARES|RANSAC] [--refine]
                    [--threshold T] [--seed N]
+                   [--camera-imu imu.csv] [--object-imu imu.csv] [--frame-times times.csv]
+                   [--camera-R-imu R.txt] [--object-R-imu R.txt] [--time-scale S] [--time-offset DT]
+                   [--norm-tolerance A] [--keep-moving]
   \endverbatim
+  With IMU streams (EuRoC / Kalibr CSV layout, see vpImuGravity), the gravity of each frame is
+  interpolated at its exposure time, converted from specific force to a down direction and rotated
+  into the camera (object) frame; frames taken while the IMU moves get the status imu_in_motion.
   Exit status: 0 when every frame was processed (frames without a pose get a status word in the
   output), 1 on a usage, file or format error (nothing is written then).
 */
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
+#include <visp3/pose_gravity/vpImuGravity.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
 #include "vpCommandLine.h"
@@ -30,10 +38,15 @@ namespace
 struct Options
 {
   std::string input, output;
-  std::string methodName = "LEAST_SQUARES";
+  // RANSAC by default: real matches hold mismatches, which LEAST_SQUARES refuses (or is pulled by).
+  std::string methodName = "RANSAC";
   bool refine = false;
-  double threshold = 1e-3;
+  double threshold = 4e-3;
   unsigned int seed = 0;
+  // Raw IMU input (optional).
+  std::string cameraImu, objectImu, frameTimes, cameraRImu, objectRImu;
+  double timeScale = 1e-9, timeOffset = 0.0, normTolerance = 0.5;
+  bool keepMoving = false;
 };
 
 vpPoseGravity::vpPoseGravityMethod methodId(const std::string &name)
@@ -47,7 +60,9 @@ vpPoseGravity::vpPoseGravityMethod methodId(const std::string &name)
 vpCommandLine commandLine(Options &options)
 {
   vpCommandLine cli("--input points.csv --output poses.csv [--method P3P|LEAST_SQUARES|RANSAC] [--refine]\n"
-                    "          [--threshold T] [--seed N]",
+                    "          [--threshold T] [--seed N] [--camera-imu FILE] [--object-imu FILE] [--frame-times FILE]\n"
+                    "          [--camera-R-imu FILE] [--object-R-imu FILE] [--time-scale S] [--time-offset DT]\n"
+                    "          [--norm-tolerance A] [--keep-moving]",
                     "Gravity-aided pose of each frame from its 2D/3D points and the two gravity vectors.");
   cli.addString("--input", options.input, "FILE",
                 "per-frame gravity and 2D/3D points (rows 'frame,gravity,gcx,gcy,gcz,gox,goy,goz'\n"
@@ -56,11 +71,28 @@ vpCommandLine commandLine(Options &options)
                 "CSV 'frame,status,tx,ty,tz,tux,tuy,tuz' (cMo: translation in metres, theta-u in\n"
                 "radians); never the input file");
   cli.addChoice("--method", options.methodName, {"P3P", "LEAST_SQUARES", "RANSAC"}, "METHOD",
-                "P3P (first three points), LEAST_SQUARES (all points, default) or RANSAC");
+                "P3P (first three points), LEAST_SQUARES (all points) or RANSAC (all points, default)");
   cli.addFlag("--refine", options.refine, "maximum-likelihood refinement of each pose on its points (RANSAC: inliers)");
   cli.addDouble("--threshold", options.threshold, "T",
-                "RANSAC inlier threshold in normalized coordinates (default 1e-3)", vpCommandLine::POSITIVE);
+                "RANSAC inlier threshold in normalized coordinates, pixels / focal (default 4e-3)", vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
+  cli.addString("--camera-imu", options.cameraImu, "FILE",
+                "camera IMU stream, CSV 'timestamp,wx,wy,wz,ax,ay,az' (EuRoC imu0/data.csv or Kalibr\n"
+                "imu.csv layout: gyro rad/s, accelerometer m/s^2); replaces the camera gravity columns");
+  cli.addString("--object-imu", options.objectImu, "FILE",
+                "object IMU stream (same layout); replaces the object gravity columns");
+  cli.addString("--frame-times", options.frameTimes, "FILE",
+                "CSV 'frame,timestamp': exposure time of each frame, in the unit of the IMU timestamps");
+  cli.addString("--camera-R-imu", options.cameraRImu, "FILE",
+                "rotation camera_R_imu (maps IMU vectors into the camera frame): 3x3, or 4x4 as Kalibr's T_cam_imu");
+  cli.addString("--object-R-imu", options.objectRImu, "FILE", "rotation object_R_imu, same format");
+  cli.addDouble("--time-scale", options.timeScale, "S", "seconds per timestamp unit (default 1e-9: nanoseconds)",
+                vpCommandLine::POSITIVE);
+  cli.addDouble("--time-offset", options.timeOffset, "DT", "IMU clock minus camera clock, seconds (default 0)");
+  cli.addDouble("--norm-tolerance", options.normTolerance, "A",
+                "|accelerometer| farther than A m/s^2 from 9.81 flags the frame as in motion (default 0.5)",
+                vpCommandLine::POSITIVE);
+  cli.addFlag("--keep-moving", options.keepMoving, "estimate the frames flagged in motion too (default: status imu_in_motion)");
   cli.require({"--input", "--output"});
   return cli;
 }
@@ -84,7 +116,10 @@ std::string statusWord(vpPoseGravity::vpPoseGravityStatus status)
                                                      {vpPoseGravity::STATUS_VERTICAL_RAY, "vertical_ray"},
                                                      {vpPoseGravity::STATUS_NO_SOLUTION, "no_solution"},
                                                      {vpPoseGravity::STATUS_NO_CONSENSUS, "no_consensus"},
-                                                     {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"}},
+                                                     {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"},
+                                                     {vpPoseGravity::STATUS_INCONSISTENT_GRAVITY, "inconsistent_gravity"},
+                                                     {vpPoseGravity::STATUS_GRAVITY_SIGN_REVERSED, "gravity_sign_reversed"},
+                                                     {vpPoseGravity::STATUS_BEHIND_CAMERA, "behind_camera"}},
                                                     "not_computed");
 }
 
@@ -97,6 +132,74 @@ std::string errorWord(const vpException &e)
                       {vpPoseGravityException::badPointError, "bad_point"},
                       {vpPoseGravityException::degeneratePointsError, "degenerate_points"}},
                      "error");
+}
+
+//! The IMU streams of the options and the frame times (empty when not given).
+struct ImuInput
+{
+  bool camera = false, object = false;
+  vpImuGravity cameraImu, objectImu;
+  std::map<unsigned int, double> frameTimes;
+};
+
+//! Loads the IMU input named by the options; false with \e error on a file error.
+bool loadImuInput(const Options &options, ImuInput &imu, std::string &error)
+{
+  imu.camera = !options.cameraImu.empty();
+  imu.object = !options.objectImu.empty();
+  if (!imu.camera && !imu.object)
+    return true;
+  if (options.frameTimes.empty()) {
+    error = "--camera-imu / --object-imu need --frame-times";
+    return false;
+  }
+  if (!vpGravityPointsIo::readFrameTimes(options.frameTimes, imu.frameTimes, error))
+    return false;
+  try {
+    const std::pair<bool, vpImuGravity *> streams[2] = {{imu.camera, &imu.cameraImu}, {imu.object, &imu.objectImu}};
+    const std::string files[2] = {options.cameraImu, options.objectImu};
+    const std::string rotations[2] = {options.cameraRImu, options.objectRImu};
+    for (int k = 0; k < 2; ++k) {
+      if (!streams[k].first)
+        continue;
+      vpImuGravity &stream = *streams[k].second;
+      stream.loadCsv(files[k], options.timeScale);
+      if (!rotations[k].empty())
+        stream.setImuToSensorRotation(vpImuGravity::loadRotation(rotations[k]));
+      stream.setNormTolerance(options.normTolerance);
+      stream.setTimeOffset(options.timeOffset);
+    }
+  } catch (const vpException &e) {
+    error = e.getStringMessage();
+    return false;
+  }
+  return true;
+}
+
+/*!
+  Replaces the gravity of \e frame by the IMU streams' at its exposure time. \return "" when done, or
+  the status word of the frame: no_frame_time, no_imu_data (time outside a stream), imu_in_motion.
+*/
+std::string gravityFromImu(const ImuInput &imu, const Options &options, vpGravityFrame &frame)
+{
+  if (!imu.camera && !imu.object)
+    return "";
+  const auto time = imu.frameTimes.find(frame.frame);
+  if (time == imu.frameTimes.end())
+    return "no_frame_time";
+  const double t = time->second * options.timeScale;
+  const std::pair<bool, const vpImuGravity *> streams[2] = {{imu.camera, &imu.cameraImu}, {imu.object, &imu.objectImu}};
+  vpColVector *targets[2] = {&frame.gCam, &frame.gObj};
+  for (int k = 0; k < 2; ++k) {
+    if (!streams[k].first)
+      continue;
+    bool moving = false;
+    if (!streams[k].second->gravityAt(t, *targets[k], moving))
+      return "no_imu_data";
+    if (moving && !options.keepMoving)
+      return "imu_in_motion";
+  }
+  return "";
 }
 
 vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, const std::string &where)
@@ -135,16 +238,35 @@ int main(int argc, char **argv)
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
   std::string error;
-  if (!vpCsvTools::checkOutputIsNotInput(options.output, {options.input}, error))
+  std::vector<std::string> inputs;
+  for (const std::string &f : {options.input, options.cameraImu, options.objectImu, options.frameTimes,
+                               options.cameraRImu, options.objectRImu})
+    if (!f.empty())
+      inputs.push_back(f);
+  if (!vpCsvTools::checkOutputIsNotInput(options.output, inputs, error))
     return cli.fail(error);
+  ImuInput imu;
+  if (!loadImuInput(options, imu, error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
   std::vector<vpGravityFrame> frames;
-  if (!vpGravityPointsIo::readPoints(options.input, frames, error)) {
+  // With both IMU streams the points file needs no gravity rows; with one, the other side's columns are used.
+  if (!vpGravityPointsIo::readPoints(options.input, frames, error, !(imu.camera && imu.object))) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
   std::vector<vpPoseRow> poses;
   unsigned int found = 0;
-  for (const vpGravityFrame &frame : frames) {
+  for (vpGravityFrame &frame : frames) {
+    const std::string imuStatus = gravityFromImu(imu, options, frame);
+    if (!imuStatus.empty()) {
+      vpPoseRow row;
+      row.frame = frame.frame;
+      row.status = imuStatus;
+      poses.push_back(row);
+      continue;
+    }
     poses.push_back(estimateFrame(frame, options, vpCsvTools::location(options.input, frame.firstLine)));
     found += poses.back().status == "ok" ? 1 : 0;
   }

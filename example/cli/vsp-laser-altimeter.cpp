@@ -12,12 +12,18 @@
   vsp-laser-altimeter --camera camera.xml [--camera-name Camera] --laser laser.txt
                       (--images DIR | --list images.txt) --output results.csv
                       [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]
+                      [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
+                      [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]
+                      [--truth groundtruth.csv] [--max-altitude-error MM]
   \endverbatim
-  Output: CSV "frame,image,altitude_m,roll_rad,pitch_rad,inliers,status". Exit status 0 when every
-  image was processed (frames without a plane say why in their status), 1 on a usage, file or
-  format error.
+  The camera file may hold the perspective model with distortion (kud, kdu): it is then used (the
+  detected pixels are converted with vpPixelMeterConversion, the overlays drawn through the model).
+  Output: CSV "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status". Exit status 0 when every
+  image was processed (frames without a plane, and unreadable images, say why in their status), 1 on a
+  usage, file or format error, or when --max-altitude-error is exceeded.
 */
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -42,10 +48,13 @@ namespace
 {
 struct Options
 {
-  std::string camera, cameraName = "Camera", laser, imagesDir, listFile, output, overlays;
-  std::string methodName = "GP3";
+  std::string camera, cameraName = "Camera", laser, imagesDir, listFile, output, overlays, truth;
+  std::string methodName = "GP3", detectorName = "ridge";
   double threshold = 2.0;
   unsigned int seed = 0;
+  // Detector settings (defaults of vpLaserConicDetector).
+  double minContrast = 10.0, noiseFactor = 5.0, minSegment = 50.0, track = 0.0, maxAltitudeError = 0.0;
+  unsigned int maxStripeWidth = 12, saturationLevel = 250, samplingStep = 1;
 };
 
 vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
@@ -62,21 +71,48 @@ vpCommandLine commandLine(Options &options)
 {
   vpCommandLine cli("--camera camera.xml [--camera-name Camera] --laser laser.txt\n"
                     "          (--images DIR | --list images.txt) --output results.csv\n"
-                    "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]",
+                    "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
+                    "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
+                    "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
+                    "          [--truth groundtruth.csv] [--max-altitude-error MM]",
                     "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
-                "intrinsics in vpXmlParserCamera format (perspective model without distortion)");
+                "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
   cli.addString("--camera-name", options.cameraName, "NAME", "camera name in that file (default Camera)");
   cli.addString("--laser", options.laser, "FILE", "laser calibration: 'opening_angle_deg A' then 'cMl' and its 4 rows");
   cli.addString("--images", options.imagesDir, "DIR", "folder of images (.png .jpg .jpeg .ppm .pgm), processed in name order");
   cli.addString("--list", options.listFile, "FILE", "text file with one image path per line (relative to the list's folder)");
   cli.addString("--output", options.output, "FILE",
-                "CSV 'frame,image,altitude_m,roll_rad,pitch_rad,inliers,status'; never an input");
+                "CSV 'frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status'; never an input");
   cli.addChoice("--method", options.methodName, {"GP3", "PP3", "PP5", "PLANE_PAIR"}, "METHOD", "estimator (default GP3)");
   cli.addString("--overlays", options.overlays, "DIR", "folder receiving <image>_overlay.png (points, inliers, fitted conic)");
   cli.addDouble("--threshold", options.threshold, "PX", "RANSAC inlier threshold in pixels (default 2)",
                 vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
+  cli.addChoice("--detector", options.detectorName, {"ridge", "hsv"}, "METHOD",
+                "trace detector: ridge of R - max(G, B) with a threshold from the image's noise (default), or the "
+                "historical fixed HSV thresholds");
+  cli.addDouble("--min-contrast", options.minContrast, "GREY",
+                "ridge: smallest stripe contrast above its background, grey levels (default 10)", vpCommandLine::POSITIVE);
+  cli.addDouble("--noise-factor", options.noiseFactor, "K",
+                "ridge: the threshold is at least K times the noise estimated in the image (default 5)",
+                vpCommandLine::NON_NEGATIVE);
+  cli.addUnsigned("--max-stripe-width", options.maxStripeWidth, "PX",
+                  "widest stripe (half-maximum width along a scan line), pixels (default 12)", 1);
+  cli.addUnsigned("--saturation-level", options.saturationLevel, "LEVEL",
+                  "ridge: red level from which a pixel is saturated, 128-255 (default 250)", 128);
+  cli.addDouble("--min-segment", options.minSegment, "PX",
+                "ridge: shortest chain of points kept, pixels (default 50; 0 keeps all)", vpCommandLine::NON_NEGATIVE);
+  cli.addUnsigned("--sampling-step", options.samplingStep, "N", "scan one row/column in N (default 1)", 1);
+  cli.addDouble("--track", options.track, "PX",
+                "ridge: search within PX pixels of the previous frame's inliers when it had a plane (default 0: "
+                "whole image every frame)",
+                vpCommandLine::NON_NEGATIVE);
+  cli.addString("--truth", options.truth, "FILE",
+                "groundtruth.csv (vpLaserRigIo format, images matched by file name): print the errors");
+  cli.addDouble("--max-altitude-error", options.maxAltitudeError, "MM",
+                "with --truth: exit status 1 when an altitude error exceeds MM millimetres (default 0: no check)",
+                vpCommandLine::NON_NEGATIVE);
   cli.require({"--camera", "--laser", "--output"});
   return cli;
 }
@@ -185,11 +221,28 @@ struct FrameResult
 {
   double altitude = 0.0, roll = 0.0, pitch = 0.0;
   unsigned int inliers = 0;
+  size_t points = 0;
+  std::vector<vpImagePoint> inlierPoints; //!< for the search region of the next frame (--track)
   std::string status = "ok";
 };
 
-FrameResult processImage(const std::string &image, const Options &options, vpLaserConicPose &estimator,
-                         vpLaserConicDetector &detector)
+//! A detector with the settings of the command line. \exception vpLaserConicException on a bad setting.
+vpLaserConicDetector makeDetector(const Options &options)
+{
+  vpLaserConicDetector detector;
+  detector.setMethod(options.detectorName == "hsv" ? vpLaserConicDetector::DETECTION_HSV
+                                                   : vpLaserConicDetector::DETECTION_RIDGE);
+  detector.setMinContrast(options.minContrast);
+  detector.setNoiseFactor(options.noiseFactor);
+  detector.setMaxStripeWidth(options.maxStripeWidth);
+  detector.setSaturationLevel(options.saturationLevel);
+  detector.setMinSegmentLength(options.minSegment);
+  detector.setSamplingStep(options.samplingStep);
+  return detector;
+}
+
+FrameResult processImage(const std::string &image, const Options &options, const vpCameraParameters &cam,
+                         vpLaserConicPose &estimator, vpLaserConicDetector &detector)
 {
   FrameResult result;
   vpImage<vpRGBa> I;
@@ -205,6 +258,7 @@ FrameResult processImage(const std::string &image, const Options &options, vpLas
     return result;
   }
   const std::vector<vpImagePoint> points = detector.detect(I);
+  result.points = points.size();
   vpMatrix conic;
   std::vector<unsigned int> inliers;
   if (points.size() < minimumPoints(methodId(options.methodName))) {
@@ -218,6 +272,8 @@ FrameResult processImage(const std::string &image, const Options &options, vpLas
         result.pitch = estimator.getPitch();
         inliers = estimator.getInliers();
         result.inliers = static_cast<unsigned int>(inliers.size());
+        for (unsigned int index : inliers)
+          result.inlierPoints.push_back(points[index]);
         conic = estimator.getImageConic();
       } else {
         result.status = "no_plane";
@@ -237,7 +293,7 @@ FrameResult processImage(const std::string &image, const Options &options, vpLas
     else
       std::snprintf(caption, sizeof(caption), "%s %s: %s (%zu points)", fs::path(image).filename().string().c_str(),
                     options.methodName.c_str(), result.status.c_str(), points.size());
-    vpLaserOverlay::draw(I, points, inliers, conic, caption);
+    vpLaserOverlay::draw(I, points, inliers, conic, cam, caption);
     vpImageIo::write(I, (fs::path(options.overlays) / (fs::path(image).stem().string() + "_overlay.png")).string());
   }
   return result;
@@ -261,7 +317,7 @@ bool readInputs(const Options &options, vpCameraParameters &cam, double &opening
 //! One row of the results CSV; the numbers are "nan" when the frame has no plane.
 void writeRow(std::ostream &out, size_t frame, const std::string &image, const FrameResult &r)
 {
-  out << frame << "," << image << ",";
+  out << frame << "," << image << "," << r.points << ",";
   if (r.status == "ok")
     out << vpCsvTools::formatDouble(r.altitude) << "," << vpCsvTools::formatDouble(r.roll) << ","
         << vpCsvTools::formatDouble(r.pitch);
@@ -302,6 +358,11 @@ int run(int argc, char **argv)
     return EXIT_FAILURE;
   }
 
+  std::vector<vpLaserGroundTruthFrame> truth;
+  if (!options.truth.empty() && !vpLaserRigIo::readGroundTruth(options.truth, truth, error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
   vpLaserConicPose estimator;
   vpLaserConicDetector detector;
   try {
@@ -310,15 +371,35 @@ int run(int argc, char **argv)
     estimator.setRansacThreshold(options.threshold);
     estimator.setRansacSeed(options.seed);
   } catch (const vpException &e) {
-    std::cerr << argv[0] << ": " << options.laser << ": " << e.getStringMessage() << std::endl;
+    std::cerr << argv[0] << ": " << options.camera << " / " << options.laser << ": " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;
   }
-  out << "frame,image,altitude_m,roll_rad,pitch_rad,inliers,status\n";
-  unsigned int found = 0;
+  try {
+    detector = makeDetector(options);
+  } catch (const vpException &e) {
+    std::cerr << argv[0] << ": " << e.getStringMessage() << std::endl;
+    return EXIT_FAILURE;
+  }
+  out << "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status\n";
+  unsigned int found = 0, compared = 0;
+  double worstAltitude = 0.0, worstRoll = 0.0, worstPitch = 0.0;
   for (size_t k = 0; k < images.size(); ++k) {
-    const FrameResult r = processImage(images[k], options, estimator, detector);
+    const FrameResult r = processImage(images[k], options, cam, estimator, detector);
     writeRow(out, k, images[k], r);
     found += r.status == "ok" ? 1 : 0;
+    // Next frame: search near this frame's inliers, or in the whole image after a failure.
+    if (options.track > 0.0 && r.status == "ok" && options.detectorName == "ridge")
+      detector.setSearchRegion(r.inlierPoints, options.track);
+    else
+      detector.clearSearchRegion();
+    const std::string name = fs::path(images[k]).filename().string();
+    for (const vpLaserGroundTruthFrame &t : truth)
+      if (r.status == "ok" && fs::path(t.image).filename().string() == name) {
+        ++compared;
+        worstAltitude = std::max(worstAltitude, std::fabs(r.altitude - t.altitude));
+        worstRoll = std::max(worstRoll, std::fabs(r.roll - t.roll));
+        worstPitch = std::max(worstPitch, std::fabs(r.pitch - t.pitch));
+      }
   }
   if (!out) {
     std::cerr << argv[0] << ": " << options.output << ": write error" << std::endl;
@@ -326,6 +407,16 @@ int run(int argc, char **argv)
   }
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
             << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
+  if (!truth.empty()) {
+    std::cout << "against " << options.truth << ": " << compared << " frames with a plane and a ground truth, worst errors "
+              << 1000.0 * worstAltitude << " mm altitude, " << vpMath::deg(worstRoll) << " deg roll, "
+              << vpMath::deg(worstPitch) << " deg pitch" << std::endl;
+    if (options.maxAltitudeError > 0.0 && 1000.0 * worstAltitude > options.maxAltitudeError) {
+      std::cerr << argv[0] << ": altitude error " << 1000.0 * worstAltitude << " mm > --max-altitude-error "
+                << options.maxAltitudeError << " mm" << std::endl;
+      return EXIT_FAILURE;
+    }
+  }
   return EXIT_SUCCESS;
 }
 } // namespace

@@ -152,6 +152,10 @@ bool vpCommandLine::parse(int argc, const char *const argv[])
     }
     const Option *option = find(arg);
     std::string error;
+    if (option == nullptr && m_positional != nullptr && !arg.empty() && arg[0] != '-') {
+      m_positional->push_back(arg);
+      continue;
+    }
     if (option == nullptr)
       error = "unknown option '" + arg + "'";
     else if (option->apply && i + 1 >= argc)
@@ -176,6 +180,14 @@ bool vpCommandLine::parse(int argc, const char *const argv[])
     return false;
   }
   return true;
+}
+
+void vpCommandLine::addPositional(std::vector<std::string> &target, const std::string &valueName,
+                                  const std::string &help)
+{
+  m_positional = &target;
+  m_positionalName = valueName;
+  m_positionalHelp = help;
 }
 
 void vpCommandLine::require(const std::vector<std::string> &names)
@@ -204,6 +216,8 @@ void vpCommandLine::printUsage(std::ostream &os) const
   std::vector<std::pair<std::string, std::string> > rows;
   for (const Option &option : m_options)
     rows.emplace_back(option.name + (option.valueName.empty() ? "" : " " + option.valueName), option.help);
+  if (m_positional != nullptr)
+    rows.emplace_back(m_positionalName, m_positionalHelp);
   rows.emplace_back("--help", "this message");
   size_t width = 0;
   for (const auto &row : rows)

@@ -70,6 +70,12 @@ public:
   void addOption(const std::string &name, const std::string &valueName, const std::string &help,
                  const vpApply &apply);
 
+  /*!
+    Accepts arguments that are not options (they do not start with '-'), appended to \e target in
+    their order; without this call such an argument is an error.
+  */
+  void addPositional(std::vector<std::string> &target, const std::string &valueName, const std::string &help);
+
   //! Makes options \e names mandatory: parse() fails when one of them is absent.
   void require(const std::vector<std::string> &names);
 
@@ -113,6 +119,8 @@ private:
   std::string m_synopsis, m_description, m_program;
   std::vector<Option> m_options;
   std::vector<std::string> m_given, m_required;
+  std::vector<std::string> *m_positional = nullptr; //!< where addPositional() arguments go
+  std::string m_positionalName, m_positionalHelp;
   int m_exitStatus;
 };
 

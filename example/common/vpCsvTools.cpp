@@ -11,20 +11,16 @@
 #include <filesystem>
 #include <sstream>
 
+#include <visp3/core/vpIoTools.h>
+
 namespace vpCsvTools
 {
-std::string trim(const std::string &s)
-{
-  const char *blanks = " \t\r\n";
-  const std::string::size_type first = s.find_first_not_of(blanks);
-  if (first == std::string::npos)
-    return std::string();
-  const std::string::size_type last = s.find_last_not_of(blanks);
-  return s.substr(first, last - first + 1);
-}
+std::string trim(const std::string &s) { return vpIoTools::trim(s); }
 
 std::vector<std::string> split(const std::string &line)
 {
+  // Not vpIoTools::splitChain(): it drops empty fields ("a,,b" gives two), which would shift every
+  // column after a missing value instead of reporting that value.
   std::vector<std::string> fields;
   std::string::size_type start = 0;
   while (true) {

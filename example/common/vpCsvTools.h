@@ -15,10 +15,11 @@
 
 namespace vpCsvTools
 {
-//! Splits one CSV line on commas (no quoting: the project's files never need it); fields are trimmed.
+//! Splits one CSV line on commas (no quoting: the project's files never need it); fields are trimmed
+//! (vpIoTools::trim()), empty fields are kept in their place.
 std::vector<std::string> split(const std::string &line);
 
-//! Removes leading and trailing blanks (spaces, tabs, carriage return).
+//! Removes leading and trailing blanks (vpIoTools::trim(): spaces, tabs, carriage returns, new lines).
 std::string trim(const std::string &s);
 
 //! Converts the whole of \e text to a finite double (no blank, no trailing character). \return false otherwise.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include <visp3/core/vpIoTools.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMatrix.h>
+#include <visp3/core/vpPoseVector.h>
 #include <visp3/core/vpXmlParserCamera.h>
 
 #include "vpCsvTools.h"
@@ -63,16 +65,11 @@ public:
 private:
   std::streambuf *m_saved;
 };
-} // namespace
 
-bool vpLaserRigIo::readLaserCalibration(const std::string &file, double &openingAngleRad, vpHomogeneousMatrix &cMl,
-                                        std::string &error)
+//! Reads the older text format (see vpLaserRigIo::readLaserCalibration()).
+bool readLaserText(const std::string &file, std::istream &in, double &openingAngleRad, vpHomogeneousMatrix &cMl,
+                   std::string &error)
 {
-  std::ifstream in(file.c_str());
-  if (!in) {
-    error = "cannot open laser calibration file '" + file + "'";
-    return false;
-  }
   const std::string where = "laser calibration '" + file + "'";
   std::string line;
   unsigned int lineNumber = 0;
@@ -142,6 +139,192 @@ bool vpLaserRigIo::readLaserCalibration(const std::string &file, double &opening
 
   openingAngleRad = vpMath::rad(angleDeg);
   cMl = M;
+  return true;
+}
+
+//! Strict list of \e count finite numbers "[a, b, c]" (or a single number when count is 1).
+bool parseYamlNumbers(std::string text, unsigned int count, double *values)
+{
+  text = vpCsvTools::trim(text);
+  if (count > 1 || (!text.empty() && text[0] == '[')) {
+    if (text.size() < 2 || text.front() != '[' || text.back() != ']')
+      return false;
+    text = text.substr(1, text.size() - 2);
+  }
+  const std::vector<std::string> fields = vpCsvTools::split(text);
+  if (fields.size() != count)
+    return false;
+  for (unsigned int i = 0; i < count; ++i)
+    if (!vpCsvTools::toDouble(vpCsvTools::trim(fields[i]), values[i]))
+      return false;
+  return true;
+}
+
+//! Reads the YAML format: keys parsed here, the pose with vpPoseVector::loadYAML().
+bool readLaserYaml(const std::string &file, std::istream &in, vpLaserCalibrationData &result, std::string &error)
+{
+  const std::string where = "laser calibration '" + file + "'";
+  std::string line;
+  unsigned int lineNumber = 0;
+  bool hasAngle = false, inData = false;
+  unsigned int nbStd = 0, nbDataRows = 0;
+  std::string rows, cols;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    const std::string at = where + " line " + std::to_string(lineNumber);
+    const std::string trimmed = vpCsvTools::trim(line);
+    if (trimmed.empty() || trimmed[0] == '#')
+      continue;
+    if (inData) {
+      // "- [value]": checked here because vpArray2D::loadYAML() reads the values with atof().
+      double v = 0.0;
+      if (trimmed.compare(0, 1, "-") != 0 || !parseYamlNumbers(trimmed.substr(1), 1, &v)) {
+        error = at + ": expected a pose row '- [value]' with a finite number";
+        return false;
+      }
+      ++nbDataRows;
+      continue;
+    }
+    const std::string::size_type colon = trimmed.find(':');
+    if (colon == std::string::npos) {
+      error = at + ": expected 'key: value'";
+      return false;
+    }
+    const std::string key = vpCsvTools::trim(trimmed.substr(0, colon));
+    std::string value = trimmed.substr(colon + 1);
+    const std::string::size_type comment = value.find('#');
+    if (comment != std::string::npos)
+      value = value.substr(0, comment);
+    double v[3] = {0.0, 0.0, 0.0};
+    if (key == "data") {
+      inData = true;
+    } else if (key == "rows" || key == "cols") {
+      (key == "rows" ? rows : cols) = vpCsvTools::trim(value);
+    } else if (key == "opening_angle_deg") {
+      if (!parseYamlNumbers(value, 1, v) || v[0] <= 0.0 || v[0] >= 180.0) {
+        error = at + ": opening_angle_deg must be a number in (0, 180)";
+        return false;
+      }
+      result.openingAngle = vpMath::rad(v[0]);
+      hasAngle = true;
+    } else if (key == "std_dev_axis_deg" || key == "std_dev_apex_m" || key == "std_dev_opening_angle_deg") {
+      const unsigned int n = key == "std_dev_axis_deg" ? 2 : (key == "std_dev_apex_m" ? 3 : 1);
+      if (!parseYamlNumbers(value, n, v) || *std::min_element(v, v + n) < 0.0) {
+        error = at + ": " + key + " expects " + (n == 1 ? "a number" : "a list of " + std::to_string(n) + " numbers") +
+                " >= 0";
+        return false;
+      }
+      if (n == 2) {
+        result.stdDeviations[0] = vpMath::rad(v[0]);
+        result.stdDeviations[1] = vpMath::rad(v[1]);
+      } else if (n == 3) {
+        for (unsigned int k = 0; k < 3; ++k)
+          result.stdDeviations[2 + k] = v[k];
+      } else {
+        result.stdDeviations[5] = vpMath::rad(v[0]);
+      }
+      ++nbStd;
+    } else if (key == "rms_m") {
+      if (!parseYamlNumbers(value, 1, v) || v[0] < 0.0) {
+        error = at + ": rms_m must be a number >= 0";
+        return false;
+      }
+      result.rms = v[0];
+    } else if (key == "views") {
+      if (!parseYamlNumbers(value, 1, v) || v[0] < 0.0 || v[0] != std::floor(v[0])) {
+        error = at + ": views must be a whole number";
+        return false;
+      }
+      result.nbViews = static_cast<unsigned int>(v[0]);
+    } else {
+      error = at + ": unknown key '" + key + "'";
+      return false;
+    }
+  }
+  if (!hasAngle) {
+    error = where + ": missing 'opening_angle_deg: <value>'";
+    return false;
+  }
+  if (nbStd != 0 && nbStd != 3) {
+    error = where + ": give all of std_dev_axis_deg, std_dev_apex_m and std_dev_opening_angle_deg, or none";
+    return false;
+  }
+  result.hasStdDeviations = nbStd == 3;
+  if (rows != "6" || cols != "1" || nbDataRows != 6) {
+    error = where + ": the pose must be a vpPoseVector (rows: 6, cols: 1, 6 data rows)";
+    return false;
+  }
+  vpPoseVector pose;
+  if (!vpPoseVector::loadYAML(file, pose)) {
+    error = where + ": vpPoseVector::loadYAML() cannot read the pose";
+    return false;
+  }
+  result.cMl.buildFrom(pose);
+  return true;
+}
+} // namespace
+
+bool vpLaserRigIo::readLaserCalibration(const std::string &file, vpLaserCalibrationData &calibration,
+                                        std::string &error)
+{
+  std::ifstream in(file.c_str());
+  if (!in) {
+    error = "cannot open laser calibration file '" + file + "'";
+    return false;
+  }
+  // The YAML format is the one with a "rows:" line (vpArray2D::saveYAML()).
+  bool yaml = false;
+  std::string line;
+  while (!yaml && std::getline(in, line))
+    yaml = line.compare(0, 5, "rows:") == 0;
+  in.clear();
+  in.seekg(0);
+  vpLaserCalibrationData result;
+  if (yaml ? !readLaserYaml(file, in, result, error)
+           : !readLaserText(file, in, result.openingAngle, result.cMl, error))
+    return false;
+  calibration = result;
+  return true;
+}
+
+bool vpLaserRigIo::readLaserCalibration(const std::string &file, double &openingAngleRad, vpHomogeneousMatrix &cMl,
+                                        std::string &error)
+{
+  vpLaserCalibrationData calibration;
+  if (!readLaserCalibration(file, calibration, error))
+    return false;
+  openingAngleRad = calibration.openingAngle;
+  cMl = calibration.cMl;
+  return true;
+}
+
+bool vpLaserRigIo::writeLaserCalibrationYaml(const std::string &file, const vpLaserCalibrationData &calibration,
+                                             std::string &error)
+{
+  std::ostringstream header;
+  header << std::setprecision(6);
+  header << "# Laser calibration of a camera/circular-laser rig. The pose is cMl, the laser frame (apex at its\n"
+         << "# origin, cone axis +Z) in the camera frame, a vpPoseVector [tx ty tz (m), theta u (rad)]:\n"
+         << "# read it with vpPoseVector::loadYAML(). Standard deviations: axis angles alpha, beta of\n"
+         << "# Rx(alpha) Ry(beta), apex, opening angle (0: not estimated).\n";
+  header << std::setprecision(std::numeric_limits<double>::max_digits10);
+  header << "opening_angle_deg: " << vpMath::deg(calibration.openingAngle);
+  header << std::setprecision(6);
+  if (calibration.hasStdDeviations) {
+    const vpColVector &s = calibration.stdDeviations;
+    header << "\nstd_dev_axis_deg: [" << vpMath::deg(s[0]) << ", " << vpMath::deg(s[1]) << "]";
+    header << "\nstd_dev_apex_m: [" << s[2] << ", " << s[3] << ", " << s[4] << "]";
+    header << "\nstd_dev_opening_angle_deg: " << vpMath::deg(s[5]);
+  }
+  if (calibration.rms >= 0.0)
+    header << "\nrms_m: " << calibration.rms;
+  if (calibration.nbViews > 0)
+    header << "\nviews: " << calibration.nbViews;
+  const vpPoseVector pose(calibration.cMl);
+  if (!vpPoseVector::saveYAML(file, pose, header.str().c_str())) {
+    error = "cannot write laser calibration file '" + file + "'";
+    return false;
+  }
   return true;
 }
 
@@ -270,7 +453,10 @@ bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, 
     // vpXmlParserCamera reports the camera it found on std::cout: keep that out of the programs' output.
     const CoutSilencer silence;
     try {
-      status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithoutDistortion);
+      // The model with distortion when the file has it (kud, kdu), else the one without.
+      status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithDistortion);
+      if (status != vpXmlParserCamera::SEQUENCE_OK)
+        status = parser.parse(parsed, file, name, vpCameraParameters::perspectiveProjWithoutDistortion);
     } catch (const vpException &e) {
       parseError = e.getStringMessage();
     }
@@ -280,7 +466,11 @@ bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, 
     return false;
   }
   if (status != vpXmlParserCamera::SEQUENCE_OK) {
-    error = file + ": no camera named '" + name + "' with a perspective model without distortion (vpXmlParserCamera format)";
+    error = file + ": no camera named '" + name + "' with a perspective model (vpXmlParserCamera format)";
+    return false;
+  }
+  if (!std::isfinite(parsed.get_kud()) || !std::isfinite(parsed.get_kdu())) {
+    error = file + ": distortion coefficients kud, kdu must be finite";
     return false;
   }
   if (!(parsed.get_px() > 0.0) || !(parsed.get_py() > 0.0)) {
@@ -315,7 +505,8 @@ bool vpLaserRigIo::readDataset(const std::string &directory, vpLaserDataset &dat
     return false;
   }
   if (!readCamera(directory + "/camera.xml", "Camera", result.cam, result.width, result.height, error) ||
-      !readLaserCalibration(directory + "/laser.txt", result.openingAngle, result.cMl, error) ||
+      !readLaserCalibration(directory + (vpIoTools::checkFilename(directory + "/laser.yaml") ? "/laser.yaml" : "/laser.txt"),
+                            result.openingAngle, result.cMl, error) ||
       !readGroundTruth(directory + "/groundtruth.csv", result.frames, error)) {
     return false;
   }
@@ -324,5 +515,51 @@ bool vpLaserRigIo::readDataset(const std::string &directory, vpLaserDataset &dat
     return false;
   }
   dataset = result;
+  return true;
+}
+
+bool vpLaserRigIo::listImages(const std::string &source, bool isList, std::vector<std::string> &images,
+                              std::string &error)
+{
+  namespace fs = std::filesystem;
+  std::vector<std::string> found;
+  if (!isList) {
+    if (!fs::is_directory(source)) {
+      error = source + ": image folder not found";
+      return false;
+    }
+    for (const fs::directory_entry &entry : fs::directory_iterator(source)) {
+      std::string ext = entry.path().extension().string();
+      for (char &c : ext)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      const bool image = ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm";
+      if (image && entry.is_regular_file())
+        found.push_back(entry.path().string());
+    }
+    std::sort(found.begin(), found.end());
+  } else {
+    std::ifstream in(source.c_str());
+    if (!in) {
+      error = source + ": cannot open the image list";
+      return false;
+    }
+    std::string line;
+    for (unsigned int n = 1; std::getline(in, line); ++n) {
+      const std::string name = vpCsvTools::trim(line);
+      if (name.empty() || name[0] == '#')
+        continue;
+      const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : fs::path(source).parent_path() / name;
+      if (!fs::is_regular_file(path)) {
+        error = vpCsvTools::location(source, n) + ": image '" + path.string() + "' not found";
+        return false;
+      }
+      found.push_back(path.string());
+    }
+  }
+  if (found.empty()) {
+    error = source + (isList ? ": the list names no image" : ": no image (.png .jpg .jpeg .ppm .pgm) in this folder");
+    return false;
+  }
+  images.swap(found);
   return true;
 }

@@ -18,7 +18,7 @@
 //! Options of the demo.
 struct vpDemoOptions
 {
-  std::string dataDir;        //!< folder holding laser_sequence/ and gravity_sequence/
+  std::string dataDir;        //!< folder holding laser_hard/ and gravity_sequence/
   std::string outputDir;      //!< where CSV and PNG files go
   bool check = false;         //!< compare the errors with their bounds (exit status)
   unsigned int maxFrames = 0; //!< process only the first frames of each sequence (0: all)

@@ -3,9 +3,10 @@
  * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
  */
 /*
-  Laser half of the main demo: every image of data/laser_sequence through vpLaserConicDetector,
-  then each estimator of vpLaserConicPose (GP3, PP3, PP5, PLANE_PAIR) on the detected points,
-  compared with groundtruth.csv.
+  Laser half of the main demo: every image of data/laser_hard (hard rendered conditions through a
+  distorted wide-angle lens, see its README) through vpLaserConicDetector, then each estimator of
+  vpLaserConicPose (GP3, PP3, PP5, PLANE_PAIR) on the detected points, compared with groundtruth.csv;
+  the errors per condition of conditions.csv, and overlays of the inliers and rejected outliers.
 */
 #include "demoCommon.h"
 
@@ -14,6 +15,8 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <sstream>
 
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpTime.h>
@@ -82,6 +85,33 @@ LaserEstimate estimate(const vpLaserDataset &dataset, const LaserMethod &m, cons
   return e;
 }
 
+/*!
+  The condition of each frame from conditions.csv (frame,image,condition), empty when the file is absent
+  (a sequence without conditions: every frame has a laser trace).
+*/
+std::map<unsigned int, std::string> readConditions(const std::string &file)
+{
+  std::map<unsigned int, std::string> conditions;
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line); // header
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string frame, image, condition;
+    if (std::getline(fields, frame, ',') && std::getline(fields, image, ',') && std::getline(fields, condition, ','))
+      conditions[static_cast<unsigned int>(std::stoul(frame))] = condition;
+  }
+  return conditions;
+}
+
+//! Per condition: frames, GP-3 successes, sum of the absolute altitude errors, detected points and inliers.
+struct ConditionStats
+{
+  unsigned int frames = 0, successes = 0;
+  double altitudeErrorSum = 0.0, worstAltitudeError = 0.0;
+  size_t points = 0, inliers = 0;
+};
+
 //! Curves of the plots: x = frame, one y series per quantity.
 struct LaserCurves
 {
@@ -91,18 +121,25 @@ struct LaserCurves
 
 std::vector<vpAccuracyBound> laserBounds()
 {
-  // The images are rendered from an exact ground truth; the errors come from the sub-pixel detection
-  // of a blurred, noisy stripe (a small fraction of a pixel over ~1800 points) and from laser.txt being
-  // a calibrated, slightly wrong, laser pose. Measured on the shipped sequence: at most 1.7 mm of
-  // altitude and 0.06 deg of roll or pitch for every method. The bounds are on the worst frame with a
-  // margin of about 5, so that a single wrong plane (errors of centimetres or degrees) fails.
-  const std::string why = "worst frame; measured <= 1.7 mm and 0.06 deg, a wrong plane is off by cm or degrees";
+  // The images are rendered from an exact ground truth through a distorted lens under hard conditions
+  // (dim, saturated, textured and colourful floors, distractors, occlusion, motion blur); the errors come
+  // from the sub-pixel detection, from the rig (a 15 cm laser baseline seen from up to 2.9 m: the ring's
+  // shape then changes little with the attitude) and from laser.txt being a calibrated, slightly wrong,
+  // laser pose. Measured on the shipped sequence (vsp-demo --check): at most 16 mm of altitude and 1.7 deg
+  // of roll or pitch (frames at 2.6-2.9 m) for the robust methods; PLANE_PAIR, which keeps every point,
+  // is pulled off by the red cable of the distractor frames (errors of metres and tens of degrees): its
+  // bounds are on the median (measured 2.4 mm, 0.18 deg). Margins of about 2.5.
+  const std::string why = "worst frame; measured <= 16 mm and 1.7 deg, a distractor taken for the trace is off by dm or degrees";
   std::vector<vpAccuracyBound> bounds;
-  for (const char *method : {"GP3", "PP3", "PP5", "PLANE_PAIR"}) {
-    bounds.push_back({method, "altitude", "max", 10.0, why});
-    bounds.push_back({method, "roll", "max", 0.3, why});
-    bounds.push_back({method, "pitch", "max", 0.3, why});
+  for (const char *method : {"GP3", "PP3", "PP5"}) {
+    bounds.push_back({method, "altitude", "max", 40.0, why});
+    bounds.push_back({method, "roll", "max", 4.0, why});
+    bounds.push_back({method, "pitch", "max", 4.0, why});
   }
+  const std::string whyMedian = "median; measured 2.4 mm and 0.18 deg, no outlier rejection: the mean is off on distractor frames";
+  bounds.push_back({"PLANE_PAIR", "altitude", "median", 6.0, whyMedian});
+  bounds.push_back({"PLANE_PAIR", "roll", "median", 0.4, whyMedian});
+  bounds.push_back({"PLANE_PAIR", "pitch", "median", 0.4, whyMedian});
   return bounds;
 }
 
@@ -111,10 +148,11 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
 {
   vpLaserDataset dataset;
   std::string error;
-  if (!vpLaserRigIo::readDataset(options.dataDir + "/laser_sequence", dataset, error)) {
+  if (!vpLaserRigIo::readDataset(options.dataDir + "/laser_hard", dataset, error)) {
     std::cerr << "laser sequence: " << error << std::endl;
     return false;
   }
+  const std::map<unsigned int, std::string> conditions = readConditions(options.dataDir + "/laser_hard/conditions.csv");
   std::vector<vpLaserGroundTruthFrame> frames = dataset.frames;
   if (options.maxFrames > 0 && frames.size() > options.maxFrames)
     frames.resize(options.maxFrames);
@@ -132,9 +170,22 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
 
   const std::string csvFile = options.outputDir + "/laser_results.csv";
   std::ofstream csv(csvFile);
-  csv << "frame,image,method,status,points,inliers,altitude_m,roll_rad,pitch_rad,gt_altitude_m,gt_roll_rad,"
+  csv << "frame,image,condition,method,status,points,inliers,altitude_m,roll_rad,pitch_rad,gt_altitude_m,gt_roll_rad,"
          "gt_pitch_rad,time_ms\n";
-  const std::vector<size_t> overlayFrames = {0, frames.size() / 2, frames.size() - 1};
+  // Overlays: the first frame of each condition (or the first, middle and last frames without conditions).
+  std::vector<size_t> overlayFrames;
+  std::map<std::string, bool> seen;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const auto c = conditions.find(frames[k].frame);
+    if (c != conditions.end() && !seen[c->second]) {
+      seen[c->second] = true;
+      overlayFrames.push_back(k);
+    }
+  }
+  if (overlayFrames.empty() && !frames.empty())
+    overlayFrames = {0, frames.size() / 2, frames.size() - 1};
+  std::map<std::string, ConditionStats> perCondition;
+  unsigned int noLaserFrames = 0, noLaserRejected = 0;
 
   vpLaserConicDetector detector;
   size_t fewestPoints = std::numeric_limits<size_t>::max(), mostPoints = 0;
@@ -150,6 +201,32 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
       return false;
     }
     const std::vector<vpImagePoint> points = detector.detect(I);
+    const auto found = conditions.find(gt.frame);
+    const std::string condition = found != conditions.end() ? found->second : "";
+    const bool overlay = std::find(overlayFrames.begin(), overlayFrames.end(), k) != overlayFrames.end();
+    if (condition == "no_laser") {
+      // No trace to measure: every method must report that it found no plane (not counted in the summary).
+      ++noLaserFrames;
+      bool allRejected = true;
+      for (const LaserMethod &m : kMethods) {
+        const LaserEstimate e = estimate(dataset, m, points, gt.frame);
+        allRejected = allRejected && !e.ok;
+        csv << gt.frame << "," << gt.image << "," << condition << "," << m.name << "," << e.status << ","
+            << points.size() << "," << e.inliers.size() << ",nan,nan,nan,nan,nan,nan," << e.timeMs << "\n";
+      }
+      noLaserRejected += allRejected ? 1 : 0;
+      if (overlay) {
+        vpImage<vpRGBa> O = I;
+        char caption[160], name[96];
+        std::snprintf(caption, sizeof(caption), "frame %u (no laser): %zu points detected, no plane", gt.frame,
+                      points.size());
+        vpLaserOverlay::draw(O, points, std::vector<unsigned int>(), vpMatrix(), dataset.cam, caption);
+        std::snprintf(name, sizeof(name), "/laser_overlay_frame_%03u_no_laser.png", gt.frame);
+        vpImageIo::write(O, options.outputDir + name);
+        writtenFiles.push_back(options.outputDir + name);
+      }
+      continue;
+    }
     fewestPoints = std::min(fewestPoints, points.size());
     mostPoints = std::max(mostPoints, points.size());
     truth.frame.push_back(gt.frame);
@@ -162,8 +239,8 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
       vpMethodSummary &s = summaries[m];
       ++s.frames;
       s.totalTimeMs += e.timeMs;
-      csv << gt.frame << "," << gt.image << "," << s.method << "," << e.status << "," << points.size() << ","
-          << e.inliers.size() << ",";
+      csv << gt.frame << "," << gt.image << "," << condition << "," << s.method << "," << e.status << ","
+          << points.size() << "," << e.inliers.size() << ",";
       if (e.ok)
         csv << vpCsvTools::formatDouble(e.altitude) << "," << vpCsvTools::formatDouble(e.roll) << ","
             << vpCsvTools::formatDouble(e.pitch);
@@ -171,6 +248,17 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
         csv << "nan,nan,nan";
       csv << "," << vpCsvTools::formatDouble(gt.altitude) << "," << vpCsvTools::formatDouble(gt.roll) << ","
           << vpCsvTools::formatDouble(gt.pitch) << "," << e.timeMs << "\n";
+      if (kMethods[m].method == vpLaserConicPose::GP3 && !condition.empty()) {
+        ConditionStats &c = perCondition[condition];
+        ++c.frames;
+        c.points += points.size();
+        if (e.ok) {
+          ++c.successes;
+          c.inliers += e.inliers.size();
+          c.altitudeErrorSum += std::fabs(e.altitude - gt.altitude);
+          c.worstAltitudeError = std::max(c.worstAltitudeError, std::fabs(e.altitude - gt.altitude));
+        }
+      }
       if (!e.ok)
         continue;
       ++s.successes;
@@ -183,14 +271,15 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
       curves[m].pitch.push_back(e.pitch * 180.0 / M_PI);
       curves[m].altitudeError.push_back((e.altitude - gt.altitude) * 1000.0);
 
-      const bool overlay = std::find(overlayFrames.begin(), overlayFrames.end(), k) != overlayFrames.end();
       if (overlay && (kMethods[m].method == vpLaserConicPose::GP3 || kMethods[m].method == vpLaserConicPose::PP5)) {
         vpImage<vpRGBa> O = I;
-        char caption[160], name[96];
-        std::snprintf(caption, sizeof(caption), "%s frame %u: altitude %.3f m (truth %.3f), %zu/%zu inliers",
-                      kMethods[m].name, gt.frame, e.altitude, gt.altitude, e.inliers.size(), points.size());
-        vpLaserOverlay::draw(O, points, e.inliers, e.conic, caption);
-        std::snprintf(name, sizeof(name), "/laser_overlay_frame_%03u_%s.png", gt.frame, kMethods[m].name);
+        char caption[200], name[128];
+        std::snprintf(caption, sizeof(caption), "%s frame %u (%s): altitude %.3f m (truth %.3f), %zu inliers, %zu outliers",
+                      kMethods[m].name, gt.frame, condition.c_str(), e.altitude, gt.altitude, e.inliers.size(),
+                      points.size() - e.inliers.size());
+        vpLaserOverlay::draw(O, points, e.inliers, e.conic, dataset.cam, caption);
+        std::snprintf(name, sizeof(name), "/laser_overlay_frame_%03u_%s%s%s.png", gt.frame,
+                      condition.empty() ? "" : condition.c_str(), condition.empty() ? "" : "_", kMethods[m].name);
         vpImageIo::write(O, options.outputDir + name);
         writtenFiles.push_back(options.outputDir + name);
       }
@@ -198,9 +287,26 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
   }
   progress.done();
   writtenFiles.push_back(csvFile);
-  note = std::to_string(fewestPoints) + " to " + std::to_string(mostPoints) +
-         " trace points detected per frame. laser.txt is a calibrated laser pose, not the one used for\n"
-         "rendering: its small error is part of these errors.";
+  std::ostringstream text;
+  text << fewestPoints << " to " << mostPoints
+       << " points detected per frame with a laser trace. laser.txt is a calibrated laser pose, not the one\n"
+          "used for rendering: its small error is part of these errors.";
+  if (noLaserFrames > 0)
+    text << "\nFrames without laser: " << noLaserRejected << "/" << noLaserFrames
+         << " with no plane from every method (not counted above).";
+  if (!perCondition.empty()) {
+    text << "\nGP3 per condition (points detected, share kept as inliers, mean / worst altitude error):";
+    for (const auto &c : perCondition) {
+      const ConditionStats &st = c.second;
+      char row[200];
+      std::snprintf(row, sizeof(row), "\n  %-22s %u frames, %u planes, %5.0f points, %5.1f %% inliers, %5.1f / %5.1f mm",
+                    c.first.c_str(), st.frames, st.successes, st.frames ? static_cast<double>(st.points) / st.frames : 0.0,
+                    st.points ? 100.0 * st.inliers / st.points : 0.0,
+                    st.successes ? 1000.0 * st.altitudeErrorSum / st.successes : 0.0, 1000.0 * st.worstAltitudeError);
+      text << row;
+    }
+  }
+  note = text.str();
 
   const vpColor colors[] = {vpColor::red, vpColor::blue, vpColor::darkGreen, vpColor::orange};
   struct PlotSpec

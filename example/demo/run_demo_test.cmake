@@ -3,7 +3,7 @@
 # the exit status and the files it must leave.
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/data")
-file(COPY "${DATA}/laser_sequence" "${DATA}/gravity_sequence" DESTINATION "${WORK}/data")
+file(COPY "${DATA}/laser_hard" "${DATA}/gravity_sequence" DESTINATION "${WORK}/data")
 # The data is read only: its files must be the same afterwards.
 function(hash_data result)
   file(GLOB_RECURSE files "${WORK}/data/*")
@@ -37,9 +37,9 @@ if(overlay_count LESS 3)
 endif()
 
 # An output folder inside the data folder is refused before anything is written.
-execute_process(COMMAND "${PROGRAM}" --data "${WORK}/data" --output "${WORK}/data/laser_sequence/out" --frames 1
+execute_process(COMMAND "${PROGRAM}" --data "${WORK}/data" --output "${WORK}/data/laser_hard/out" --frames 1
                 RESULT_VARIABLE refused_status ERROR_VARIABLE refused_err OUTPUT_QUIET)
-if(refused_status EQUAL 0 OR NOT refused_err MATCHES "inside the data folder" OR EXISTS "${WORK}/data/laser_sequence/out")
+if(refused_status EQUAL 0 OR NOT refused_err MATCHES "inside the data folder" OR EXISTS "${WORK}/data/laser_hard/out")
   message(FATAL_ERROR "vsp-demo accepted an output folder inside the data (status ${refused_status}): ${refused_err}")
 endif()
 hash_data(data_hashes_after)

@@ -5,7 +5,7 @@
 /*!
   \example vsp-demo.cpp
   The main demo, run without arguments on the data shipped in data/:
-  -# the simulated laser sequence (data/laser_sequence): each image through vpLaserConicDetector,
+  -# the simulated hard laser sequence (data/laser_hard): each image through vpLaserConicDetector,
      then GP3, PP3, PP5 and PLANE_PAIR (vpLaserConicPose), compared with the ground truth;
   -# the simulated gravity-aided pose sequence (data/gravity_sequence): vpPoseGravity with P3P,
      P3P + refinePose, LEAST_SQUARES and RANSAC, and vpPose on the same points for comparison.
@@ -14,6 +14,10 @@
   \verbatim
   vsp-demo [--output DIR] [--data DIR] [--frames N] [--check]
   \endverbatim
+  Without --data, the data is looked for relative to the program itself: installed as
+  <prefix>/bin/vsp-demo, it reads <prefix>/share/VispSensorPose/data (VSP_DATA_RELATIVE_TO_PROGRAM); in
+  the build tree a link at the same relative place points to the repository's data/. No absolute path
+  is compiled in, so the installed tree can be moved.
 */
 #include <algorithm>
 #include <cstdlib>
@@ -28,6 +32,25 @@
 
 namespace
 {
+/*!
+  The folder of the running program: /proc/self/exe (links resolved), or argv[0] when that is
+  unavailable.
+*/
+std::filesystem::path programFolder(const char *argv0)
+{
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec || exe.empty())
+    exe = std::filesystem::weakly_canonical(std::filesystem::absolute(argv0), ec);
+  return exe.parent_path();
+}
+
+//! Default data folder: VSP_DATA_RELATIVE_TO_PROGRAM (set by CMake from the install layout) below the program's folder.
+std::string defaultDataDir(const char *argv0)
+{
+  return (programFolder(argv0) / VSP_DATA_RELATIVE_TO_PROGRAM).lexically_normal().string();
+}
+
 //! Declares the options of the demo; \e options receives their values.
 vpCommandLine commandLine(vpDemoOptions &options)
 {
@@ -37,7 +60,8 @@ vpCommandLine commandLine(vpDemoOptions &options)
   cli.addString("--output", options.outputDir, "DIR",
                 "folder for the CSV results, PNG plots and overlays (default ./demo-output)");
   cli.addString("--data", options.dataDir, "DIR",
-                "folder holding laser_sequence/ and gravity_sequence/ (default " + std::string(VSP_DATA_DIR) + ")");
+                "folder holding laser_hard/ and gravity_sequence/ (default " + options.dataDir +
+                  ": " VSP_DATA_RELATIVE_TO_PROGRAM " from the folder of this program)");
   cli.addUnsigned("--frames", options.maxFrames, "N", "process only the first N frames of each sequence", 1);
   cli.addFlag("--check", options.check, "exit with status 1 when an error exceeds its bound (see the bounds printed)");
   return cli;
@@ -74,11 +98,14 @@ void printBounds(const std::vector<vpAccuracyBound> &bounds, const std::vector<v
 int main(int argc, char **argv)
 {
   vpDemoOptions options;
-  options.dataDir = VSP_DATA_DIR;
+  options.dataDir = defaultDataDir(argv[0]);
   options.outputDir = "demo-output";
   vpCommandLine cli = commandLine(options);
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
+  if (!std::filesystem::is_directory(options.dataDir))
+    return cli.fail("no data folder '" + options.dataDir + "': give the folder holding laser_sequence/ and " +
+                    "gravity_sequence/ with --data DIR");
   if (isInside(options.outputDir, options.dataDir))
     return cli.fail("the output folder '" + options.outputDir + "' is inside the data folder '" + options.dataDir +
                     "': choose another one (the shipped data is never written)");
@@ -89,7 +116,7 @@ int main(int argc, char **argv)
     return EXIT_FAILURE;
   }
   const std::string outputPath = std::filesystem::absolute(options.outputDir).lexically_normal().string();
-  std::cout << "Data: " << std::filesystem::absolute(options.dataDir).lexically_normal().string()
+  std::cout << "Data: " << std::filesystem::weakly_canonical(std::filesystem::absolute(options.dataDir), ec).string()
             << "\nOutput: " << outputPath
             << std::endl;
 
@@ -116,9 +143,10 @@ int main(int argc, char **argv)
   std::cout << "\nChecks (--check):\n";
   printBounds(laserBounds(), laser);
   printBounds(gravityBounds(), gravity);
-  // Every estimator must give a result on at least 95 % of the frames of these clean sequences.
+  // Every estimator must give a result on at least 95 % of the frames of the laser sequence; on the
+  // gravity sequence, 10 of the 60 frames hold a mismatched point, which LEAST_SQUARES may refuse.
   const bool laserPass = checkBounds(std::cout, laser, laserBounds(), 0.95);
-  const bool pass = checkBounds(std::cout, gravity, gravityBounds(), 0.95) && laserPass;
+  const bool pass = checkBounds(std::cout, gravity, gravityBounds(), 0.8) && laserPass;
   std::cout << (pass ? "All checks passed" : "Some checks FAILED") << std::endl;
   return pass ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -294,16 +294,17 @@ void estimateGravityP3P(const Trial &trial, Estimate &p3p, Estimate &refined)
   try {
     vpPoseGravity pose;
     setupGravityPose(trial, pose);
+    // The sensors' own noise levels: gravity components sigma_g, image points sigma_px expressed in
+    // normalized coordinates. The consistency check of computePose() compares the gravity-sign test
+    // with them, the refinement weighs the measurements by them (maximum likelihood).
+    pose.setGravityStdDev(kSigmaGravity);
+    pose.setImageStdDev(kSigmaPixel / trial.camera.focal);
     vpHomogeneousMatrix cMo;
     p3p = fromHomogeneous(pose.computePose(vpPoseGravity::P3P, cMo), cMo);
     if (!p3p.ok) {
       refined = Estimate();
       return;
     }
-    // Maximum likelihood with the sensors' own noise levels: gravity components sigma_g, image
-    // points sigma_px expressed in normalized coordinates.
-    pose.setGravityStdDev(kSigmaGravity);
-    pose.setImageStdDev(kSigmaPixel / trial.camera.focal);
     refined = fromHomogeneous(pose.refinePose(cMo), cMo);
   } catch (const vpException &e) {
     std::cerr << "vpPoseGravity: " << e.getStringMessage() << "\n";

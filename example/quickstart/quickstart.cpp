@@ -109,7 +109,7 @@ bool laserQuickStart()
   sim.render(I);
 
   // --- README snippet: vpLaserConicPose ---
-  vpLaserConicDetector detector;                         // red stripe: HSV thresholds, sub-pixel centres
+  vpLaserConicDetector detector;                         // red stripe: ridge of R - max(G, B), sub-pixel centres
   std::vector<vpImagePoint> points = detector.detect(I); // I: vpImage<vpRGBa>
 
   vpLaserConicPose estimator;

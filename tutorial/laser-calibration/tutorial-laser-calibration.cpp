@@ -116,7 +116,7 @@ double axisAngleDeg(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b)
 }
 
 //! The calibration, its figures and its checks; true when the recovered laser pose is within the bounds.
-bool runCalibrationTutorial(const std::string &outputDir)
+bool runCalibrationTutorial(const std::string &outputDir, bool display)
 {
   //! [Rig]
   const unsigned int width = 640, height = 480;
@@ -140,10 +140,21 @@ bool runCalibrationTutorial(const std::string &outputDir)
   calibration.setOpeningAngle(openingAngle);
   calibration.setInitialGuess(cMlGuess);
   const std::vector<vpHomogeneousMatrix> poses = gridPoses();
+  vpTutorialViewer viewer(display, "Laser calibration: grid views and trace points");
   for (const vpHomogeneousMatrix &cMg : poses) {
     simulator.setGroundPose(cMg); // in practice cMg comes from vpPose on the grid corners
-    calibration.addView(cMg, simulator.addNoise(simulator.tracePoints(120), pixelNoise));
+    const std::vector<vpImagePoint> trace = simulator.addNoise(simulator.tracePoints(120), pixelNoise);
+    calibration.addView(cMg, trace);
+    if (viewer.enabled()) { // --display: the rendered view and the trace points given to the calibration
+      vpImage<vpRGBa> I;
+      simulator.render(I);
+      viewer.show(I);
+      for (const vpImagePoint &ip : trace)
+        vpDisplay::displayCross(viewer.image(), ip, 6, vpColor::green);
+      viewer.flush(700);
+    }
   }
+  viewer.waitClick();
   //! [Views]
 
   //! [Calibrate]
@@ -186,5 +197,7 @@ int main(int argc, char **argv)
   vpTutorialProgram program("",
                             "Calibrates the laser pose cMl from simulated grid views; "
                             "writes laser-calibration-{before,after}.png.");
-  return program.run(argc, argv, [](const std::string &outputDir) { return runCalibrationTutorial(outputDir); });
+  return program.run(argc, argv, [&](const std::string &outputDir) {
+    return runCalibrationTutorial(outputDir, program.display());
+  });
 }

@@ -89,7 +89,7 @@ void paintLandingMarker(vpImage<vpRGBa> &I, const vpHomogeneousMatrix &cMg, cons
 //! [Marker]
 
 //! [Draw conic]
-//! Draws the ellipse x^T C x = 0 (x = (u, v, 1), pixels) as a polyline; nothing when it is not an ellipse.
+//! Draws the ellipse x^T C x = 0 (x = (u, v, 1), pixels) with vpImageDraw; nothing when it is not an ellipse.
 void drawImageConic(vpImage<vpRGBa> &I, const vpMatrix &C, const vpColor &color, unsigned int thickness)
 {
   if (C.getRows() != 3 || C.getCols() != 3)
@@ -108,18 +108,9 @@ void drawImageConic(vpImage<vpRGBa> &I, const vpMatrix &C, const vpColor &color,
   if (k / l1 <= 0 || k / l2 <= 0)
     return;
   const double phi = 0.5 * std::atan2(2 * b, a - c); // direction of the l1 eigenvector
-  const double r1 = std::sqrt(k / l1), r2 = std::sqrt(k / l2);
-  const int samples = 180;
-  vpImagePoint previous;
-  for (int s = 0; s <= samples; ++s) {
-    const double t = 2 * M_PI * s / samples;
-    const double du = r1 * std::cos(t) * std::cos(phi) - r2 * std::sin(t) * std::sin(phi);
-    const double dv = r1 * std::cos(t) * std::sin(phi) + r2 * std::sin(t) * std::cos(phi);
-    const vpImagePoint current(v0 + dv, u0 + du);
-    if (s > 0)
-      vpImageDraw::drawLine(I, previous, current, color, thickness);
-    previous = current;
-  }
+  // vpImageDraw takes the ellipse as centre, semi-axes and the angle of the first axis with u.
+  vpImageDraw::drawEllipse(I, vpImagePoint(v0, u0), std::sqrt(k / l1), std::sqrt(k / l2), phi, false, color, 0,
+                           2 * M_PI, thickness);
 }
 //! [Draw conic]
 
@@ -142,7 +133,7 @@ void writeOverlay(const vpImage<vpRGBa> &frame, const std::vector<vpImagePoint> 
 //! [Overlay]
 
 //! The descent, its figures and its checks; true when altitude and attitude errors are within the bounds.
-bool runLandingTutorial(int frames, const std::string &outputDir)
+bool runLandingTutorial(int frames, const std::string &outputDir, bool display)
 {
   //! [Rig]
   const unsigned int width = 640, height = 480;
@@ -166,6 +157,7 @@ bool runLandingTutorial(int frames, const std::string &outputDir)
   double sumAltRel = 0, sumRollDeg = 0, sumPitchDeg = 0, maxAltRel = 0;
   int failures = 0;
   const int overlayFrame = frames / 2;
+  vpTutorialViewer viewer(display, "Laser landing: detected trace (GP-3 inliers in green)");
   for (int k = 0; k < frames; ++k) {
     const FlightState truth = descent(k, frames);
     //! [Frame]
@@ -177,6 +169,11 @@ bool runLandingTutorial(int frames, const std::string &outputDir)
     vpPlane cPlane;
     const bool found = points.size() >= 3 && estimator.computePlane(points, vpLaserConicPose::GP3, cPlane);
     //! [Frame]
+    viewer.show(I); // --display: the frame and the inliers of GP-3
+    if (found)
+      for (unsigned int i : estimator.getInliers())
+        vpDisplay::displayPoint(viewer.image(), points[i], vpColor::green, 2);
+    viewer.flush();
     if (!found) {
       std::cerr << "frame " << k << ": no plane (" << points.size() << " points) "
                 << estimator.getFailureReason() << std::endl;
@@ -204,6 +201,8 @@ bool runLandingTutorial(int frames, const std::string &outputDir)
                    vpIoTools::createFilePath(outputDir, "laser-landing-overlay.png"));
     }
   }
+
+  viewer.waitClick();
 
   //! [Plots]
   vpPngPlot altitude("Altitude during the descent", "frame", "altitude (m)", 640, 420);
@@ -246,5 +245,7 @@ int main(int argc, char **argv)
                             "Simulated landing measured by a camera and a circular laser (GP-3); "
                             "writes laser-landing-*.png.");
   program.addOption("--frames", frames, 2, "number of frames of the descent");
-  return program.run(argc, argv, [&](const std::string &outputDir) { return runLandingTutorial(frames, outputDir); });
+  return program.run(argc, argv, [&](const std::string &outputDir) {
+    return runLandingTutorial(frames, outputDir, program.display());
+  });
 }

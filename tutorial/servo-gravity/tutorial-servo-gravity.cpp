@@ -115,9 +115,28 @@ bool estimatePose(Estimator estimator, const std::vector<vpPoint> &points, const
 }
 //! [Estimate]
 
+//! --display: the measured image points (red) and where they are at the desired pose (green).
+void showImagePoints(vpTutorialViewer &viewer, const std::vector<vpPoint> &points, std::vector<vpPoint> target,
+                     const vpHomogeneousMatrix &cdMo, const vpCameraParameters &cam)
+{
+  if (!viewer.enabled())
+    return;
+  viewer.show(vpImage<unsigned char>(480, 640, 255));
+  for (size_t i = 0; i < points.size() && i < target.size(); ++i) {
+    vpImagePoint current, desired;
+    vpMeterPixelConversion::convertPoint(cam, points[i].get_x(), points[i].get_y(), current);
+    target[i].project(cdMo);
+    vpMeterPixelConversion::convertPoint(cam, target[i].get_x(), target[i].get_y(), desired);
+    vpDisplay::displayCross(viewer.image(), current, 12, vpColor::red, 2);
+    vpDisplay::displayCross(viewer.image(), desired, 12, vpColor::green, 2);
+  }
+  viewer.flush(10);
+}
+
 //! Runs the PBVS loop from cMo towards cdMo with the given estimator.
 ServoRun runServo(Estimator estimator, const vpHomogeneousMatrix &cdMo, const vpHomogeneousMatrix &cMoStart,
-                  const vpCameraParameters &cam, const SensorNoise &noise, unsigned int seed, int iterations)
+                  const vpCameraParameters &cam, const SensorNoise &noise, unsigned int seed, int iterations,
+                  vpTutorialViewer &viewer)
 {
   std::mt19937 rng(seed);
   const std::vector<vpPoint> target = makeTarget();
@@ -166,6 +185,7 @@ ServoRun runServo(Estimator estimator, const vpHomogeneousMatrix &cdMo, const vp
     const vpColVector v = task.computeControlLaw();
     robot.setVelocity(vpRobot::CAMERA_FRAME, v);
     //! [Servo loop]
+    showImagePoints(viewer, points, target, cdMo, cam);
 
     // True errors, from the simulation.
     const vpHomogeneousMatrix cdMcTrue = cdMo * cMo.inverse();
@@ -245,7 +265,7 @@ void writePlots(const ServoRun &gravity, const ServoRun &classic, const vpHomoge
 //! [Plots]
 
 //! Both servo loops, their plots and their checks; true when both converge within the bounds.
-bool runServoTutorial(int seed, const std::string &outputDir)
+bool runServoTutorial(int seed, const std::string &outputDir, bool display)
 {
   const vpCameraParameters cam(800, 800, 320, 240);
   //! [Poses]
@@ -256,8 +276,10 @@ bool runServoTutorial(int seed, const std::string &outputDir)
   const int iterations = 200;
 
   const unsigned int noiseSeed = static_cast<unsigned int>(seed);
-  const ServoRun gravity = runServo(Estimator::GravityP3P, cdMo, cMo, cam, noise, noiseSeed, iterations);
-  const ServoRun classic = runServo(Estimator::ClassicP4P, cdMo, cMo, cam, noise, noiseSeed, iterations);
+  vpTutorialViewer viewer(display, "Servo: measured (red) and desired (green) points");
+  const ServoRun gravity = runServo(Estimator::GravityP3P, cdMo, cMo, cam, noise, noiseSeed, iterations, viewer);
+  const ServoRun classic = runServo(Estimator::ClassicP4P, cdMo, cMo, cam, noise, noiseSeed, iterations, viewer);
+  viewer.waitClick();
   writePlots(gravity, classic, cdMo, outputDir);
 
   // Steady state: RMS of the true error over the last 50 iterations (both loops converge in ~100).
@@ -296,5 +318,7 @@ int main(int argc, char **argv)
                             "PBVS loop closed by vpPoseGravity (3 points + IMU) and by vpPose (4 points); "
                             "writes servo-gravity-*.png.");
   program.addOption("--seed", seed, 0, "seed of the simulated sensor noise");
-  return program.run(argc, argv, [&](const std::string &outputDir) { return runServoTutorial(seed, outputDir); });
+  return program.run(argc, argv, [&](const std::string &outputDir) {
+    return runServoTutorial(seed, outputDir, program.display());
+  });
 }

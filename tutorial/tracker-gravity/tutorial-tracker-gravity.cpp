@@ -94,14 +94,6 @@ void renderFrame(vpImageSimulator &simulator, const vpHomogeneousMatrix &cMo, co
     I.bitmap[n] = static_cast<unsigned char>(vpMath::saturate<unsigned char>(I.bitmap[n] + noise(rng)));
 }
 
-//! Translation (mm) and rotation (deg) of the error between an estimate and the truth.
-void poseError(const vpHomogeneousMatrix &cMoEst, const vpHomogeneousMatrix &cMoTrue, double &errMm, double &errDeg)
-{
-  const vpHomogeneousMatrix delta = cMoEst * cMoTrue.inverse();
-  errMm = 1000.0 * (cMoEst.getTranslationVector() - cMoTrue.getTranslationVector()).frobeniusNorm();
-  errDeg = vpMath::deg(vpThetaUVector(delta.getRotationMatrix()).getTheta());
-}
-
 //! [Overlay]
 //! The frame with the tracked dots and the axes of the estimated target frame.
 void writeOverlay(const vpImage<unsigned char> &I, const std::vector<vpDot2> &dots, const vpHomogeneousMatrix &cMo,
@@ -118,7 +110,7 @@ void writeOverlay(const vpImage<unsigned char> &I, const std::vector<vpDot2> &do
 //! [Overlay]
 
 //! The tracking sequence, its images and its checks; true when the pose errors are within the bounds.
-bool runTrackerTutorial(int frames, const std::string &outputDir)
+bool runTrackerTutorial(int frames, const std::string &outputDir, bool display)
 {
   const vpCameraParameters cam(800, 800, 320, 240);
   const double imageNoise = 2.0;     // grey levels
@@ -151,6 +143,7 @@ bool runTrackerTutorial(int frames, const std::string &outputDir)
   std::vector<double> frameIndex, errP3pMm, errRefinedMm, errRefinedDeg;
   double sumMm = 0, sumDeg = 0, maxMm = 0, maxDeg = 0, sumP3pMm = 0, sumP3pDeg = 0;
   int failures = 0;
+  vpTutorialViewer viewer(display, "vpDot2 + vpPoseGravity");
   for (int k = 0; k < frames; ++k) {
     const vpHomogeneousMatrix cMoTrue = targetPose(k, frames);
     if (k > 0)
@@ -180,10 +173,15 @@ bool runTrackerTutorial(int frames, const std::string &outputDir)
     const vpHomogeneousMatrix cMoP3p = cMo;
     pose.refinePose(cMo);
     //! [Track and estimate]
+    viewer.show(I); // --display: the tracked dots and the estimated frame
+    for (const vpDot2 &dot : dots)
+      vpDisplay::displayCross(viewer.image(), dot.getCog(), 15, vpColor::orange, 2);
+    vpDisplay::displayFrame(viewer.image(), cMo, cam, 0.08, vpColor::none, 2);
+    viewer.flush();
 
     double errMm = 0, errDeg = 0, errP3p = 0, errP3pDeg = 0;
-    poseError(cMo, cMoTrue, errMm, errDeg);
-    poseError(cMoP3p, cMoTrue, errP3p, errP3pDeg);
+    vpTutorialPoseError(cMo, cMoTrue, errMm, errDeg);
+    vpTutorialPoseError(cMoP3p, cMoTrue, errP3p, errP3pDeg);
     frameIndex.push_back(k);
     errP3pMm.push_back(errP3p);
     errRefinedMm.push_back(errMm);
@@ -204,6 +202,8 @@ bool runTrackerTutorial(int frames, const std::string &outputDir)
       writeOverlay(I, dots, cMo, cam, caption.str(), vpIoTools::createFilePath(outputDir, name));
     }
   }
+
+  viewer.waitClick();
 
   vpPngPlot plot("Pose error against ground truth", "frame", "translation error (mm)", 640, 420);
   plot.addCurve("P3P", frameIndex, errP3pMm, vpColor::blue);
@@ -240,5 +240,7 @@ int main(int argc, char **argv)
                             "Tracks four dots with vpDot2 in rendered images and estimates the pose with "
                             "vpPoseGravity; writes tracker-gravity-*.png.");
   program.addOption("--frames", frames, 2, "number of frames of the sequence");
-  return program.run(argc, argv, [&](const std::string &outputDir) { return runTrackerTutorial(frames, outputDir); });
+  return program.run(argc, argv, [&](const std::string &outputDir) {
+    return runTrackerTutorial(frames, outputDir, program.display());
+  });
 }

@@ -5,217 +5,228 @@
 #include <visp3/laser_conic/vpLaserConicDetector.h>
 
 #include <algorithm>
-#include <cstdint>
-#include <cstring>
+#include <cmath>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
-
-#include <visp3/core/vpException.h>
+#include "laser_detector.h"
 
 namespace
 {
-// True when the 8 bytes at p are all zero: lets the scans jump over empty stretches of the mask.
-inline bool zero8(const unsigned char *p)
+void check(bool ok, const char *message)
 {
-  uint64_t word;
-  std::memcpy(&word, p, sizeof(word));
-  return word == 0;
+  if (!ok)
+    throw vpLaserConicException(vpLaserConicException::badValueError, std::string("vpLaserConicDetector: ") + message);
 }
 
-// Run of mask pixels through (i, j) along one direction ((di, dj) = (1, 0) for a column, (0, 1) for a row):
-// its length (counting stops beyond maxLength, all the caller needs) and the largest weight on it.
-struct CrossRun
+// Real roots of a t^2 + b t + c = 0 (a may be zero) appended to roots.
+void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
 {
-  int length;
-  int maxWeight;
-};
-CrossRun runThrough(const unsigned char *mask, const unsigned char *weight, int H, int W, int i, int j, int di, int dj,
-                    int maxLength)
-{
-  CrossRun run = {0, 0};
-  if (!mask[i * W + j])
-    return run;
-  run.length = 1;
-  run.maxWeight = weight[i * W + j];
-  for (int sign = -1; sign <= 1; sign += 2) {
-    for (int k = 1; k <= maxLength; ++k) {
-      const int ii = i + sign * k * di, jj = j + sign * k * dj;
-      if (ii < 0 || jj < 0 || ii >= H || jj >= W || !mask[ii * W + jj])
-        break;
-      ++run.length;
-      run.maxWeight = std::max<int>(run.maxWeight, weight[ii * W + jj]);
-    }
-  }
-  return run;
-}
-
-// Centre of a run that ended, kept if it is a stripe crossing measured by the better-suited scan direction.
-// alongRow: the run lies along row `line` (centre is a column) when true, along column `line` otherwise.
-void keepRun(const unsigned char *mask, const unsigned char *weight, int H, int W, bool alongRow, int line, int start,
-             int end, double sumW, double sumWk, int maxW, int lineLength, int maxWidth,
-             std::vector<vpImagePoint> &points)
-{
-  const int length = end - start;
-  if (length > maxWidth || start == 0 || end == lineLength)
-    return; // blob, or truncated by the image border
-  const double centre = sumWk / sumW;
-  const int c = static_cast<int>(centre + 0.5);
-  const CrossRun across = alongRow ? runThrough(mask, weight, H, W, line, c, 1, 0, maxWidth)
-                                   : runThrough(mask, weight, H, W, c, line, 0, 1, maxWidth);
-  // The other scan direction crosses the stripe more steeply here: it measures this part of the curve.
-  if (across.length < length)
+  const double scale = std::max(std::fabs(a), std::max(std::fabs(b), std::fabs(c)));
+  if (scale == 0.0)
     return;
-  // A run along the dim edge of the stripe (mask flicker at the threshold, noise) is not a crossing: a
-  // crossing goes through the bright core, so its peak is about the peak of the run across it.
-  if (2 * maxW < across.maxWeight)
+  if (std::fabs(a) <= 1e-14 * scale) {
+    if (std::fabs(b) > 1e-14 * scale)
+      roots.push_back(-c / b);
     return;
-  points.push_back(alongRow ? vpImagePoint(line, centre) : vpImagePoint(centre, line));
-}
-
-// Stripe crossings along every step-th row.
-void scanRows(const unsigned char *mask, const unsigned char *weight, int H, int W, int step, int maxWidth,
-              std::vector<vpImagePoint> &points)
-{
-  for (int i = 0; i < H; i += step) {
-    const unsigned char *m = mask + i * W;
-    const unsigned char *w = weight + i * W;
-    int j = 0;
-    while (j < W) {
-      if (j + 8 <= W && zero8(m + j)) {
-        j += 8;
-        continue;
-      }
-      if (!m[j]) {
-        ++j;
-        continue;
-      }
-      const int start = j;
-      double sumW = 0.0, sumWj = 0.0;
-      int maxW = 0;
-      for (; j < W && m[j]; ++j) {
-        sumW += w[j];
-        sumWj += static_cast<double>(w[j]) * j;
-        maxW = std::max<int>(maxW, w[j]);
-      }
-      keepRun(mask, weight, H, W, true, i, start, j, sumW, sumWj, maxW, W, maxWidth, points);
-    }
   }
-}
-
-// Stripe crossings along every step-th column, visited row by row (cache friendly) with one open run per column.
-void scanColumns(const unsigned char *mask, const unsigned char *weight, int H, int W, int step, int maxWidth,
-                 std::vector<vpImagePoint> &points)
-{
-  std::vector<int> start(W, -1), maxW(W, 0);
-  std::vector<double> sumW(W, 0.0), sumWi(W, 0.0);
-  std::vector<unsigned char> open(W + 8, 0); // 1 where a column run is open (padded for zero8)
-  for (int i = 0; i <= H; ++i) {
-    const unsigned char *m = i < H ? mask + i * W : nullptr;
-    const unsigned char *w = weight + i * W;
-    for (int j0 = 0; j0 < W; j0 += 8) {
-      const int j1 = std::min(W, j0 + 8);
-      // Nothing to start, extend or close in these 8 columns.
-      if (zero8(&open[j0]) && (m == nullptr || (j1 - j0 == 8 && zero8(m + j0))))
-        continue;
-      for (int j = j0; j < j1; ++j) {
-        if (j % step != 0)
-          continue;
-        if (m != nullptr && m[j]) {
-          if (!open[j]) {
-            open[j] = 1;
-            start[j] = i;
-            sumW[j] = 0.0;
-            sumWi[j] = 0.0;
-            maxW[j] = 0;
-          }
-          sumW[j] += w[j];
-          sumWi[j] += static_cast<double>(w[j]) * i;
-          maxW[j] = std::max<int>(maxW[j], w[j]);
-        } else if (open[j]) {
-          keepRun(mask, weight, H, W, false, j, start[j], i, sumW[j], sumWi[j], maxW[j], H, maxWidth, points);
-          open[j] = 0;
-        }
-      }
-    }
-  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0)
+    return;
+  // Numerically stable form: no cancellation between b and the square root.
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  roots.push_back(q / a);
+  if (q != 0.0)
+    roots.push_back(c / q);
 }
 } // namespace
 
 vpLaserConicDetector::vpLaserConicDetector()
-  : m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80), m_minValue(80), m_maxStripeWidth(25), m_step(1), m_mask()
+  : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
+    m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
+    m_minValue(80), m_region(), m_regionMargin(0.0), m_mask(), m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0),
+    m_noise(0.0), m_score(), m_runs()
 {
+}
+
+void vpLaserConicDetector::setMinContrast(double greyLevels)
+{
+  check(std::isfinite(greyLevels) && greyLevels >= 1.0 && greyLevels <= 255.0, "the minimum contrast must be in [1, 255]");
+  m_minContrast = greyLevels;
+}
+
+void vpLaserConicDetector::setNoiseFactor(double factor)
+{
+  check(std::isfinite(factor) && factor >= 0.0, "the noise factor must be finite and >= 0");
+  m_noiseFactor = factor;
+}
+
+void vpLaserConicDetector::setMaxStripeWidth(unsigned int pixels)
+{
+  check(pixels > 0 && pixels <= 100, "the maximum stripe width must be in [1, 100] pixels");
+  m_maxStripeWidth = pixels;
+}
+
+void vpLaserConicDetector::setSaturationLevel(unsigned int level)
+{
+  check(level >= 128 && level <= 255, "the saturation level must be in [128, 255]");
+  m_saturationLevel = level;
+}
+
+void vpLaserConicDetector::setMinSegmentLength(double pixels)
+{
+  check(std::isfinite(pixels) && pixels >= 0.0, "the minimum segment length must be finite and >= 0");
+  m_minSegmentLength = pixels;
+}
+
+void vpLaserConicDetector::setSamplingStep(unsigned int step)
+{
+  check(step > 0, "the sampling step must be positive");
+  m_step = step;
 }
 
 void vpLaserConicDetector::setHueRange(int maxHueLow, int minHueHigh)
 {
-  if (maxHueLow < 0 || maxHueLow > 179 || minHueHigh < 0 || minHueHigh > 179)
-    throw vpException(vpException::badValue, "vpLaserConicDetector: hue bounds must be in [0, 179] (OpenCV scale)");
+  check(maxHueLow >= 0 && maxHueLow <= 179 && minHueHigh >= 0 && minHueHigh <= 179,
+        "hue bounds must be in [0, 179] (OpenCV scale)");
   m_maxHueLow = maxHueLow;
   m_minHueHigh = minHueHigh;
 }
 
 void vpLaserConicDetector::setMinSaturationValue(int minSaturation, int minValue)
 {
-  if (minSaturation < 0 || minSaturation > 255 || minValue < 0 || minValue > 255)
-    throw vpException(vpException::badValue, "vpLaserConicDetector: saturation and value bounds must be in [0, 255]");
+  check(minSaturation >= 0 && minSaturation <= 255 && minValue >= 0 && minValue <= 255,
+        "saturation and value bounds must be in [0, 255]");
   m_minSaturation = minSaturation;
   m_minValue = minValue;
 }
 
-void vpLaserConicDetector::setMaxStripeWidth(unsigned int pixels)
+void vpLaserConicDetector::setSearchRegion(const std::vector<vpImagePoint> &trace, double margin)
 {
-  if (pixels == 0)
-    throw vpException(vpException::badValue, "vpLaserConicDetector: the maximum stripe width must be positive");
-  m_maxStripeWidth = pixels;
+  check(std::isfinite(margin) && margin > 0.0, "the search margin must be positive and finite");
+  check(!trace.empty(), "the search region needs at least one point");
+  for (const vpImagePoint &p : trace)
+    check(std::isfinite(p.get_u()) && std::isfinite(p.get_v()), "a point of the search region is not finite");
+  m_region = trace;
+  m_regionMargin = margin;
 }
 
-void vpLaserConicDetector::setSamplingStep(unsigned int step)
+void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 {
-  if (step == 0)
-    throw vpException(vpException::badValue, "vpLaserConicDetector: the sampling step must be positive");
-  m_step = step;
+  check(C.getRows() == 3 && C.getCols() == 3, "the conic must be a 3x3 matrix");
+  check(std::isfinite(margin) && margin > 0.0, "the search margin must be positive and finite");
+  double norm = 0.0;
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j) {
+      check(std::isfinite(C[i][j]), "the conic has a non-finite coefficient");
+      norm = std::max(norm, std::fabs(C[i][j]));
+    }
+  check(norm > 0.0, "the conic is zero");
+  // Symmetric part: a u^2 + 2 b uv + c v^2 + 2 d u + 2 e v + f = 0.
+  const double a = C[0][0], b = 0.5 * (C[0][1] + C[1][0]), c = C[1][1], d = 0.5 * (C[0][2] + C[2][0]),
+               e = 0.5 * (C[1][2] + C[2][1]), f = C[2][2];
+  // Sampled at every row and every column of a large image (16384 px): points outside the image are ignored
+  // when the region is rasterised.
+  std::vector<vpImagePoint> points;
+  std::vector<double> roots;
+  const int extent = 16384;
+  for (int t = -static_cast<int>(margin) - 1; t < extent; ++t) {
+    roots.clear();
+    solveQuadratic(a, 2.0 * (b * t + d), c * t * t + 2.0 * e * t + f, roots); // row v = t: roots in u
+    for (double u : roots)
+      if (u > -margin - 1.0 && u < extent)
+        points.push_back(vpImagePoint(t, u));
+    roots.clear();
+    solveQuadratic(c, 2.0 * (b * t + e), a * t * t + 2.0 * d * t + f, roots); // column u = t: roots in v
+    for (double v : roots)
+      if (v > -margin - 1.0 && v < extent)
+        points.push_back(vpImagePoint(v, t));
+  }
+  check(!points.empty(), "the conic has no real point near the image");
+  m_region = points;
+  m_regionMargin = margin;
+}
+
+void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
+                                           std::vector<std::vector<std::pair<int, int> > > &rows) const
+{
+  // The band is rasterised in blocks of 16 columns (the width the scans process at once) by 8 rows: each
+  // point marks the blocks that its square of half side margin + extra touches.
+  const int blockW = 16, blockH = 8, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
+  std::vector<unsigned char> marked(static_cast<size_t>(nbX) * nbY, 0);
+  const double m = m_regionMargin + extra;
+  // One point per cell of a quarter of the margin marks its square: more points in the cell add nothing
+  // (the band stays at least 3/4 of margin + extra wide around every point).
+  const double cellSize = std::max(1.0, 0.25 * m_regionMargin);
+  const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2, cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
+  std::vector<unsigned char> used(static_cast<size_t>(cellColumns) * cellRows, 0);
+  for (const vpImagePoint &p : m_region) {
+    const double u = p.get_u(), v = p.get_v();
+    if (u < -m || v < -m || u > W - 1 + m || v > H - 1 + m)
+      continue; // the square does not meet the image
+    unsigned char &cell = used[static_cast<size_t>((v + m) / cellSize) * cellColumns + static_cast<size_t>((u + m) / cellSize)];
+    if (cell)
+      continue;
+    cell = 1;
+    const int i0 = std::max(0, static_cast<int>(std::floor(v - m))), i1 = std::min(H - 1, static_cast<int>(std::ceil(v + m)));
+    const int j0 = std::max(0, static_cast<int>(std::floor(u - m))), j1 = std::min(W - 1, static_cast<int>(std::ceil(u + m)));
+    for (int bi = i0 / blockH; bi <= i1 / blockH; ++bi)
+      std::fill(&marked[static_cast<size_t>(bi) * nbX + j0 / blockW], &marked[static_cast<size_t>(bi) * nbX + j1 / blockW] + 1, 1);
+  }
+  rows.resize(H);
+  for (int bi = 0; bi < nbY; ++bi) {
+    std::vector<std::pair<int, int> > &spans = rows[bi * blockH];
+    spans.clear();
+    const unsigned char *row = &marked[static_cast<size_t>(bi) * nbX];
+    for (int b = 0; b < nbX; ++b) {
+      if (!row[b])
+        continue;
+      const int start = b;
+      while (b + 1 < nbX && row[b + 1])
+        ++b;
+      spans.push_back(std::make_pair(start * blockW, std::min(W - 1, (b + 1) * blockW - 1)));
+    }
+    for (int i = bi * blockH + 1; i < std::min(H, (bi + 1) * blockH); ++i)
+      rows[i] = spans;
+  }
+}
+
+const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
+{
+  if (m_maskDirty) {
+    vpLaserDetector::drawRuns(m_runs, m_height, m_width, m_mask);
+    m_maskDirty = false;
+  }
+  return m_mask;
 }
 
 std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
 {
-  std::vector<vpImagePoint> points;
-  const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
-  m_mask.resize(I.getHeight(), I.getWidth()); // cleared below
-  if (H == 0 || W == 0)
-    return points;
-
-  // vpRGBa is laid out as R, G, B, A bytes: wrap it without copy.
-  const cv::Mat rgba(H, W, CV_8UC4, const_cast<vpRGBa *>(I.bitmap));
-  cv::Mat rgb, hsv;
-  cv::cvtColor(rgba, rgb, cv::COLOR_RGBA2RGB);
-  cv::cvtColor(rgb, hsv, cv::COLOR_RGB2HSV);
-
-  // Mask and brightness weight of the trace pixels, in one pass.
-  const int maxHueLow = m_maxHueLow, minHueHigh = m_minHueHigh, minSaturation = m_minSaturation,
-            minValue = m_minValue;
-  cv::Mat weight = cv::Mat::zeros(H, W, CV_8UC1);
-  unsigned char *mask = m_mask.bitmap;
-  std::memset(mask, 0, static_cast<size_t>(W) * H);
-  for (int i = 0; i < H; ++i) {
-    const unsigned char *p = hsv.ptr<unsigned char>(i);
-    unsigned char *w = weight.ptr<unsigned char>(i);
-    unsigned char *m = mask + i * W;
-    for (int j = 0; j < W; ++j, p += 3) {
-      // Most pixels are darker than the laser: one well-predicted test rejects them.
-      if (p[2] < minValue)
-        continue;
-      const int h = p[0], s = p[1], v = p[2];
-      if ((h <= maxHueLow || h >= minHueHigh) && s >= minSaturation) {
-        m[j] = 255;
-        // Brightness above the threshold (+1 so that no trace pixel weighs zero).
-        w[j] = static_cast<unsigned char>(std::min(255, v - minValue + 1));
-      }
-    }
+  m_threshold = 0.0;
+  m_noise = 0.0;
+  m_runs.clear();
+  m_height = I.getHeight();
+  m_width = I.getWidth();
+  m_maskDirty = m_method == DETECTION_RIDGE;
+  if (m_method == DETECTION_HSV) {
+    const vpLaserDetector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
+                                                    static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
+    return vpLaserDetector::detectHsv(I, settings, m_mask);
   }
-
-  const int step = static_cast<int>(m_step), maxWidth = static_cast<int>(m_maxStripeWidth);
-  scanRows(mask, weight.ptr<unsigned char>(0), H, W, step, maxWidth, points);
-  scanColumns(mask, weight.ptr<unsigned char>(0), H, W, step, maxWidth, points);
+  const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
+                                                    static_cast<int>(m_saturationLevel), m_minSegmentLength,
+                                                    static_cast<int>(m_step)};
+  vpLaserDetector::RidgeReport report;
+  std::vector<vpImagePoint> points;
+  if (m_region.empty() || I.getSize() == 0)
+    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, m_score, m_runs, report);
+  else {
+    // Everything the ridge tests read lies within the stripe width + 2 of a searched pixel.
+    const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
+    vpLaserDetector::RowIntervals scoreRows, searchRows;
+    regionIntervals(H, W, static_cast<int>(m_maxStripeWidth) + 2, scoreRows);
+    regionIntervals(H, W, 0, searchRows);
+    points = vpLaserDetector::detectRidge(I, settings, &scoreRows, &searchRows, m_score, m_runs, report);
+  }
+  m_threshold = report.threshold;
+  m_noise = report.noise;
   return points;
 }

@@ -16,10 +16,11 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpMeterPixelConversion.h>
+#include <visp3/core/vpPixelMeterConversion.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
-#include <visp3/robot/vpImageSimulator.h>
 
 #include "laser_pose_check.h"
+#include "laser_sim_floor.h"
 
 namespace
 {
@@ -83,7 +84,8 @@ inline float squaredDistanceToSegment(float px, float py, float ax, float ay, fl
 
 vpLaserConicSimulator::vpLaserConicSimulator()
   : m_cam(), m_width(0), m_height(0), m_openingAngle(34.0 * M_PI / 180.0), m_cMl(), m_cMg(0, 0, 1, 0, 0, 0),
-    m_seed(0), m_rng(0), m_texture(), m_textureSeed(0)
+    m_seed(0), m_rng(0), m_texture(), m_texelSize(1.0), m_textureX0(0.0), m_textureY0(0.0), m_boardX(0),
+    m_boardY(0), m_boardSquare(0.0), m_rayX(), m_rayY(), m_rayCam(), m_rayValid()
 {
 }
 
@@ -178,7 +180,29 @@ bool vpLaserConicSimulator::project(const double P[3], double &u, double &v) con
 {
   if (!(P[2] > 1e-9))
     return false;
-  vpMeterPixelConversion::convertPoint(m_cam, P[0] / P[2], P[1] / P[2], u, v);
+  const double x = P[0] / P[2], y = P[1] / P[2];
+  if (m_cam.get_projModel() != vpCameraParameters::perspectiveProjWithDistortion || m_cam.get_kdu() == 0.0) {
+    vpMeterPixelConversion::convertPoint(m_cam, x, y, u, v);
+    return std::isfinite(u) && std::isfinite(v);
+  }
+  // The pixel that vpPixelMeterConversion maps onto (x, y): solve r = rd (1 + kdu rd^2) for the distorted
+  // radius rd (Newton from rd = r), with r the undistorted radius of the normalized point.
+  const double kdu = m_cam.get_kdu(), r = std::hypot(x, y);
+  double rd = r;
+  for (int it = 0; it < 60 && r > 0.0; ++it) {
+    const double slope = 1.0 + 3.0 * kdu * rd * rd;
+    if (!(slope > 0.0))
+      return false; // kdu < 0: beyond the radius of the widest imaged ray
+    const double step = (rd * (1.0 + kdu * rd * rd) - r) / slope;
+    rd -= step;
+    if (std::fabs(step) < 1e-16 * (1.0 + rd))
+      break;
+  }
+  if (!(std::fabs(rd * (1.0 + kdu * rd * rd) - r) <= 1e-12 * (1.0 + r)))
+    return false; // no distorted radius maps onto r
+  const double scale = r > 0.0 ? rd / r : 1.0;
+  u = m_cam.get_u0() + m_cam.get_px() * x * scale;
+  v = m_cam.get_v0() + m_cam.get_py() * y * scale;
   return std::isfinite(u) && std::isfinite(v);
 }
 
@@ -264,29 +288,74 @@ std::vector<vpImagePoint> vpLaserConicSimulator::addOutliers(const std::vector<v
   return result;
 }
 
-const vpImage<vpRGBa> &vpLaserConicSimulator::proceduralTexture()
+void vpLaserConicSimulator::setGroundTexture(const vpImage<vpRGBa> &texture, double metresPerTexel, double x0,
+                                             double y0)
 {
-  // The floor depends on the seed only (not on the draws made before), so that every frame of a sequence
-  // rendered with one seed sees the same floor; it is cached for speed.
-  if (m_texture.getSize() != 0 && m_textureSeed == m_seed)
-    return m_texture;
-  // Dark tiles of random grey with a fine grain: a dull floor on which the red laser stays visible.
-  const unsigned int size = 1024, tile = 16;
-  FastRandom random(0x5DEECE66DULL * (m_seed + 1));
-  m_texture.resize(size, size);
-  std::vector<int> tiles((size / tile) * (size / tile));
-  for (int &t : tiles)
-    t = 25 + static_cast<int>(random.next() % 46); // 25..70
-  for (unsigned int i = 0; i < size; ++i) {
-    for (unsigned int j = 0; j < size; ++j) {
-      const int grain = static_cast<int>(random.next() % 17) - 8; // -8..8
-      const int base = tiles[(i / tile) * (size / tile) + j / tile];
-      const unsigned char g = static_cast<unsigned char>(std::min(255, std::max(0, base + grain)));
-      m_texture[i][j] = vpRGBa(g, g, static_cast<unsigned char>(std::min(255, g + 3)), 255);
-    }
+  if (!std::isfinite(metresPerTexel) || metresPerTexel <= 0.0 || !std::isfinite(x0) || !std::isfinite(y0))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSimulator: the texel size must be positive and the origin finite");
+  m_texture = texture;
+  m_texelSize = metresPerTexel;
+  m_textureX0 = x0;
+  m_textureY0 = y0;
+}
+
+void vpLaserConicSimulator::setGroundChessboard(unsigned int squaresX, unsigned int squaresY, double squareSize)
+{
+  if (squaresX == 0) {
+    m_boardX = m_boardY = 0;
+    return;
   }
-  m_textureSeed = m_seed;
-  return m_texture;
+  if (squaresY == 0 || !std::isfinite(squareSize) || squareSize <= 0.0)
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSimulator: the chessboard needs squares of positive size");
+  m_boardX = squaresX;
+  m_boardY = squaresY;
+  m_boardSquare = squareSize;
+}
+
+vpCameraParameters vpLaserConicSimulator::fitInverseDistortion(const vpCameraParameters &cam, unsigned int width,
+                                                               unsigned int height)
+{
+  if (cam.get_projModel() != vpCameraParameters::perspectiveProjWithDistortion || cam.get_kdu() == 0.0)
+    return cam;
+  // Pixel-to-metre model r = rd (1 + kdu rd^2) (rd: distorted normalized radius); the metre-to-pixel model
+  // of vpMeterPixelConversion is rd = r (1 + kud r^2): least squares on kud over the radii of the image.
+  const double kdu = cam.get_kdu();
+  const double du = std::max(cam.get_u0(), width - 1.0 - cam.get_u0()) / cam.get_px();
+  const double dv = std::max(cam.get_v0(), height - 1.0 - cam.get_v0()) / cam.get_py();
+  double rdMax = std::hypot(du, dv);
+  if (kdu < 0.0) // r peaks at rd* = 1 / sqrt(-3 kdu)
+    rdMax = std::min(rdMax, 0.98 / std::sqrt(-3.0 * kdu));
+  double num = 0.0, den = 0.0;
+  for (int k = 1; k <= 200; ++k) {
+    const double rd = rdMax * k / 200.0, r = rd * (1.0 + kdu * rd * rd);
+    const double a = r * r * r, b = rd - r; // rd - r = kud r^3
+    num += a * b;
+    den += a * a;
+  }
+  return vpCameraParameters(cam.get_px(), cam.get_py(), cam.get_u0(), cam.get_v0(), num / den, kdu);
+}
+
+void vpLaserConicSimulator::updateRayMap()
+{
+  const size_t n = static_cast<size_t>(m_width) * m_height;
+  if (m_rayX.size() == n && m_rayCam == m_cam)
+    return;
+  m_rayX.resize(n);
+  m_rayY.resize(n);
+  m_rayValid.assign(n, 1);
+  // The pixel-to-metre conversion of the estimators is the rendering model itself: exact by construction.
+  for (unsigned int i = 0; i < m_height; ++i)
+    for (unsigned int j = 0; j < m_width; ++j) {
+      const size_t k = static_cast<size_t>(i) * m_width + j;
+      double x = 0.0, y = 0.0;
+      vpPixelMeterConversion::convertPoint(m_cam, static_cast<double>(j), static_cast<double>(i), x, y);
+      m_rayX[k] = static_cast<float>(x);
+      m_rayY[k] = static_cast<float>(y);
+      m_rayValid[k] = std::isfinite(x) && std::isfinite(y);
+    }
+  m_rayCam = m_cam;
 }
 
 void vpLaserConicSimulator::groundFootprint(double &cx, double &cy, double &half) const
@@ -295,13 +364,14 @@ void vpLaserConicSimulator::groundFootprint(double &cx, double &cy, double &half
   const vpPlane plane = getGroundPlane();
   const double n[3] = {plane.getA(), plane.getB(), plane.getC()}, D = plane.getD();
   const vpHomogeneousMatrix gMc = m_cMg.inverse();
-  const double pixels[4][2] = {{0.0, 0.0}, {m_width - 1.0, 0.0}, {m_width - 1.0, m_height - 1.0}, {0.0, m_height - 1.0}};
+  const unsigned int corners[4][2] = {{0, 0}, {m_width - 1, 0}, {m_width - 1, m_height - 1}, {0, m_height - 1}};
   double minX = std::numeric_limits<double>::infinity(), minY = minX, maxX = -minX, maxY = -minX;
   bool allHit = true;
-  for (const auto &pixel : pixels) {
-    const double ray[3] = {(pixel[0] - m_cam.get_u0()) / m_cam.get_px(), (pixel[1] - m_cam.get_v0()) / m_cam.get_py(), 1.0};
+  for (const auto &corner : corners) {
+    const size_t k = static_cast<size_t>(corner[1]) * m_width + corner[0];
+    const double ray[3] = {m_rayX[k], m_rayY[k], 1.0};
     const double towards = n[0] * ray[0] + n[1] * ray[1] + n[2] * ray[2];
-    if (!(towards < 0.0)) {
+    if (!m_rayValid[k] || !(towards < 0.0)) {
       allHit = false; // this corner sees the sky: the horizon is in the image
       break;
     }
@@ -326,42 +396,172 @@ void vpLaserConicSimulator::groundFootprint(double &cx, double &cy, double &half
   }
 }
 
-void vpLaserConicSimulator::renderGround(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture)
+namespace
 {
-  const vpImage<vpRGBa> &tex = texture.getSize() == 0 ? proceduralTexture() : texture;
-  double cx = 0.0, cy = 0.0, half = 0.0;
-  groundFootprint(cx, cy, half);
-  vpColVector X[4];
-  const double corners[4][2] = {{cx - half, cy - half}, {cx + half, cy - half}, {cx + half, cy + half},
-                                {cx - half, cy + half}};
-  for (unsigned int k = 0; k < 4; ++k) {
-    X[k].resize(3);
-    X[k][0] = corners[k][0];
-    X[k][1] = corners[k][1];
-    X[k][2] = 0.0;
-  }
-  // vpImageSimulator draws one side of its rectangle only: order the corners so that this side faces the camera.
-  vpColVector p[3];
-  for (unsigned int k = 0; k < 3; ++k) {
-    vpColVector Xh(4, 1.0);
-    for (unsigned int i = 0; i < 3; ++i)
-      Xh[i] = X[k][i];
-    p[k] = (m_cMg * Xh).extract(0, 3);
-  }
-  const vpColVector faceNormal = vpColVector::crossProd(p[1] - p[0], p[2] - p[1]);
-  if (vpColVector::dotProd(p[0], faceNormal) <= 0.0)
-    std::swap(X[1], X[3]);
-
-  vpImageSimulator ground(vpImageSimulator::COLORED);
-  ground.init(tex, X);
-  // Nearest texel: the optical blur smooths the texture anyway, at half the cost of bilinear interpolation.
-  ground.setInterpolationType(vpImageSimulator::SIMPLE);
-  ground.setCleanPreviousImage(true, vpColor(kFarGroundGrey, kFarGroundGrey, kFarGroundGrey));
-  ground.setCameraPosition(m_cMg);
-  I.resize(m_height, m_width);
-  ground.getImage(I, m_cam);
+// Bilinear texel of a texture at continuous texel coordinates (x along columns, y along rows), false outside.
+bool sampleTexture(const vpImage<vpRGBa> &T, double x, double y, float rgb[3])
+{
+  const double fx = x - 0.5, fy = y - 0.5; // texel centres at half-integers
+  if (!(x >= 0.0 && y >= 0.0 && x < T.getWidth() && y < T.getHeight()))
+    return false;
+  const int j0 = std::max(0, std::min(static_cast<int>(T.getWidth()) - 1, static_cast<int>(std::floor(fx))));
+  const int i0 = std::max(0, std::min(static_cast<int>(T.getHeight()) - 1, static_cast<int>(std::floor(fy))));
+  const int j1 = std::min(static_cast<int>(T.getWidth()) - 1, j0 + 1), i1 = std::min(static_cast<int>(T.getHeight()) - 1, i0 + 1);
+  const float tx = static_cast<float>(std::min(1.0, std::max(0.0, fx - j0)));
+  const float ty = static_cast<float>(std::min(1.0, std::max(0.0, fy - i0)));
+  const vpRGBa &a = T[i0][j0], &b = T[i0][j1], &c = T[i1][j0], &d = T[i1][j1];
+  rgb[0] = (a.R * (1 - tx) + b.R * tx) * (1 - ty) + (c.R * (1 - tx) + d.R * tx) * ty;
+  rgb[1] = (a.G * (1 - tx) + b.G * tx) * (1 - ty) + (c.G * (1 - tx) + d.G * tx) * ty;
+  rgb[2] = (a.B * (1 - tx) + b.B * tx) * (1 - ty) + (c.B * (1 - tx) + d.B * tx) * ty;
+  return true;
 }
 
+// Chessboard of the simulator: -1 outside the paper, else the albedo grey (black squares, white squares/paper).
+float chessboardGrey(double X, double Y, unsigned int nx, unsigned int ny, double s)
+{
+  if (X < -s || Y < -s || X > (nx + 1) * s || Y > (ny + 1) * s)
+    return -1.f;
+  if (X < 0.0 || Y < 0.0 || X >= nx * s || Y >= ny * s)
+    return 215.f; // white paper around the board
+  const long kx = static_cast<long>(std::floor(X / s)), ky = static_cast<long>(std::floor(Y / s));
+  return ((kx + ky) % 2 == 0) ? 28.f : 215.f;
+}
+
+// True when the ground point (X, Y) lies on the distractor.
+bool onDistractor(const vpLaserConicSimulator::vpDistractor &d, double X, double Y)
+{
+  switch (d.shape) {
+  case vpLaserConicSimulator::DISTRACTOR_RECTANGLE:
+    return std::fabs(X - d.x) <= 0.5 * d.size && std::fabs(Y - d.y) <= 0.5 * d.size;
+  case vpLaserConicSimulator::DISTRACTOR_LINE: {
+    const double dx = d.x2 - d.x, dy = d.y2 - d.y, len2 = dx * dx + dy * dy;
+    const double t = len2 > 0 ? std::min(1.0, std::max(0.0, ((X - d.x) * dx + (Y - d.y) * dy) / len2)) : 0.0;
+    return std::hypot(X - d.x - t * dx, Y - d.y - t * dy) <= 0.5 * d.size;
+  }
+  default:
+    return std::hypot(X - d.x, Y - d.y) <= 0.5 * d.size;
+  }
+}
+} // namespace
+
+void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &settings,
+                                         const vpImage<vpRGBa> *stretchedTexture)
+{
+  const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
+  const vpHomogeneousMatrix gMc = m_cMg.inverse();
+  const double R[3][3] = {{gMc[0][0], gMc[0][1], gMc[0][2]}, {gMc[1][0], gMc[1][1], gMc[1][2]},
+                          {gMc[2][0], gMc[2][1], gMc[2][2]}};
+  const double C[3] = {gMc[0][3], gMc[1][3], gMc[2][3]}; // camera centre in the ground frame
+  const double maxDistance = 50.0 * std::fabs(C[2]);
+
+  // Texture of render(I, texture): stretched over the footprint square (historical behaviour).
+  double stretchX0 = 0.0, stretchY0 = 0.0, stretchTexel = 1.0;
+  if (stretchedTexture != nullptr) {
+    double cx = 0.0, cy = 0.0, half = 0.0;
+    groundFootprint(cx, cy, half);
+    stretchX0 = cx - half;
+    stretchY0 = cy - half;
+    stretchTexel = 2.0 * half / std::max(stretchedTexture->getWidth(), stretchedTexture->getHeight());
+  }
+
+  const uint32_t sceneSeed = settings.sceneSeed >= 0 ? static_cast<uint32_t>(settings.sceneSeed) : m_seed;
+  // Clutter: small red patches at ground positions drawn from the seed only (the same scene every frame).
+  std::vector<vpDistractor> objects = settings.distractors;
+  for (unsigned int k = 0; k < settings.clutter; ++k) {
+    const uint32_t h1 = vpLaserSimFloor::hash(static_cast<int>(k), 11, sceneSeed),
+                   h2 = vpLaserSimFloor::hash(static_cast<int>(k), 12, sceneSeed);
+    vpDistractor d;
+    d.shape = (h1 & 1) ? DISTRACTOR_DISC : DISTRACTOR_RECTANGLE;
+    const double radius = settings.clutterRadius * std::sqrt(vpLaserSimFloor::unit(h1));
+    const double angle = 2.0 * M_PI * vpLaserSimFloor::unit(h2);
+    d.x = radius * std::cos(angle);
+    d.y = radius * std::sin(angle);
+    d.size = 0.01 + 0.03 * vpLaserSimFloor::unit(h1 >> 5);
+    float c[3];
+    vpLaserSimFloor::hsvToRgb(vpLaserSimFloor::unit(h2 >> 3) < 0.5f ? 355.f : 5.f, 0.75f + 0.25f * vpLaserSimFloor::unit(h2 >> 9),
+                              0.45f + 0.4f * vpLaserSimFloor::unit(h2 >> 13), c);
+    d.colour = vpRGBa(static_cast<unsigned char>(c[0]), static_cast<unsigned char>(c[1]),
+                      static_cast<unsigned char>(c[2]), 255);
+    objects.push_back(d);
+  }
+
+  const float ambient = static_cast<float>(settings.ambient), specular = static_cast<float>(settings.specular);
+  const double lamp[3] = {settings.lampX, settings.lampY, settings.lampZ};
+  // Sub-pixel sample offsets of the anti-aliased chessboard (rotated grid).
+  const double sub[4][2] = {{-0.375, -0.125}, {0.125, -0.375}, {0.375, 0.125}, {-0.125, 0.375}};
+
+  for (int i = 0; i < H; ++i) {
+    for (int j = 0; j < W; ++j) {
+      const size_t k = static_cast<size_t>(i) * W + j;
+      float *out = rgb + 3 * k;
+      out[0] = out[1] = out[2] = kFarGroundGrey;
+      if (!m_rayValid[k])
+        continue;
+      // Ray of the pixel in the ground frame and its hit on Z = 0.
+      const double x = m_rayX[k], y = m_rayY[k];
+      const double d[3] = {R[0][0] * x + R[0][1] * y + R[0][2], R[1][0] * x + R[1][1] * y + R[1][2],
+                           R[2][0] * x + R[2][1] * y + R[2][2]};
+      const double lambda = -C[2] / d[2];
+      if (!(lambda > 0.0) || !std::isfinite(lambda))
+        continue; // the ray goes to the sky
+      const double X = C[0] + lambda * d[0], Y = C[1] + lambda * d[1];
+      if (std::hypot(X - C[0], Y - C[1]) > maxDistance)
+        continue; // a few pixels per metre: plain far grey
+
+      float albedo[3], gloss = 0.f;
+      if (stretchedTexture != nullptr) {
+        if (!sampleTexture(*stretchedTexture, (X - stretchX0) / stretchTexel, (Y - stretchY0) / stretchTexel, albedo))
+          continue;
+        out[0] = albedo[0];
+        out[1] = albedo[1];
+        out[2] = albedo[2];
+        continue; // historical path: the texture as is, no lighting
+      }
+      vpLaserSimFloor::albedo(settings.floor, X, Y, sceneSeed, albedo, gloss);
+      if (m_texture.getSize() != 0 &&
+          sampleTexture(m_texture, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
+        gloss = 0.2f;
+      if (m_boardX != 0 && chessboardGrey(X, Y, m_boardX, m_boardY, m_boardSquare) >= 0.f) {
+        // Average of 4 sub-pixel samples (rays interpolated between the pixel centres).
+        float sum = 0.f;
+        for (const auto &o : sub) {
+          const int j2 = std::min(W - 1, std::max(0, o[0] < 0 ? j - 1 : j + 1));
+          const int i2 = std::min(H - 1, std::max(0, o[1] < 0 ? i - 1 : i + 1));
+          const size_t kj = static_cast<size_t>(i) * W + j2, ki = static_cast<size_t>(i2) * W + j;
+          const double wx = std::fabs(o[0]), wy = std::fabs(o[1]);
+          const double xs = x + wx * (m_rayX[kj] - x) + wy * (m_rayX[ki] - x);
+          const double ys = y + wx * (m_rayY[kj] - y) + wy * (m_rayY[ki] - y);
+          const double ds[3] = {R[0][0] * xs + R[0][1] * ys + R[0][2], R[1][0] * xs + R[1][1] * ys + R[1][2],
+                                R[2][0] * xs + R[2][1] * ys + R[2][2]};
+          const double ls = -C[2] / ds[2];
+          const float g = chessboardGrey(C[0] + ls * ds[0], C[1] + ls * ds[1], m_boardX, m_boardY, m_boardSquare);
+          sum += g >= 0.f ? g : 215.f;
+        }
+        albedo[0] = albedo[1] = albedo[2] = 0.25f * sum;
+        gloss = 0.15f;
+      }
+      for (const vpDistractor &o : objects)
+        if (onDistractor(o, X, Y)) {
+          albedo[0] = o.colour.R;
+          albedo[1] = o.colour.G;
+          albedo[2] = o.colour.B;
+          gloss = 0.3f;
+        }
+      float spec = 0.f;
+      if (specular > 0.f && gloss > 0.f) {
+        // Phong: half vector of the directions to the camera and to the lamp, ground normal +Z.
+        double v[3] = {C[0] - X, C[1] - Y, C[2]}, l[3] = {lamp[0] - X, lamp[1] - Y, lamp[2]};
+        const double nv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        const double nl = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+        const double h[3] = {v[0] / nv + l[0] / nl, v[1] / nv + l[1] / nl, std::fabs(v[2]) / nv + l[2] / nl};
+        const double cosine = h[2] / std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        spec = specular * gloss * static_cast<float>(std::pow(std::max(0.0, cosine), settings.shininess));
+      }
+      for (int c = 0; c < 3; ++c)
+        out[c] = ambient * albedo[c] + spec;
+    }
+  }
+}
 void vpLaserConicSimulator::traceDistanceMap(float radius, std::vector<float> &dist2) const
 {
   const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
@@ -426,62 +626,133 @@ void vpLaserConicSimulator::traceDistanceMap(float radius, std::vector<float> &d
   }
 }
 
+void vpLaserConicSimulator::renderLaser(float *rgb, const vpRenderSettings &settings) const
+{
+  // Distance of the pixels near the trace to the exact (distorted) image curve; Gaussian profiles of that
+  // distance (stripe and bloom) added as red light, with white light where the red exceeds the sensor range.
+  const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
+  const double fwhm = 2.0 * std::sqrt(2.0 * std::log(2.0));
+  const double sigma = settings.stripeWidth / fwhm, bloomSigma = settings.bloomWidth / fwhm;
+  const bool bloom = settings.bloom > 0.0;
+  const float radius = static_cast<float>(3.5 * std::max(sigma, bloom ? bloomSigma : 0.0) + 1.0);
+  std::vector<float> dist2;
+  traceDistanceMap(radius, dist2);
+  const float inv2s2 = static_cast<float>(1.0 / (2.0 * sigma * sigma));
+  const float inv2b2 = static_cast<float>(1.0 / (2.0 * bloomSigma * bloomSigma));
+  const float r2 = radius * radius, power = static_cast<float>(settings.laserPower);
+  const float bloomPower = static_cast<float>(settings.bloom * settings.laserPower);
+  const float core = static_cast<float>(settings.whiteCore);
+  const float leakG = kLaserRgb[1] / kLaserRgb[0], leakB = kLaserRgb[2] / kLaserRgb[0];
+  for (int k = 0; k < W * H; ++k) {
+    if (!(dist2[k] < r2))
+      continue;
+    float red = power * std::exp(-dist2[k] * inv2s2);
+    if (bloom)
+      red += bloomPower * std::exp(-dist2[k] * inv2b2);
+    const float white = core * std::max(0.f, red - 255.f);
+    float *out = rgb + 3 * k;
+    out[0] += red + white;
+    out[1] += leakG * red + white;
+    out[2] += leakB * red + white;
+  }
+}
+
 void vpLaserConicSimulator::render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture, double stripeWidth,
                                    double noise)
 {
+  vpRenderSettings settings;
+  settings.stripeWidth = stripeWidth;
+  settings.noise = noise;
+  if (texture.getSize() == 0) {
+    render(I, settings);
+    return;
+  }
+  // Historical path: the given texture stretched over the footprint (no floor, chessboard or lighting).
+  renderImpl(I, settings, &texture);
+}
+
+void vpLaserConicSimulator::render(vpImage<vpRGBa> &I, const vpRenderSettings &settings)
+{
+  renderImpl(I, settings, nullptr);
+}
+
+void vpLaserConicSimulator::renderImpl(vpImage<vpRGBa> &I, const vpRenderSettings &s,
+                                       const vpImage<vpRGBa> *stretchedTexture)
+{
   checkCamera();
-  if (!std::isfinite(stripeWidth) || stripeWidth <= 0.0)
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  auto nonNegative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  if (!positive(s.stripeWidth) || !positive(s.bloomWidth) || !positive(s.shininess))
     throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the stripe width must be positive");
-  if (!std::isfinite(noise) || noise < 0.0)
+                                "vpLaserConicSimulator: the stripe width, bloom width and shininess must be positive");
+  if (!nonNegative(s.noise) || !nonNegative(s.ambient) || !nonNegative(s.specular) || !nonNegative(s.laserPower) ||
+      !nonNegative(s.whiteCore) || !nonNegative(s.bloom) || !nonNegative(s.blur) || !nonNegative(s.motionBlurLength) ||
+      !std::isfinite(s.motionBlurAngle) || !nonNegative(s.clutterRadius) || !std::isfinite(s.lampX) ||
+      !std::isfinite(s.lampY) || !std::isfinite(s.lampZ))
     throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the sensor noise must be finite and >= 0");
+                                "vpLaserConicSimulator: a render setting is negative or not finite (sensor noise, "
+                                "ambient, specular, laser power, white core, bloom, blur, clutter radius, lamp)");
   const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
+  updateRayMap();
 
-  // 1. Ground through vpImageSimulator.
-  renderGround(I, texture);
-
-  // 2. Laser: distance of the pixels near the trace to the exact image curve, Gaussian profile of that
-  // distance (full width at half maximum stripeWidth), added as red light to the ground, in floating point.
-  const double sigma = stripeWidth / (2.0 * std::sqrt(2.0 * std::log(2.0)));
-  const float radius = static_cast<float>(3.5 * sigma + 1.0);
-  std::vector<float> dist2;
-  traceDistanceMap(radius, dist2);
+  // 1. Ground, 2. laser, in floating point (linear light before the sensor clips it).
   cv::Mat image(H, W, CV_32FC3);
-  const float inv2s2 = static_cast<float>(1.0 / (2.0 * sigma * sigma));
-  const float r2 = radius * radius;
-  for (int i = 0; i < H; ++i) {
-    float *out = image.ptr<float>(i);
-    const vpRGBa *in = I[static_cast<unsigned int>(i)];
-    const float *d2 = &dist2[static_cast<size_t>(i) * W];
-    for (int j = 0; j < W; ++j) {
-      const float profile = d2[j] < r2 ? std::exp(-d2[j] * inv2s2) : 0.f;
-      out[3 * j] = in[j].R + kLaserRgb[0] * profile;
-      out[3 * j + 1] = in[j].G + kLaserRgb[1] * profile;
-      out[3 * j + 2] = in[j].B + kLaserRgb[2] * profile;
-    }
+  float *rgb = image.ptr<float>(0);
+  renderGround(rgb, s, stretchedTexture);
+  if (s.laserOn)
+    renderLaser(rgb, s);
+
+  // 3. Objects in front of the ground hide it and the laser.
+  for (const std::vector<vpImagePoint> &polygon : s.occluders) {
+    if (polygon.size() < 3)
+      continue;
+    std::vector<cv::Point> pts;
+    for (const vpImagePoint &p : polygon)
+      pts.push_back(cv::Point(static_cast<int>(std::lround(p.get_u())), static_cast<int>(std::lround(p.get_v()))));
+    const std::vector<std::vector<cv::Point> > polys(1, pts);
+    cv::fillPoly(image, polys, cv::Scalar(s.occluderColour.R, s.occluderColour.G, s.occluderColour.B));
   }
 
-  // 3. Optics: blur.
-  cv::GaussianBlur(image, image, cv::Size(0, 0), kBlurSigma);
+  // 4. Optics and motion: blur, linear motion blur.
+  if (s.blur > 0.0)
+    cv::GaussianBlur(image, image, cv::Size(0, 0), s.blur);
+  if (s.motionBlurLength >= 1.0) {
+    const int half = static_cast<int>(std::ceil(0.5 * s.motionBlurLength));
+    cv::Mat kernel = cv::Mat::zeros(2 * half + 1, 2 * half + 1, CV_32F);
+    const int samples = 8 * (2 * half + 1);
+    for (int k = 0; k < samples; ++k) { // the segment sampled finely, splatted bilinearly
+      const double t = (k + 0.5) / samples - 0.5;
+      const double u = half + t * s.motionBlurLength * std::cos(s.motionBlurAngle);
+      const double v = half + t * s.motionBlurLength * std::sin(s.motionBlurAngle);
+      const int u0 = static_cast<int>(std::floor(u)), v0 = static_cast<int>(std::floor(v));
+      const float fu = static_cast<float>(u - u0), fv = static_cast<float>(v - v0);
+      kernel.at<float>(v0, u0) += (1 - fu) * (1 - fv);
+      kernel.at<float>(v0, std::min(2 * half, u0 + 1)) += fu * (1 - fv);
+      kernel.at<float>(std::min(2 * half, v0 + 1), u0) += (1 - fu) * fv;
+      kernel.at<float>(std::min(2 * half, v0 + 1), std::min(2 * half, u0 + 1)) += fu * fv;
+    }
+    kernel /= cv::sum(kernel)[0];
+    cv::filter2D(image, image, -1, kernel, cv::Point(-1, -1), 0.0, cv::BORDER_REPLICATE);
+  }
 
-  // 4. Sensor: noise, rounding and saturation in one pass.
+  // 5. Sensor: noise, rounding and saturation in one pass.
+  I.resize(m_height, m_width);
   const std::vector<float> &quantiles = normalQuantiles();
   FastRandom random((static_cast<uint64_t>(m_rng()) << 32) | m_rng());
-  const float sensorSigma = static_cast<float>(noise);
+  const float sensorSigma = static_cast<float>(s.noise);
   for (int i = 0; i < H; ++i) {
     const float *in = image.ptr<float>(i);
     vpRGBa *out = I[static_cast<unsigned int>(i)];
     for (int j = 0; j < W; ++j, in += 3) {
-      float rgb[3] = {in[0], in[1], in[2]};
+      float c3[3] = {in[0], in[1], in[2]};
       if (sensorSigma > 0.f) {
         const uint64_t bits = random.next(); // 3 x 16 bits: one normal draw per channel
         for (int k = 0; k < 3; ++k)
-          rgb[k] += sensorSigma * quantiles[(bits >> (16 * k)) & 0xFFFF];
+          c3[k] += sensorSigma * quantiles[(bits >> (16 * k)) & 0xFFFF];
       }
       unsigned char c[3];
       for (int k = 0; k < 3; ++k)
-        c[k] = static_cast<unsigned char>(std::min(255.f, std::max(0.f, rgb[k])) + 0.5f); // round to nearest
+        c[k] = static_cast<unsigned char>(std::min(255.f, std::max(0.f, c3[k])) + 0.5f); // round to nearest
       out[j] = vpRGBa(c[0], c[1], c[2], 255);
     }
   }

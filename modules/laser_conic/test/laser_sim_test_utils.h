@@ -11,7 +11,14 @@
 #ifndef VP_LASER_SIM_TEST_UTILS_H
 #define VP_LASER_SIM_TEST_UTILS_H
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <unordered_map>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -20,6 +27,7 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpPlane.h>
+#include <visp3/io/vpImageIo.h>
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
 #include "laser_test_utils.h"
@@ -88,6 +96,64 @@ inline double sampsonDistance(const Eigen::Matrix3d &C, const vpImagePoint &p)
   const Eigen::Vector3d x(p.get_u(), p.get_v(), 1.0);
   const Eigen::Vector3d Cx = C * x;
   return std::fabs(x.dot(Cx)) / (2.0 * Cx.head<2>().norm());
+}
+/*!
+  The exact centre line of a rendered trace as a dense polyline (the simulator's own distorted projection of
+  the cone rays, sampled about every 0.1 px), and the distance of image points to it: the ground truth of
+  the detector tests with and without lens distortion (where the image of the trace is not a conic).
+*/
+class TraceLine
+{
+public:
+  //! Samples \e n cone rays of \e sim (consecutive samples closer than 2 px are joined by a segment).
+  TraceLine(vpLaserConicSimulator &sim, unsigned int n = 40000) : m_points(sim.tracePoints(n))
+  {
+    for (size_t k = 0; k < m_points.size(); ++k)
+      m_cells[key(m_points[k])].push_back(static_cast<int>(k));
+  }
+  //! The samples.
+  const std::vector<vpImagePoint> &samples() const { return m_points; }
+  //! Distance (pixels) of \e p to the polyline; +inf beyond 4 px.
+  double distance(const vpImagePoint &p) const
+  {
+    double best = std::numeric_limits<double>::infinity();
+    const int64_t cx = cell(p.get_u()), cy = cell(p.get_v());
+    for (int64_t dy = -1; dy <= 1; ++dy)
+      for (int64_t dx = -1; dx <= 1; ++dx) {
+        const auto it = m_cells.find((cy + dy) * kColumns + cx + dx);
+        if (it == m_cells.end())
+          continue;
+        for (int k : it->second) {
+          best = std::min(best, vpImagePoint::distance(p, m_points[k]));
+          for (int n : {k - 1, k + 1})
+            if (n >= 0 && n < static_cast<int>(m_points.size()) && vpImagePoint::distance(m_points[k], m_points[n]) < 2.0)
+              best = std::min(best, segmentDistance(p, m_points[k], m_points[n]));
+        }
+      }
+    return best;
+  }
+
+private:
+  static constexpr int64_t kColumns = 1 << 20;
+  static int64_t cell(double x) { return static_cast<int64_t>(std::floor(x / 4.0)) + 8; }
+  static int64_t key(const vpImagePoint &p) { return cell(p.get_v()) * kColumns + cell(p.get_u()); }
+  static double segmentDistance(const vpImagePoint &p, const vpImagePoint &a, const vpImagePoint &b)
+  {
+    const double dx = b.get_u() - a.get_u(), dy = b.get_v() - a.get_v(), len2 = dx * dx + dy * dy;
+    double t = len2 > 0 ? ((p.get_u() - a.get_u()) * dx + (p.get_v() - a.get_v()) * dy) / len2 : 0.0;
+    t = std::min(1.0, std::max(0.0, t));
+    return std::hypot(a.get_u() + t * dx - p.get_u(), a.get_v() + t * dy - p.get_v());
+  }
+  std::vector<vpImagePoint> m_points;
+  std::unordered_map<int64_t, std::vector<int> > m_cells;
+};
+
+//! Writes \e I as <dir>/<name>.png when the environment variable VSP_LASER_DUMP_DIR names a folder (to look at).
+inline void dumpIfRequested(const std::string &name, const vpImage<vpRGBa> &I)
+{
+  const char *dir = std::getenv("VSP_LASER_DUMP_DIR");
+  if (dir != nullptr && *dir != '\0')
+    vpImageIo::write(I, std::string(dir) + "/" + name + ".png");
 }
 } // namespace laser_sim_test
 

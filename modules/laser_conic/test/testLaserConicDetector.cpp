@@ -11,11 +11,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
+#include <string>
 #include <cmath>
+#include <cstdlib>
 
 #include <Eigen/Dense>
 
 #include <visp3/core/vpMath.h>
+#include <visp3/core/vpPolygon.h>
+#include <visp3/laser_conic/vpLaserConicPose.h>
 
 #include "laser_sim_test_utils.h"
 
@@ -185,10 +190,349 @@ TEST(LaserConicDetector, EmptyImageGivesNoPoint)
 TEST(LaserConicDetector, BadSettingsThrow)
 {
   vpLaserConicDetector detector;
-  EXPECT_THROW(detector.setHueRange(-1, 170), vpException);
+  EXPECT_THROW(detector.setHueRange(-1, 170), vpLaserConicException);
+  EXPECT_THROW(detector.setMinContrast(0.0), vpLaserConicException);
+  EXPECT_THROW(detector.setNoiseFactor(-1.0), vpLaserConicException);
+  EXPECT_THROW(detector.setSaturationLevel(100), vpLaserConicException);
+  EXPECT_THROW(detector.setMinSegmentLength(std::nan("")), vpLaserConicException);
+  EXPECT_THROW(detector.setMaxStripeWidth(101), vpLaserConicException);
   EXPECT_THROW(detector.setHueRange(10, 180), vpException);
   EXPECT_THROW(detector.setMinSaturationValue(256, 80), vpException);
   EXPECT_THROW(detector.setMinSaturationValue(80, -1), vpException);
   EXPECT_THROW(detector.setMaxStripeWidth(0), vpException);
   EXPECT_THROW(detector.setSamplingStep(0), vpException);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Hard cases: what real photographs of a laser ring show, rendered with the simulator's settings.
+namespace
+{
+//! Quality of a detection against the exact (distorted) centre line.
+struct Quality
+{
+  double coverage = 0.0;     //!< share of the visible trace with a detected point within 1 px
+  double rms = 0.0;          //!< RMS distance (px) to the centre line of the points within 2 px of it
+  double offTrace = 0.0;     //!< share of the points farther than 2 px (distractors, clutter)
+  size_t nbPoints = 0;
+};
+
+//! A hard case: what is rendered and where the trace is checked.
+struct HardCase
+{
+  std::string name;
+  vpLaserConicSimulator::vpRenderSettings settings;
+  vpCameraParameters cam = camera();
+  vpHomogeneousMatrix cMg = groundPose();
+};
+
+//! A camera with a wide lens (about 80 x 60 deg over 1600 x 1200) and a barrel distortion.
+vpCameraParameters wideCamera()
+{
+  return vpLaserConicSimulator::fitInverseDistortion(vpCameraParameters(1000.0, 1000.0, 805.0, 596.0, 0.0, 0.15),
+                                                     kWidth, kHeight);
+}
+
+//! True when \e p is inside (or within 4 px of) one of the occluders.
+bool occluded(const vpLaserConicSimulator::vpRenderSettings &settings, const vpImagePoint &p)
+{
+  for (const std::vector<vpImagePoint> &polygon : settings.occluders) {
+    const vpPolygon poly(polygon);
+    for (double du = -4; du <= 4; du += 4)
+      for (double dv = -4; dv <= 4; dv += 4)
+        if (poly.isInside(vpImagePoint(p.get_v() + dv, p.get_u() + du)))
+          return true;
+  }
+  return false;
+}
+
+Quality evaluate(const HardCase &c, vpLaserConicSimulator &sim, const std::vector<vpImagePoint> &points)
+{
+  Quality q;
+  q.nbPoints = points.size();
+  const TraceLine line(sim);
+  double sum2 = 0.0;
+  size_t on = 0;
+  for (const vpImagePoint &p : points) {
+    const double d = line.distance(p);
+    if (d <= 2.0) {
+      sum2 += d * d;
+      ++on;
+    }
+  }
+  q.rms = on ? std::sqrt(sum2 / on) : 0.0;
+  q.offTrace = points.empty() ? 0.0 : 1.0 - static_cast<double>(on) / points.size();
+  // Coverage: trace samples away from the border (the stripe must be seen on both sides) and not hidden.
+  std::map<std::pair<int, int>, std::vector<vpImagePoint> > cells;
+  for (const vpImagePoint &p : points)
+    cells[std::make_pair(static_cast<int>(std::floor(p.get_u() / 2)), static_cast<int>(std::floor(p.get_v() / 2)))].push_back(p);
+  size_t visible = 0, found = 0;
+  for (size_t k = 0; k < line.samples().size(); k += 5) {
+    const vpImagePoint &t = line.samples()[k];
+    if (t.get_u() < 15 || t.get_v() < 15 || t.get_u() > kWidth - 16 || t.get_v() > kHeight - 16 || occluded(c.settings, t))
+      continue;
+    ++visible;
+    bool hit = false;
+    const int cx = static_cast<int>(std::floor(t.get_u() / 2)), cy = static_cast<int>(std::floor(t.get_v() / 2));
+    for (int dy = -1; dy <= 1 && !hit; ++dy)
+      for (int dx = -1; dx <= 1 && !hit; ++dx) {
+        const auto it = cells.find(std::make_pair(cx + dx, cy + dy));
+        if (it != cells.end())
+          for (const vpImagePoint &p : it->second)
+            hit = hit || vpImagePoint::distance(p, t) <= 1.0;
+      }
+    found += hit ? 1 : 0;
+  }
+  q.coverage = visible ? static_cast<double>(found) / visible : 0.0;
+  return q;
+}
+
+//! Renders the case (seeded), detects with the default detector and measures.
+Quality runCase(const HardCase &c, unsigned int seed, vpLaserConicDetector &detector,
+                std::vector<vpImagePoint> *detected = nullptr)
+{
+  vpLaserConicSimulator sim = makeSimulator(c.cMg, seed);
+  sim.setCamera(c.cam, kWidth, kHeight);
+  vpImage<vpRGBa> I;
+  sim.render(I, c.settings);
+  dumpIfRequested("hard_" + c.name, I);
+  const std::vector<vpImagePoint> points = detector.detect(I);
+  if (std::getenv("VSP_LASER_DUMP_DIR")) { // the image with the mask over it: green accepted, blue rejected
+    vpImage<vpRGBa> overlay = I;
+    for (unsigned int i = 0; i < I.getHeight(); ++i)
+      for (unsigned int j = 0; j < I.getWidth(); ++j)
+        if (detector.getMask()[i][j] == 255)
+          overlay[i][j] = vpRGBa(0, 255, 0, 255);
+        else if (detector.getMask()[i][j] != 0)
+          overlay[i][j] = vpRGBa(0, 128, 255, 255);
+    dumpIfRequested("mask_" + c.name, overlay);
+  }
+  if (detected)
+    *detected = points;
+  const Quality q = evaluate(c, sim, points);
+  std::cout << c.name << ": " << q.nbPoints << " points, coverage " << 100 * q.coverage << " %, RMS " << q.rms
+            << " px, off the trace " << 100 * q.offTrace << " %, threshold " << detector.getThreshold()
+            << " (noise " << detector.getNoiseLevel() << ")" << std::endl;
+  return q;
+}
+
+//! Checks a quality against its bounds: coverage above, RMS and share of points off the trace below.
+void expectQuality(const Quality &q, double minCoverage, double maxRms, double maxOffTrace)
+{
+  EXPECT_GT(q.coverage, minCoverage);
+  EXPECT_LT(q.rms, maxRms);
+  EXPECT_LT(q.offTrace, maxOffTrace);
+}
+
+//! Dim stripe on a dark floor: V 45-110, S 130-255 on the stripe as in the photographs.
+HardCase dimCase()
+{
+  HardCase c;
+  c.name = "dim";
+  c.settings.ambient = 0.5;
+  c.settings.laserPower = 70.0;
+  c.settings.stripeWidth = 2.5;
+  return c;
+}
+
+//! Bright stripe whose core saturates to white, with bloom.
+HardCase saturatedCase()
+{
+  HardCase c;
+  c.name = "saturated";
+  c.settings.laserPower = 1400.0;
+  c.settings.whiteCore = 0.6;
+  c.settings.bloom = 0.06;
+  c.settings.bloomWidth = 12.0;
+  return c;
+}
+} // namespace
+
+TEST(LaserConicDetector, DimStripeOnADarkFloor)
+{
+  vpLaserConicDetector detector;
+  for (unsigned int seed : {21u, 22u}) {
+    const Quality q = runCase(dimCase(), seed, detector);
+    expectQuality(q, 0.95, 0.3, 0.002);
+  }
+}
+
+TEST(LaserConicDetector, BrightStripeWithASaturatedCore)
+{
+  vpLaserConicDetector detector;
+  for (unsigned int seed : {23u, 24u}) {
+    const Quality q = runCase(saturatedCase(), seed, detector);
+    expectQuality(q, 0.95, 0.3, 0.002);
+  }
+}
+
+TEST(LaserConicDetector, TheHsvDetectorMissesTheDimStripeAndSplitsTheSaturatedOne)
+{
+  // The historical fixed thresholds (S >= 80, V >= 80), on the same images: the reason for the ridge method.
+  vpLaserConicDetector hsv;
+  hsv.setMethod(vpLaserConicDetector::DETECTION_HSV);
+  const Quality dim = runCase(dimCase(), 21, hsv), saturated = runCase(saturatedCase(), 23, hsv);
+  EXPECT_LT(dim.coverage, 0.8);
+  EXPECT_GT(saturated.offTrace, 0.5); // the two red flanks measured apart, each > 2 px off the centre
+}
+
+TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
+{
+  // White tiles under a lamp whose reflection is white light without red: the stripe saturates to white
+  // over the tiles, red only at its flanks.
+  HardCase c;
+  c.name = "white_tiles";
+  c.settings.floor = vpLaserConicSimulator::FLOOR_WHITE_TILES;
+  c.settings.ambient = 0.9;
+  c.settings.specular = 60.0;
+  c.settings.shininess = 300.0;
+  c.settings.lampX = 0.1;
+  c.settings.lampY = -0.1;
+  c.settings.laserPower = 500.0;
+  c.settings.whiteCore = 0.6;
+  c.settings.bloom = 0.04;
+  vpLaserConicDetector detector;
+  const Quality q = runCase(c, 25, detector);
+  expectQuality(q, 0.9, 0.5, 0.01);
+}
+
+TEST(LaserConicDetector, StripeOnBrightGreyAndColourfulFloors)
+{
+  vpLaserConicDetector detector;
+  HardCase grey;
+  grey.name = "bright_grey";
+  grey.settings.floor = vpLaserConicSimulator::FLOOR_BRIGHT_GREY;
+  grey.settings.laserPower = 120.0;
+  const Quality g = runCase(grey, 26, detector);
+  expectQuality(g, 0.95, 0.3, 0.005);
+
+  HardCase mosaic;
+  mosaic.name = "mosaic";
+  mosaic.settings.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
+  mosaic.settings.laserPower = 200.0;
+  mosaic.settings.specular = 60.0;
+  const Quality m = runCase(mosaic, 27, detector);
+  expectQuality(m, 0.9, 0.3, 0.05);
+  EXPECT_LT(m.nbPoints, 4000u); // about one point per pixel of trace (~2700 px), not the floor's texture
+}
+
+TEST(LaserConicDetector, RedDistractorsAreRejectedOrLeftToTheRobustEstimators)
+{
+  HardCase c;
+  c.name = "distractors";
+  // A large red disc, a red square, and a thin red cable (stripe-like: an outlier for the estimators).
+  typedef vpLaserConicSimulator::vpDistractor Distractor;
+  c.settings.distractors = {Distractor::disc(0.25, 0.05, 0.15), Distractor::square(-0.05, -0.22, 0.06),
+                            Distractor::line(-0.3, 0.2, 0.1, 0.3, 0.004)};
+  c.settings.clutter = 80;
+  c.settings.clutterRadius = 0.5;
+  vpLaserConicDetector detector;
+  std::vector<vpImagePoint> points;
+  const Quality q = runCase(c, 28, detector, &points);
+  expectQuality(q, 0.9, 0.3, 0.25); // the cable, and a few clutter edges
+
+  // GP-3 with RANSAC rejects them: the plane within 2 mm and 0.2 deg of the truth.
+  vpLaserConicPose estimator;
+  estimator.setCameraParameters(camera());
+  estimator.setLaser(kOpening, laserPose());
+  estimator.setRansacThreshold(1.5);
+  estimator.setRansacSeed(1);
+  vpPlane plane;
+  ASSERT_TRUE(estimator.computePlane(points, vpLaserConicPose::GP3, plane));
+  const vpPlane truth = makeSimulator().getGroundPlane();
+  const double angle = std::acos(std::min(1.0, plane.getA() * truth.getA() + plane.getB() * truth.getB() +
+                                                   plane.getC() * truth.getC()));
+  EXPECT_LT(std::fabs(plane.getD() - truth.getD()), 2e-3);
+  EXPECT_LT(vpMath::deg(angle), 0.2);
+}
+
+TEST(LaserConicDetector, OccludedTracePartlyOutOfTheImageWithMotionBlur)
+{
+  HardCase c;
+  c.name = "occluded_blurred";
+  c.cMg = vpHomogeneousMatrix(0.25, 0.12, 1.0, vpMath::rad(10), vpMath::rad(-8), 0.3); // trace leaves the image
+  c.settings.occluders.push_back({vpImagePoint(500, 1100), vpImagePoint(450, 1350), vpImagePoint(800, 1450),
+                                  vpImagePoint(850, 1150)});
+  c.settings.motionBlurLength = 6.0;
+  c.settings.motionBlurAngle = vpMath::rad(30);
+  c.settings.laserPower = 200.0;
+  vpLaserConicDetector detector;
+  const Quality q = runCase(c, 29, detector);
+  expectQuality(q, 0.9, 0.3, 0.005);
+}
+
+TEST(LaserConicDetector, DimStripeThroughAWideDistortedLens)
+{
+  HardCase c = dimCase();
+  c.name = "dim_distorted";
+  c.cam = wideCamera();
+  c.cMg = vpHomogeneousMatrix(0.05, -0.03, 0.8, vpMath::rad(10), vpMath::rad(-8), 0.3);
+  vpLaserConicDetector detector;
+  const Quality q = runCase(c, 30, detector);
+  expectQuality(q, 0.95, 0.3, 0.002);
+}
+
+TEST(LaserConicDetector, FramesWithoutLaserGiveAlmostNoPointAndNoPlane)
+{
+  // A frame without laser (pulsed laser, laser off): a few thin red bits of the floors at most (the thin
+  // corners of red mosaic patches), far fewer than the ~2700 points of a trace: a consensus of a few
+  // percent of a trace's points cannot be mistaken for one.
+  vpLaserConicDetector detector;
+  vpLaserConicPose estimator;
+  estimator.setCameraParameters(camera());
+  estimator.setLaser(kOpening, laserPose());
+  estimator.setRansacSeed(3);
+  for (int floor = vpLaserConicSimulator::FLOOR_DARK_TILES; floor <= vpLaserConicSimulator::FLOOR_WHITE_TILES; ++floor) {
+    HardCase c;
+    c.name = "no_laser_" + std::to_string(floor);
+    c.settings.floor = static_cast<vpLaserConicSimulator::vpFloorType>(floor);
+    c.settings.laserOn = false;
+    c.settings.specular = 80.0;
+    std::vector<vpImagePoint> points;
+    const Quality q = runCase(c, 31 + floor, detector, &points);
+    EXPECT_LT(q.nbPoints, 150u) << c.name; // a trace gives ~2700
+    vpPlane plane;
+    if (points.size() >= 3 && estimator.computePlane(points, vpLaserConicPose::GP3, plane))
+      EXPECT_LT(estimator.getInliers().size(), 150u) << c.name;
+  }
+}
+
+TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
+{
+  // The distractor scene; the region is the exact trace (as the previous frame's trace or conic would
+  // predict it): the trace is found as in the whole image, the red cable outside the band is ignored.
+  HardCase c;
+  c.name = "search_region";
+  c.settings.distractors = {vpLaserConicSimulator::vpDistractor::line(-0.25, -0.05, 0.05, 0.1, 0.004)};
+  vpLaserConicDetector whole, byPoints, byConic;
+  const Quality all = runCase(c, 40, whole);
+  EXPECT_GT(all.offTrace, 0.05); // the cable is detected in the whole image
+
+  vpLaserConicSimulator sim = makeSimulator(c.cMg, 40);
+  byPoints.setSearchRegion(sim.tracePoints(720), 20.0);
+  EXPECT_TRUE(byPoints.hasSearchRegion());
+  const Quality q = runCase(c, 40, byPoints);
+  expectQuality(q, 0.99, 0.3, 0.01);
+  // The band is rasterised in blocks of 16 columns: no point beyond margin + 16 + stripe width of the trace.
+  std::vector<vpImagePoint> points;
+  runCase(c, 40, byPoints, &points);
+  const TraceLine line(sim);
+  for (const vpImagePoint &p : points)
+    EXPECT_LT(line.distance(p), 20.0 + 16.0 + 14.0);
+
+  const Eigen::Matrix3d C = pixelConic(sim.getGroundPlane());
+  vpMatrix Cv(3, 3);
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      Cv[i][j] = C(i, j);
+  byConic.setSearchRegion(Cv, 20.0);
+  const Quality qc = runCase(c, 40, byConic);
+  EXPECT_GT(qc.coverage, 0.99);
+  EXPECT_LT(qc.offTrace, 0.01);
+
+  byConic.clearSearchRegion();
+  EXPECT_FALSE(byConic.hasSearchRegion());
+  EXPECT_THROW(byConic.setSearchRegion(std::vector<vpImagePoint>(), 20.0), vpLaserConicException);
+  EXPECT_THROW(byConic.setSearchRegion(sim.tracePoints(10), 0.0), vpLaserConicException);
+  EXPECT_THROW(byConic.setSearchRegion(vpMatrix(3, 3, 0.0), 20.0), vpLaserConicException);
+  EXPECT_THROW(byConic.setSearchRegion(vpMatrix(2, 3, 1.0), 20.0), vpLaserConicException);
 }

@@ -19,6 +19,7 @@
 #include <Eigen/Dense>
 
 #include <visp3/core/vpMath.h>
+#include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/core/vpPixelMeterConversion.h>
 
 #include "laser_sim_test_utils.h"
@@ -313,4 +314,229 @@ TEST(LaserConicSimulator, BadSettingsThrow)
   EXPECT_THROW(sim.render(I, vpImage<vpRGBa>(), 3.0, -1.0), vpException);
   // A failed setter leaves the simulator usable.
   EXPECT_EQ(sim.tracePoints(100).size(), 100u);
+}
+
+namespace
+{
+//! A wide-angle camera with barrel distortion (kdu > 0: the undistorted radius grows), kud fitted.
+vpCameraParameters distortedCamera()
+{
+  return vpLaserConicSimulator::fitInverseDistortion(vpCameraParameters(1000.0, 1000.0, 805.0, 596.0, 0.0, 0.15),
+                                                     kWidth, kHeight);
+}
+
+//! Pixel of a ground point (frame g) through the exact inverse of the camera's pixel-to-metre model.
+vpImagePoint groundPixel(const vpCameraParameters &cam, const vpHomogeneousMatrix &cMg, double X, double Y)
+{
+  const vpColVector P = cMg * vpColVector({X, Y, 0.0, 1.0});
+  return laser_test::exactPixel(cam, P[0] / P[2], P[1] / P[2]);
+}
+
+const vpRGBa &at(const vpImage<vpRGBa> &I, const vpImagePoint &p)
+{
+  return I[static_cast<unsigned int>(std::lround(p.get_v()))][static_cast<unsigned int>(std::lround(p.get_u()))];
+}
+} // namespace
+
+TEST(LaserConicSimulator, FitInverseDistortionInvertsTheModel)
+{
+  const vpCameraParameters cam = distortedCamera();
+  EXPECT_LT(cam.get_kud(), 0.0); // barrel kdu > 0 is undone by kud < 0
+  // Round trip meter -> pixel (kud) -> meter (kdu) over the image: a fitted inverse, not an exact one.
+  double worst = 0.0;
+  for (double x = -0.7; x <= 0.7; x += 0.05)
+    for (double y = -0.55; y <= 0.55; y += 0.05) {
+      double u = 0.0, v = 0.0, x2 = 0.0, y2 = 0.0;
+      vpMeterPixelConversion::convertPoint(cam, x, y, u, v);
+      if (u < 0 || v < 0 || u > kWidth - 1 || v > kHeight - 1)
+        continue;
+      vpPixelMeterConversion::convertPoint(cam, u, v, x2, y2);
+      worst = std::max(worst, std::hypot(x2 - x, y2 - y) * cam.get_px());
+    }
+  std::cout << "kud " << cam.get_kud() << ", fitted kdu " << cam.get_kdu() << ": worst round trip " << worst << " px"
+            << std::endl;
+  // The single-coefficient models are not inverses of each other: several pixels in the corners.
+  EXPECT_LT(worst, 15.0);
+  EXPECT_GT(worst, 0.5);
+}
+
+TEST(LaserConicSimulator, DistortedTracePointsConvertExactlyToTheTrueTrace)
+{
+  // With distortion, vpPixelMeterConversion maps each trace pixel onto the normalized point of the true
+  // trace: its ray meets the plane on the laser cone (cone angle = half opening angle to rounding).
+  vpLaserConicSimulator sim = makeSimulator();
+  sim.setCamera(distortedCamera(), kWidth, kHeight);
+  const std::vector<vpImagePoint> points = sim.tracePoints(720);
+  ASSERT_GT(points.size(), 600u);
+  double worst = 0.0;
+  for (const vpImagePoint &p : points)
+    worst = std::max(worst, std::fabs(coneAngleOf(p, distortedCamera(), laserPose(), sim.getGroundPlane()) - 0.5 * kOpening));
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST(LaserConicSimulator, DistortedRenderFollowsTheDistortedTrace)
+{
+  vpLaserConicSimulator sim = makeSimulator(vpHomogeneousMatrix(0.05, -0.03, 0.9, vpMath::rad(10), vpMath::rad(-8), 0.3));
+  sim.setCamera(distortedCamera(), kWidth, kHeight);
+  vpImage<vpRGBa> I;
+  vpLaserConicSimulator::vpRenderSettings settings;
+  settings.noise = 0.0;
+  sim.render(I, settings);
+  auto isRed = [](const vpRGBa &c) { return c.R > 150 && c.R > c.G + 80 && c.R > c.B + 80; };
+  const std::vector<vpImagePoint> trace = sim.tracePoints(2000);
+  ASSERT_GT(trace.size(), 1500u);
+  size_t onRed = 0;
+  for (const vpImagePoint &p : trace)
+    onRed += isRed(at(I, p)) ? 1 : 0;
+  EXPECT_EQ(onRed, trace.size());
+  // The undistorted trace is elsewhere: a distortion-free render would miss the distorted points.
+  vpLaserConicSimulator pinhole = makeSimulator(vpHomogeneousMatrix(0.05, -0.03, 0.9, vpMath::rad(10), vpMath::rad(-8), 0.3));
+  pinhole.setCamera(vpCameraParameters(1000.0, 1000.0, 805.0, 596.0), kWidth, kHeight);
+  vpImage<vpRGBa> J;
+  pinhole.render(J, settings);
+  size_t onRedPinhole = 0;
+  for (const vpImagePoint &p : trace)
+    onRedPinhole += isRed(at(J, p)) ? 1 : 0;
+  EXPECT_LT(onRedPinhole, trace.size() / 2);
+}
+
+TEST(LaserConicSimulator, ChessboardAndTextureLieAtTheirGroundCoordinates)
+{
+  const vpCameraParameters cam = distortedCamera();
+  const vpHomogeneousMatrix cMg(-0.12, -0.08, 0.7, vpMath::rad(15), vpMath::rad(-10), 0.4);
+  vpLaserConicSimulator sim = makeSimulator(cMg);
+  sim.setCamera(cam, kWidth, kHeight);
+  const double s = 0.03;
+  sim.setGroundChessboard(9, 6, s);
+  vpLaserConicSimulator::vpRenderSettings settings;
+  settings.noise = 0.0;
+  settings.laserOn = false;
+  vpImage<vpRGBa> I;
+  sim.render(I, settings);
+  dumpIfRequested("sim_chessboard", I);
+  // Centre of each square: black when (kx + ky) is even.
+  for (unsigned int kx = 0; kx < 9; ++kx)
+    for (unsigned int ky = 0; ky < 6; ++ky) {
+      const vpRGBa &c = at(I, groundPixel(cam, cMg, (kx + 0.5) * s, (ky + 0.5) * s));
+      if ((kx + ky) % 2 == 0)
+        EXPECT_LT(c.G, 40) << kx << " " << ky;
+      else
+        EXPECT_GT(c.G, 200) << kx << " " << ky;
+    }
+  // Around an inner corner, 1 mm inside each quadrant: the anti-aliased edge is at the true corner within
+  // a fraction of a pixel (1 mm is about 1.4 px here), so each quadrant already has its colour.
+  for (unsigned int kx = 1; kx < 9; ++kx)
+    for (unsigned int ky = 1; ky < 6; ++ky)
+      for (int q = 0; q < 4; ++q) {
+        const double dx = (q & 1) ? 0.0015 : -0.0015, dy = (q & 2) ? 0.0015 : -0.0015;
+        const bool black = ((kx - (dx < 0 ? 1 : 0)) + (ky - (dy < 0 ? 1 : 0))) % 2 == 0;
+        const vpRGBa &c = at(I, groundPixel(cam, cMg, kx * s + dx, ky * s + dy));
+        if (black)
+          EXPECT_LT(c.G, 122) << kx << " " << ky << " " << q;
+        else
+          EXPECT_GT(c.G, 122) << kx << " " << ky << " " << q;
+      }
+
+  // A 2 x 2 texture of 5 cm texels at (0.3, 0.1): each texel centre shows its colour.
+  vpImage<vpRGBa> texture(2, 2);
+  texture[0][0] = vpRGBa(0, 0, 200, 255);
+  texture[0][1] = vpRGBa(0, 200, 0, 255);
+  texture[1][0] = vpRGBa(200, 200, 0, 255);
+  texture[1][1] = vpRGBa(0, 200, 200, 255);
+  sim.setGroundChessboard(0, 0, 0.0);
+  sim.setGroundTexture(texture, 0.05, -0.3, 0.1);
+  sim.render(I, settings);
+  for (unsigned int i = 0; i < 2; ++i)
+    for (unsigned int j = 0; j < 2; ++j) {
+      const vpRGBa &c = at(I, groundPixel(cam, cMg, -0.3 + (j + 0.25) * 0.05 + 0.0125, 0.1 + (i + 0.5) * 0.05));
+      EXPECT_NEAR(c.R, texture[i][j].R, 30) << i << j;
+      EXPECT_NEAR(c.G, texture[i][j].G, 30) << i << j;
+      EXPECT_NEAR(c.B, texture[i][j].B, 30) << i << j;
+    }
+  EXPECT_THROW(sim.setGroundTexture(texture, 0.0), vpLaserConicException);
+  EXPECT_THROW(sim.setGroundChessboard(3, 0, 0.03), vpLaserConicException);
+}
+
+TEST(LaserConicSimulator, HardSettingsRenderWhatTheyDescribe)
+{
+  vpLaserConicSimulator sim = makeSimulator();
+  const std::vector<vpImagePoint> trace = sim.tracePoints(500);
+  vpLaserConicSimulator::vpRenderSettings settings;
+  settings.noise = 0.0;
+  vpImage<vpRGBa> I;
+
+  // A saturating stripe: white core on the curve.
+  settings.laserPower = 1400.0;
+  settings.whiteCore = 0.6;
+  settings.bloom = 0.05;
+  sim.render(I, settings);
+  dumpIfRequested("sim_saturated", I);
+  size_t white = 0;
+  for (const vpImagePoint &p : trace) {
+    const vpRGBa &c = at(I, p);
+    white += (c.R == 255 && c.G > 240 && c.B > 240) ? 1 : 0;
+  }
+  EXPECT_GT(white, trace.size() * 9 / 10);
+
+  // A dim stripe: red dominant but dark (V 45-110 as in real photographs).
+  settings.laserPower = 70.0;
+  settings.whiteCore = 0.0;
+  settings.bloom = 0.0;
+  sim.render(I, settings);
+  dumpIfRequested("sim_dim", I);
+  for (const vpImagePoint &p : trace) {
+    const vpRGBa &c = at(I, p);
+    EXPECT_LT(c.R, 150);
+    EXPECT_GT(c.R, c.G + 30);
+  }
+
+  // No laser: no red at all on the dark floor; occluders hide the floor.
+  settings.laserOn = false;
+  settings.occluders.push_back({vpImagePoint(0, 0), vpImagePoint(0, 100), vpImagePoint(100, 100), vpImagePoint(100, 0)});
+  sim.render(I, settings);
+  for (const vpImagePoint &p : trace)
+    EXPECT_LT(at(I, p).R, at(I, p).G + 20);
+  EXPECT_EQ(I[50][50].R, settings.occluderColour.R);
+
+  // A red disc at the ground origin is red in the image.
+  settings.occluders.clear();
+  const vpLaserConicSimulator::vpDistractor disc = vpLaserConicSimulator::vpDistractor::disc(-0.05, 0.03, 0.1);
+  settings.distractors.push_back(disc);
+  sim.render(I, settings);
+  const vpRGBa &c = at(I, groundPixel(camera(), groundPose(), disc.x, disc.y));
+  EXPECT_EQ(c.R, disc.colour.R);
+  EXPECT_EQ(c.G, disc.colour.G);
+
+  // Settings out of range.
+  settings.ambient = -1.0;
+  EXPECT_THROW(sim.render(I, settings), vpLaserConicException);
+  settings.ambient = 1.0;
+  settings.bloomWidth = 0.0;
+  EXPECT_THROW(sim.render(I, settings), vpLaserConicException);
+}
+
+TEST(LaserConicSimulator, EveryEstimatorRecoversTheExactPlaneFromDistortedTracePoints)
+{
+  // The simulator's distorted pixels and the estimators' vpPixelMeterConversion are the same lens model:
+  // exact points give the exact plane (to rounding) for every method.
+  for (const vpHomogeneousMatrix &cMg :
+       {groundPose(), vpHomogeneousMatrix(-0.1, 0.05, 0.7, vpMath::rad(-15), vpMath::rad(12), 1.0)}) {
+    vpLaserConicSimulator sim = makeSimulator(cMg);
+    sim.setCamera(distortedCamera(), kWidth, kHeight);
+    const std::vector<vpImagePoint> points = sim.tracePoints(400);
+    ASSERT_GT(points.size(), 300u);
+    const vpPlane truth = sim.getGroundPlane();
+    for (vpLaserConicPose::vpLaserConicMethod method :
+         {vpLaserConicPose::GP3, vpLaserConicPose::PP3, vpLaserConicPose::PP5, vpLaserConicPose::PLANE_PAIR}) {
+      vpLaserConicPose estimator;
+      estimator.setCameraParameters(distortedCamera());
+      estimator.setLaser(kOpening, laserPose());
+      estimator.setRansacSeed(1);
+      vpPlane plane;
+      ASSERT_TRUE(estimator.computePlane(points, method, plane)) << method;
+      const double dot = plane.getA() * truth.getA() + plane.getB() * truth.getB() + plane.getC() * truth.getC();
+      EXPECT_NEAR(dot, 1.0, 1e-9) << method;
+      EXPECT_NEAR(plane.getD(), truth.getD(), 1e-9) << method;
+    }
+  }
 }

@@ -60,14 +60,46 @@ template <typename Derived> inline bool allFinite(const Eigen::MatrixBase<Derive
   return v.allFinite();
 }
 
+//! Robust loss of the refinement (values of vpPoseGravity::vpRobustLoss).
+enum class RefineLoss
+{
+  None,   //!< squared error (maximum likelihood under Gaussian noise)
+  Huber,  //!< quadratic up to the scale, linear beyond
+  Cauchy  //!< log(1 + (r / scale)^2): outliers lose their influence
+};
+
+//! Settings of refinePose().
+struct RefineOptions
+{
+  double imageSigma = 1e-3;         //!< image noise, normalized coordinates (whitens the reprojection errors)
+  double cameraGravitySigma = 0.0;  //!< noise of each component of the unit camera gravity (0: exact)
+  double objectGravitySigma = 0.0;  //!< noise of each component of the unit object gravity (0: exact)
+  RefineLoss loss = RefineLoss::None; //!< robust loss on each point's reprojection error
+  double lossScale = 3e-3;          //!< scale of the loss, normalized coordinates
+};
+
 /*!
   Maximum-likelihood refinement of \e pose on n >= 2 points (implemented with Ceres in
-  refine_gravity.cpp). Reprojection residuals in normalized coordinates divided by \e imageSigma.
-  gravitySigma == 0: 4 DOF (yaw, t), both gravity vectors exact. gravitySigma > 0: 6 DOF with the
-  two gravity measurements as priors. Returns false, pose unchanged, without a usable solution.
+  refine_gravity.cpp). Reprojection residuals in normalized coordinates divided by imageSigma.
+  Both gravity sigmas 0: 4 DOF (yaw, t), both gravity vectors exact. Otherwise 6 DOF with the two
+  gravity measurements as one prior of standard deviation sqrt(sigma_c^2 + sigma_o^2) per component.
+  Returns false, pose unchanged, without a usable solution or when a point ends behind the camera.
+  When \e covariance is not null it receives the 6x6 covariance of (t, theta) (see poseCovariance()).
 */
 bool refinePose(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
-                const Eigen::Vector3d *X, int n, double imageSigma, double gravitySigma, Pose &pose);
+                const Eigen::Vector3d *X, int n, const RefineOptions &options, Pose &pose,
+                Eigen::Matrix<double, 6, 6> *covariance = nullptr);
+
+/*!
+  Covariance of the pose estimated from n points at \e pose (first-order, Gauss-Newton: the inverse
+  of J^T J of the whitened, robustified residuals of refinePose()). Order (t_x, t_y, t_z, theta_x,
+  theta_y, theta_z): t in the unit of the object points, theta in rad, a rotation perturbation on the
+  left in the camera frame, cRo = exp([theta]_x) cRo_hat. With exact gravity (both sigmas 0) the
+  matrix has rank 4: its rotation block is var(yaw) gc gc^T. Returns false when J^T J is singular.
+*/
+bool poseCovariance(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
+                    const Eigen::Vector3d *X, int n, const RefineOptions &options, const Pose &pose,
+                    Eigen::Matrix<double, 6, 6> &covariance);
 } // namespace detail
 } // namespace vpGravitySolvers
 

@@ -109,6 +109,7 @@ struct vpPairYaw
   vpYawLinear qA;   //!< nn times the depth of A along x_A (positive in front of the camera)
   vpYawLinear qB;   //!< nn times the depth of B along x_B
   double h;         //!< 1 / (2 nn)
+  double observability; //!< sqrt(a^2 + b^2) / (|n| |d|): how much the pair constrains the yaw (0: not at all, 1: best)
 
   //! Translation cto of the root (c, s), given \e RS = cRo (X_A + X_B).
   Eigen::Vector3d translation(double c, double s, const Eigen::Vector3d &xA, const Eigen::Vector3d &xB,
@@ -189,6 +190,7 @@ inline int solvePairYaw(const Eigen::Vector3d &FA, const Eigen::Vector3d &FB, co
     yaw.cs[1][1] = yaw.cs[0][1];
   }
   yaw.roots = roots;
+  yaw.observability = std::sqrt(M2 / (nn * dd));
 
   // p_i = F_i . Rz d, then the depth numerators of the normal equations (determinant -nn).
   const double pA[3] = {FA.x() * d.x() + FA.y() * d.y(), FA.y() * d.x() - FA.x() * d.y(), FA.z() * d.z()};

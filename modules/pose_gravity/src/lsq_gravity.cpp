@@ -10,8 +10,12 @@
       v^T Rz Y = cos (v_x Y_x + v_y Y_y) + sin (v_y Y_x - v_x Y_y) + v_z Y_z.
   The cost z^T M z is minimised over s in closed form (Schur complement), leaving a quadratic form
   q^T Q q in q = (cos, sin, 1) to be minimised on the unit circle. Its stationary points are the
-  roots of a quartic in tan(phi / 2); the cost is evaluated at each and the smallest kept.
+  roots of a quartic in tan(phi / 2); the minima among them are polished by Newton steps and the
+  lowest kept. Each point's equations carry a weight w_i: after a first solve with unit weights,
+  w_i = mean depth / depth_i turns the algebraic residual z_i (x_i - P_x / P_z) into the
+  reprojection error, so that a few passes approach the maximum-likelihood cost.
 */
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -30,12 +34,12 @@ const int kS[3] = {2, 3, 4};
 
 // Adds the two algebraic equations of one point to the normal matrix M (upper triangle is enough
 // but the full matrix is cheap at this size).
-void accumulatePoint(const Eigen::Matrix3d &wRc, const Eigen::Vector3d &x, const Eigen::Vector3d &Y,
+void accumulatePoint(const Eigen::Matrix3d &wRc, const Eigen::Vector3d &x, const Eigen::Vector3d &Y, double w,
                      Eigen::Matrix<double, 6, 6> &M)
 {
   const double xn = x.x() / x.z(), yn = x.y() / x.z();
-  const Eigen::Vector3d v1 = wRc * Eigen::Vector3d(1.0, 0.0, -xn);
-  const Eigen::Vector3d v2 = wRc * Eigen::Vector3d(0.0, 1.0, -yn);
+  const Eigen::Vector3d v1 = w * (wRc * Eigen::Vector3d(1.0, 0.0, -xn));
+  const Eigen::Vector3d v2 = w * (wRc * Eigen::Vector3d(0.0, 1.0, -yn));
   for (const Eigen::Vector3d *v : {&v1, &v2}) {
     Eigen::Matrix<double, 6, 1> row;
     row << v->x() * Y.x() + v->y() * Y.y(), v->y() * Y.x() - v->x() * Y.y(), v->x(), v->y(), v->z(), v->z() * Y.z();
@@ -48,6 +52,16 @@ double circleCost(const Eigen::Matrix3d &Q, double phi)
 {
   const Eigen::Vector3d q(std::cos(phi), std::sin(phi), 1.0);
   return q.dot(Q * q);
+}
+
+// First and second derivatives of q^T Q q at angle phi (Q symmetric).
+void circleDerivatives(const Eigen::Matrix3d &Q, double phi, double &d1, double &d2)
+{
+  const double c = std::cos(phi), s = std::sin(phi);
+  const double c2 = c * c - s * s, s2 = 2.0 * c * s;
+  const double dQ = Q(0, 0) - Q(1, 1);
+  d1 = -dQ * s2 + 2.0 * Q(0, 1) * c2 - 2.0 * Q(0, 2) * s + 2.0 * Q(1, 2) * c;
+  d2 = -2.0 * dQ * c2 - 4.0 * Q(0, 1) * s2 - 2.0 * Q(0, 2) * c - 2.0 * Q(1, 2) * s;
 }
 
 // Real parts of the roots of the polynomial sum_k coeffs[k] t^k, degree dropped while the leading
@@ -110,23 +124,25 @@ Eigen::Vector3d translationForYaw(const Problem &p, double alpha)
   return -p.MssInv * p.Mqs.transpose() * q;
 }
 
-// Number of points in front of the camera for a yaw and its best translation.
-int pointsInFront(const Problem &p, double alpha)
+// Sum of squared reprojection errors of the pose of a yaw and its best translation (infinite when
+// a point is behind the camera).
+double reprojectionCostForYaw(const Problem &p, double alpha)
 {
   const Eigen::Matrix3d Rz = detail::rotationZ(std::cos(alpha), std::sin(alpha));
   const Eigen::Vector3d s = translationForYaw(p, alpha);
-  // Depth along the camera optical axis = (wRc^T P_up).z = (third column of wRc) . P_up.
-  const Eigen::Vector3d axisUp = p.wRc.col(2);
-  int count = 0;
-  for (int i = 0; i < p.n; ++i)
-    count += (axisUp.dot(Rz * (p.wRo * (p.X[i] - p.centroid)) + s) > 0.0);
-  return count;
+  double cost = 0.0;
+  for (int i = 0; i < p.n; ++i) {
+    const Eigen::Vector3d P = p.wRc.transpose() * (Rz * (p.wRo * (p.X[i] - p.centroid)) + s);
+    if (!(P.z() > 0.0))
+      return std::numeric_limits<double>::infinity();
+    const double ex = P.x() / P.z() - p.x[i].x() / p.x[i].z(), ey = P.y() / P.z() - p.x[i].y() / p.x[i].z();
+    cost += ex * ex + ey * ey;
+  }
+  return cost;
 }
 
-// Yaw minimising q^T Q q on the unit circle, q = (cos, sin, 1). The algebraic cost does not see
-// which side of the camera a point lies on, so that it can have two global minima (e.g. two
-// points on one vertical ray: the mirrored pose fits as well); the stationary points are therefore
-// ranked first by the number of points in front of the camera, then by cost.
+// Yaw of the best minimum of q^T Q q on the unit circle, q = (cos, sin, 1): among its minima, the
+// one whose pose reprojects the points best.
 double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
 {
   // Reference angle: the unconstrained minimiser over (c, s). For exact data it is the solution,
@@ -154,41 +170,71 @@ double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
     phis[k] = 2.0 * std::atan(phis[k]);
   phis[count++] = 3.14159265358979323846; // the stationary point lost by the half-angle substitution, if it is one
 
-  double bestAlpha = 0.0, bestCost = std::numeric_limits<double>::infinity();
-  int bestFront = -1;
+  // Scale of the cost's curvature: second derivatives below it (relative) are taken as flat.
+  const double curvatureScale = Q.norm();
+  double phiMin[5], costMin[5];
+  int minima = 0;
   for (int k = 0; k < count; ++k) {
-    const double alpha = detail::wrapAngle(theta0 + phis[k]);
-    const double cost = circleCost(Q, phis[k]);
-    const int front = pointsInFront(problem, alpha);
-    if (front > bestFront || (front == bestFront && cost < bestCost)) {
-      bestFront = front;
+    // Newton polishing: the companion-matrix roots (or the real part of a nearly real pair) are
+    // close to the stationary point; a few steps make it exact. Maxima and inflections are skipped.
+    double phi = phis[k], d1 = 0.0, d2 = 0.0;
+    for (int it = 0; it < 20; ++it) {
+      circleDerivatives(Q, phi, d1, d2);
+      if (!(d2 > 1e-12 * curvatureScale))
+        break;
+      const double delta = d1 / d2;
+      phi -= delta;
+      if (std::abs(delta) < 1e-14) // quadratic convergence: usually 1 to 3 steps
+        break;
+    }
+    circleDerivatives(Q, phi, d1, d2);
+    if (!(d2 > 1e-12 * curvatureScale))
+      continue;
+    phiMin[minima] = phi;
+    costMin[minima++] = circleCost(Q, phi);
+  }
+  if (minima == 0)
+    return theta0; // a constant cost (unobservable yaw) is rejected by the caller before
+  // The minima are ranked by the cost that matters, the sum of squared reprojection errors
+  // (infinite with a point behind the camera): the algebraic cost weighs each point by its squared
+  // depth, so that with an outlier its lowest minimum can be a pose squeezed towards the camera or
+  // behind it. Without any minimum in front, the lowest algebraic cost.
+  int best = static_cast<int>(std::min_element(costMin, costMin + minima) - costMin);
+  double bestCost = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < minima; ++k) {
+    const double cost = reprojectionCostForYaw(problem, detail::wrapAngle(theta0 + phiMin[k]));
+    if (cost < bestCost) {
       bestCost = cost;
-      bestAlpha = alpha;
+      best = k;
     }
   }
-  return bestAlpha;
+  return detail::wrapAngle(theta0 + phiMin[best]);
 }
 } // namespace
 
-bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
-                  const Eigen::Vector3d *X, int n, Pose &pose)
+namespace
 {
-  if (n < 2 || !detail::allFinite(gCam) || !detail::allFinite(gObj))
-    return false;
-  const Eigen::Matrix3d wRc = uprightRotation(gCam);
-  const Eigen::Matrix3d wRo = uprightRotation(gObj);
-  // Centring the object points only shifts t (by R * centroid) but keeps the normal matrix free of
-  // a large common offset, which would otherwise swamp the yaw-dependent terms.
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (int i = 0; i < n; ++i) {
-    if (!(x[i].z() > 0.0) || !detail::allFinite(x[i]) || !detail::allFinite(X[i]))
-      return false;
-    centroid += X[i];
-  }
-  centroid /= n;
-  Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
+// Sum of squared reprojection errors in normalized coordinates (infinite with a point behind the camera).
+double reprojectionCost(const Pose &pose, const Eigen::Vector3d *x, const Eigen::Vector3d *X, int n)
+{
+  double cost = 0.0;
   for (int i = 0; i < n; ++i)
-    accumulatePoint(wRc, x[i], wRo * (X[i] - centroid), M);
+    cost += detail::reprojectionError2(pose, x[i], X[i]);
+  return cost;
+}
+
+// One weighted solve: the global minimum of the weighted algebraic cost (see minimiseOnCircle()).
+// Unit weights without a previous estimate; otherwise w_i = meanDepth / depth_i of *previous (all
+// depths positive, checked by the caller): the weights are recomputed here so that nothing allocates.
+bool solveWeighted(const Eigen::Matrix3d &wRc, const Eigen::Matrix3d &wRo, const Eigen::Vector3d *x,
+                   const Eigen::Vector3d *X, int n, const Eigen::Vector3d &centroid, const Pose *previous,
+                   double meanDepth, Pose &pose)
+{
+  Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int i = 0; i < n; ++i) {
+    const double w = previous ? meanDepth / (previous->R.row(2).dot(X[i]) + previous->t.z()) : 1.0;
+    accumulatePoint(wRc, x[i], wRo * (X[i] - centroid), w, M);
+  }
 
   Eigen::Matrix3d Mqq, Mqs, Mss;
   for (int r = 0; r < 3; ++r)
@@ -219,6 +265,52 @@ bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, cons
   pose.R = detail::composeRotation(wRc, alpha, wRo);
   pose.t = wRc.transpose() * sUp - pose.R * centroid;
   return pose.R.allFinite() && pose.t.allFinite();
+}
+} // namespace
+
+bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
+                  const Eigen::Vector3d *X, int n, Pose &pose, int reweightingPasses)
+{
+  if (n < 2 || !detail::allFinite(gCam) || !detail::allFinite(gObj))
+    return false;
+  const Eigen::Matrix3d wRc = uprightRotation(gCam);
+  const Eigen::Matrix3d wRo = uprightRotation(gObj);
+  // Centring the object points only shifts t (by R * centroid) but keeps the normal matrix free of
+  // a large common offset, which would otherwise swamp the yaw-dependent terms.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) {
+    if (!(x[i].z() > 0.0) || !detail::allFinite(x[i]) || !detail::allFinite(X[i]))
+      return false;
+    centroid += X[i];
+  }
+  centroid /= n;
+  Pose current;
+  if (!solveWeighted(wRc, wRo, x, X, n, centroid, nullptr, 1.0, current))
+    return false;
+  for (int pass = 0; pass < reweightingPasses; ++pass) {
+    // Inverse depths of the current estimate, relative to their mean (a scale-free weighting).
+    double mean = 0.0;
+    bool inFront = true;
+    for (int i = 0; i < n; ++i) {
+      const double depth = current.R.row(2).dot(X[i]) + current.t.z();
+      inFront = inFront && (depth > 0.0);
+      mean += depth / n;
+    }
+    // A pass is kept only if it lowers the sum of squared reprojection errors (the cost it
+    // approaches): with an outlier, inverse-depth weights can otherwise run away.
+    // A pass that gains less than 0.1 % leaves nothing for the next one.
+    Pose next;
+    if (!inFront || !solveWeighted(wRc, wRo, x, X, n, centroid, &current, mean, next))
+      break;
+    const double before = reprojectionCost(current, x, X, n), after = reprojectionCost(next, x, X, n);
+    if (!(after <= before))
+      break;
+    current = next;
+    if (!(after < (1.0 - 1e-3) * before))
+      break;
+  }
+  pose = current;
+  return true;
 }
 
 bool translationFromRotation(const Eigen::Matrix3d &R, const Eigen::Vector3d *x, const Eigen::Vector3d *X, int n,

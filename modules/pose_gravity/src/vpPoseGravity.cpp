@@ -1,60 +1,36 @@
 /* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
 /*
   vpPoseGravity: the ViSP-typed facade over the pure Eigen solvers of vpGravitySolvers.h.
-  Input is validated here (exceptions), the solvers themselves never throw.
+  Input is validated here (exceptions), the solvers themselves never throw; every closed-form result
+  is checked against the points before it is returned. The RANSAC adapter is in
+  vpPoseGravityRansac.cpp, the display helpers in vpPoseGravityDisplay.cpp.
 */
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Dense>
 
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
-#include <visp3/robust/vpRansac.h>
 
 #include "gravityGeometry.h"
-#include "gravityPairSolver.h"
+#include "poseGravityFacade.h"
 
 namespace
 {
 using vpGravitySolvers::Pose;
+using namespace vpPoseGravityFacade;
 
-// Relative tolerance under which two object points are the same point.
-const double kDuplicateTolerance = 1e-12;
 // Sine of the angle under which three object points are collinear (P3P).
 const double kCollinearTolerance = 1e-10;
-
-Eigen::Vector3d toEigen(const vpColVector &v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
-
-// Writes the pose into cMo in place (no temporary matrix: vpHomogeneousMatrix allocates).
-void storePose(const Pose &pose, vpHomogeneousMatrix &cMo)
-{
-  for (unsigned int r = 0; r < 3; ++r) {
-    for (unsigned int c = 0; c < 3; ++c)
-      cMo[r][c] = pose.R(static_cast<int>(r), static_cast<int>(c));
-    cMo[r][3] = pose.t(static_cast<int>(r));
-    cMo[3][r] = 0.0;
-  }
-  cMo[3][3] = 1.0;
-}
 
 vpHomogeneousMatrix toHomogeneous(const Pose &pose)
 {
   vpHomogeneousMatrix cMo;
   storePose(pose, cMo);
   return cMo;
-}
-
-Pose toPose(const vpHomogeneousMatrix &cMo)
-{
-  Pose pose;
-  for (unsigned int r = 0; r < 3; ++r) {
-    for (unsigned int c = 0; c < 3; ++c)
-      pose.R(static_cast<int>(r), static_cast<int>(c)) = cMo[r][c];
-    pose.t(static_cast<int>(r)) = cMo[r][3];
-  }
-  return pose;
 }
 
 // Writes the normalized gravity of a user vector into unit; throws on anything that is not a usable
@@ -80,61 +56,71 @@ void normalizeGravity(const vpColVector &g, const char *which, vpColVector &unit
     unit[i] = n[static_cast<int>(i)];
 }
 
-// The RANSAC estimator over 2-point minimal samples (see vpRansacLoop()).
-class GravityRansacEstimator
+void checkStdDev(double sigma, const char *what)
 {
-public:
-  using Model = Pose;
-  static constexpr int kSampleSize = 2;
-  static constexpr int kMaxModels = 2;
+  if (!(sigma >= 0.0) || !std::isfinite(sigma))
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 std::string("vpPoseGravity::") + what + ": must be finite and >= 0");
+}
 
-  // The points were validated by checkReady(): the P2P fast path takes them as they are, and the
-  // upright frames of the two gravity vectors are built once for all samples.
-  GravityRansacEstimator(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
-                         const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X)
-    : m_gCam(gCam), m_gObj(gObj), m_frame(gCam, gObj), m_x(x), m_X(X)
-  {
+/*!
+  Consistency of a closed-form pose with the points it came from: STATUS_BEHIND_CAMERA when a point
+  is not in front of the camera, STATUS_INCONSISTENT_GRAVITY when the reprojection error (the largest
+  one when !median, the median one otherwise) exceeds tol, STATUS_OK otherwise; \e error receives it.
+*/
+vpPoseGravity::vpPoseGravityStatus checkPose(const Pose &pose, const std::vector<Eigen::Vector3d> &x,
+                                             const std::vector<Eigen::Vector3d> &X, bool median, double tol,
+                                             double &error)
+{
+  error = std::numeric_limits<double>::infinity();
+  double worst = 0.0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (!((pose.R * X[i] + pose.t).z() > 0.0))
+      return vpPoseGravity::STATUS_BEHIND_CAMERA;
+    worst = std::max(worst, vpGravitySolvers::detail::reprojectionError2(pose, x[i], X[i]));
   }
-  int size() const { return static_cast<int>(m_x.size()); }
-  int solveMinimal(const int *sample, Model *models) const
-  {
-    vpGravitySolvers::P2PCase p2pCase = vpGravitySolvers::P2PCase::NoSolution;
-    const int count = vpGravitySolvers::detail::solvePairPoses(m_frame, m_x[sample[0]], m_x[sample[1]],
-                                                               m_X[sample[0]], m_X[sample[1]], models, p2pCase);
-    // A pose known only up to a ray cannot be scored.
-    return (p2pCase == vpGravitySolvers::P2PCase::TwoSolutions) ? count : 0;
+  if (median) {
+    std::vector<double> e2(x.size());
+    for (size_t i = 0; i < x.size(); ++i)
+      e2[i] = vpGravitySolvers::detail::reprojectionError2(pose, x[i], X[i]);
+    std::nth_element(e2.begin(), e2.begin() + static_cast<long>(e2.size() / 2), e2.end());
+    worst = e2[e2.size() / 2];
   }
-  //! Reprojection error in normalized coordinates (infinite behind the camera).
-  double residual(const Model &m, int i) const
-  {
-    return std::sqrt(vpGravitySolvers::detail::reprojectionError2(m, m_x[i], m_X[i]));
-  }
-  //! Local optimisation: the closed-form least squares on the consensus set.
-  bool refine(const std::vector<int> &inliers, Model &m) const
-  {
-    if (inliers.size() < 3)
-      return false;
-    std::vector<Eigen::Vector3d> x, X;
-    x.reserve(inliers.size());
-    X.reserve(inliers.size());
-    for (int i : inliers) {
-      x.push_back(m_x[i]);
-      X.push_back(m_X[i]);
-    }
-    return vpGravitySolvers::leastSquares(m_gCam, m_gObj, x.data(), X.data(), static_cast<int>(x.size()), m);
-  }
+  error = std::sqrt(worst);
+  return (error <= tol) ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_INCONSISTENT_GRAVITY;
+}
 
-private:
-  Eigen::Vector3d m_gCam, m_gObj;
-  vpGravitySolvers::detail::vpYawFrame m_frame;
-  const std::vector<Eigen::Vector3d> &m_x, &m_X;
-};
+// The settings of the refinement and of the covariance.
+vpGravitySolvers::detail::RefineOptions refineOptions(double imageSigma, double cameraSigma, double objectSigma,
+                                                      vpPoseGravity::vpRobustLoss loss, double lossScale)
+{
+  vpGravitySolvers::detail::RefineOptions options;
+  options.imageSigma = imageSigma;
+  options.cameraGravitySigma = cameraSigma;
+  options.objectGravitySigma = objectSigma;
+  options.loss = (loss == vpPoseGravity::LOSS_HUBER)    ? vpGravitySolvers::detail::RefineLoss::Huber
+                 : (loss == vpPoseGravity::LOSS_CAUCHY) ? vpGravitySolvers::detail::RefineLoss::Cauchy
+                                                        : vpGravitySolvers::detail::RefineLoss::None;
+  options.lossScale = lossScale;
+  return options;
+}
+
+void storeMatrix(const Eigen::Matrix<double, 6, 6> &from, vpMatrix &to)
+{
+  to.resize(6, 6, false);
+  for (unsigned int r = 0; r < 6; ++r)
+    for (unsigned int c = 0; c < 6; ++c)
+      to[r][c] = from(static_cast<int>(r), static_cast<int>(c));
+}
 } // namespace
 
 vpPoseGravity::vpPoseGravity()
-  : m_points(), m_gCam(3, 0.0), m_gObj(3, 0.0), m_hasGCam(false), m_hasGObj(false), m_ransacThreshold(1e-3),
-    m_ransacMaxTrials(1000), m_ransacProbability(0.99), m_ransacSeed(0), m_inlierIndex(), m_ransacTrials(0),
-    m_imageStdDev(1e-3), m_gravityStdDev(0.0), m_status(STATUS_NOT_COMPUTED), m_refineOnInliers(false)
+  : m_points(), m_gCam(3, 0.0), m_gObj(3, 0.0), m_hasGCam(false), m_hasGObj(false), m_consistencyThreshold(0.04),
+    m_pairRule(P3P_BEST_THIRD_POINT), m_ransacThreshold(4e-3), m_ransacMaxTrials(1000), m_ransacProbability(0.99),
+    m_ransacSeed(0), m_ransacNbInliersConsensus(4), m_ransacSignificance(0.01),
+    m_ransacFilter(PREFILTER_DEGENERATE_POINTS), m_inlierIndex(), m_ransacTrials(0), m_imageStdDev(1e-3),
+    m_gCamStdDev(0.0), m_gObjStdDev(0.0), m_loss(LOSS_NONE), m_lossScale(3e-3), m_computeCovariance(false),
+    m_hasCovariance(false), m_covariance(), m_status(STATUS_NOT_COMPUTED), m_refineOnInliers(false)
 {
 }
 
@@ -177,7 +163,8 @@ void vpPoseGravity::forgetInliers()
   m_refineOnInliers = false;
 }
 
-void vpPoseGravity::checkReady(unsigned int minPoints, unsigned int usedPoints, const char *what) const
+void vpPoseGravity::checkReady(unsigned int minPoints, unsigned int usedPoints, const char *what,
+                               bool checkDuplicates) const
 {
   if (!m_hasGCam || !m_hasGObj) {
     std::ostringstream msg;
@@ -191,7 +178,6 @@ void vpPoseGravity::checkReady(unsigned int minPoints, unsigned int usedPoints, 
     throw vpPoseGravityException(vpPoseGravityException::notEnoughPointError, msg.str());
   }
   const unsigned int n = std::min<unsigned int>(usedPoints, static_cast<unsigned int>(m_points.size()));
-  double scale = 0.0;
   for (unsigned int i = 0; i < n; ++i) {
     const vpPoint &P = m_points[i];
     const double v[5] = {P.get_oX(), P.get_oY(), P.get_oZ(), P.get_x(), P.get_y()};
@@ -202,64 +188,37 @@ void vpPoseGravity::checkReady(unsigned int minPoints, unsigned int usedPoints, 
             << v[0] << ", " << v[1] << ", " << v[2] << ", " << v[3] << ", " << v[4] << ")";
         throw vpPoseGravityException(vpPoseGravityException::badPointError, msg.str());
       }
-    scale = std::max({scale, std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
   }
+  if (!checkDuplicates)
+    return;
   // Duplicate object points make a 2-point sample degenerate and the closed forms ill-posed.
-  const double tolerance = kDuplicateTolerance * scale;
-  for (unsigned int i = 0; i < n; ++i)
-    for (unsigned int j = i + 1; j < n; ++j) {
-      const vpPoint &A = m_points[i], &B = m_points[j];
-      const double d = std::max({std::abs(A.get_oX() - B.get_oX()), std::abs(A.get_oY() - B.get_oY()),
-                                 std::abs(A.get_oZ() - B.get_oZ())});
-      if (d <= tolerance) {
-        std::ostringstream msg;
-        msg << "vpPoseGravity::" << what << ": object points " << i << " and " << j << " are identical ("
-            << A.get_oX() << ", " << A.get_oY() << ", " << A.get_oZ() << ")";
-        throw vpPoseGravityException(vpPoseGravityException::degeneratePointsError, msg.str());
-      }
+  std::vector<double> coords(3 * static_cast<size_t>(n));
+  for (unsigned int i = 0; i < n; ++i) {
+    coords[3 * i] = m_points[i].get_oX();
+    coords[3 * i + 1] = m_points[i].get_oY();
+    coords[3 * i + 2] = m_points[i].get_oZ();
+  }
+  std::vector<int> firstEqual;
+  findDuplicates(coords, 3, kDuplicateTolerance * objectScale(m_points, n), firstEqual);
+  for (unsigned int j = 0; j < n; ++j)
+    if (firstEqual[j] >= 0) {
+      const vpPoint &A = m_points[j];
+      std::ostringstream msg;
+      msg << "vpPoseGravity::" << what << ": object points " << firstEqual[j] << " and " << j << " are identical ("
+          << A.get_oX() << ", " << A.get_oY() << ", " << A.get_oZ() << ")";
+      throw vpPoseGravityException(vpPoseGravityException::degeneratePointsError, msg.str());
     }
 }
-
-namespace
-{
-// Bearings (x, y, 1) and object points of the first count points, into arrays of that size.
-void collectPoints(const std::vector<vpPoint> &points, unsigned int count, Eigen::Vector3d *x, Eigen::Vector3d *X)
-{
-  for (unsigned int i = 0; i < count; ++i) {
-    const vpPoint &P = points[i];
-    x[i] = Eigen::Vector3d(P.get_x(), P.get_y(), 1.0);
-    X[i] = Eigen::Vector3d(P.get_oX(), P.get_oY(), P.get_oZ());
-  }
-}
-
-// The same into vectors resized to count.
-void collectPoints(const std::vector<vpPoint> &points, unsigned int count, std::vector<Eigen::Vector3d> &x,
-                   std::vector<Eigen::Vector3d> &X)
-{
-  x.resize(count);
-  X.resize(count);
-  collectPoints(points, count, x.data(), X.data());
-}
-
-// Common end of the closed-form methods: the pose into cMo and STATUS_OK, or STATUS_NO_SOLUTION.
-bool finishClosedForm(bool found, const Pose &pose, vpHomogeneousMatrix &cMo, vpPoseGravity::vpPoseGravityStatus &status)
-{
-  status = found ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_NO_SOLUTION;
-  if (found)
-    storePose(pose, cMo);
-  return found;
-}
-} // namespace
 
 std::vector<vpHomogeneousMatrix> vpPoseGravity::computePoseCandidates()
 {
   checkReady(2, 2, "computePoseCandidates");
   forgetInliers();
-  Eigen::Vector3d x[2], X[2];
-  collectPoints(m_points, 2, x, X);
+  std::vector<Eigen::Vector3d> x, X;
+  collectFirst(m_points, 2, x, X);
   std::array<Pose, 2> poses;
   vpGravitySolvers::P2PCase p2pCase;
-  const int count = vpGravitySolvers::p2p(toEigen(m_gCam), toEigen(m_gObj), x, X, poses, &p2pCase);
+  const int count = vpGravitySolvers::p2p(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(), poses, &p2pCase);
   std::vector<vpHomogeneousMatrix> candidates;
   switch (p2pCase) {
   case vpGravitySolvers::P2PCase::TwoSolutions:
@@ -297,96 +256,113 @@ bool vpPoseGravity::computeP3P(vpHomogeneousMatrix &cMo)
 {
   checkReady(3, 3, "computePose(P3P)");
   forgetInliers();
-  Eigen::Vector3d x[3], X[3];
-  collectPoints(m_points, 3, x, X);
-  const Eigen::Vector3d AB = X[1] - X[0], AC = X[2] - X[0];
+  const Eigen::Vector3d A(m_points[0].get_oX(), m_points[0].get_oY(), m_points[0].get_oZ());
+  const Eigen::Vector3d AB = Eigen::Vector3d(m_points[1].get_oX(), m_points[1].get_oY(), m_points[1].get_oZ()) - A;
+  const Eigen::Vector3d AC = Eigen::Vector3d(m_points[2].get_oX(), m_points[2].get_oY(), m_points[2].get_oZ()) - A;
   // Squared form of |AB x AC| <= tol |AB| |AC|: no square root.
   if (AB.cross(AC).squaredNorm() <= kCollinearTolerance * kCollinearTolerance * AB.squaredNorm() * AC.squaredNorm())
     throw vpPoseGravityException(vpPoseGravityException::degeneratePointsError,
                                  "vpPoseGravity::computePose(P3P): the three object points are collinear");
-  Pose pose;
-  return finishClosedForm(vpGravitySolvers::p3p(toEigen(m_gCam), toEigen(m_gObj), x, X, pose), pose, cMo, m_status);
+  return finishClosedForm(P3P, cMo);
 }
 
 bool vpPoseGravity::computeLeastSquares(vpHomogeneousMatrix &cMo)
 {
-  const unsigned int n = static_cast<unsigned int>(m_points.size());
-  checkReady(3, n, "computePose(LEAST_SQUARES)");
+  checkReady(3, static_cast<unsigned int>(m_points.size()), "computePose(LEAST_SQUARES)");
   forgetInliers();
-  std::vector<Eigen::Vector3d> x, X;
-  collectPoints(m_points, n, x, X);
-  Pose pose;
-  const bool found = vpGravitySolvers::leastSquares(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
-                                                    static_cast<int>(n), pose);
-  return finishClosedForm(found, pose, cMo, m_status);
+  return finishClosedForm(LEAST_SQUARES, cMo);
 }
 
-bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
+namespace
 {
-  const unsigned int n = static_cast<unsigned int>(m_points.size());
-  checkReady(3, n, "computePose(RANSAC)");
-  forgetInliers();
+// The closed-form pose of a method (P3P on the 3 points given, least squares on all) with the given
+// gravity directions, and its consistency status (see checkPose()).
+vpPoseGravity::vpPoseGravityStatus solveClosedForm(bool p3p, vpPoseGravity::vpP3PPairRule rule,
+                                                   const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
+                                                   const std::vector<Eigen::Vector3d> &x,
+                                                   const std::vector<Eigen::Vector3d> &X, double tolerance,
+                                                   Pose &pose, double &error)
+{
+  const bool found =
+      p3p ? vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), pose,
+                                  rule == vpPoseGravity::P3P_WIDEST_PAIR ? vpGravitySolvers::P3PPairRule::WidestPair
+                                                                         : vpGravitySolvers::P3PPairRule::BestThirdPoint)
+          : vpGravitySolvers::leastSquares(gCam, gObj, x.data(), X.data(), static_cast<int>(x.size()), pose);
+  error = std::numeric_limits<double>::infinity();
+  if (!found)
+    return vpPoseGravity::STATUS_NO_SOLUTION;
+  return checkPose(pose, x, X, !p3p, tolerance, error);
+}
+} // namespace
+
+bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMatrix &cMo)
+{
   std::vector<Eigen::Vector3d> x, X;
-  collectPoints(m_points, n, x, X);
+  collectFirst(m_points, method == P3P ? 3 : m_points.size(), x, X);
   const Eigen::Vector3d gCam = toEigen(m_gCam), gObj = toEigen(m_gObj);
-  const GravityRansacEstimator estimator(gCam, gObj, x, X);
-
-  vpRansacOptions options;
-  options.threshold = m_ransacThreshold;
-  options.probability = m_ransacProbability;
-  options.maxTrials = m_ransacMaxTrials;
-  options.seed = m_ransacSeed;
-  options.localOptimisation = true;
-  Pose best;
-  vpRansacReport report;
-  const bool found = vpRansacLoop(estimator, options, best, report);
-  m_ransacTrials = report.trials;
-  // The closed-form least squares needs three points: a 2-point consensus is no consensus.
-  if (!found || report.inlierCount < 3) {
-    m_status = STATUS_NO_CONSENSUS;
+  Pose pose, reversed;
+  double error = 0.0, reversedError = 0.0;
+  m_status = solveClosedForm(method == P3P, m_pairRule, gCam, gObj, x, X, m_consistencyThreshold, pose, error);
+  // The same solve with the camera gravity reversed (equivalently the object one) tells a sign
+  // mix-up apart: a specific force passed as gravity. With 3 points the two redundant equations
+  // cannot always reject a wrong sign on their own, so a fit that passes the tolerance is still not
+  // trusted when it leaves more error than the noise explains (3 sigma of the image and gravity
+  // noise) and the reversed sign fits with less than half of it. A fit within the noise needs no
+  // comparison.
+  const double noise = 3.0 * std::sqrt(m_imageStdDev * m_imageStdDev + m_gCamStdDev * m_gCamStdDev +
+                                       m_gObjStdDev * m_gObjStdDev);
+  if (m_status != STATUS_OK || error > noise) {
+    const vpPoseGravityStatus reversedStatus = solveClosedForm(method == P3P, m_pairRule, -gCam, gObj, x, X,
+                                                               m_consistencyThreshold, reversed, reversedError);
+    if (reversedStatus == STATUS_OK && (m_status != STATUS_OK || 2.0 * reversedError < error))
+      m_status = STATUS_GRAVITY_SIGN_REVERSED;
+  }
+  if (m_status != STATUS_OK)
     return false;
-  }
-
-  // Final refit on the whole consensus set, kept only if it does not lose inliers.
-  std::vector<int> inliers = report.inliers;
-  Pose refit = best;
-  if (estimator.refine(inliers, refit)) {
-    std::vector<int> refitInliers;
-    vpRansacInliers(estimator, refit, m_ransacThreshold * m_ransacThreshold, refitInliers);
-    if (refitInliers.size() >= inliers.size()) {
-      best = refit;
-      inliers = refitInliers;
-    }
-  }
-  m_inlierIndex.assign(inliers.begin(), inliers.end());
-  m_refineOnInliers = true;
-  storePose(best, cMo);
-  m_status = STATUS_OK;
+  storePose(pose, cMo);
+  updateCovariance(cMo, nullptr);
   return true;
+}
+
+void vpPoseGravity::updateCovariance(const vpHomogeneousMatrix &cMo, const std::vector<unsigned int> *used)
+{
+  m_hasCovariance = false;
+  if (!m_computeCovariance)
+    return;
+  std::vector<Eigen::Vector3d> x, X;
+  collectPoints(m_points, used, x, X);
+  Eigen::Matrix<double, 6, 6> covariance;
+  if (!vpGravitySolvers::detail::poseCovariance(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
+                                                static_cast<int>(x.size()),
+                                                refineOptions(m_imageStdDev, m_gCamStdDev, m_gObjStdDev, m_loss,
+                                                              m_lossScale),
+                                                toPose(cMo), covariance))
+    return;
+  storeMatrix(covariance, m_covariance);
+  m_hasCovariance = true;
 }
 
 bool vpPoseGravity::refinePose(vpHomogeneousMatrix &cMo)
 {
-  checkReady(2, static_cast<unsigned int>(m_points.size()), "refinePose");
-  std::vector<Eigen::Vector3d> xAll, XAll, x, X;
-  collectPoints(m_points, static_cast<unsigned int>(m_points.size()), xAll, XAll);
-  if (m_refineOnInliers) {
-    for (unsigned int i : m_inlierIndex) {
-      x.push_back(xAll[i]);
-      X.push_back(XAll[i]);
-    }
-  } else {
-    x = xAll;
-    X = XAll;
-  }
+  checkReady(2, static_cast<unsigned int>(m_points.size()), "refinePose", false);
+  const std::vector<unsigned int> *used = m_refineOnInliers ? &m_inlierIndex : nullptr;
+  std::vector<Eigen::Vector3d> x, X;
+  collectPoints(m_points, used, x, X);
+  const vpGravitySolvers::detail::RefineOptions options =
+      refineOptions(m_imageStdDev, m_gCamStdDev, m_gObjStdDev, m_loss, m_lossScale);
   Pose pose = toPose(cMo);
-  if (x.size() < 2 || !vpGravitySolvers::detail::refinePose(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
-                                                            static_cast<int>(x.size()), m_imageStdDev,
-                                                            m_gravityStdDev, pose)) {
+  Eigen::Matrix<double, 6, 6> covariance;
+  if (x.size() < 2 ||
+      !vpGravitySolvers::detail::refinePose(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
+                                            static_cast<int>(x.size()), options, pose,
+                                            m_computeCovariance ? &covariance : nullptr)) {
     m_status = STATUS_REFINEMENT_FAILED;
     return false;
   }
   storePose(pose, cMo);
+  m_hasCovariance = m_computeCovariance;
+  if (m_computeCovariance)
+    storeMatrix(covariance, m_covariance);
   m_status = STATUS_OK;
   return true;
 }
@@ -403,6 +379,14 @@ double vpPoseGravity::computeResidual(const vpHomogeneousMatrix &cMo) const
     residual += ex * ex + ey * ey;
   }
   return residual;
+}
+
+void vpPoseGravity::setConsistencyThreshold(double t)
+{
+  if (!(t > 0.0) || !std::isfinite(t))
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 "vpPoseGravity::setConsistencyThreshold: threshold must be finite and > 0");
+  m_consistencyThreshold = t;
 }
 
 void vpPoseGravity::setRansacThreshold(double t)
@@ -428,6 +412,14 @@ void vpPoseGravity::setRansacProbability(double p)
 
 void vpPoseGravity::setRansacSeed(unsigned int seed) { m_ransacSeed = seed; }
 
+void vpPoseGravity::setRansacSignificance(double alpha)
+{
+  if (!(alpha > 0.0 && alpha <= 1.0))
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 "vpPoseGravity::setRansacSignificance: must be in (0, 1]");
+  m_ransacSignificance = alpha;
+}
+
 std::vector<vpPoint> vpPoseGravity::getRansacInliers() const
 {
   std::vector<vpPoint> inliers;
@@ -444,11 +436,40 @@ void vpPoseGravity::setImageStdDev(double sigma)
   m_imageStdDev = sigma;
 }
 
+void vpPoseGravity::setCameraGravityStdDev(double sigma)
+{
+  checkStdDev(sigma, "setCameraGravityStdDev");
+  m_gCamStdDev = sigma;
+}
+
+void vpPoseGravity::setObjectGravityStdDev(double sigma)
+{
+  checkStdDev(sigma, "setObjectGravityStdDev");
+  m_gObjStdDev = sigma;
+}
+
 void vpPoseGravity::setGravityStdDev(double sigma)
 {
-  if (!(sigma >= 0.0) || !std::isfinite(sigma))
-    throw vpPoseGravityException(vpPoseGravityException::badParameterError, "vpPoseGravity::setGravityStdDev: must be >= 0");
-  m_gravityStdDev = sigma;
+  checkStdDev(sigma, "setGravityStdDev");
+  m_gCamStdDev = m_gObjStdDev = sigma;
+}
+
+void vpPoseGravity::setRefineLoss(vpRobustLoss loss, double scale)
+{
+  if (!(scale > 0.0) || !std::isfinite(scale))
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 "vpPoseGravity::setRefineLoss: the scale must be finite and > 0");
+  m_loss = loss;
+  m_lossScale = scale;
+}
+
+vpMatrix vpPoseGravity::getCovarianceMatrix() const
+{
+  if (!m_hasCovariance)
+    throw vpPoseGravityException(vpPoseGravityException::notComputedError,
+                                 "vpPoseGravity::getCovarianceMatrix: no covariance computed; call "
+                                 "setCovarianceComputation(true) before computePose() or refinePose()");
+  return m_covariance;
 }
 
 std::string vpPoseGravity::getStatusMessage(vpPoseGravityStatus status)
@@ -465,11 +486,20 @@ std::string vpPoseGravity::getStatusMessage(vpPoseGravityStatus status)
     return "the rotation about gravity is not observable (both image points on a vertical ray, vertical object "
            "segment, or both rays horizontal): infinitely many poses";
   case STATUS_NO_SOLUTION:
-    return "the measurements admit no pose";
+    return "the measurements admit no pose (check the gravity vectors: down, in the sensor frame, after the "
+           "IMU-to-sensor rotation)";
   case STATUS_NO_CONSENSUS:
-    return "RANSAC found no model with at least three inliers";
+    return "RANSAC found no model with more inliers than the minimum consensus and than chance explains";
   case STATUS_REFINEMENT_FAILED:
-    return "the refinement gave no usable solution; the pose was left unchanged";
+    return "the refinement gave no usable solution or put a point behind the camera; the pose was left unchanged";
+  case STATUS_INCONSISTENT_GRAVITY:
+    return "the points do not fit any pose with these gravity directions beyond the consistency threshold: check "
+           "the IMU-to-camera (object) rotation, that the IMUs were at rest, the point matches (outliers: use RANSAC)";
+  case STATUS_GRAVITY_SIGN_REVERSED:
+    return "the points fit a pose only with one gravity vector reversed: gravity must point down, an accelerometer "
+           "at rest measures the specific force, which points up (negate it, or use vpImuGravity)";
+  case STATUS_BEHIND_CAMERA:
+    return "the best pose puts a point behind the camera: check the gravity sign and the IMU-to-camera rotation";
   }
   return "unknown status";
 }

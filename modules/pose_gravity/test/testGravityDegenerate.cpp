@@ -6,6 +6,7 @@
   Exact data leave only rounding: pose errors are required below 1e-9.
 */
 #include <algorithm>
+#include <iostream>
 #include <limits>
 #include <vector>
 
@@ -40,8 +41,10 @@ double methodError(const Scene &s, vpPoseGravity::vpPoseGravityMethod method)
 {
   vpPoseGravity pose = estimatorFor(s);
   vpHomogeneousMatrix cMo;
-  if (!pose.computePose(method, cMo))
+  if (!pose.computePose(method, cMo)) {
+    std::cout << "no pose: " << vpPoseGravity::getStatusMessage(pose.getStatus()) << std::endl;
     return std::numeric_limits<double>::infinity();
+  }
   return poseError(cMo, s.cMo);
 }
 

@@ -158,8 +158,9 @@ TEST(pose_gravity_Noise, RefinementImprovesP3P)
   p3p.print("P3P, 1 px");
   refined4.print("P3P + 4-DOF refinement, 1 px");
   // The maximum-likelihood refinement uses the third point that P3P only uses to choose: it must
-  // improve the mean and the median (measured: about -45 % on the rotation).
-  expectImprovement(refined4, p3p, 0.8);
+  // improve the mean and the median (measured: about -20 % on the rotation; -45 % against the
+  // paper's widest-pair rule, whose P3P pose is worse to begin with).
+  expectImprovement(refined4, p3p, 0.9);
 }
 
 TEST(pose_gravity_Noise, FullRefinementWithNoisyGravity)

@@ -3,9 +3,9 @@
   The P2P / P3P fast path solves the yaw equation for (cos, sin) directly and selects the P3P root
   through linear forms in (cos, sin). These tests hold it to the plain definitions on seeded scenes:
   the yaw order of the P2P candidates (angle read back from the rotation), both points in front of
-  the camera, the P3P pose equal to the P2P candidate of the widest image pair that reprojects the
-  third point best (computed directly, with noise so that the choice matters), and invariance to
-  the scale of the bearings.
+  the camera, the P3P pose equal to the P2P candidate chosen by each pair rule (best third-point
+  error over the observing pairs; the widest image pair), computed directly with noise so that the
+  choice matters, and invariance to the scale of the bearings.
 */
 #include <algorithm>
 #include <cmath>
@@ -40,10 +40,53 @@ double reprojection2(const vpGravitySolvers::Pose &pose, const Eigen::Vector3d &
   return ex * ex + ey * ey;
 }
 
-// P3P by its definition: pairs by decreasing image distance, first pair with admissible P2P
-// candidates, the candidate with the smallest reprojection error of the third point.
-bool referenceP3P(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const std::vector<Eigen::Vector3d> &x,
-                  const std::vector<Eigen::Vector3d> &X, vpGravitySolvers::Pose &pose)
+// How much the pair (i, j) constrains the yaw: |n_h| |d_h| / (|n| |d|) in the upright frames, with
+// n the normal of the plane of the two rays and d the object segment.
+double observability(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d &xi,
+                     const Eigen::Vector3d &xj, const Eigen::Vector3d &Xi, const Eigen::Vector3d &Xj)
+{
+  const Eigen::Vector3d n = vpGravitySolvers::uprightRotation(gCam) * xi.cross(xj);
+  const Eigen::Vector3d d = vpGravitySolvers::uprightRotation(gObj) * (Xi - Xj);
+  return n.head<2>().norm() * d.head<2>().norm() / (n.norm() * d.norm());
+}
+
+// P3P with the default rule by its definition: over the pairs that observe the yaw (observability >=
+// 0.05; the others only if none does), the P2P candidate with the smallest third-point error.
+bool referenceBestThirdPoint(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
+                             const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
+                             vpGravitySolvers::Pose &pose)
+{
+  double best[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  vpGravitySolvers::Pose bestPose[2];
+  for (int p = 0; p < 3; ++p) {
+    const int i = p, j = (p + 1) % 3, k = (p + 2) % 3;
+    const Eigen::Vector3d xp[2] = {x[i], x[j]}, Xp[2] = {X[i], X[j]};
+    std::array<vpGravitySolvers::Pose, 2> poses;
+    vpGravitySolvers::P2PCase p2pCase;
+    const int count = vpGravitySolvers::p2p(gCam, gObj, xp, Xp, poses, &p2pCase);
+    if (p2pCase != vpGravitySolvers::P2PCase::TwoSolutions)
+      continue;
+    const int weak = observability(gCam, gObj, x[i], x[j], X[i], X[j]) < 0.05 ? 1 : 0;
+    for (int m = 0; m < count; ++m) {
+      const double e = reprojection2(poses[m], x[k], X[k]);
+      if (e < best[weak]) {
+        best[weak] = e;
+        bestPose[weak] = poses[m];
+      }
+    }
+  }
+  for (int w = 0; w < 2; ++w)
+    if (best[w] < std::numeric_limits<double>::infinity()) {
+      pose = bestPose[w];
+      return true;
+    }
+  return false;
+}
+
+// P3P with the paper's rule by its definition: pairs by decreasing image distance, first pair with
+// admissible P2P candidates, the candidate with the smallest reprojection error of the third point.
+bool referenceWidestPair(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const std::vector<Eigen::Vector3d> &x,
+                         const std::vector<Eigen::Vector3d> &X, vpGravitySolvers::Pose &pose)
 {
   int order[3] = {0, 1, 2};
   auto dist = [&](int p) { return (x[p] / x[p].z() - x[(p + 1) % 3] / x[(p + 1) % 3].z()).squaredNorm(); };
@@ -102,23 +145,33 @@ TEST(pose_gravity_SolversFastPath, P3PIsTheBestReprojectingCandidate)
 {
   SceneGenerator gen(22);
   std::vector<Eigen::Vector3d> x, X;
-  int compared = 0;
+  int compared = 0, pairsDiffer = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     Scene s = gen.scene(3);
     gen.addImageNoise(s.points, 2e-3); // noise large enough for the wrong root to be close at times
     toSolverInput(s.points, x, X);
     const Eigen::Vector3d gCam = toEigen(s.gCam), gObj = toEigen(s.gObj);
-    vpGravitySolvers::Pose fast, reference;
-    const bool okFast = vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), fast);
-    const bool okReference = referenceP3P(gCam, gObj, x, X, reference);
-    ASSERT_EQ(okFast, okReference) << "trial " << trial;
-    if (!okFast)
-      continue;
-    ++compared;
-    EXPECT_LT((fast.R - reference.R).norm(), 1e-9) << "trial " << trial;
-    EXPECT_LT((fast.t - reference.t).norm(), 1e-9 * (1.0 + reference.t.norm())) << "trial " << trial;
+    for (vpGravitySolvers::P3PPairRule rule :
+         {vpGravitySolvers::P3PPairRule::BestThirdPoint, vpGravitySolvers::P3PPairRule::WidestPair}) {
+      vpGravitySolvers::Pose fast, reference;
+      const bool okFast = vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), fast, rule);
+      const bool okReference = (rule == vpGravitySolvers::P3PPairRule::WidestPair)
+                                   ? referenceWidestPair(gCam, gObj, x, X, reference)
+                                   : referenceBestThirdPoint(gCam, gObj, x, X, reference);
+      ASSERT_EQ(okFast, okReference) << "trial " << trial;
+      if (!okFast)
+        continue;
+      ++compared;
+      EXPECT_LT((fast.R - reference.R).norm(), 1e-9) << "trial " << trial;
+      EXPECT_LT((fast.t - reference.t).norm(), 1e-9 * (1.0 + reference.t.norm())) << "trial " << trial;
+    }
+    vpGravitySolvers::Pose best, widest;
+    if (vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), best) &&
+        vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), widest, vpGravitySolvers::P3PPairRule::WidestPair))
+      pairsDiffer += (best.R - widest.R).norm() > 1e-12;
   }
-  EXPECT_GT(compared, 19000);
+  EXPECT_GT(compared, 2 * 19000);
+  EXPECT_GT(pairsDiffer, 1000); // the two rules were both exercised
 }
 
 TEST(pose_gravity_SolversFastPath, BearingScaleDoesNotMatter)

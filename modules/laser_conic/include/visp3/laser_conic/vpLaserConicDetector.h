@@ -4,80 +4,211 @@
  */
 /*!
   \file vpLaserConicDetector.h
-  \brief Red laser trace segmentation in a colour image by HSV thresholding (Sec. 7.2 of the paper).
+  \brief Red laser trace extraction in a colour image: ridge of a red-dominance score with a threshold
+  adapted to the image (default), or HSV thresholding (Sec. 7.2 of the paper).
 */
 #ifndef VP_LASER_CONIC_DETECTOR_H
 #define VP_LASER_CONIC_DETECTOR_H
 
+#include <utility>
 #include <vector>
 
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/laser_conic/vpLaserConicException.h>
+
+//! A stripe run measured by vpLaserConicDetector (the diagnostic mask getMask() is drawn from them).
+struct vpLaserConicDetectorRun
+{
+  bool alongRow;   //!< measured along row \e line (else along column \e line)
+  int line;        //!< row or column index
+  int first, last; //!< half-maximum run [first, last] along the line, pixels
+  bool accepted;   //!< a returned point (else a rejected candidate)
+};
 
 /*!
   \ingroup group_laser_conic
-  \brief Extracts the image points of a red laser trace.
+  \brief Extracts the sub-pixel image points of a red laser stripe (the trace of a circular laser).
 
-  The image is converted to HSV with OpenCV; a pixel belongs to the trace when its hue is within
-  the red band (around 0/180 in OpenCV's 0-179 hue scale) and its saturation and value reach their
-  minimum. Each run of consecutive trace pixels along an image row, and along an image column, gives
-  one sub-pixel point: the centre of the run weighted by the brightness (V - minValue + 1) of its pixels,
-  i.e. the centre of the stripe across its width.
+  <b>Ridge method (default, DETECTION_RIDGE).</b> Each pixel gets a red-dominance score
+  \f$ s = \max(0, R - \max(G, B)) \f$, or 255 when its red channel is saturated (R >= setSaturationLevel()),
+  computed in one pass over the RGBA buffer (no colour conversion). A laser stripe is a thin ridge of
+  that score across its width, whatever the floor's brightness; it is found along the image rows and
+  along the columns:
+  -# <em>Candidates.</em> A pixel is a candidate peak along a scan line when its score is a local maximum
+     that exceeds the score at \f$ \pm d \f$ pixels on both sides by at least the contrast threshold
+     T, with d = setMaxStripeWidth() (a top-hat test: a step edge or a plateau wider than the stripe
+     fails it). T = max(setMinContrast(), setNoiseFactor() x sigma), where sigma is the noise of the score
+     estimated from the image itself (robust spread, 1.4826 MAD / sqrt(2), of the score differences
+     two pixels apart on a sample of rows), so the threshold follows the image's own background and noise
+     instead of an absolute saturation/value.
+  -# <em>Shape.</em> The stripe around the peak is the run of pixels above half of its contrast (half
+     maximum above the background, the larger score at \f$ \pm d \f$). Runs wider than
+     setMaxStripeWidth() are wide red objects, not a stripe, and are rejected. A run containing white
+     saturated pixels (R >= saturation level, low score) is one stripe with a saturated core only when red
+     pixels flank the white on both sides; white light without a red flank (a lamp reflection, white tiles)
+     is rejected.
+  -# <em>Sub-pixel centre.</em> The centroid of the score above a quarter of the contrast over the run
+     (a saturated core is a plateau of 255: the centre is the centre of the whole profile).
+  -# <em>Scan direction.</em> A row measures the parts of the curve closer to vertical, a column the parts
+     closer to horizontal: a row point is kept when the stripe's half-maximum run along the row is not
+     longer than along the column through its peak (and conversely), so the centre of a run along a
+     nearly tangent line is never returned (both may be kept at 45 degrees).
+  -# <em>Continuity.</em> Points are chained (neighbours within 2 sampling steps) and chains whose extent
+     (bounding-box diagonal) is below setMinSegmentLength() are dropped: small red clutter and isolated
+     texture or noise peaks give short chains, the trace long ones.
 
-  A run is kept only when the stripe crosses its scan line at least as steeply as the other
-  scan direction (the run is not longer than the run of the other direction through its centre):
-  a row measures the parts of the curve closer to vertical, a column the parts closer to horizontal,
-  so the centre of a run along a nearly tangent line, which would lie off the curve, is never returned.
-  Where the curve is at 45 degrees a point may thus be measured by both a row and a column. A run whose
-  brightest pixel is less than half as bright as the brightest pixel of the run across it is a sliver
-  along the dim edge of the stripe (mask flicker at the threshold), not a crossing, and is rejected too.
-  Runs longer than setMaxStripeWidth() (blobs) and runs touching the image border (truncated) are
-  rejected. An empty image gives no point and an empty mask.
+  A search region (setSearchRegion(), e.g. the previous frame's trace or conic with a margin) restricts
+  every pass to a band around the predicted curve: faster, and distractors outside the band are ignored.
+
+  <b>HSV method (DETECTION_HSV, the historical detector).</b> The image is converted to HSV with OpenCV
+  and a pixel belongs to the trace when its hue is in the red band (setHueRange()) and its saturation and
+  value reach setMinSaturationValue(); each run along a row or column gives its brightness-weighted centre.
+  Fixed thresholds: it misses dim stripes and splits saturated ones; kept for comparison.
+
+  The diagnostic mask getMask() marks the accepted stripe runs 255 and the rejected candidate runs 100
+  (ridge method), or the thresholded pixels 255 (HSV method). An empty image gives no point and an empty mask.
 
   \code
-  vpLaserConicDetector detector;
-  detector.setHueRange(10, 170);
+  vpLaserConicDetector detector;                       // ridge method, settings for real images by default
   std::vector<vpImagePoint> points = detector.detect(I); // I: vpImage<vpRGBa>
+  detector.setSearchRegion(points, 20.0);              // next frame: search within 20 px of this trace
   \endcode
 */
 class VISP_EXPORT vpLaserConicDetector
 {
 public:
-  //! Detector with the default thresholds: hue <= 10 or >= 170, saturation >= 80, value >= 80, runs of
-  //! at most 25 pixels, every row and column.
-  vpLaserConicDetector();
+  //! Detection method.
+  enum vpDetectionMethod
+  {
+    DETECTION_RIDGE, //!< ridge of the red-dominance score, adaptive threshold (default)
+    DETECTION_HSV    //!< fixed HSV thresholds (historical)
+  };
 
   /*!
-    Hue band: a pixel is red when hue <= \e maxHueLow or hue >= \e minHueHigh (OpenCV scale 0-179).
-    \exception vpException::badValue when a bound is outside [0, 179].
+    Detector with the defaults: ridge method, minimum contrast 10 grey levels, noise factor 5, stripes of at
+    most 12 pixels, saturation level 250, segments of at least 50 pixels, every row and column, no search
+    region; for the HSV method hue <= 10 or >= 170, saturation >= 80, value >= 80.
+  */
+  vpLaserConicDetector();
+
+  //! Chooses the detection method (default DETECTION_RIDGE).
+  void setMethod(vpDetectionMethod method) { m_method = method; }
+  //! The detection method.
+  vpDetectionMethod getMethod() const { return m_method; }
+
+  /*!
+    Ridge method: smallest contrast (grey levels of the score R - max(G, B)) of a stripe peak above its
+    background; default 10. The threshold used is max(this, noise factor x estimated noise).
+    \exception vpLaserConicException::badValueError when not in [1, 255].
+  */
+  void setMinContrast(double greyLevels);
+  //! Smallest stripe contrast, grey levels.
+  double getMinContrast() const { return m_minContrast; }
+  /*!
+    Ridge method: the threshold is at least this many times the score noise estimated from the image;
+    default 5. 0 uses the minimum contrast alone.
+    \exception vpLaserConicException::badValueError when negative or not finite.
+  */
+  void setNoiseFactor(double factor);
+  //! Noise factor of the threshold.
+  double getNoiseFactor() const { return m_noiseFactor; }
+  /*!
+    Widest stripe, pixels: the half-maximum run of a stripe along a scan line (ridge method) or its
+    thresholded run (HSV method) must not be longer (blobs are rejected); the ridge method also compares
+    a peak with the background at this distance. Default 12 pixels.
+    \exception vpLaserConicException::badValueError when 0 or above 100.
+  */
+  void setMaxStripeWidth(unsigned int pixels);
+  //! Widest stripe, pixels.
+  unsigned int getMaxStripeWidth() const { return m_maxStripeWidth; }
+  /*!
+    Ridge method: a red channel at or above this level (0-255) is saturated (core of a bright stripe);
+    default 250.
+    \exception vpLaserConicException::badValueError when not in [128, 255].
+  */
+  void setSaturationLevel(unsigned int level);
+  //! Saturation level of the red channel.
+  unsigned int getSaturationLevel() const { return m_saturationLevel; }
+  /*!
+    Ridge method: chains of points shorter than this (bounding-box diagonal, pixels) are dropped; default
+    50 (red clutter and the thin corners of red floor patches make shorter chains). 0 keeps every point.
+    \exception vpLaserConicException::badValueError when negative or not finite.
+  */
+  void setMinSegmentLength(double pixels);
+  //! Shortest kept chain, pixels.
+  double getMinSegmentLength() const { return m_minSegmentLength; }
+  /*!
+    Scans one row/column every \e step (1 = every line); default 1.
+    \exception vpLaserConicException::badValueError on 0.
+  */
+  void setSamplingStep(unsigned int step);
+  //! Sampling step of the scan lines.
+  unsigned int getSamplingStep() const { return m_step; }
+
+  /*!
+    Ridge method: searches only within \e margin pixels of the given points (e.g. the trace or the inliers
+    of the previous frame; consecutive points along the curve must be closer than the margin).
+    \exception vpLaserConicException::badValueError when the margin is not positive and finite, a point is
+    not finite or the list is empty.
+  */
+  void setSearchRegion(const std::vector<vpImagePoint> &trace, double margin);
+  /*!
+    Ridge method: searches only within about \e margin pixels of the conic \e C (3x3 symmetric, pixel
+    coordinates: \f$ (u, v, 1) C (u, v, 1)^T = 0 \f$), e.g. the image conic predicted from the previous
+    frame's plane. The conic is sampled at each image row and column.
+    \exception vpLaserConicException::badValueError when \e C is not a finite 3x3 matrix, is zero, or the
+    margin is not positive and finite.
+  */
+  void setSearchRegion(const vpMatrix &C, double margin);
+  //! Removes the search region: the whole image is searched.
+  void clearSearchRegion() { m_region.clear(); }
+  //! True when a search region is set.
+  bool hasSearchRegion() const { return !m_region.empty(); }
+
+  /*!
+    HSV method: hue band, a pixel is red when hue <= \e maxHueLow or hue >= \e minHueHigh (OpenCV scale
+    0-179).
+    \exception vpLaserConicException::badValueError when a bound is outside [0, 179].
   */
   void setHueRange(int maxHueLow, int minHueHigh);
   /*!
-    Minimum saturation and value (0-255).
-    \exception vpException::badValue when a bound is outside [0, 255].
+    HSV method: minimum saturation and value (0-255).
+    \exception vpLaserConicException::badValueError when a bound is outside [0, 255].
   */
   void setMinSaturationValue(int minSaturation, int minValue);
-  /*!
-    Runs wider than this many pixels are rejected (blobs, not a stripe); default 25.
-    \exception vpException::badValue on 0.
-  */
-  void setMaxStripeWidth(unsigned int pixels);
-  /*!
-    Scans one row/column every \e step (1 = every line); default 1.
-    \exception vpException::badValue on 0.
-  */
-  void setSamplingStep(unsigned int step);
 
   //! Detects the trace points of \e I (pixel coordinates, sub-pixel); empty for an empty image.
   std::vector<vpImagePoint> detect(const vpImage<vpRGBa> &I);
-  //! Binary mask of the last detection (255 = trace, 0 = other), for display.
-  const vpImage<unsigned char> &getMask() const { return m_mask; }
+  /*!
+    Diagnostic mask of the last detection, the size of the image (ridge method: 255 on the accepted stripe
+    runs, 100 on the rejected candidate runs, 0 elsewhere; HSV method: 255 on the thresholded pixels). Drawn
+    on the first call after a detection (the detection itself does not pay for it).
+  */
+  const vpImage<unsigned char> &getMask() const;
+  //! Contrast threshold T used by the last ridge detection, grey levels.
+  double getThreshold() const { return m_threshold; }
+  //! Score noise estimated by the last ridge detection, grey levels.
+  double getNoiseLevel() const { return m_noise; }
 
 private:
+  //! Rows of the search region and their column intervals, for an image of \e H x \e W pixels, dilated by \e extra.
+  void regionIntervals(int H, int W, int extra, std::vector<std::vector<std::pair<int, int> > > &rows) const;
+
+  vpDetectionMethod m_method;
+  double m_minContrast, m_noiseFactor, m_minSegmentLength;
+  unsigned int m_maxStripeWidth, m_saturationLevel, m_step;
   int m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue;
-  unsigned int m_maxStripeWidth, m_step;
-  vpImage<unsigned char> m_mask;
+  std::vector<vpImagePoint> m_region; //!< sampled search region (empty: whole image)
+  double m_regionMargin;
+  mutable vpImage<unsigned char> m_mask; //!< drawn from m_runs by getMask() when m_maskDirty
+  mutable bool m_maskDirty;
+  unsigned int m_height, m_width;        //!< size of the last image
+  double m_threshold, m_noise;
+  std::vector<unsigned char> m_score; //!< score buffer, reused from frame to frame
+  std::vector<vpLaserConicDetectorRun> m_runs; //!< stripe runs of the last ridge detection
 };
 
 #endif

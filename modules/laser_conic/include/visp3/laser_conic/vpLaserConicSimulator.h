@@ -30,10 +30,25 @@
   \f$ {}^c\mathbf{R}_l (\sin\frac{A}{2}\cos\gamma, \sin\frac{A}{2}\sin\gamma, \cos\frac{A}{2})^T \f$ from
   the apex; only the forward half-line lights the ground.
 
-  Image points follow ViSP's conventions (vpMeterPixelConversion with the model of the given
-  vpCameraParameters; the rest of the module assumes a model without distortion).
+  Image points follow ViSP's conventions. Without distortion a camera point is projected with
+  vpMeterPixelConversion. With perspectiveProjWithDistortion, the simulator's lens is the pixel-to-metre
+  model of vpPixelMeterConversion, \f$ x = \frac{u - u_0}{p_x} (1 + k_{du} r_d^2) \f$ with
+  \f$ r_d^2 = (\frac{u - u_0}{p_x})^2 + (\frac{v - v_0}{p_y})^2 \f$ (idem for y): a camera point is
+  projected on the pixel that this model maps back onto it (Newton's method on the distorted radius, to
+  1e-16), and render() casts, for each pixel, the ray that vpPixelMeterConversion gives. So the pixels of
+  tracePoints() and of the rendered images convert exactly (to rounding) into the normalized coordinates of
+  the true trace with the conversion the estimators use, and the laser module recovers the exact plane from
+  them. The coefficient \f$ k_{ud} \f$ (metre to pixel) is not used; fitInverseDistortion() gives the
+  \f$ k_{ud} \f$ that best inverts \f$ k_{du} \f$, as a calibration would estimate both.
 
-  Errors are reported with vpLaserConicException (declared in vpLaserConicPose.h), a vpException.
+  The ground is rendered at fixed ground coordinates (X, Y of the frame g), so that a sequence sees the
+  same floor from frame to frame and a chessboard or texture placed with setGroundChessboard() or
+  setGroundTexture() has known corner coordinates. render(I, settings) adds what real images of a laser
+  ring show (vpLaserConicSimulator::vpRenderSettings): a dim or saturating stripe with bloom, floors of
+  several kinds with ambient light and a specular lamp reflection, red distractors and clutter, occluders,
+  frames without laser, motion blur and sensor noise.
+
+  Errors are reported with vpLaserConicException (vpLaserConicException.h), a vpException.
 
   All random draws come from one generator seeded by setSeed() (default seed 0): the same sequence of
   calls with the same seed gives the same results.
@@ -52,6 +67,94 @@
 class VISP_EXPORT vpLaserConicSimulator
 {
 public:
+  //! Procedural floors, defined at ground coordinates (they depend on the seed only).
+  enum vpFloorType
+  {
+    FLOOR_DARK_TILES,  //!< dark grey tiles (3 cm, grey 25-70) with a fine grain: the default
+    FLOOR_BRIGHT_GREY, //!< plain bright grey concrete (V about 40-110 under ambient 1) with a soft mottling
+    FLOOR_MOSAIC,      //!< colourful mosaic of warm-toned patches (orange, brown, ochre, brick, beige)
+    FLOOR_WHITE_TILES  //!< white glossy tiles (grey 200-230) with darker grout lines
+  };
+
+  //! Kind of a red distractor lying on the ground.
+  enum vpDistractorShape
+  {
+    DISTRACTOR_DISC,      //!< disc of diameter \e size
+    DISTRACTOR_RECTANGLE, //!< axis-aligned (ground frame) square of side \e size
+    DISTRACTOR_LINE       //!< segment from (x, y) to (x2, y2), \e size wide (a red cable, a painted line)
+  };
+
+  //! A coloured object lying on the ground (ground coordinates, metres).
+  struct vpDistractor
+  {
+    vpDistractorShape shape = DISTRACTOR_DISC; //!< shape
+    double x = 0.0, y = 0.0;                   //!< centre (disc, square) or first end (line), metres
+    double x2 = 0.0, y2 = 0.0;                 //!< second end of a line, metres
+    double size = 0.1;                         //!< diameter, side or line width, metres
+    vpRGBa colour = vpRGBa(200, 25, 20, 255);  //!< albedo under ambient 1 (default: a laser-like red)
+
+    //! A red disc of diameter \e size centred at (x, y).
+    static vpDistractor disc(double x, double y, double size)
+    {
+      vpDistractor d;
+      d.x = x;
+      d.y = y;
+      d.size = size;
+      return d;
+    }
+    //! A red square of side \e size centred at (x, y), sides along the ground axes.
+    static vpDistractor square(double x, double y, double size)
+    {
+      vpDistractor d = disc(x, y, size);
+      d.shape = DISTRACTOR_RECTANGLE;
+      return d;
+    }
+    //! A red line (a cable) from (x, y) to (x2, y2), \e width wide.
+    static vpDistractor line(double x, double y, double x2, double y2, double width)
+    {
+      vpDistractor d = disc(x, y, width);
+      d.shape = DISTRACTOR_LINE;
+      d.x2 = x2;
+      d.y2 = y2;
+      return d;
+    }
+  };
+
+  /*!
+    What render() draws. The defaults give the historical image: dark tiles, a red stripe of 3 px FWHM
+    peaking about 250 grey levels above the floor, blur 0.7 px, sensor noise 2 grey levels.
+  */
+  struct vpRenderSettings
+  {
+    vpFloorType floor = FLOOR_DARK_TILES; //!< procedural floor
+    //! Seed of the floor and of the clutter (negative: the simulator's seed, setSeed()); a fixed value keeps
+    //! the scene of a sequence while setSeed() changes the sensor noise from frame to frame.
+    int sceneSeed = -1;
+    double ambient = 1.0;      //!< multiplier of the floor (and distractor) brightness, >= 0
+    double specular = 0.0;     //!< peak grey level of the lamp's specular reflection on the floor, >= 0
+    double shininess = 60.0;   //!< Phong exponent of that reflection (larger: smaller highlight), > 0
+    double lampX = 0.3, lampY = 0.2, lampZ = 2.5; //!< lamp position in the ground frame, metres (Z above the ground)
+
+    bool laserOn = true;        //!< false renders a frame without laser (e.g. the laser is pulsed)
+    double laserPower = 330.0;  //!< red light added at the stripe centre, grey levels before clipping, >= 0
+    double stripeWidth = 3.0;   //!< full width at half maximum of the stripe profile, pixels, > 0
+    double whiteCore = 0.0;     //!< gain of the white light added where the red exceeds 255 (saturated core), >= 0
+    double bloom = 0.0;         //!< amplitude of a wide halo around the stripe, relative to laserPower, >= 0
+    double bloomWidth = 8.0;    //!< full width at half maximum of the halo, pixels, > 0
+
+    double blur = 0.7;             //!< optical blur, Gaussian standard deviation in pixels, >= 0
+    double motionBlurLength = 0.0; //!< length of a linear motion blur, pixels (0: none), >= 0
+    double motionBlurAngle = 0.0;  //!< direction of the motion blur in the image, radians from the u axis
+    double noise = 2.0;            //!< sensor noise standard deviation, grey levels per channel, >= 0
+
+    std::vector<vpDistractor> distractors; //!< objects on the ground (drawn over the floor, under the laser)
+    unsigned int clutter = 0;   //!< number of small red patches (1-4 cm), fixed on the ground (seed), see clutterRadius
+    double clutterRadius = 1.0; //!< the clutter lies within this distance of the ground origin, metres, >= 0
+    //! Image polygons (pixels) of dark objects in front of the ground: they hide the floor and the laser.
+    std::vector<std::vector<vpImagePoint> > occluders;
+    vpRGBa occluderColour = vpRGBa(35, 32, 30, 255); //!< colour of the occluders
+  };
+
   //! Simulator with no camera, a 34 degree laser at the camera centre, ground 1 m in front, seed 0.
   vpLaserConicSimulator();
 
@@ -75,6 +178,31 @@ public:
   void setGroundPose(const vpHomogeneousMatrix &cMg);
   //! Seed of every random draw; also restarts the random sequence.
   void setSeed(unsigned int seed);
+
+  /*!
+    Places a texture on the ground: texel (i, j) covers the ground square
+    X in [x0 + j s, x0 + (j + 1) s], Y in [y0 + i s, y0 + (i + 1) s] with s = \e metresPerTexel
+    (bilinear interpolation); the floor of the settings is seen around it. An empty image removes it.
+    \exception vpLaserConicException::badValueError when \e metresPerTexel is not positive and finite.
+  */
+  void setGroundTexture(const vpImage<vpRGBa> &texture, double metresPerTexel, double x0 = 0.0, double y0 = 0.0);
+  /*!
+    Places a printed chessboard on the ground: \e squaresX by \e squaresY squares of side \e squareSize
+    metres covering X in [0, squaresX s], Y in [0, squaresY s], the square at the origin black, on white
+    paper extending one square beyond the board. Its inner corners are the ground points (k s, l s, 0),
+    k = 1..squaresX-1, l = 1..squaresY-1, so cMg gives their camera coordinates. Rendered with 4 samples
+    per pixel (anti-aliased edges). squaresX = 0 removes it.
+    \exception vpLaserConicException::badValueError when \e squareSize is not positive and finite or a
+    single count is zero.
+  */
+  void setGroundChessboard(unsigned int squaresX, unsigned int squaresY, double squareSize);
+  /*!
+    The camera \e cam with the \f$ k_{ud} \f$ of vpMeterPixelConversion that best inverts its
+    \f$ k_{du} \f$ (the simulator's lens) over an image of \e width x \e height pixels (least squares
+    on the radius), as a calibration would estimate both; a camera without distortion is returned as is.
+  */
+  static vpCameraParameters fitInverseDistortion(const vpCameraParameters &cam, unsigned int width,
+                                                 unsigned int height);
 
   //! The ground plane in the camera frame, unit normal pointing from the plane towards the camera (the
   //! ground truth); its D coefficient is the altitude of the camera centre.
@@ -109,15 +237,16 @@ public:
                                         std::vector<bool> *isOutlier = nullptr);
 
   /*!
-    Renders a colour image of the camera's view.
+    Renders a colour image of the camera's view with the default vpRenderSettings but for the stripe
+    width and the noise (the image of the earlier versions of the simulator).
 
-    -# The ground: \e texture mapped by vpImageSimulator on a square of the ground plane that covers the
-       camera's footprint (up to 100 altitudes wide when the horizon is in view), so the texture is not
-       attached to fixed ground coordinates from one pose to the next (the laser methods do not use it).
-       When \e texture is empty, a procedural dark tiled floor that depends on the seed only is used;
-       what lies beyond the square is dark grey.
-    -# The laser: red light added along the exact image of the trace with a Gaussian profile across the
-       curve whose full width at half maximum is \e stripeWidth pixels.
+    -# The ground: when \e texture is empty, the procedural floor (FLOOR_DARK_TILES, at ground coordinates,
+       depending on the seed only) with the texture and chessboard of setGroundTexture() /
+       setGroundChessboard(); otherwise \e texture stretched over a square of the ground that covers the
+       camera's footprint (up to 100 altitudes wide when the horizon is in view), so that it is not
+       attached to fixed ground coordinates from one pose to the next; what lies beyond is dark grey.
+    -# The laser: red light added along the exact (distorted) image of the trace with a Gaussian profile
+       across the curve whose full width at half maximum is \e stripeWidth pixels.
     -# Optics and sensor: a Gaussian blur of standard deviation 0.7 pixel, then Gaussian sensor noise
        of standard deviation \e noise grey levels on each channel (seeded).
 
@@ -130,21 +259,34 @@ public:
   */
   void render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture = vpImage<vpRGBa>(), double stripeWidth = 3.0,
               double noise = 2.0);
+  /*!
+    Renders a colour image with the given settings: ground (floor, texture and chessboard of
+    setGroundTexture() / setGroundChessboard(), distractors, clutter) lit by the ambient light and the
+    lamp, the laser stripe (optional) with its white core and bloom, occluders, optical and motion blur,
+    sensor noise, 8-bit clipping. Pixels whose ray misses the ground (sky) are dark grey (20).
+    \exception vpLaserConicException on an unset camera (badCameraError) or a setting out of its range
+    (badValueError).
+  */
+  void render(vpImage<vpRGBa> &I, const vpRenderSettings &settings);
 
 private:
   void checkCamera() const;
+  //! Normalized undistorted coordinates of every pixel centre (inverse of the projection model), cached.
+  void updateRayMap();
+  //! Renders the ground (floor, texture, chessboard, distractors, lamp) into a float RGB image.
+  void renderGround(float *rgb, const vpRenderSettings &settings, const vpImage<vpRGBa> *stretchedTexture);
+  //! Adds the laser stripe, its white core and bloom.
+  void renderLaser(float *rgb, const vpRenderSettings &settings) const;
+  //! render() with, when not null, a texture stretched over the footprint (historical render(I, texture)).
+  void renderImpl(vpImage<vpRGBa> &I, const vpRenderSettings &settings, const vpImage<vpRGBa> *stretchedTexture);
   //! Ground point (camera frame) hit by the cone ray of angle gamma; false when the forward ray misses the ground.
   bool groundPoint(double gamma, double P[3]) const;
   //! Projects a camera-frame point; false when it is not in front of the camera.
   bool project(const double P[3], double &u, double &v) const;
-  //! Renders the textured ground into I (resized to the image size).
-  void renderGround(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture);
   //! Squared distance of each pixel within \e radius of the exact image trace to that trace (+inf elsewhere).
   void traceDistanceMap(float radius, std::vector<float> &dist2) const;
   //! Square of the ground (centre cx, cy and half side in ground coordinates) covering the camera's view.
   void groundFootprint(double &cx, double &cy, double &half) const;
-  //! Dark tiled floor texture drawn from the seed (cached).
-  const vpImage<vpRGBa> &proceduralTexture();
 
   vpCameraParameters m_cam;
   unsigned int m_width, m_height;
@@ -152,8 +294,13 @@ private:
   vpHomogeneousMatrix m_cMl, m_cMg;
   unsigned int m_seed;
   std::mt19937 m_rng;
-  vpImage<vpRGBa> m_texture;
-  unsigned int m_textureSeed;
+  vpImage<vpRGBa> m_texture;               //!< texture of setGroundTexture()
+  double m_texelSize, m_textureX0, m_textureY0; //!< its placement
+  unsigned int m_boardX, m_boardY;          //!< chessboard squares (0: none)
+  double m_boardSquare;                     //!< chessboard square size, metres
+  std::vector<float> m_rayX, m_rayY;        //!< ray map of updateRayMap()
+  vpCameraParameters m_rayCam;              //!< camera of the ray map
+  std::vector<unsigned char> m_rayValid;    //!< 1 where the model has an inverse at that pixel
 };
 
 #endif

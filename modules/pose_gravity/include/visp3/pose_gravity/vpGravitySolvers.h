@@ -95,37 +95,71 @@ Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
 int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[2],
         const Eigen::Vector3d X[2], std::array<Pose, 2> &poses, P2PCase *p2pCase = nullptr);
 
+//! Which point pair P3P solves (see p3p()).
+enum class P3PPairRule
+{
+  BestThirdPoint, //!< all three pairs solved; the pose whose third point reprojects best (default).
+  WidestPair      //!< the paper's rule: the pair farthest apart in the image, the others only if it has no solution.
+};
+
 /*!
-  P3P with known vertical (Sec. V): P2P on the pair of points farthest apart in the image, then the
-  candidate that reprojects the third point best. If that pair gives no two-point solution (image
-  points coinciding, or inconsistent beyond noise) the other pairs are tried in decreasing image
-  distance, so two points sharing one image point are handled through the third one.
+  P3P with known vertical (Sec. V): P2P on one pair of the three points, then the candidate that
+  reprojects the third point best.
+
+  Pair choice (\e rule):
+  - P3PPairRule::BestThirdPoint (default): each of the three pairs is solved and the pose whose third
+    point has the smallest reprojection error is returned. Pairs that barely observe the yaw (a nearly
+    vertical object segment, or two rays in a nearly vertical plane: the normalized coefficient
+    \f$ \sqrt{a^2+b^2} / (|\mathbf{n}||\mathbf{d}|) \f$ of the yaw equation below 0.05) are used only
+    when no other pair gives a pose; a pair with no yaw information at all never gives one. A double
+    root (noise pushing the yaw equation past tangency) thus wins only when it explains the third point
+    better than the other pairs' roots.
+  - P3PPairRule::WidestPair: the paper's rule, the pair farthest apart in the image first; the other
+    pairs, in decreasing image distance, only when it gives no pose.
+
+  The returned pose is not checked against a tolerance here: vpPoseGravity does that (see
+  vpPoseGravity::setConsistencyThreshold()).
   \param gCam, gObj : unit gravity in camera and object frames.
   \param x : the three bearings; \param X : the three object points (not collinear).
   \param pose : receives the pose when found.
+  \param rule : pair choice.
   \return true when a pose was found.
 */
 bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[3],
-         const Eigen::Vector3d X[3], Pose &pose);
+         const Eigen::Vector3d X[3], Pose &pose, P3PPairRule rule = P3PPairRule::BestThirdPoint);
 
 /*!
-  Closed-form least squares on n >= 2 points: the algebraic residuals
-  \f$ x_i P_z - P_x \f$, \f$ y_i P_z - P_y \f$ of all points (\f$ \mathbf{P} = \mathbf{R}\mathbf{X}_i + \mathbf{t} \f$)
-  are linear in \f$ (\cos\alpha, \sin\alpha, \mathbf{t}, 1) \f$; \f$ \mathbf{t} \f$ is eliminated (Schur
+  Least squares on n >= 3 points, closed form at each step: the best minimum of the algebraic cost,
+  reweighted towards the maximum-likelihood one.
+
+  The algebraic residuals \f$ w_i (x_i P_z - P_x) \f$, \f$ w_i (y_i P_z - P_y) \f$ of all points
+  (\f$ \mathbf{P} = \mathbf{R}\mathbf{X}_i + \mathbf{t} \f$) are linear in
+  \f$ (\cos\alpha, \sin\alpha, \mathbf{t}, 1) \f$; \f$ \mathbf{t} \f$ is eliminated (Schur
   complement) and the remaining quadratic form is minimised on the unit circle exactly: its
-  stationary points are the roots of a quartic in \f$ \tan(\phi/2) \f$ (companion matrix). No
-  iteration. Since the algebraic cost ignores the side of the camera, the stationary points are
-  ranked first by the number of points in front of the camera, then by cost (two points on one
-  vertical ray, for instance, fit the mirrored pose as well).
+  stationary points are the roots of a quartic in \f$ \tan(\phi/2) \f$ (companion matrix), polished
+  by Newton steps. Only its minima (positive second derivative, at most two) are candidates, ranked by
+  the sum of squared reprojection errors of their poses (infinite with a point behind the camera):
+  the algebraic cost itself favours poses squeezed towards the camera, so that with an outlier its
+  lowest minimum can be a pose with points behind it. Without any minimum in front of the camera the
+  lowest algebraic minimum is returned (vpPoseGravity then reports it).
+
+  Since \f$ x_i P_z - P_x = P_z\,(x_i - P_x/P_z) \f$, unit weights weight each point's squared
+  reprojection error by its squared depth: far points dominate. Each reweighting pass sets
+  \f$ w_i = \bar z / z_i \f$ from the depths \f$ z_i \f$ of the current estimate and solves again, so
+  that the cost approaches the sum of squared reprojection errors (the maximum-likelihood cost for
+  isotropic image noise). A pass is kept only if it lowers the sum of squared reprojection errors;
+  passes stop at the first that does not, after one that lowers it by less than 0.1 %, or when a
+  depth is not positive.
   \param gCam, gObj : unit gravity in camera and object frames.
   \param x, X : n bearings and object points.
   \param n : number of points (>= 2; 2 points leave the yaw ambiguous, use p2p()).
   \param pose : receives the pose.
+  \param reweightingPasses : number of inverse-depth reweighting passes (0: the plain algebraic cost).
   \return false when all rays are parallel, when the yaw is not observable (all points on one
   vertical line) or data are not finite.
 */
 bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
-                  const Eigen::Vector3d *X, int n, Pose &pose);
+                  const Eigen::Vector3d *X, int n, Pose &pose, int reweightingPasses = 2);
 
 /*!
   Translation of the pose given its rotation: linear least squares on n >= 2 points of the

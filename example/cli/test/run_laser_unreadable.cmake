@@ -1,0 +1,35 @@
+# ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+# vsp-laser-altimeter on a folder holding three images of data/laser_hard and a file with an image
+# extension that is not an image: exit status 0, a failure row "unreadable_image" for that file, and a
+# plane (status ok) for each of the three images.
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}/images")
+foreach(k 000 001 002)
+  file(COPY "${DATA}/images/frame_${k}.jpg" DESTINATION "${WORK}/images")
+endforeach()
+file(WRITE "${WORK}/images/frame_001b.png" "this is not a PNG file\n")
+execute_process(COMMAND "${PROGRAM}" --camera "${DATA}/camera.xml" --laser "${DATA}/laser.txt"
+                        --images "${WORK}/images" --output "${WORK}/results.csv"
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "vsp-laser-altimeter exited with status ${status}")
+endif()
+file(STRINGS "${WORK}/results.csv" rows)
+list(LENGTH rows count)
+if(NOT count EQUAL 5)
+  message(FATAL_ERROR "expected a header and 4 rows, got ${count} lines")
+endif()
+set(ok 0)
+set(unreadable 0)
+foreach(row ${rows})
+  if(row MATCHES "frame_001b\\.png,0,nan,nan,nan,0,unreadable_image$")
+    math(EXPR unreadable "${unreadable} + 1")
+  elseif(row MATCHES "frame_00[0-2]\\.jpg,[0-9]+,[0-9.]+,[-0-9.e]+,[-0-9.e]+,[0-9]+,ok$")
+    math(EXPR ok "${ok} + 1")
+  endif()
+endforeach()
+if(NOT ok EQUAL 3 OR NOT unreadable EQUAL 1)
+  message(FATAL_ERROR "expected 3 frames with a plane and 1 unreadable image, got ${ok} and ${unreadable}:\n${rows}")
+endif()
+message("laser unreadable-image test: 3 planes, 1 failure row, exit status 0")

@@ -1,0 +1,552 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// The ridge detector of vpLaserConicDetector (DETECTION_RIDGE): red-dominance score in one pass over the
+// RGBA buffer, top-hat candidates along rows and columns against a threshold estimated from the image,
+// profile checks and sub-pixel centre around each candidate only, then a continuity filter.
+#include "laser_detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstddef>
+#include <cstring>
+#include <numeric>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace vpLaserDetector
+{
+namespace
+{
+// Width (grey levels of the red channel) of the ramp below the saturation level over which the score goes
+// from the red dominance to 255.
+const int kSaturationRamp = 30;
+
+// Score of n pixels: the red dominance R - w max(G, B), clipped to [0, 255], where w = 1 below the ramp
+// (R <= saturation - 30), falls linearly to 0 at the saturation level and stays 0 above. A stripe whose red
+// channel saturates (and a white saturated core) is thus a plateau of 255 joined continuously to its red
+// flanks: no jump at the saturation level for the sensor noise to flicker on. Integer arithmetic without
+// branch over the bytes of the RGBA buffer, so that the compiler vectorises it.
+inline unsigned char scorePixel(const unsigned char *p, int saturation)
+{
+  const int r = p[0], g = p[1], b = p[2];
+  const int m = g > b ? g : b;
+  int t = saturation - r; // ramp weight x 30
+  t = t < 0 ? 0 : (t > kSaturationRamp ? kSaturationRamp : t);
+  const int s = r - (m * t * 2185 >> 16); // 2185 / 65536 = 1 / 30 (to 1e-4)
+  return static_cast<unsigned char>(s < 0 ? 0 : s);
+}
+
+void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation)
+{
+  int j = 0;
+#if defined(__SSE2__)
+  // 16 pixels per step in 16-bit lanes, the same integer arithmetic as scorePixel().
+  const __m128i low8 = _mm_set1_epi32(0xFF), sat = _mm_set1_epi16(static_cast<short>(saturation));
+  const __m128i zero = _mm_setzero_si128(), ramp = _mm_set1_epi16(kSaturationRamp), third = _mm_set1_epi16(2185);
+  for (; j + 16 <= n; j += 16) {
+    __m128i half[2];
+    for (int h = 0; h < 2; ++h) {
+      const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h)));
+      const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h + 4)));
+      const __m128i r = _mm_packs_epi32(_mm_and_si128(a, low8), _mm_and_si128(b, low8));
+      const __m128i g = _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 8), low8), _mm_and_si128(_mm_srli_epi32(b, 8), low8));
+      const __m128i bl =
+          _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 16), low8), _mm_and_si128(_mm_srli_epi32(b, 16), low8));
+      const __m128i m = _mm_max_epi16(g, bl);
+      const __m128i t = _mm_min_epi16(_mm_max_epi16(_mm_sub_epi16(sat, r), zero), ramp);
+      const __m128i w = _mm_mulhi_epu16(_mm_mullo_epi16(m, t), third);
+      half[h] = _mm_max_epi16(_mm_sub_epi16(r, w), zero);
+    }
+    _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), _mm_packus_epi16(half[0], half[1]));
+  }
+#endif
+  for (; j < n; ++j)
+    score[j] = scorePixel(rgba + 4 * j, saturation);
+}
+
+// Robust noise of the unclipped score r - max(g, b): 1.4826 MAD / sqrt(2) of its differences two pixels
+// apart (two apart: the optical blur correlates neighbours), every 4th pixel of every 8th row of the scored
+// region (about 60 000 samples in a 1600 x 1200 image: the median is known to a few percent).
+double estimateNoise(const vpImage<vpRGBa> &I, const RowIntervals *region)
+{
+  const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
+  std::vector<uint32_t> histogram(511, 0);
+  uint64_t count = 0;
+  auto sampleSpan = [&](const unsigned char *row, int j0, int j1) {
+    for (int j = j0; j + 2 <= j1; j += 4) {
+      const unsigned char *p = row + 4 * j, *q = p + 8;
+      const int a = p[0] - std::max(p[1], p[2]), b = q[0] - std::max(q[1], q[2]);
+      ++histogram[std::abs(a - b)];
+      ++count;
+    }
+  };
+  for (int i = 0; i < H; i += 8) {
+    const unsigned char *row = reinterpret_cast<const unsigned char *>(I[static_cast<unsigned int>(i)]);
+    if (region == nullptr)
+      sampleSpan(row, 0, W - 1);
+    else
+      for (const std::pair<int, int> &span : (*region)[i])
+        sampleSpan(row, span.first, span.second);
+  }
+  if (count == 0)
+    return 0.0;
+  // Median of the absolute differences, interpolated inside its bin.
+  const double half = 0.5 * count;
+  uint64_t below = 0;
+  for (size_t k = 0; k < histogram.size(); ++k) {
+    if (below + histogram[k] >= half) {
+      const double mad = k > 0 ? k - 0.5 + (half - below) / histogram[k] : (half - below) / histogram[k] * 0.5;
+      return 1.4826 * mad / std::sqrt(2.0);
+    }
+    below += histogram[k];
+  }
+  return 0.0;
+}
+
+// A candidate peak: its scan line and its position along it.
+struct Candidate
+{
+  int line, pos;
+  bool operator<(const Candidate &o) const { return line < o.line || (line == o.line && pos < o.pos); }
+};
+
+// Candidate test of one pixel: v exceeds the background bg by threshold and the score `near` (the larger at
+// d / 2 + 1 pixels on both sides) by half of it, and is a local maximum (first
+// pixel of a plateau) between its neighbours before and after along the scan line. The second test is implied
+// by the half-maximum width test of a stripe centred on its peak; it discards early the local maxima of red
+// areas a little wider than a stripe, which would fail that test after a longer look. A saturated pixel
+// (255) is exempt: it may be the first pixel of the plateau of a saturated core.
+inline bool isCandidate(int v, int bg, int near, int before, int after, int threshold, int halfThreshold)
+{
+  return v >= bg + threshold && (v >= near + halfThreshold || v == 255) && v > before && v >= after;
+}
+
+#if defined(__SSE2__)
+inline __m128i load16(const unsigned char *p) { return _mm_loadu_si128(reinterpret_cast<const __m128i *>(p)); }
+
+// v - b >= t on unsigned bytes (saturated difference).
+inline __m128i atLeast(__m128i v, __m128i b, __m128i t)
+{
+  const __m128i excess = _mm_subs_epu8(v, b);
+  return _mm_cmpeq_epi8(_mm_max_epu8(excess, t), excess);
+}
+
+// isCandidate() on 16 consecutive pixels (unsigned saturated byte arithmetic); bit k of the result for pixel
+// k. far0/far1, near0/near1: the pixels d and d / 2 + 1 away on each side; before/after: the neighbours.
+// The background of a side is the lower of its two samples (a neighbouring red patch at d pixels does not
+// hide a stripe whose surroundings at d / 2 + 1 are dark), the background the larger of the two sides.
+inline int candidates16(const unsigned char *v, const unsigned char *far0, const unsigned char *far1,
+                        const unsigned char *near0, const unsigned char *near1, const unsigned char *before,
+                        const unsigned char *after, __m128i threshold, __m128i halfThreshold)
+{
+  const __m128i x = load16(v), zero = _mm_setzero_si128();
+  // Most blocks of a frame have no score reaching the threshold: one test skips the other loads.
+  if (_mm_movemask_epi8(atLeast(x, zero, threshold)) == 0)
+    return 0;
+  const __m128i saturated = _mm_cmpeq_epi8(x, _mm_set1_epi8(static_cast<char>(0xFF))); // a plateau of 255 may be wide
+  const __m128i n0 = load16(near0), n1 = load16(near1);
+  const __m128i bg = _mm_max_epu8(_mm_min_epu8(load16(far0), n0), _mm_min_epu8(load16(far1), n1));
+  const __m128i high =
+      _mm_and_si128(atLeast(x, bg, threshold), _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(n0, n1), halfThreshold)));
+  const __m128i notAbove = _mm_cmpeq_epi8(_mm_subs_epu8(x, load16(before)), zero);
+  const __m128i notBelow = _mm_cmpeq_epi8(_mm_subs_epu8(load16(after), x), zero);
+  return _mm_movemask_epi8(_mm_andnot_si128(notAbove, _mm_and_si128(high, notBelow)));
+}
+#endif
+
+// Score at offset k along a line of n pixels from position j (0 beyond the ends).
+inline int scoreAt(const unsigned char *line, ptrdiff_t stride, int j, int k, int n)
+{
+  return j + k >= 0 && j + k < n ? line[(j + k) * stride] : 0;
+}
+
+// Candidate peaks along row i within [j0, j1] (near the image border one background side only).
+void rowCandidates(const unsigned char *c, int W, int i, int j0, int j1, int d, int threshold, std::vector<Candidate> &out)
+{
+  j0 = std::max(j0, 1);
+  j1 = std::min(j1, W - 2);
+  const unsigned char *row = c + static_cast<size_t>(i) * W;
+  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
+  auto scalar = [&](int j) {
+    const int bg = std::max(std::min(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, -dn, W)),
+                            std::min(scoreAt(row, 1, j, d, W), scoreAt(row, 1, j, dn, W)));
+    const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
+    if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
+      out.push_back(Candidate{i, j});
+  };
+  int j = j0;
+#if defined(__SSE2__)
+  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
+  for (; j < d && j <= j1; ++j)
+    scalar(j);
+  for (; j + 15 <= j1 && j + 15 + d < W; j += 16) {
+    int bits = candidates16(row + j, row + j - d, row + j + d, row + j - dn, row + j + dn, row + j - 1, row + j + 1, t, th);
+    while (bits) {
+      out.push_back(Candidate{i, j + __builtin_ctz(bits)});
+      bits &= bits - 1;
+    }
+  }
+#endif
+  for (; j <= j1; ++j)
+    scalar(j);
+}
+
+// Candidate peaks along the columns (every step-th column) at row i within [j0, j1].
+void columnCandidates(const unsigned char *c, int W, int H, int i, int j0, int j1, int d, int threshold, int step,
+                      std::vector<Candidate> &out)
+{
+  if (i < 1 || i > H - 2)
+    return;
+  const unsigned char *row = c + static_cast<size_t>(i) * W;
+  const ptrdiff_t stride = W;
+  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
+  int j = j0;
+#if defined(__SSE2__)
+  if (i - d >= 0 && i + d < H) {
+    const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
+    for (; j + 15 <= j1; j += 16) {
+      int bits = candidates16(row + j, row + j - d * stride, row + j + d * stride, row + j - dn * stride,
+                              row + j + dn * stride, row + j - stride, row + j + stride, t, th);
+      while (bits) {
+        const int k = __builtin_ctz(bits);
+        if ((j + k) % step == 0)
+          out.push_back(Candidate{j + k, i});
+        bits &= bits - 1;
+      }
+    }
+  }
+#endif
+  for (; j <= j1; ++j) {
+    const unsigned char *column = c + j; // the column j, row 0
+    const int bg = std::max(std::min(scoreAt(column, stride, i, -d, H), scoreAt(column, stride, i, -dn, H)),
+                            std::min(scoreAt(column, stride, i, d, H), scoreAt(column, stride, i, dn, H)));
+    const int near = std::max(scoreAt(column, stride, i, -dn, H), scoreAt(column, stride, i, dn, H));
+    if (j % step == 0 && isCandidate(row[j], bg, near, row[j - stride], row[j + stride], threshold, half))
+      out.push_back(Candidate{j, i});
+  }
+}
+
+// A measured stripe crossing.
+struct Crossing
+{
+  vpImagePoint point;
+  bool alongRow;
+  int line, first, last; // the half-maximum run [first, last] along the scan line
+};
+
+// Access to the score and the pixels along one scan line.
+struct ScanLine
+{
+  const unsigned char *score;
+  const unsigned char *rgba;
+  int W, H;
+  bool alongRow;
+  int line;
+  int length() const { return alongRow ? W : H; }
+  size_t index(int pos) const { return alongRow ? static_cast<size_t>(line) * W + pos : static_cast<size_t>(pos) * W + line; }
+  int at(int pos) const { return score[index(pos)]; }
+  // Unclipped red dominance of the pixel (negative for grey or other colours).
+  int dominance(int pos) const
+  {
+    const unsigned char *p = rgba + 4 * index(pos);
+    return p[0] - std::max(p[1], p[2]);
+  }
+  int red(int pos) const { return rgba[4 * index(pos)]; }
+};
+
+// Run of scores above `level` through (i, j) along the direction (di, dj), up to limit pixels per side:
+// its length and its largest score.
+struct Run
+{
+  int length, maxScore;
+};
+Run runThrough(const unsigned char *score, int W, int H, int i, int j, int di, int dj, double level, int limit)
+{
+  Run run = {1, score[static_cast<size_t>(i) * W + j]};
+  for (int sign = -1; sign <= 1; sign += 2)
+    for (int k = 1; k <= limit; ++k) {
+      const int ii = i + sign * k * di, jj = j + sign * k * dj;
+      if (ii < 0 || jj < 0 || ii >= H || jj >= W)
+        break;
+      const int v = score[static_cast<size_t>(ii) * W + jj];
+      if (!(v > level))
+        break;
+      ++run.length;
+      run.maxScore = std::max(run.maxScore, v);
+    }
+  return run;
+}
+
+enum Verdict
+{
+  ACCEPTED,
+  REJECTED, // shape, width or white light: mark the run
+  IGNORED   // not measured by this direction (the other direction crosses more steeply)
+};
+
+// Checks the profile around the candidate peak p and measures its sub-pixel centre.
+Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, Crossing &out)
+{
+  const int n = s.length(), d = settings.maxWidth, dn = d / 2 + 1;
+  const int peak = s.at(p);
+  auto side = [&](int sign) { // the lower of the scores d and d / 2 + 1 pixels away on one side
+    const int a = p + sign * d, b = p + sign * dn;
+    return std::min(a >= 0 && a < n ? s.at(a) : 0, b >= 0 && b < n ? s.at(b) : 0);
+  };
+  const int bg = std::max(side(-1), side(1));
+  const int contrast = peak - bg;
+  if (contrast < threshold)
+    return IGNORED;
+  // Half-maximum run.
+  const double half = bg + 0.5 * contrast;
+  int a = p, b = p;
+  while (a - 1 >= 0 && s.at(a - 1) > half && p - a <= d)
+    --a;
+  while (b + 1 < n && s.at(b + 1) > half && b - p <= d)
+    ++b;
+  out.alongRow = s.alongRow;
+  out.line = s.line;
+  out.first = a;
+  out.last = b;
+  if (b - a + 1 > settings.maxWidth)
+    return REJECTED; // a wide red object, not a stripe
+  // White pixels (red channel in the saturation ramp or above, low dominance) must be flanked by red on both
+  // sides: a saturated core, not white light.
+  int firstWhite = -1, lastWhite = -1;
+  for (int k = a; k <= b; ++k)
+    if (s.red(k) >= settings.saturation - kSaturationRamp && s.dominance(k) < threshold) {
+      if (firstWhite < 0)
+        firstWhite = k;
+      lastWhite = k;
+    }
+  if (firstWhite >= 0) {
+    bool redLeft = false, redRight = false;
+    for (int k = std::max(0, a - 2); k < firstWhite && !redLeft; ++k)
+      redLeft = s.dominance(k) >= threshold;
+    for (int k = lastWhite + 1; k <= std::min(n - 1, b + 2) && !redRight; ++k)
+      redRight = s.dominance(k) >= threshold;
+    if (!redLeft || !redRight)
+      return REJECTED; // white light, not a laser
+  }
+  // The other scan direction crosses the stripe more steeply here: it measures this part of the curve.
+  const int i = s.alongRow ? s.line : p, j = s.alongRow ? p : s.line;
+  const Run across = runThrough(s.score, s.W, s.H, i, j, s.alongRow ? 1 : 0, s.alongRow ? 0 : 1, half, d + 1);
+  if (across.length < b - a + 1)
+    return IGNORED;
+  // A line grazing the edge of a stripe (nearly tangent to it) runs inside the stripe's flank: its contrast
+  // along the line is a fraction of the stripe's contrast across it. A sliver, not a crossing.
+  const int di = s.alongRow ? d : 0, dj = s.alongRow ? 0 : d;
+  const int acrossBg = std::max(i - di >= 0 && j - dj >= 0 ? s.score[static_cast<size_t>(i - di) * s.W + (j - dj)] : 0,
+                                i + di < s.H && j + dj < s.W ? s.score[static_cast<size_t>(i + di) * s.W + (j + dj)] : 0);
+  if (across.maxScore - bg > 1.5 * contrast || 2 * contrast < across.maxScore - acrossBg)
+    return IGNORED;
+  // Centroid of the score above a quarter of the contrast, over the connected part around the peak.
+  const double level = bg + 0.25 * contrast;
+  int lo = a, hi = b;
+  while (lo - 1 >= 0 && s.at(lo - 1) > level && p - lo < d - 1)
+    --lo;
+  while (hi + 1 < n && s.at(hi + 1) > level && hi - p < d - 1)
+    ++hi;
+  double sumW = 0.0, sumWk = 0.0;
+  for (int k = lo; k <= hi; ++k) {
+    const double w = s.at(k) - level;
+    if (w > 0.0) {
+      sumW += w;
+      sumWk += w * k;
+    }
+  }
+  const double centre = sumW > 0.0 ? sumWk / sumW : p;
+  out.point = s.alongRow ? vpImagePoint(s.line, centre) : vpImagePoint(centre, s.line);
+  return ACCEPTED;
+}
+
+// Union-find root with path halving.
+int root(std::vector<int> &parent, int k)
+{
+  while (parent[k] != k) {
+    parent[k] = parent[parent[k]];
+    k = parent[k];
+  }
+  return k;
+}
+
+// Keeps the crossings that belong to chains (neighbours within `link` pixels) at least minLength long.
+std::vector<bool> longChains(const std::vector<Crossing> &crossings, int W, int H, double link, double minLength)
+{
+  const int n = static_cast<int>(crossings.size());
+  std::vector<bool> keep(n, true);
+  if (minLength <= 0.0 || n == 0)
+    return keep;
+  // Grid of cells of side >= link (4 px at least: a small grid) with a list of crossings per cell: the
+  // neighbours are in the 3 x 3 cells around, each pair seen once from its first cell in scan order (the
+  // cell itself with the later crossings, and the 4 cells after it).
+  const double side = std::max(4.0, link);
+  const int columns = static_cast<int>(W / side) + 3, rows = static_cast<int>(H / side) + 3;
+  std::vector<int> head(static_cast<size_t>(columns) * rows, -1), next(n, -1), cellOf(n);
+  for (int k = n - 1; k >= 0; --k) { // lists in increasing index order
+    const int cx = static_cast<int>(crossings[k].point.get_u() / side) + 1;
+    const int cy = static_cast<int>(crossings[k].point.get_v() / side) + 1;
+    cellOf[k] = std::min(rows - 2, std::max(1, cy)) * columns + std::min(columns - 2, std::max(1, cx));
+    next[k] = head[cellOf[k]];
+    head[cellOf[k]] = k;
+  }
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const double link2 = link * link;
+  const int after[4] = {1, columns - 1, columns, columns + 1};
+  auto join = [&](int k, int q) {
+    const double du = crossings[k].point.get_u() - crossings[q].point.get_u();
+    const double dv = crossings[k].point.get_v() - crossings[q].point.get_v();
+    if (du * du + dv * dv <= link2) {
+      const int ra = root(parent, k), rb = root(parent, q);
+      if (ra != rb)
+        parent[ra] = rb;
+    }
+  };
+  for (int k = 0; k < n; ++k) {
+    for (int q = next[k]; q >= 0; q = next[q])
+      join(k, q);
+    for (int offset : after)
+      for (int q = head[cellOf[k] + offset]; q >= 0; q = next[q])
+        join(k, q);
+  }
+  // Extent of each chain: bounding-box diagonal.
+  std::vector<double> minU(n, 1e30), maxU(n, -1e30), minV(n, 1e30), maxV(n, -1e30);
+  for (int k = 0; k < n; ++k) {
+    parent[k] = root(parent, k);
+    const int r = parent[k];
+    const vpImagePoint &p = crossings[k].point;
+    minU[r] = std::min(minU[r], p.get_u());
+    maxU[r] = std::max(maxU[r], p.get_u());
+    minV[r] = std::min(minV[r], p.get_v());
+    maxV[r] = std::max(maxV[r], p.get_v());
+  }
+  const double min2 = minLength * minLength;
+  for (int k = 0; k < n; ++k) {
+    const int r = parent[k];
+    const double du = maxU[r] - minU[r], dv = maxV[r] - minV[r];
+    keep[k] = du * du + dv * dv >= min2;
+  }
+  return keep;
+}
+} // namespace
+
+std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSettings &settings,
+                                      const RowIntervals *scoreRegion, const RowIntervals *searchRegion,
+                                      std::vector<unsigned char> &score, std::vector<StripeRun> &runs,
+                                      RidgeReport &report)
+{
+  std::vector<vpImagePoint> points;
+  runs.clear();
+  const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
+  if (H == 0 || W == 0)
+    return points;
+  const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
+
+  // 1. Threshold from the image's own noise (a sparse sample of rows).
+  report.noise = estimateNoise(I, scoreRegion);
+  report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
+  const int threshold = std::min(255, static_cast<int>(std::ceil(report.threshold)));
+
+  // 2. Score, candidates and profiles in one pass over the rows, while the rows are in cache: row i is
+  // scored (only over the region when one is given: nothing outside it is read) and searched along its
+  // length; the columns are searched at row i - d, the last row whose neighbours up to d rows away are
+  // scored; the candidates of row i - d - 1 (the last row whose profiles, up to d + 1 rows away, are
+  // scored) are measured: one crossing per run, a later peak inside a measured run is skipped (the
+  // candidates come line by line for the rows, row by row for the columns: one run end per column).
+  const int d = settings.maxWidth, step = settings.step;
+  score.resize(static_cast<size_t>(W) * H);
+  std::vector<Candidate> rowPeaks, columnPeaks;
+  rowPeaks.reserve(4096);
+  columnPeaks.reserve(4096);
+  auto searchColumns = [&](int r) {
+    if (searchRegion == nullptr)
+      columnCandidates(score.data(), W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
+    else
+      for (const std::pair<int, int> &span : (*searchRegion)[r])
+        columnCandidates(score.data(), W, H, r, span.first, span.second, d, threshold, step, columnPeaks);
+  };
+  std::vector<Crossing> crossings;
+  std::vector<int> lastEnd(W, -1);
+  int lastRow = -1, lastRowEnd = -1;
+  size_t nextRowPeak = 0, nextColumnPeak = 0;
+  auto measure = [&](const Candidate &c, bool alongRow) {
+    if (alongRow && c.line != lastRow) {
+      lastRow = c.line;
+      lastRowEnd = -1;
+    }
+    int &end = alongRow ? lastRowEnd : lastEnd[c.line];
+    if (c.pos <= end)
+      return;
+    const ScanLine s = {score.data(), rgba, W, H, alongRow, c.line};
+    Crossing crossing;
+    const Verdict verdict = analyse(s, c.pos, settings, threshold, crossing);
+    if (verdict == IGNORED)
+      return;
+    end = crossing.last;
+    if (verdict == ACCEPTED)
+      crossings.push_back(crossing);
+    else
+      runs.push_back(StripeRun{alongRow, crossing.line, crossing.first, crossing.last, false});
+  };
+  auto measureUpTo = [&](int r) { // every candidate of the rows <= r
+    for (; nextRowPeak < rowPeaks.size() && rowPeaks[nextRowPeak].line <= r; ++nextRowPeak)
+      measure(rowPeaks[nextRowPeak], true);
+    for (; nextColumnPeak < columnPeaks.size() && columnPeaks[nextColumnPeak].pos <= r; ++nextColumnPeak)
+      measure(columnPeaks[nextColumnPeak], false);
+  };
+  for (int i = 0; i < H; ++i) {
+    const size_t offset = static_cast<size_t>(i) * W;
+    if (scoreRegion == nullptr) {
+      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation);
+      if (i % step == 0)
+        rowCandidates(score.data(), W, i, 0, W - 1, d, threshold, rowPeaks);
+    } else {
+      for (const std::pair<int, int> &span : (*scoreRegion)[i])
+        scoreSpan(rgba + 4 * (offset + span.first), &score[offset + span.first], span.second - span.first + 1,
+                  settings.saturation);
+      if (i % step == 0)
+        for (const std::pair<int, int> &span : (*searchRegion)[i])
+          rowCandidates(score.data(), W, i, span.first, span.second, d, threshold, rowPeaks);
+    }
+    if (i - d >= 0)
+      searchColumns(i - d);
+    measureUpTo(i - d - 1);
+  }
+  for (int r = std::max(0, H - d); r < H; ++r)
+    searchColumns(r);
+  measureUpTo(H);
+
+  // 5. Continuity: drop the short chains.
+  const std::vector<bool> keep = longChains(crossings, W, H, 2.0 * step + 0.5, settings.minSegment);
+  points.reserve(crossings.size());
+  for (size_t k = 0; k < crossings.size(); ++k) {
+    const Crossing &c = crossings[k];
+    runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, keep[k]});
+    if (keep[k])
+      points.push_back(c.point);
+  }
+  return points;
+}
+} // namespace vpLaserDetector
+
+namespace vpLaserDetector
+{
+void drawRuns(const std::vector<StripeRun> &runs, unsigned int H, unsigned int W, vpImage<unsigned char> &mask)
+{
+  mask.resize(H, W, 0);
+  for (const StripeRun &r : runs) {
+    const unsigned char value = r.accepted ? 255 : 100;
+    for (int k = r.first; k <= r.last; ++k) {
+      unsigned char &m = r.alongRow ? mask[static_cast<unsigned int>(r.line)][static_cast<unsigned int>(k)]
+                                    : mask[static_cast<unsigned int>(k)][static_cast<unsigned int>(r.line)];
+      m = std::max(m, value);
+    }
+  }
+}
+} // namespace vpLaserDetector

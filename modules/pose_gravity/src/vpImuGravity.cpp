@@ -1,0 +1,255 @@
+/* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
+/*
+  vpImuGravity: accelerometer readings (specific force, pointing up at rest) -> down gravity
+  direction in a sensor frame, interpolation of an IMU stream at given times, motion flag.
+*/
+#include <visp3/pose_gravity/vpImuGravity.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <visp3/core/vpMatrix.h>
+#include <visp3/core/vpThetaUVector.h>
+
+namespace
+{
+void badParameter(const std::string &what)
+{
+  throw vpPoseGravityException(vpPoseGravityException::badParameterError, "vpImuGravity::" + what);
+}
+
+void badFile(const std::string &file, size_t line, const std::string &what)
+{
+  std::ostringstream msg;
+  msg << "vpImuGravity: " << file;
+  if (line > 0)
+    msg << ":" << line;
+  msg << ": " << what;
+  throw vpPoseGravityException(vpPoseGravityException::badFileError, msg.str());
+}
+
+// Splits a line on commas, spaces and tabs into numbers; false if a field is not a number.
+bool parseNumbers(const std::string &line, std::vector<double> &values)
+{
+  values.clear();
+  std::string token;
+  std::string cleaned = line;
+  std::replace(cleaned.begin(), cleaned.end(), ',', ' ');
+  std::replace(cleaned.begin(), cleaned.end(), '\t', ' ');
+  std::replace(cleaned.begin(), cleaned.end(), '\r', ' ');
+  std::istringstream words(cleaned);
+  while (words >> token) {
+    char *end = nullptr;
+    errno = 0;
+    const double v = std::strtod(token.c_str(), &end);
+    if (end == token.c_str() || *end != '\0' || errno == ERANGE)
+      return false;
+    values.push_back(v);
+  }
+  return true;
+}
+
+bool blankOrComment(const std::string &line)
+{
+  const size_t first = line.find_first_not_of(" \t\r");
+  return first == std::string::npos || line[first] == '#';
+}
+} // namespace
+
+vpImuGravity::vpImuGravity()
+  : m_samples(), m_sRimu(), m_gravityNorm(standardGravity()), m_normTolerance(0.5),
+    m_gyroTolerance(std::numeric_limits<double>::infinity()), m_motionWindow(0.0), m_timeOffset(0.0)
+{
+}
+
+vpColVector vpImuGravity::gravityFromSpecificForce(const vpColVector &f, const vpRotationMatrix &sRimu)
+{
+  if (f.size() != 3 || !std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
+    throw vpPoseGravityException(vpPoseGravityException::badGravityError,
+                                 "vpImuGravity::gravityFromSpecificForce: the reading must be a finite 3-vector");
+  const vpColVector s = sRimu * f;
+  const double norm = std::sqrt(s.sumSquare());
+  if (!(norm > 0.0) || !std::isfinite(norm))
+    throw vpPoseGravityException(vpPoseGravityException::badGravityError,
+                                 "vpImuGravity::gravityFromSpecificForce: zero reading (free fall?) has no direction");
+  return -s / norm; // specific force points up at rest: gravity is its opposite
+}
+
+bool vpImuGravity::isAtRest(const vpColVector &f, double tolerance, double g)
+{
+  if (f.size() != 3)
+    return false;
+  const double norm = std::sqrt(f.sumSquare());
+  return std::isfinite(norm) && std::abs(norm - g) <= tolerance;
+}
+
+vpRotationMatrix vpImuGravity::loadRotation(const std::string &file)
+{
+  std::ifstream in(file.c_str());
+  if (!in)
+    badFile(file, 0, "cannot open the rotation file");
+  std::vector<double> all, values;
+  std::string line;
+  size_t lineNo = 0;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (blankOrComment(line))
+      continue;
+    std::string content = line;
+    // Kalibr's YAML rows "- [a, b, c, d]": drop the list marker and the brackets.
+    const size_t first = content.find_first_not_of(" \t");
+    if (first != std::string::npos && content.compare(first, 2, "- ") == 0)
+      content[first] = ' ';
+    std::replace(content.begin(), content.end(), '[', ' ');
+    std::replace(content.begin(), content.end(), ']', ' ');
+    if (!parseNumbers(content, values))
+      badFile(file, lineNo, "not a list of numbers: '" + line + "'");
+    all.insert(all.end(), values.begin(), values.end());
+  }
+  if (all.size() != 9 && all.size() != 16)
+    badFile(file, 0, "expected 9 numbers (3x3 rotation) or 16 (4x4 homogeneous matrix), got " +
+                         std::to_string(all.size()));
+  const size_t stride = (all.size() == 16) ? 4 : 3;
+  vpMatrix M(3, 3);
+  for (unsigned int r = 0; r < 3; ++r)
+    for (unsigned int c = 0; c < 3; ++c) {
+      M[r][c] = all[r * stride + c];
+      if (!std::isfinite(M[r][c]))
+        badFile(file, 0, "non-finite rotation coefficient");
+    }
+  const vpMatrix E = M * M.t() - vpMatrix(vpRotationMatrix());
+  if (E.frobeniusNorm() > 1e-3 || M.det() < 0.0)
+    badFile(file, 0, "the matrix is not a rotation (R R^T != I or det < 0)");
+  vpRotationMatrix R;
+  for (unsigned int r = 0; r < 3; ++r)
+    for (unsigned int c = 0; c < 3; ++c)
+      R[r][c] = M[r][c];
+  // Re-orthonormalise the rounding of the file (vpRotationMatrix::orthogonalize is not in ViSP 3.5's API).
+  const vpThetaUVector tu(R);
+  return vpRotationMatrix(tu);
+}
+
+void vpImuGravity::setGravityNorm(double g)
+{
+  if (!(g > 0.0) || !std::isfinite(g))
+    badParameter("setGravityNorm: must be finite and > 0");
+  m_gravityNorm = g;
+}
+
+void vpImuGravity::setNormTolerance(double tolerance)
+{
+  if (!(tolerance > 0.0))
+    badParameter("setNormTolerance: must be > 0");
+  m_normTolerance = tolerance;
+}
+
+void vpImuGravity::setGyroTolerance(double tolerance)
+{
+  if (!(tolerance > 0.0))
+    badParameter("setGyroTolerance: must be > 0");
+  m_gyroTolerance = tolerance;
+}
+
+void vpImuGravity::setMotionWindow(double halfWidth)
+{
+  if (!(halfWidth >= 0.0) || !std::isfinite(halfWidth))
+    badParameter("setMotionWindow: must be finite and >= 0");
+  m_motionWindow = halfWidth;
+}
+
+void vpImuGravity::addSample(double t, const vpColVector &gyro, const vpColVector &acc)
+{
+  if (gyro.size() != 3 || acc.size() != 3)
+    badParameter("addSample: gyro and accelerometer must be 3-vectors");
+  Sample s;
+  s.t = t;
+  bool finite = std::isfinite(t);
+  for (unsigned int i = 0; i < 3; ++i) {
+    s.w[i] = gyro[i];
+    s.a[i] = acc[i];
+    finite = finite && std::isfinite(gyro[i]) && std::isfinite(acc[i]);
+  }
+  if (!finite)
+    badParameter("addSample: non-finite time or reading");
+  if (!m_samples.empty() && !(t > m_samples.back().t))
+    badParameter("addSample: times must be strictly increasing");
+  m_samples.push_back(s);
+}
+
+void vpImuGravity::loadCsv(const std::string &file, double timeScale)
+{
+  if (!(timeScale > 0.0) || !std::isfinite(timeScale))
+    badParameter("loadCsv: the time scale must be finite and > 0");
+  std::ifstream in(file.c_str());
+  if (!in)
+    badFile(file, 0, "cannot open the IMU file");
+  std::string line;
+  std::vector<double> values;
+  size_t lineNo = 0;
+  bool first = true;
+  vpColVector w(3), a(3);
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (blankOrComment(line))
+      continue;
+    const bool numeric = parseNumbers(line, values);
+    if (!numeric && first) { // a header line
+      first = false;
+      continue;
+    }
+    first = false;
+    if (!numeric)
+      badFile(file, lineNo, "a field is not a number: '" + line + "'");
+    if (values.size() != 7)
+      badFile(file, lineNo, "expected 7 columns (timestamp, wx, wy, wz, ax, ay, az), got " + std::to_string(values.size()));
+    for (unsigned int i = 0; i < 3; ++i) {
+      w[i] = values[1 + i];
+      a[i] = values[4 + i];
+    }
+    try {
+      addSample(values[0] * timeScale, w, a);
+    } catch (const vpPoseGravityException &e) {
+      badFile(file, lineNo, e.getStringMessage());
+    }
+  }
+  if (m_samples.empty())
+    badFile(file, 0, "no IMU sample");
+}
+
+bool vpImuGravity::atRest(const Sample &s) const
+{
+  const double an = std::sqrt(s.a[0] * s.a[0] + s.a[1] * s.a[1] + s.a[2] * s.a[2]);
+  const double wn = std::sqrt(s.w[0] * s.w[0] + s.w[1] * s.w[1] + s.w[2] * s.w[2]);
+  return std::abs(an - m_gravityNorm) <= m_normTolerance && wn <= m_gyroTolerance;
+}
+
+bool vpImuGravity::gravityAt(double t, vpColVector &g, bool &moving) const
+{
+  const double ti = t + m_timeOffset;
+  if (m_samples.empty() || !std::isfinite(ti) || ti < m_samples.front().t || ti > m_samples.back().t)
+    return false;
+  auto after = std::lower_bound(m_samples.begin(), m_samples.end(), ti,
+                                [](const Sample &s, double value) { return s.t < value; });
+  auto before = (after == m_samples.begin()) ? after : after - 1;
+  if (after->t == ti)
+    before = after;
+  const double span = after->t - before->t;
+  const double u = (span > 0.0) ? (ti - before->t) / span : 0.0;
+  vpColVector f(3);
+  for (unsigned int i = 0; i < 3; ++i)
+    f[i] = (1.0 - u) * before->a[i] + u * after->a[i];
+  if (!(std::sqrt(f.sumSquare()) > 0.0))
+    return false;
+  g = gravityFromSpecificForce(f, m_sRimu);
+  moving = !atRest(*before) || !atRest(*after);
+  // Every sample of the motion window too.
+  auto lo = std::lower_bound(m_samples.begin(), m_samples.end(), ti - m_motionWindow,
+                             [](const Sample &s, double value) { return s.t < value; });
+  for (auto it = lo; it != m_samples.end() && it->t <= ti + m_motionWindow && !moving; ++it)
+    moving = !atRest(*it);
+  return true;
+}

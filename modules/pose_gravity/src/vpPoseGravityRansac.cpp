@@ -1,0 +1,218 @@
+/* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
+/*
+  vpPoseGravity::computePose(RANSAC): the 2-point minimal solver plugged into the shared loop of
+  vpRansac.h, the filtering of repeated points, and the acceptance of the consensus.
+
+  A consensus is accepted only if it is both large enough (setRansacNbInliersToReachConsensus(),
+  vpPose's meaning) and unlikely to be chance. With a threshold tau, an outlier lands within tau of
+  a model's prediction with probability p = pi tau^2 / A, A the area of the region the image points
+  span (their bounding box grown by tau, so that points along a line give the 1-D probability). A
+  model through 2 sample points then collects Bin(n - 2, p) chance inliers; over m scored models
+  the best one reaches k inliers with probability at most m P(Bin(n - 2, p) >= k - 2) (union bound).
+  The smallest k that brings this below the significance is required. Without it, random points
+  with a loose threshold give a "consensus" of 3 or 4 in a good share of the runs.
+*/
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <visp3/pose_gravity/vpPoseGravity.h>
+#include <visp3/robust/vpRansac.h>
+
+#include "gravityGeometry.h"
+#include "gravityPairSolver.h"
+#include "poseGravityFacade.h"
+
+namespace
+{
+using vpGravitySolvers::Pose;
+using namespace vpPoseGravityFacade;
+
+// The RANSAC estimator over 2-point minimal samples (see vpRansacLoop()).
+class GravityRansacEstimator
+{
+public:
+  using Model = Pose;
+  static constexpr int kSampleSize = 2;
+  static constexpr int kMaxModels = 2;
+
+  // The points were validated by checkReady(): the P2P fast path takes them as they are, and the
+  // upright frames of the two gravity vectors are built once for all samples.
+  GravityRansacEstimator(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
+                         const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X)
+    : m_gCam(gCam), m_gObj(gObj), m_frame(gCam, gObj), m_x(x), m_X(X)
+  {
+  }
+  int size() const { return static_cast<int>(m_x.size()); }
+  int solveMinimal(const int *sample, Model *models) const
+  {
+    vpGravitySolvers::P2PCase p2pCase = vpGravitySolvers::P2PCase::NoSolution;
+    // Two identical object points (a repeated match) give NoSolution: the sample is skipped.
+    const int count = vpGravitySolvers::detail::solvePairPoses(m_frame, m_x[sample[0]], m_x[sample[1]],
+                                                               m_X[sample[0]], m_X[sample[1]], models, p2pCase);
+    // A pose known only up to a ray cannot be scored.
+    return (p2pCase == vpGravitySolvers::P2PCase::TwoSolutions) ? count : 0;
+  }
+  //! Reprojection error in normalized coordinates (infinite behind the camera).
+  double residual(const Model &m, int i) const
+  {
+    return std::sqrt(vpGravitySolvers::detail::reprojectionError2(m, m_x[i], m_X[i]));
+  }
+  //! Local optimisation: the least squares on the consensus set (unweighted: the loop only needs the
+  //! consensus; the final refit reweights, see refit()).
+  bool refine(const std::vector<int> &inliers, Model &m) const { return refit(inliers, m, 0); }
+  //! The least squares on \e inliers with \e passes inverse-depth reweighting passes.
+  bool refit(const std::vector<int> &inliers, Model &m, int passes) const
+  {
+    if (inliers.size() < 3)
+      return false;
+    std::vector<Eigen::Vector3d> x, X;
+    x.reserve(inliers.size());
+    X.reserve(inliers.size());
+    for (int i : inliers) {
+      x.push_back(m_x[i]);
+      X.push_back(m_X[i]);
+    }
+    return vpGravitySolvers::leastSquares(m_gCam, m_gObj, x.data(), X.data(), static_cast<int>(x.size()), m, passes);
+  }
+
+private:
+  Eigen::Vector3d m_gCam, m_gObj;
+  vpGravitySolvers::detail::vpYawFrame m_frame;
+  const std::vector<Eigen::Vector3d> &m_x, &m_X;
+};
+
+// Indices of the points kept by the filter: all, or those repeating no earlier point's object
+// coordinates nor image coordinates.
+std::vector<unsigned int> filteredPoints(const std::vector<vpPoint> &points, bool prefilter)
+{
+  const size_t n = points.size();
+  std::vector<unsigned int> kept;
+  kept.reserve(n);
+  if (!prefilter) {
+    for (size_t i = 0; i < n; ++i)
+      kept.push_back(static_cast<unsigned int>(i));
+    return kept;
+  }
+  std::vector<double> object(3 * n), image(2 * n);
+  double imageScale = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    object[3 * i] = points[i].get_oX();
+    object[3 * i + 1] = points[i].get_oY();
+    object[3 * i + 2] = points[i].get_oZ();
+    image[2 * i] = points[i].get_x();
+    image[2 * i + 1] = points[i].get_y();
+    imageScale = std::max({imageScale, std::abs(image[2 * i]), std::abs(image[2 * i + 1])});
+  }
+  std::vector<int> sameObject, sameImage;
+  findDuplicates(object, 3, kDuplicateTolerance * objectScale(points, static_cast<unsigned int>(n)), sameObject);
+  findDuplicates(image, 2, kDuplicateTolerance * imageScale, sameImage);
+  for (size_t i = 0; i < n; ++i)
+    if (sameObject[i] < 0 && sameImage[i] < 0)
+      kept.push_back(static_cast<unsigned int>(i));
+  return kept;
+}
+
+/*!
+  Smallest consensus that chance explains with probability below alpha (see the file description):
+  n points, chance-inlier probability p per point and model, m models scored. Returns n + 1 when
+  even n inliers are not significant, 0 when alpha >= 1.
+*/
+unsigned int chanceConsensus(int n, double p, int models, double alpha)
+{
+  if (alpha >= 1.0 || n < 3)
+    return 0;
+  if (!(p < 1.0))
+    return static_cast<unsigned int>(n + 1);
+  const int N = n - 2;
+  // log P(Bin(N, p) = k) by the recurrence of the binomial terms (one logarithm per term, no
+  // underflow), then the tails P(>= k) summed from the top so that small tails keep precision.
+  std::vector<double> tail(static_cast<size_t>(N) + 2, 0.0);
+  const double logOdds = std::log(std::max(p, 1e-300)) - std::log1p(-p);
+  double logPmf = N * std::log1p(-p);
+  std::vector<double> logPmfs(static_cast<size_t>(N) + 1);
+  for (int k = 0; k <= N; ++k) {
+    logPmfs[static_cast<size_t>(k)] = logPmf;
+    logPmf += std::log(double(N - k) / double(k + 1)) + logOdds;
+  }
+  for (int k = N; k >= 0; --k)
+    tail[static_cast<size_t>(k)] = tail[static_cast<size_t>(k) + 1] + std::exp(logPmfs[static_cast<size_t>(k)]);
+  const double m = std::max(1, models);
+  for (int k = 0; k <= N; ++k)
+    if (m * tail[static_cast<size_t>(k)] < alpha)
+      return static_cast<unsigned int>(k + 2);
+  return static_cast<unsigned int>(n + 1);
+}
+
+// Probability that a point uniformly spread over the region of the image points falls within tau
+// of a given prediction.
+double chanceInlierProbability(const std::vector<Eigen::Vector3d> &x, double tau)
+{
+  double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, xmax = -xmin, ymax = -xmin;
+  for (const Eigen::Vector3d &b : x) {
+    xmin = std::min(xmin, b.x());
+    xmax = std::max(xmax, b.x());
+    ymin = std::min(ymin, b.y());
+    ymax = std::max(ymax, b.y());
+  }
+  const double area = (xmax - xmin + 2.0 * tau) * (ymax - ymin + 2.0 * tau);
+  return std::min(1.0, 3.14159265358979323846 * tau * tau / area);
+}
+} // namespace
+
+bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
+{
+  const unsigned int nAll = static_cast<unsigned int>(m_points.size());
+  // Repeated points are filtered (or left to the minimal solver), never an error here.
+  checkReady(3, nAll, "computePose(RANSAC)", false);
+  forgetInliers();
+  m_ransacTrials = 0;
+  const std::vector<unsigned int> kept = filteredPoints(m_points, m_ransacFilter == PREFILTER_DEGENERATE_POINTS);
+  std::vector<Eigen::Vector3d> x, X;
+  collectPoints(m_points, &kept, x, X);
+  const int n = static_cast<int>(kept.size());
+  const Eigen::Vector3d gCam = toEigen(m_gCam), gObj = toEigen(m_gObj);
+  const GravityRansacEstimator estimator(gCam, gObj, x, X);
+
+  vpRansacOptions options;
+  options.threshold = m_ransacThreshold;
+  options.probability = m_ransacProbability;
+  options.maxTrials = m_ransacMaxTrials;
+  options.seed = m_ransacSeed;
+  options.localOptimisation = true;
+  Pose best;
+  vpRansacReport report;
+  const bool found = n >= 3 && vpRansacLoop(estimator, options, best, report);
+  m_ransacTrials = report.trials;
+  // The consensus needed: the user's minimum (at least 3, for the least squares refit) and the
+  // count that chance does not explain.
+  const unsigned int needed =
+      std::max({3u, m_ransacNbInliersConsensus,
+                chanceConsensus(n, chanceInlierProbability(x, m_ransacThreshold), report.models, m_ransacSignificance)});
+  if (!found || static_cast<unsigned int>(report.inlierCount) < needed) {
+    m_status = STATUS_NO_CONSENSUS;
+    return false;
+  }
+
+  // Final refit on the whole consensus set (reweighted towards maximum likelihood), kept only if it
+  // does not lose inliers.
+  std::vector<int> inliers = report.inliers;
+  Pose refit = best;
+  if (estimator.refit(inliers, refit, 2)) {
+    std::vector<int> refitInliers;
+    vpRansacInliers(estimator, refit, m_ransacThreshold * m_ransacThreshold, refitInliers);
+    if (refitInliers.size() >= inliers.size()) {
+      best = refit;
+      inliers = refitInliers;
+    }
+  }
+  m_inlierIndex.clear();
+  for (int i : inliers)
+    m_inlierIndex.push_back(kept[static_cast<size_t>(i)]);
+  m_refineOnInliers = true;
+  storePose(best, cMo);
+  m_status = STATUS_OK;
+  updateCovariance(cMo, &m_inlierIndex);
+  return true;
+}
