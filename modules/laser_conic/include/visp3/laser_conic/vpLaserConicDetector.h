@@ -24,7 +24,8 @@ struct vpLaserConicDetectorRun
 {
   bool alongRow;   //!< measured along row \e line (else along column \e line)
   int line;        //!< row or column index
-  int first, last; //!< half-maximum run [first, last] along the line, pixels
+  int first;       //!< first pixel of the half-maximum run along the line
+  int last;        //!< last pixel of the half-maximum run along the line
   bool accepted;   //!< a returned point (else a rejected candidate)
 };
 

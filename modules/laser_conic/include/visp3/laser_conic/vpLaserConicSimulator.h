@@ -88,8 +88,10 @@ public:
   struct vpDistractor
   {
     vpDistractorShape shape = DISTRACTOR_DISC; //!< shape
-    double x = 0.0, y = 0.0;                   //!< centre (disc, square) or first end (line), metres
-    double x2 = 0.0, y2 = 0.0;                 //!< second end of a line, metres
+    double x = 0.0;                            //!< centre (disc, square) or first end (line): x, metres
+    double y = 0.0;                            //!< centre (disc, square) or first end (line): y, metres
+    double x2 = 0.0;                           //!< second end of a line: x, metres
+    double y2 = 0.0;                           //!< second end of a line: y, metres
     double size = 0.1;                         //!< diameter, side or line width, metres
     vpRGBa colour = vpRGBa(200, 25, 20, 255);  //!< albedo under ambient 1 (default: a laser-like red)
 
@@ -133,7 +135,9 @@ public:
     double ambient = 1.0;      //!< multiplier of the floor (and distractor) brightness, >= 0
     double specular = 0.0;     //!< peak grey level of the lamp's specular reflection on the floor, >= 0
     double shininess = 60.0;   //!< Phong exponent of that reflection (larger: smaller highlight), > 0
-    double lampX = 0.3, lampY = 0.2, lampZ = 2.5; //!< lamp position in the ground frame, metres (Z above the ground)
+    double lampX = 0.3;        //!< lamp position in the ground frame: x, metres
+    double lampY = 0.2;        //!< lamp position in the ground frame: y, metres
+    double lampZ = 2.5;        //!< lamp height above the ground, metres
 
     bool laserOn = true;        //!< false renders a frame without laser (e.g. the laser is pulsed)
     double laserPower = 330.0;  //!< red light added at the stripe centre, grey levels before clipping, >= 0
