@@ -29,9 +29,9 @@ class vpLaserOverlay
 public:
   /*!
     Dims \e I to grey (so that its red laser stripe cannot be mistaken for a drawing), then draws on it
-    every detected point as a red dot (outlier), the inliers in green over it, and the
-    conic \e conic (3x3, pixel coordinates, x^T C x = 0) in blue when it is not empty, plus, when
-    \e caption is not empty, that caption and a legend of the colours in the top-left corner.
+    the trace with vpLaserConicPose::draw() (detected points red, inliers green, the conic \e conic,
+    3x3 in pixel coordinates, x^T C x = 0, yellow when it is not empty), plus, when \e caption is not
+    empty, that caption and a legend of the colours in the top-left corner.
   */
   static void draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
                    const std::vector<unsigned int> &inliers, const vpMatrix &conic, const std::string &caption);
@@ -49,16 +49,6 @@ public:
   */
   static void drawCaption(vpImage<vpRGBa> &I, const std::string &caption,
                           const std::vector<std::pair<std::string, vpColor> > &legend);
-  //! Draws the conic (pixel coordinates without distortion) with vpImageDraw, see the overload below.
-  static void drawConic(vpImage<vpRGBa> &I, const vpMatrix &conic, const vpColor &color);
-  /*!
-    Draws the conic \e conic of the undistorted pixel image of \e cam with vpImageDraw::drawLine(): an
-    ellipse as a closed polyline of 360 points, any other conic as the segments between its crossings of
-    the rows (and columns) of a region three times the image size; each point is mapped to the image by
-    vpMeterPixelConversion (the camera's distortion).
-  */
-  static void drawConic(vpImage<vpRGBa> &I, const vpMatrix &conic, const vpCameraParameters &cam,
-                        const vpColor &color);
 };
 
 #endif

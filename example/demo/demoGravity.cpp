@@ -99,7 +99,7 @@ void writeOverlay(const std::string &file, const vpGravityFrame &frame, const vp
 {
   const vpColor reprojectionColor(70, 140, 255);
   vpImage<vpRGBa> I(kHeight, kWidth, vpRGBa(40, 40, 40));
-  vpImageDraw::drawFrame(I, cMo, kCamera, 0.1, vpColor::none, 3);
+  vpPoseGravity::draw(I, cMo, kCamera, 0.1, vpColor::none, 3);
   vpImageDraw::drawFrame(I, cMoTrue, kCamera, 0.1, vpColor::white, 1);
   for (size_t i = 0; i < frame.points.size(); ++i) {
     vpImagePoint observed;

@@ -4,60 +4,130 @@
  */
 // Display of a vpLaserConicPose estimate (like vpPose::display()): the detected points, inliers in
 // green and outliers in red, the fitted conic, and an altitude / attitude caption. display() draws
-// through vpDisplay (an open window), draw() into the image pixels with vpImageDraw and vpFont.
+// through vpDisplay (an open window), draw() into the image pixels with vpImageDraw and vpFont; the
+// three share one painting of the trace and differ only in their painter.
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
 
 #include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpFont.h>
 #include <visp3/core/vpImageDraw.h>
 #include <visp3/core/vpMath.h>
-#include <visp3/core/vpMeterPixelConversion.h>
+#include <visp3/core/vpImagePoint.h>
+
+#include "laser_lens.h"
 
 namespace
 {
-//! Points sampled along the conic drawn for an estimate.
-const int kConicSamples = 180;
+//! Real roots of a t^2 + b t + c = 0 (a may be 0); returns how many were written.
+int solveQuadratic(double a, double b, double c, double roots[2])
+{
+  const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c);
+  if (scale == 0.0)
+    return 0;
+  if (std::fabs(a) < 1e-14 * scale) {
+    if (std::fabs(b) < 1e-14 * scale)
+      return 0;
+    roots[0] = -c / b;
+    return 1;
+  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0)
+    return 0;
+  // Stable form: no cancellation between -b and the square root.
+  const double q = -0.5 * (b + (b >= 0.0 ? std::sqrt(disc) : -std::sqrt(disc)));
+  roots[0] = q / a;
+  roots[1] = (q != 0.0) ? c / q : roots[0];
+  return 2;
+}
+
+typedef std::vector<std::pair<vpImagePoint, vpImagePoint> > vpSegments;
 
 /*!
-  Points of the ellipse of a pixel conic (undistorted image, x^T C x = 0), mapped into the image
-  through the camera model (distortion included): the undistorted pixels are taken back to normalized
-  coordinates with K^-1 and projected with vpMeterPixelConversion. Empty when C is not an ellipse.
+  Line segments along the conic C of the undistorted pixel image of \e cam (x^T C x = 0, x = (u, v, 1)),
+  each end mapped into the image through the camera model (the exact inverse of vpPixelMeterConversion).
+  An ellipse is a closed polyline of 360 points; any other conic (the trace seen with the horizon in
+  view) is sampled by its crossings of the rows, then of the columns, of a region three times the image
+  (W x H pixels), only the segments near the image being kept: the far branches of a hyperbola map to
+  huge coordinates.
 */
-std::vector<vpImagePoint> conicPolyline(const vpMatrix &conic, const vpCameraParameters &cam)
+vpSegments conicSegments(const vpMatrix &C, const vpCameraParameters &cam, double W, double H)
 {
-  std::vector<vpImagePoint> out;
-  if (conic.getRows() != 3 || conic.getCols() != 3)
+  vpSegments out;
+  if (C.getRows() != 3 || C.getCols() != 3)
     return out;
-  Eigen::Matrix3d C;
-  for (unsigned int i = 0; i < 3; ++i)
-    for (unsigned int j = 0; j < 3; ++j)
-      C(i, j) = conic[i][j];
-  if (C(0, 0) < 0.0)
-    C = -C;
-  const Eigen::Matrix2d A = C.topLeftCorner<2, 2>();
-  const Eigen::LLT<Eigen::Matrix2d> llt(A);
-  if (llt.info() != Eigen::Success)
+  // a u^2 + 2 b uv + c v^2 + 2 d u + 2 e v + f.
+  const double a = C[0][0], b = 0.5 * (C[0][1] + C[1][0]), c = C[1][1];
+  const double d = 0.5 * (C[0][2] + C[2][0]), e = 0.5 * (C[1][2] + C[2][1]), f = C[2][2];
+  // Undistorted pixel -> normalized -> the image pixel the detector measured (exact inverse of the
+  // pixel-to-metre model the estimators used; NaN, hence never near the image, where none exists).
+  auto toImage = [&cam](double u, double v) {
+    double ud = 0.0, vd = 0.0;
+    if (!vpLaserLens::pixelOfNormalized(cam, (u - cam.get_u0()) / cam.get_px(), (v - cam.get_v0()) / cam.get_py(), ud,
+                                        vd))
+      ud = vd = std::numeric_limits<double>::quiet_NaN();
+    return vpImagePoint(vd, ud);
+  };
+  auto add = [&](const vpImagePoint &p, const vpImagePoint &q) {
+    const bool near = std::fabs(p.get_u()) < 4 * W && std::fabs(p.get_v()) < 4 * H && std::fabs(q.get_u()) < 4 * W &&
+                      std::fabs(q.get_v()) < 4 * H && vpImagePoint::distance(p, q) < 0.25 * (W + H);
+    if (near)
+      out.emplace_back(p, q);
+  };
+  const double det2 = a * c - b * b;
+  if (det2 > 0.0) {
+    // Ellipse (possibly imaginary): centre, then centre + R (r1 cos t, r2 sin t).
+    const double u0 = (b * e - c * d) / det2, v0 = (b * d - a * e) / det2;
+    const double k = -(a * u0 * u0 + 2 * b * u0 * v0 + c * v0 * v0 + 2 * d * u0 + 2 * e * v0 + f);
+    const double trace = a + c, disc = std::sqrt(std::max(0.0, 0.25 * (a - c) * (a - c) + b * b));
+    const double l1 = 0.5 * trace + disc, l2 = 0.5 * trace - disc; // eigenvalues, l1 >= l2 > 0
+    if (!(k / l1 > 0.0) || !(k / l2 > 0.0))
+      return out;
+    const double r1 = std::sqrt(k / l1), r2 = std::sqrt(k / l2);
+    const double theta = 0.5 * std::atan2(2.0 * b, a - c); // direction of the eigenvector of l1
+    const double ct = std::cos(theta), st = std::sin(theta);
+    vpImagePoint previous;
+    for (int s = 0; s <= 360; ++s) {
+      const double t = s * M_PI / 180.0, x = r1 * std::cos(t), y = r2 * std::sin(t);
+      const vpImagePoint p = toImage(u0 + ct * x - st * y, v0 + st * x + ct * y);
+      if (s > 0)
+        add(previous, p);
+      previous = p;
+    }
     return out;
-  const Eigen::Vector2d centre = -A.inverse() * C.topRightCorner<2, 1>();
-  const double k = centre.dot(A * centre) - C(2, 2);
-  if (!(k > 0.0) || !std::isfinite(k))
-    return out;
-  const Eigen::Matrix2d Uinv = Eigen::Matrix2d(llt.matrixU()).inverse(); // A = U^T U
-  for (int s = 0; s <= kConicSamples; ++s) {
-    const double t = 2.0 * M_PI * s / kConicSamples;
-    const Eigen::Vector2d p = centre + std::sqrt(k) * Uinv * Eigen::Vector2d(std::cos(t), std::sin(t));
-    const double x = (p(0) - cam.get_u0()) / cam.get_px(), y = (p(1) - cam.get_v0()) / cam.get_py();
-    vpImagePoint ip;
-    vpMeterPixelConversion::convertPoint(cam, x, y, ip);
-    out.push_back(ip);
+  }
+  // Other conics: the crossings of every row (left and right roots) and of every column, joined per root.
+  double roots[2];
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool rows = pass == 0;
+    const double extent = rows ? H : W;
+    bool have[2] = {false, false};
+    vpImagePoint last[2];
+    for (double t = -extent; t <= 2.0 * extent; t += 1.0) {
+      const int n = rows ? solveQuadratic(a, 2.0 * (b * t + d), c * t * t + 2.0 * e * t + f, roots)
+                         : solveQuadratic(c, 2.0 * (b * t + e), a * t * t + 2.0 * d * t + f, roots);
+      if (n == 2 && roots[0] > roots[1])
+        std::swap(roots[0], roots[1]);
+      for (int r = 0; r < 2; ++r) {
+        if (r >= n) {
+          have[r] = false;
+          continue;
+        }
+        const vpImagePoint p = rows ? toImage(roots[r], t) : toImage(t, roots[r]);
+        if (have[r])
+          add(last[r], p);
+        last[r] = p;
+        have[r] = true;
+      }
+    }
   }
   return out;
 }
@@ -73,93 +143,130 @@ std::string caption(const vpLaserConicPose &estimator)
   return text;
 }
 
-//! Inlier flags of the points (none when the estimate failed).
-std::vector<bool> inlierFlags(const vpLaserConicPose &estimator, size_t n)
+//! Inlier flags of \e n points from their indices (indices out of range ignored).
+std::vector<bool> inlierFlags(const std::vector<unsigned int> &inlierIndex, size_t n)
 {
   std::vector<bool> flags(n, false);
-  if (estimator.getStatus() == vpLaserConicPose::STATUS_OK)
-    for (unsigned int i : estimator.getRansacInlierIndex())
-      if (i < n)
-        flags[i] = true;
+  for (unsigned int i : inlierIndex)
+    if (i < n)
+      flags[i] = true;
   return flags;
 }
 
-//! Draws with vpDisplay (gray or colour image alike).
-template <class Image>
-void displayImpl(const Image &I, const vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points,
-                 unsigned int thickness)
+//! Draws through vpDisplay (the image is shown in a window), gray or colour image alike.
+template <class Image> struct DisplayPainter
 {
-  const std::vector<bool> inlier = inlierFlags(estimator, points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-    vpDisplay::displayCross(I, points[i], 3 + 2 * thickness, inlier[i] ? vpColor::green : vpColor::red, thickness);
-  if (estimator.getStatus() == vpLaserConicPose::STATUS_OK) {
-    const std::vector<vpImagePoint> line = conicPolyline(estimator.getImageConic(), estimator.getCameraParameters());
-    for (size_t k = 1; k < line.size(); ++k)
-      vpDisplay::displayLine(I, line[k - 1], line[k], vpColor::yellow, thickness);
+  const Image &I;
+  unsigned int thickness;
+  void cross(const vpImagePoint &p, bool inlier) const
+  {
+    vpDisplay::displayCross(I, p, 3 + 2 * thickness, inlier ? vpColor::green : vpColor::red, thickness);
   }
-  vpDisplay::displayText(I, vpImagePoint(20, 10), caption(estimator),
-                         estimator.getStatus() == vpLaserConicPose::STATUS_OK ? vpColor::yellow : vpColor::red);
-}
-
-//! Colour of each element drawn into a gray image (no colours: outliers darker, inliers and conic white).
-struct GrayPalette
-{
-  unsigned char inlier = 255, outlier = 96, conic = 255, text = 255;
+  void line(const vpImagePoint &p, const vpImagePoint &q) const
+  {
+    vpDisplay::displayLine(I, p, q, vpColor::yellow, thickness);
+  }
+  void text(const std::string &t, bool ok) const
+  {
+    vpDisplay::displayText(I, vpImagePoint(20, 10), t, ok ? vpColor::yellow : vpColor::red);
+  }
 };
 
-void drawImpl(vpImage<unsigned char> &I, const vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points,
-              unsigned int thickness)
+//! Draws into the pixels of a gray image: no colours, so outliers darker, inliers, conic and text white.
+struct GrayPainter
 {
-  const GrayPalette palette;
-  const std::vector<bool> inlier = inlierFlags(estimator, points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-    vpImageDraw::drawCross(I, points[i], 3 + 2 * thickness, inlier[i] ? palette.inlier : palette.outlier, thickness);
-  if (estimator.getStatus() == vpLaserConicPose::STATUS_OK) {
-    const std::vector<vpImagePoint> line = conicPolyline(estimator.getImageConic(), estimator.getCameraParameters());
-    for (size_t k = 1; k < line.size(); ++k)
-      vpImageDraw::drawLine(I, line[k - 1], line[k], palette.conic, thickness);
+  vpImage<unsigned char> &I;
+  unsigned int thickness;
+  void cross(const vpImagePoint &p, bool inlier) const
+  {
+    vpImageDraw::drawCross(I, p, 3 + 2 * thickness, inlier ? 255 : 96, thickness);
   }
-  vpFont font(16, vpFont::GENERIC_MONOSPACE);
-  font.drawText(I, caption(estimator), vpImagePoint(10, 10), palette.text, 0);
+  void line(const vpImagePoint &p, const vpImagePoint &q) const { vpImageDraw::drawLine(I, p, q, 255, thickness); }
+  void text(const std::string &t, bool) const
+  {
+    vpFont font(16, vpFont::GENERIC_MONOSPACE);
+    font.drawText(I, t, vpImagePoint(10, 10), 255, 0);
+  }
+};
+
+//! Draws into the pixels of a colour image: inliers green, outliers red, conic yellow.
+struct ColourPainter
+{
+  vpImage<vpRGBa> &I;
+  unsigned int thickness;
+  void cross(const vpImagePoint &p, bool inlier) const
+  {
+    vpImageDraw::drawCross(I, p, 3 + 2 * thickness, inlier ? vpColor::green : vpColor::red, thickness);
+  }
+  void line(const vpImagePoint &p, const vpImagePoint &q) const
+  {
+    vpImageDraw::drawLine(I, p, q, vpColor::yellow, thickness);
+  }
+  void text(const std::string &t, bool ok) const
+  {
+    vpFont font(16, vpFont::GENERIC_MONOSPACE);
+    font.drawText(I, t, vpImagePoint(10, 10), ok ? vpColor::yellow : vpColor::red, vpColor::black);
+  }
+};
+
+//! The points (crosses, inliers first-class), then the conic over them.
+template <class Painter, class Image>
+void paintTrace(const Painter &painter, const Image &I, const std::vector<vpImagePoint> &points,
+                const std::vector<unsigned int> &inlierIndex, const vpMatrix &imageConic, const vpCameraParameters &cam)
+{
+  const std::vector<bool> inlier = inlierFlags(inlierIndex, points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    painter.cross(points[i], inlier[i]);
+  for (const auto &segment : conicSegments(imageConic, cam, I.getWidth(), I.getHeight()))
+    painter.line(segment.first, segment.second);
 }
 
-void drawImpl(vpImage<vpRGBa> &I, const vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points,
-              unsigned int thickness)
+//! The overlay of an estimate: its inliers and conic when it succeeded (all points red otherwise) and the caption.
+template <class Painter, class Image>
+void paintEstimate(const Painter &painter, const Image &I, const vpLaserConicPose &estimator,
+                   const std::vector<vpImagePoint> &points)
 {
-  const std::vector<bool> inlier = inlierFlags(estimator, points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-    vpImageDraw::drawCross(I, points[i], 3 + 2 * thickness, inlier[i] ? vpColor::green : vpColor::red, thickness);
-  if (estimator.getStatus() == vpLaserConicPose::STATUS_OK) {
-    const std::vector<vpImagePoint> line = conicPolyline(estimator.getImageConic(), estimator.getCameraParameters());
-    for (size_t k = 1; k < line.size(); ++k)
-      vpImageDraw::drawLine(I, line[k - 1], line[k], vpColor::yellow, thickness);
-  }
-  vpFont font(16, vpFont::GENERIC_MONOSPACE);
-  font.drawText(I, caption(estimator), vpImagePoint(10, 10),
-                estimator.getStatus() == vpLaserConicPose::STATUS_OK ? vpColor::yellow : vpColor::red, vpColor::black);
+  const bool ok = estimator.getStatus() == vpLaserConicPose::STATUS_OK;
+  paintTrace(painter, I, points, ok ? estimator.getRansacInlierIndex() : std::vector<unsigned int>(),
+             ok ? estimator.getImageConic() : vpMatrix(), estimator.getCameraParameters());
+  painter.text(caption(estimator), ok);
 }
 } // namespace
 
 void vpLaserConicPose::display(const vpImage<unsigned char> &I, const vpLaserConicPose &estimator,
                                const std::vector<vpImagePoint> &points, unsigned int thickness)
 {
-  displayImpl(I, estimator, points, thickness);
+  paintEstimate(DisplayPainter<vpImage<unsigned char> >{I, thickness}, I, estimator, points);
 }
 
 void vpLaserConicPose::display(const vpImage<vpRGBa> &I, const vpLaserConicPose &estimator,
                                const std::vector<vpImagePoint> &points, unsigned int thickness)
 {
-  displayImpl(I, estimator, points, thickness);
+  paintEstimate(DisplayPainter<vpImage<vpRGBa> >{I, thickness}, I, estimator, points);
 }
 
 void vpLaserConicPose::draw(vpImage<unsigned char> &I, const vpLaserConicPose &estimator,
                             const std::vector<vpImagePoint> &points, unsigned int thickness)
 {
-  drawImpl(I, estimator, points, thickness);
+  paintEstimate(GrayPainter{I, thickness}, I, estimator, points);
 }
 
 void vpLaserConicPose::draw(vpImage<vpRGBa> &I, const vpLaserConicPose &estimator,
                             const std::vector<vpImagePoint> &points, unsigned int thickness)
 {
-  drawImpl(I, estimator, points, thickness);
+  paintEstimate(ColourPainter{I, thickness}, I, estimator, points);
+}
+
+void vpLaserConicPose::draw(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &points,
+                            const std::vector<unsigned int> &inlierIndex, const vpMatrix &imageConic,
+                            const vpCameraParameters &cam, unsigned int thickness)
+{
+  paintTrace(GrayPainter{I, thickness}, I, points, inlierIndex, imageConic, cam);
+}
+
+void vpLaserConicPose::draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
+                            const std::vector<unsigned int> &inlierIndex, const vpMatrix &imageConic,
+                            const vpCameraParameters &cam, unsigned int thickness)
+{
+  paintTrace(ColourPainter{I, thickness}, I, points, inlierIndex, imageConic, cam);
 }

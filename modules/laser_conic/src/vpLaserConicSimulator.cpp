@@ -19,6 +19,7 @@
 #include <visp3/core/vpPixelMeterConversion.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
+#include "laser_lens.h"
 #include "laser_pose_check.h"
 #include "laser_sim_floor.h"
 
@@ -180,30 +181,8 @@ bool vpLaserConicSimulator::project(const double P[3], double &u, double &v) con
 {
   if (!(P[2] > 1e-9))
     return false;
-  const double x = P[0] / P[2], y = P[1] / P[2];
-  if (m_cam.get_projModel() != vpCameraParameters::perspectiveProjWithDistortion || m_cam.get_kdu() == 0.0) {
-    vpMeterPixelConversion::convertPoint(m_cam, x, y, u, v);
-    return std::isfinite(u) && std::isfinite(v);
-  }
-  // The pixel that vpPixelMeterConversion maps onto (x, y): solve r = rd (1 + kdu rd^2) for the distorted
-  // radius rd (Newton from rd = r), with r the undistorted radius of the normalized point.
-  const double kdu = m_cam.get_kdu(), r = std::hypot(x, y);
-  double rd = r;
-  for (int it = 0; it < 60 && r > 0.0; ++it) {
-    const double slope = 1.0 + 3.0 * kdu * rd * rd;
-    if (!(slope > 0.0))
-      return false; // kdu < 0: beyond the radius of the widest imaged ray
-    const double step = (rd * (1.0 + kdu * rd * rd) - r) / slope;
-    rd -= step;
-    if (std::fabs(step) < 1e-16 * (1.0 + rd))
-      break;
-  }
-  if (!(std::fabs(rd * (1.0 + kdu * rd * rd) - r) <= 1e-12 * (1.0 + r)))
-    return false; // no distorted radius maps onto r
-  const double scale = r > 0.0 ? rd / r : 1.0;
-  u = m_cam.get_u0() + m_cam.get_px() * x * scale;
-  v = m_cam.get_v0() + m_cam.get_py() * y * scale;
-  return std::isfinite(u) && std::isfinite(v);
+  // The pixel the estimators will read back onto this ray (vpPixelMeterConversion's model, inverted).
+  return vpLaserLens::pixelOfNormalized(m_cam, P[0] / P[2], P[1] / P[2], u, v);
 }
 
 std::vector<vpImagePoint> vpLaserConicSimulator::tracePoints(unsigned int n, double roughness)

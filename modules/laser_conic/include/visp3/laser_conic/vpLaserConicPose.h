@@ -265,6 +265,20 @@ public:
   //! draw() on a colour image (inliers green, outliers red, conic yellow).
   static void draw(vpImage<vpRGBa> &I, const vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points,
                    unsigned int thickness = 1);
+  /*!
+    Draws a trace without an estimator (e.g. results kept from several estimates): the \e points as
+    crosses, those of \e inlierIndex green and the others red, and \e imageConic (3x3, the undistorted
+    pixel image of \e cam, as getImageConic() gives it; empty for none) in yellow through the camera
+    model, so that it lies on the distorted trace. Any conic is drawn: an ellipse, or the part near the
+    image of a hyperbola or parabola (the trace with the horizon in view). No caption.
+  */
+  static void draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
+                   const std::vector<unsigned int> &inlierIndex, const vpMatrix &imageConic,
+                   const vpCameraParameters &cam, unsigned int thickness = 1);
+  //! The trace draw() above on a gray image: inliers and conic white, outliers gray.
+  static void draw(vpImage<unsigned char> &I, const std::vector<vpImagePoint> &points,
+                   const std::vector<unsigned int> &inlierIndex, const vpMatrix &imageConic,
+                   const vpCameraParameters &cam, unsigned int thickness = 1);
 
   /*! Altitude, roll and pitch of a plane given in the camera frame (normal towards the camera).
       \exception vpLaserConicException::badValueError on a zero normal. */
