@@ -427,3 +427,21 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   m_status = STATUS_OK;
   return true;
 }
+
+vpMatrix vpLaserConicPose::getCovarianceMatrix() const
+{
+  if (m_covariance.size() == 0)
+    throw vpLaserConicException(vpLaserConicException::notComputedError,
+                                "vpLaserConicPose::getCovarianceMatrix: no covariance computed; call "
+                                "setCovarianceComputation(true) before a successful computePlane()");
+  return m_covariance;
+}
+
+vpMatrix vpLaserConicPose::getPlaneCovarianceMatrix() const
+{
+  if (m_planeCovariance.size() == 0)
+    throw vpLaserConicException(vpLaserConicException::notComputedError,
+                                "vpLaserConicPose::getPlaneCovarianceMatrix: no covariance computed; call "
+                                "setCovarianceComputation(true) before a successful computePlane()");
+  return m_planeCovariance;
+}

@@ -769,7 +769,8 @@ TEST(LaserConicPose, StatusAndRansacAccessors)
     EXPECT_EQ(inliers[k], points[estimator.getRansacInlierIndex()[k]]);
     EXPECT_FALSE(isOutlier[estimator.getRansacInlierIndex()[k]]);
   }
-  EXPECT_TRUE(estimator.getCovarianceMatrix().size() == 0); // not requested
+  EXPECT_THROW(estimator.getCovarianceMatrix(), vpLaserConicException); // not requested
+  EXPECT_THROW(estimator.getPlaneCovarianceMatrix(), vpLaserConicException);
   // A consensus of 30 is not enough when 31 are required.
   estimator.setRansacNbInliersToReachConsensus(31);
   EXPECT_FALSE(estimator.computePlane(points, vpLaserConicPose::GP3, plane));

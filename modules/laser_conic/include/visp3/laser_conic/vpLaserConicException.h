@@ -27,7 +27,8 @@ public:
     badCameraError,        //!< camera parameters unset or not positive
     notEnoughPointError,   //!< fewer points than the method needs
     badPointError,         //!< non-finite coordinates
-    badValueError          //!< any other invalid setting
+    badValueError,         //!< any other invalid setting
+    notComputedError       //!< a result asked for that the last computation did not produce (e.g. a covariance not requested)
   };
   //! Builds the exception with a code and a message.
   vpLaserConicException(int errorCode, const std::string &msg) : vpException(errorCode, msg) {}

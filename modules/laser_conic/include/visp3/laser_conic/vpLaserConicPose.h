@@ -201,14 +201,18 @@ public:
 
   /*!
     Covariance (3x3) of (altitude [m], roll [rad], pitch [rad]) of the last estimate, in that order,
-    when setCovarianceComputation(true); empty otherwise. First order: sigma^2 (J^T J)^-1 of the final
-    fit (3 plane parameters for a constrained fit; for a free fit the covariance of the 5 conic
-    parameters propagated through the plane pair), sigma^2 the residual variance of the fit. NaN
-    entries when it cannot be computed (e.g. a plane pair without a derivative at the estimate).
+    computed with setCovarianceComputation(true), as vpPoseGravity::getCovarianceMatrix(). First order:
+    sigma^2 (J^T J)^-1 of the final fit (3 plane parameters for a constrained fit; for a free fit the
+    covariance of the 5 conic parameters propagated through the plane pair), sigma^2 the residual
+    variance of the fit. NaN entries when it cannot be computed (e.g. a plane pair without a derivative
+    at the estimate).
+    \exception vpLaserConicException::notComputedError when the last estimate computed no covariance
+    (not requested, or computePlane() failed).
   */
-  vpMatrix getCovarianceMatrix() const { return m_covariance; }
-  //! Covariance (4x4) of the plane (a, b, c, d) of the last estimate (unit normal), as getCovarianceMatrix().
-  vpMatrix getPlaneCovarianceMatrix() const { return m_planeCovariance; }
+  vpMatrix getCovarianceMatrix() const;
+  /*! Covariance (4x4) of the plane (a, b, c, d) of the last estimate (unit normal), as getCovarianceMatrix().
+      \exception vpLaserConicException::notComputedError as getCovarianceMatrix(). */
+  vpMatrix getPlaneCovarianceMatrix() const;
 
   /*!
     Calibration-health figure of the last estimate: RMS residual (pixels) of the constrained fit (the
