@@ -54,7 +54,25 @@ void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int satur
   // 16 pixels per step in 16-bit lanes, the same integer arithmetic as scorePixel().
   const __m128i low8 = _mm_set1_epi32(0xFF), sat = _mm_set1_epi16(static_cast<short>(saturation));
   const __m128i zero = _mm_setzero_si128(), ramp = _mm_set1_epi16(kSaturationRamp), third = _mm_set1_epi16(2185);
+  const __m128i rampStart = _mm_set1_epi32(std::max(0, saturation - kSaturationRamp));
   for (; j + 16 <= n; j += 16) {
+    // Below the ramp (every R <= saturation - 30: nearly every block of a frame) the weight is exactly 1
+    // (m x 30 x 2185 >> 16 = m for m <= 255) and the score is the saturated byte difference R - max(G, B),
+    // computed in place in byte 0 of the RGBA lanes, without the 16-bit products.
+    const __m128i *in = reinterpret_cast<const __m128i *>(rgba + 4 * j);
+    const __m128i a0 = _mm_loadu_si128(in), a1 = _mm_loadu_si128(in + 1), a2 = _mm_loadu_si128(in + 2),
+                  a3 = _mm_loadu_si128(in + 3);
+    const __m128i redMax = _mm_and_si128(_mm_max_epu8(_mm_max_epu8(a0, a1), _mm_max_epu8(a2, a3)), low8);
+    if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(redMax, rampStart), zero)) == 0xFFFF) {
+      auto dominance = [&](__m128i a) {
+        return _mm_and_si128(_mm_subs_epu8(a, _mm_max_epu8(_mm_srli_epi32(a, 8), _mm_srli_epi32(a, 16))), low8);
+      };
+      const __m128i s = _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)),
+                                         _mm_packs_epi32(dominance(a2), dominance(a3)));
+      _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), s);
+      flags[j >> 4] = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, thresholdBytes), s)) ? 0xFF : 0;
+      continue;
+    }
     __m128i half[2];
     for (int h = 0; h < 2; ++h) {
       const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h)));
