@@ -83,10 +83,10 @@ struct RidgeWorkspace
 {
   std::vector<unsigned char> score;          //!< red-dominance score, H x W
   std::vector<unsigned char> blockFlags;     //!< per row, per 16 columns: 0xFF when a score reaches the threshold
-  std::vector<unsigned char> rowFlagged;     //!< per row: some block flagged
   std::vector<Candidate> rowPeaks, columnPeaks;
   std::vector<Crossing> crossings;
   std::vector<int> lastEnd;                  //!< per column, end of the last measured run
+  std::vector<unsigned char> zeros;          //!< W zero scores: the rows beyond the image border
   std::vector<int> cellHead;                 //!< chaining grid, every cell -1 between two frames
   std::vector<int> next, cellOf, parent;     //!< chaining lists and union-find
   std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes

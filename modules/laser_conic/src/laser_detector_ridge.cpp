@@ -196,44 +196,56 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
 {
   j0 = std::max(j0, 1);
   j1 = std::min(j1, W - 2);
+  if (j0 > j1)
+    return;
   const unsigned char *row = c + static_cast<size_t>(i) * W;
   const int dn = d / 2 + 1, half = (threshold + 1) / 2;
-  auto scalar = [&](int first, int last) {
-    for (int j = first; j <= last; ++j) {
-      if (!flags[j >> 4])
-        continue;
-      const int bg = std::max(std::min(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, -dn, W)),
-                              std::min(scoreAt(row, 1, j, d, W), scoreAt(row, 1, j, dn, W)));
-      const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
-      if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
-        out.push_back(Candidate{i, j});
-    }
-  };
-  int j = j0;
 #if defined(__SSE2__)
-  // Whole blocks of 16 columns with both backgrounds inside the row: 16 pixels at once.
-  const int firstBlock = (std::max(j0, d) + 15) >> 4, lastBlock = (std::min(j1, W - 1 - d) - 15) >> 4;
-  if (j1 - j0 >= 15 && firstBlock <= lastBlock) {
-    const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
-    scalar(j0, 16 * firstBlock - 1);
-    for (int b = firstBlock; b <= lastBlock; ++b) {
-      if (!flags[b])
-        continue;
-      const int k = 16 * b;
-      int bits = candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
-      for (; bits; bits &= bits - 1)
-        out.push_back(Candidate{i, k + __builtin_ctz(bits)});
+  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
+  // A block whose samples leave the row (near the image border) or that the range cuts is tested on a copy
+  // of its surroundings padded with zeros: the score beyond the ends counts as 0 (see scoreAt()).
+  unsigned char padded[16 + 2 * 101];
+  for (int b = j0 >> 4; b <= j1 >> 4; ++b) {
+    if (!flags[b])
+      continue;
+    const int k = 16 * b;
+    int bits;
+    if (k >= d && k + 15 + d < W)
+      bits = candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
+    else {
+      const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
+      std::memset(padded, 0, sizeof(padded));
+      const int first = std::max(0, from);
+      std::memcpy(padded + (first - from), row + first, static_cast<size_t>(to - first + 1));
+      const unsigned char *x = padded + d + 1;
+      bits = candidates16(x, x - d, x + d, x - dn, x + dn, x - 1, x + 1, t, th);
     }
-    j = 16 * (lastBlock + 1);
+    // Only the pixels of [j0, j1].
+    if (k < j0)
+      bits &= static_cast<int>(~0u << (j0 - k));
+    if (k + 15 > j1)
+      bits &= (1 << (j1 - k + 1)) - 1;
+    for (; bits; bits &= bits - 1)
+      out.push_back(Candidate{i, k + __builtin_ctz(bits)});
+  }
+#else
+  for (int j = j0; j <= j1; ++j) {
+    if (!flags[j >> 4])
+      continue;
+    const int bg = std::max(std::min(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, -dn, W)),
+                            std::min(scoreAt(row, 1, j, d, W), scoreAt(row, 1, j, dn, W)));
+    const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
+    if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
+      out.push_back(Candidate{i, j});
   }
 #endif
-  scalar(j, j1);
 }
 
 // Candidate peaks along the columns (every step-th column) at row i within [j0, j1]. Only the flagged
-// blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()).
-void columnCandidates(const unsigned char *c, const unsigned char *flags, int W, int H, int i, int j0, int j1,
-                      int d, int threshold, int step, std::vector<Candidate> &out)
+// blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()). \e zeros: a row of W
+// zero scores, standing for the rows beyond the image border (the score there counts as 0).
+void columnCandidates(const unsigned char *c, const unsigned char *flags, const unsigned char *zeros, int W, int H,
+                      int i, int j0, int j1, int d, int threshold, int step, std::vector<Candidate> &out)
 {
   if (i < 1 || i > H - 2)
     return;
@@ -254,16 +266,18 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, int W,
   };
   int j = j0;
 #if defined(__SSE2__)
+  // Whole blocks of 16 columns inside [j0, j1], 16 pixels at once.
   const int firstBlock = (j0 + 15) >> 4, lastBlock = (j1 - 15) >> 4;
-  if (i - d >= 0 && i + d < H && j1 - j0 >= 15 && firstBlock <= lastBlock) {
+  if (firstBlock <= lastBlock) {
     const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
+    auto rowAt = [&](int r) { return r >= 0 && r < H ? c + static_cast<size_t>(r) * W : zeros; };
+    const unsigned char *up = rowAt(i - d), *down = rowAt(i + d), *nearUp = rowAt(i - dn), *nearDown = rowAt(i + dn);
     scalar(j0, 16 * firstBlock - 1);
     for (int b = firstBlock; b <= lastBlock; ++b) {
       if (!flags[b])
         continue;
       const int k = 16 * b;
-      int bits = candidates16(row + k, row + k - d * stride, row + k + d * stride, row + k - dn * stride,
-                              row + k + dn * stride, row + k - stride, row + k + stride, t, th);
+      int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
       for (; bits; bits &= bits - 1) {
         const int jj = k + __builtin_ctz(bits);
         if (jj % step == 0)
@@ -273,27 +287,37 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, int W,
     j = 16 * (lastBlock + 1);
   }
 #endif
+  (void)zeros;
   scalar(j, j1);
 }
 
-// Access to the score and the pixels along one scan line.
+// Access to the score and the pixels along one scan line: pointers to its first pixel and the stride
+// between its pixels, set once per candidate (the accesses of the profile tests are then one multiply-add).
 struct ScanLine
 {
-  const unsigned char *score;
-  const unsigned char *rgba;
+  const unsigned char *score; // the whole score image
   int W, H;
   bool alongRow;
   int line;
-  int length() const { return alongRow ? W : H; }
-  size_t index(int pos) const { return alongRow ? static_cast<size_t>(line) * W + pos : static_cast<size_t>(pos) * W + line; }
-  int at(int pos) const { return score[index(pos)]; }
+  const unsigned char *lineScore, *lineRgba; // pixel 0 of the line in the score and in the RGBA buffer
+  ptrdiff_t stride;                          // pixels between two consecutive pixels of the line
+  int n;                                     // length of the line
+  ScanLine(const unsigned char *score_, const unsigned char *rgba, int W_, int H_, bool alongRow_, int line_)
+    : score(score_), W(W_), H(H_), alongRow(alongRow_), line(line_),
+      lineScore(score_ + (alongRow_ ? static_cast<size_t>(line_) * W_ : static_cast<size_t>(line_))),
+      lineRgba(rgba + 4 * (alongRow_ ? static_cast<size_t>(line_) * W_ : static_cast<size_t>(line_))),
+      stride(alongRow_ ? 1 : W_), n(alongRow_ ? W_ : H_)
+  {
+  }
+  int length() const { return n; }
+  int at(int pos) const { return lineScore[pos * stride]; }
   // Unclipped red dominance of the pixel (negative for grey or other colours).
   int dominance(int pos) const
   {
-    const unsigned char *p = rgba + 4 * index(pos);
+    const unsigned char *p = lineRgba + 4 * pos * stride;
     return p[0] - std::max(p[1], p[2]);
   }
-  int red(int pos) const { return rgba[4 * index(pos)]; }
+  int red(int pos) const { return lineRgba[4 * pos * stride]; }
 };
 
 // Run of scores above `level` through (i, j) along the direction (di, dj), up to limit pixels per side:
@@ -517,14 +541,15 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   std::vector<Candidate> &rowPeaks = work.rowPeaks, &columnPeaks = work.columnPeaks;
   rowPeaks.clear();
   columnPeaks.clear();
+  work.zeros.assign(W, 0);
   auto searchColumns = [&](int r) {
     const unsigned char *rowFlags = flags + static_cast<size_t>(r) * flagStride;
     if (searchRegion == nullptr)
-      columnCandidates(score.data(), rowFlags, W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
+      columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
     else
       for (const Span *span = searchRegion->begin(r); span != searchRegion->end(r); ++span)
-        columnCandidates(score.data(), rowFlags, W, H, r, span->first, span->second, d, threshold, step,
-                         columnPeaks);
+        columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, span->first, span->second, d, threshold,
+                         step, columnPeaks);
   };
   std::vector<Crossing> &crossings = work.crossings;
   crossings.clear();
@@ -539,7 +564,7 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     int &end = alongRow ? lastRowEnd : work.lastEnd[c.line];
     if (c.pos <= end)
       return;
-    const ScanLine s = {score.data(), rgba, W, H, alongRow, c.line};
+    const ScanLine s(score.data(), rgba, W, H, alongRow, c.line);
     Crossing crossing;
     const Verdict verdict = analyse(s, c.pos, settings, threshold, crossing);
     if (verdict == IGNORED)
