@@ -326,20 +326,22 @@ struct Run
 {
   int length, maxScore;
 };
+// (di, dj) is (1, 0) or (0, 1). The scores are integers: v > level is v > floor(level).
 Run runThrough(const unsigned char *score, int W, int H, int i, int j, int di, int dj, double level, int limit)
 {
-  Run run = {1, score[static_cast<size_t>(i) * W + j]};
-  for (int sign = -1; sign <= 1; sign += 2)
-    for (int k = 1; k <= limit; ++k) {
-      const int ii = i + sign * k * di, jj = j + sign * k * dj;
-      if (ii < 0 || jj < 0 || ii >= H || jj >= W)
-        break;
-      const int v = score[static_cast<size_t>(ii) * W + jj];
-      if (!(v > level))
-        break;
-      ++run.length;
-      run.maxScore = std::max(run.maxScore, v);
-    }
+  const int above = static_cast<int>(std::floor(level));
+  const unsigned char *centre = score + static_cast<size_t>(i) * W + j;
+  const ptrdiff_t stride = static_cast<ptrdiff_t>(di) * W + dj;
+  const int before = std::min(limit, di ? i : j), after = std::min(limit, di ? H - 1 - i : W - 1 - j);
+  Run run = {1, *centre};
+  for (int k = 1; k <= before && centre[-k * stride] > above; ++k) {
+    ++run.length;
+    run.maxScore = std::max(run.maxScore, static_cast<int>(centre[-k * stride]));
+  }
+  for (int k = 1; k <= after && centre[k * stride] > above; ++k) {
+    ++run.length;
+    run.maxScore = std::max(run.maxScore, static_cast<int>(centre[k * stride]));
+  }
   return run;
 }
 
@@ -365,10 +367,11 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
     return IGNORED;
   // Half-maximum run.
   const double half = bg + 0.5 * contrast;
+  const int aboveHalf = static_cast<int>(std::floor(half)); // integer scores: s > half is s > floor(half)
   int a = p, b = p;
-  while (a - 1 >= 0 && s.at(a - 1) > half && p - a <= d)
+  while (a - 1 >= 0 && s.at(a - 1) > aboveHalf && p - a <= d)
     --a;
-  while (b + 1 < n && s.at(b + 1) > half && b - p <= d)
+  while (b + 1 < n && s.at(b + 1) > aboveHalf && b - p <= d)
     ++b;
   out.alongRow = s.alongRow;
   out.line = s.line;
@@ -408,10 +411,11 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
     return IGNORED;
   // Centroid of the score above a quarter of the contrast, over the connected part around the peak.
   const double level = bg + 0.25 * contrast;
+  const int aboveLevel = static_cast<int>(std::floor(level));
   int lo = a, hi = b;
-  while (lo - 1 >= 0 && s.at(lo - 1) > level && p - lo < d - 1)
+  while (lo - 1 >= 0 && s.at(lo - 1) > aboveLevel && p - lo < d - 1)
     --lo;
-  while (hi + 1 < n && s.at(hi + 1) > level && hi - p < d - 1)
+  while (hi + 1 < n && s.at(hi + 1) > aboveLevel && hi - p < d - 1)
     ++hi;
   double sumW = 0.0, sumWk = 0.0;
   for (int k = lo; k <= hi; ++k) {
