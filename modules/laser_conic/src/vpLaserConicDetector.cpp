@@ -53,7 +53,10 @@ vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &) : m_work(new
 
 vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(const vpWorkspace &)
 {
-  return *this; // buffers are not state: each detector keeps its own
+  // The buffers are not state: each detector keeps its own. The rasterised region belongs to the settings
+  // being replaced, whatever its generation number says.
+  m_work->regionValid = false;
+  return *this;
 }
 
 vpLaserConicDetector::vpWorkspace::~vpWorkspace() = default;
@@ -168,8 +171,9 @@ void rasterise(const std::vector<vpImagePoint> &region, double margin, double m,
 {
   const int blockW = 16, blockH = out.bandHeight, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
   std::vector<unsigned char> marked(static_cast<size_t>(nbX) * nbY, 0);
-  // One point per cell of a quarter of the margin marks its square: more points in the cell add nothing
-  // (the band stays at least 3/4 of m wide around every point).
+  // One point per cell of a quarter of the margin marks its square: more points in the cell add little
+  // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
+  // reaches at least m - 0.36 margin around every point).
   const double cellSize = std::max(1.0, 0.25 * margin);
   const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2, cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
   std::vector<unsigned char> used(static_cast<size_t>(cellColumns) * cellRows, 0);

@@ -207,11 +207,11 @@ private:
   class VISP_EXPORT vpWorkspace
   {
   public:
-    vpWorkspace();
-    vpWorkspace(const vpWorkspace &other);
-    vpWorkspace &operator=(const vpWorkspace &other);
-    ~vpWorkspace();
-    vpLaserDetector::RidgeWorkspace &get() { return *m_work; }
+    vpWorkspace();                                     //!< empty buffers
+    vpWorkspace(const vpWorkspace &other);             //!< empty buffers (nothing is copied)
+    vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region
+    ~vpWorkspace();                                    //!< frees the buffers
+    vpLaserDetector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
 
   private:
     std::unique_ptr<vpLaserDetector::RidgeWorkspace> m_work;
@@ -231,7 +231,7 @@ private:
   mutable bool m_maskDirty;
   unsigned int m_height, m_width;        //!< size of the last image
   double m_threshold, m_noise;
-  vpWorkspace m_work;
+  vpWorkspace m_work; //!< score, block flags, candidates, chaining grid and rasterised region of the ridge method
   std::vector<vpLaserConicDetectorRun> m_runs; //!< stripe runs of the last ridge detection
 };
 
