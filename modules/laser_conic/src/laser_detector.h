@@ -20,8 +20,24 @@
 
 namespace vpLaserDetector
 {
-//! Column intervals [first, last] of each image row (a search region); rows without interval are skipped.
-typedef std::vector<std::vector<std::pair<int, int> > > RowIntervals;
+//! A column span [first, last] of an image row.
+typedef std::pair<int, int> Span;
+
+/*!
+  Column spans of each image row of a search region. The region is rasterised in bands of rows that share
+  their spans (one list per band instead of one per row: no per-row allocation), stored one after the
+  other: band b owns spans [bandStart[b], bandStart[b + 1]).
+*/
+struct RegionSpans
+{
+  int bandHeight = 8;          //!< rows per band
+  std::vector<Span> spans;     //!< the spans of every band, band after band
+  std::vector<int> bandStart;  //!< first span of each band, plus the end
+  //! First span of row i.
+  const Span *begin(int i) const { return spans.data() + bandStart[static_cast<size_t>(i / bandHeight)]; }
+  //! One past the last span of row i.
+  const Span *end(int i) const { return spans.data() + bandStart[static_cast<size_t>(i / bandHeight) + 1]; }
+};
 
 //! Settings of the ridge detector (see vpLaserConicDetector).
 struct RidgeSettings
@@ -45,18 +61,52 @@ struct RidgeReport
 //! along column `line`), its half-maximum run [first, last], accepted (a returned point) or rejected.
 typedef vpLaserConicDetectorRun StripeRun;
 
+//! A candidate peak: its scan line and its position along it.
+struct Candidate
+{
+  int line, pos;
+};
+
+//! A measured stripe crossing: its sub-pixel centre and its half-maximum run [first, last] along the line.
+struct Crossing
+{
+  vpImagePoint point;
+  bool alongRow;
+  int line, first, last;
+};
+
+/*!
+  Buffers of the ridge detector kept from frame to frame (by vpLaserConicDetector), so that a detection
+  allocates nothing once the first frame of a size has been processed.
+*/
+struct RidgeWorkspace
+{
+  std::vector<unsigned char> score;          //!< red-dominance score, H x W
+  std::vector<unsigned char> blockFlags;     //!< per row, per 16 columns: 0xFF when a score reaches the threshold
+  std::vector<Candidate> rowPeaks, columnPeaks;
+  std::vector<Crossing> crossings;
+  std::vector<int> lastEnd;                  //!< per column, end of the last measured run
+  std::vector<unsigned char> zeros;          //!< W zero scores: the rows beyond the image border
+  std::vector<int> cellHead;                 //!< chaining grid, every cell -1 between two frames
+  std::vector<int> next, cellOf, parent;     //!< chaining lists and union-find
+  std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes
+  std::vector<bool> keep;                    //!< crossings on long chains
+  RegionSpans scoreRegion, searchRegion;     //!< rasterised search region (see vpLaserConicDetector)
+  unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
+  bool regionValid = false;
+};
+
 //! Fills \e mask (resized to H x W) from the runs: 255 on the accepted runs, 100 on the rejected ones.
 void drawRuns(const std::vector<StripeRun> &runs, unsigned int H, unsigned int W, vpImage<unsigned char> &mask);
 
 /*!
   Ridge detector. \e scoreRegion / \e searchRegion: null for the whole image, else the rows to score
-  (the search region dilated by the background distance) and the rows to search. \e score is a work
-  buffer; \e runs receives the measured stripe runs (see drawRuns()).
+  (the search region dilated by the background distance) and the rows to search. \e work holds the buffers;
+  \e runs receives the measured stripe runs (see drawRuns()).
 */
 std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSettings &settings,
-                                      const RowIntervals *scoreRegion, const RowIntervals *searchRegion,
-                                      std::vector<unsigned char> &score, std::vector<StripeRun> &runs,
-                                      RidgeReport &report);
+                                      const RegionSpans *scoreRegion, const RegionSpans *searchRegion,
+                                      RidgeWorkspace &work, std::vector<StripeRun> &runs, RidgeReport &report);
 
 //! Settings of the HSV detector.
 struct HsvSettings

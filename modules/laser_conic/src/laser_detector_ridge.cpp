@@ -41,14 +41,38 @@ inline unsigned char scorePixel(const unsigned char *p, int saturation)
   return static_cast<unsigned char>(s < 0 ? 0 : s);
 }
 
-void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation)
+// Scores n pixels starting at a column multiple of 16, and sets the flag of each block of 16 columns
+// (flags[0] for the first) to 0xFF when a score of the block reaches the threshold, else 0: no pixel of an
+// unflagged block can be a candidate (a candidate's score exceeds its background by the threshold), so
+// the candidate passes skip these blocks, most of a frame, without reading their scores again.
+void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
+               unsigned char *flags)
 {
   int j = 0;
 #if defined(__SSE2__)
+  const __m128i thresholdBytes = _mm_set1_epi8(static_cast<char>(threshold));
   // 16 pixels per step in 16-bit lanes, the same integer arithmetic as scorePixel().
   const __m128i low8 = _mm_set1_epi32(0xFF), sat = _mm_set1_epi16(static_cast<short>(saturation));
   const __m128i zero = _mm_setzero_si128(), ramp = _mm_set1_epi16(kSaturationRamp), third = _mm_set1_epi16(2185);
+  const __m128i rampStart = _mm_set1_epi32(std::max(0, saturation - kSaturationRamp));
   for (; j + 16 <= n; j += 16) {
+    // Below the ramp (every R <= saturation - 30: nearly every block of a frame) the weight is exactly 1
+    // (m x 30 x 2185 >> 16 = m for m <= 255) and the score is the saturated byte difference R - max(G, B),
+    // computed in place in byte 0 of the RGBA lanes, without the 16-bit products.
+    const __m128i *in = reinterpret_cast<const __m128i *>(rgba + 4 * j);
+    const __m128i a0 = _mm_loadu_si128(in), a1 = _mm_loadu_si128(in + 1), a2 = _mm_loadu_si128(in + 2),
+                  a3 = _mm_loadu_si128(in + 3);
+    const __m128i redMax = _mm_and_si128(_mm_max_epu8(_mm_max_epu8(a0, a1), _mm_max_epu8(a2, a3)), low8);
+    if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(redMax, rampStart), zero)) == 0xFFFF) {
+      auto dominance = [&](__m128i a) {
+        return _mm_and_si128(_mm_subs_epu8(a, _mm_max_epu8(_mm_srli_epi32(a, 8), _mm_srli_epi32(a, 16))), low8);
+      };
+      const __m128i s = _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)),
+                                         _mm_packs_epi32(dominance(a2), dominance(a3)));
+      _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), s);
+      flags[j >> 4] = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, thresholdBytes), s)) ? 0xFF : 0;
+      continue;
+    }
     __m128i half[2];
     for (int h = 0; h < 2; ++h) {
       const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h)));
@@ -62,17 +86,24 @@ void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int satur
       const __m128i w = _mm_mulhi_epu16(_mm_mullo_epi16(m, t), third);
       half[h] = _mm_max_epi16(_mm_sub_epi16(r, w), zero);
     }
-    _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), _mm_packus_epi16(half[0], half[1]));
+    const __m128i s = _mm_packus_epi16(half[0], half[1]);
+    _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), s);
+    flags[j >> 4] = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, thresholdBytes), s)) ? 0xFF : 0;
   }
 #endif
-  for (; j < n; ++j)
+  if (j < n)
+    flags[j >> 4] = 0;
+  for (; j < n; ++j) {
     score[j] = scorePixel(rgba + 4 * j, saturation);
+    if (score[j] >= threshold)
+      flags[j >> 4] = 0xFF;
+  }
 }
 
 // Robust noise of the unclipped score r - max(g, b): 1.4826 MAD / sqrt(2) of its differences two pixels
 // apart (two apart: the optical blur correlates neighbours), every 4th pixel of every 8th row of the scored
 // region (about 60 000 samples in a 1600 x 1200 image: the median is known to a few percent).
-double estimateNoise(const vpImage<vpRGBa> &I, const RowIntervals *region)
+double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region)
 {
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
   std::vector<uint32_t> histogram(511, 0);
@@ -90,8 +121,8 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RowIntervals *region)
     if (region == nullptr)
       sampleSpan(row, 0, W - 1);
     else
-      for (const std::pair<int, int> &span : (*region)[i])
-        sampleSpan(row, span.first, span.second);
+      for (const Span *span = region->begin(i); span != region->end(i); ++span)
+        sampleSpan(row, span->first, span->second);
   }
   if (count == 0)
     return 0.0;
@@ -107,13 +138,6 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RowIntervals *region)
   }
   return 0.0;
 }
-
-// A candidate peak: its scan line and its position along it.
-struct Candidate
-{
-  int line, pos;
-  bool operator<(const Candidate &o) const { return line < o.line || (line == o.line && pos < o.pos); }
-};
 
 // Candidate test of one pixel: v exceeds the background bg by threshold and the score `near` (the larger at
 // d / 2 + 1 pixels on both sides) by half of it, and is a local maximum (first
@@ -150,9 +174,13 @@ inline int candidates16(const unsigned char *v, const unsigned char *far0, const
     return 0;
   const __m128i saturated = _mm_cmpeq_epi8(x, _mm_set1_epi8(static_cast<char>(0xFF))); // a plateau of 255 may be wide
   const __m128i n0 = load16(near0), n1 = load16(near1);
+  // The inside of a red floor patch reaches the threshold but not its own level at d / 2 + 1 pixels plus
+  // half the threshold: on a colourful floor this test alone ends most of the blocks that pass the first.
+  const __m128i nearTest = _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(n0, n1), halfThreshold));
+  if (_mm_movemask_epi8(nearTest) == 0)
+    return 0;
   const __m128i bg = _mm_max_epu8(_mm_min_epu8(load16(far0), n0), _mm_min_epu8(load16(far1), n1));
-  const __m128i high =
-      _mm_and_si128(atLeast(x, bg, threshold), _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(n0, n1), halfThreshold)));
+  const __m128i high = _mm_and_si128(atLeast(x, bg, threshold), nearTest);
   const __m128i notAbove = _mm_cmpeq_epi8(_mm_subs_epu8(x, load16(before)), zero);
   const __m128i notBelow = _mm_cmpeq_epi8(_mm_subs_epu8(load16(after), x), zero);
   return _mm_movemask_epi8(_mm_andnot_si128(notAbove, _mm_and_si128(high, notBelow)));
@@ -165,98 +193,135 @@ inline int scoreAt(const unsigned char *line, ptrdiff_t stride, int j, int k, in
   return j + k >= 0 && j + k < n ? line[(j + k) * stride] : 0;
 }
 
-// Candidate peaks along row i within [j0, j1] (near the image border one background side only).
-void rowCandidates(const unsigned char *c, int W, int i, int j0, int j1, int d, int threshold, std::vector<Candidate> &out)
+// Candidate peaks along row i within [j0, j1] (near the image border one background side only). Only the
+// flagged blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()).
+void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, int i, int j0, int j1, int d,
+                   int threshold, std::vector<Candidate> &out)
 {
   j0 = std::max(j0, 1);
   j1 = std::min(j1, W - 2);
+  if (j0 > j1)
+    return;
   const unsigned char *row = c + static_cast<size_t>(i) * W;
   const int dn = d / 2 + 1, half = (threshold + 1) / 2;
-  auto scalar = [&](int j) {
+#if defined(__SSE2__)
+  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
+  // A block whose samples leave the row (near the image border) or that the range cuts is tested on a copy
+  // of its surroundings padded with zeros: the score beyond the ends counts as 0 (see scoreAt()).
+  unsigned char padded[16 + 2 * 101];
+  for (int b = j0 >> 4; b <= j1 >> 4; ++b) {
+    if (!flags[b])
+      continue;
+    const int k = 16 * b;
+    int bits;
+    if (k >= d && k + 15 + d < W)
+      bits = candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
+    else {
+      const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
+      std::memset(padded, 0, sizeof(padded));
+      const int first = std::max(0, from);
+      std::memcpy(padded + (first - from), row + first, static_cast<size_t>(to - first + 1));
+      const unsigned char *x = padded + d + 1;
+      bits = candidates16(x, x - d, x + d, x - dn, x + dn, x - 1, x + 1, t, th);
+    }
+    // Only the pixels of [j0, j1].
+    if (k < j0)
+      bits &= static_cast<int>(~0u << (j0 - k));
+    if (k + 15 > j1)
+      bits &= (1 << (j1 - k + 1)) - 1;
+    for (; bits; bits &= bits - 1)
+      out.push_back(Candidate{i, k + __builtin_ctz(bits)});
+  }
+#else
+  for (int j = j0; j <= j1; ++j) {
+    if (!flags[j >> 4])
+      continue;
     const int bg = std::max(std::min(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, -dn, W)),
                             std::min(scoreAt(row, 1, j, d, W), scoreAt(row, 1, j, dn, W)));
     const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
     if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
       out.push_back(Candidate{i, j});
-  };
-  int j = j0;
-#if defined(__SSE2__)
-  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
-  for (; j < d && j <= j1; ++j)
-    scalar(j);
-  for (; j + 15 <= j1 && j + 15 + d < W; j += 16) {
-    int bits = candidates16(row + j, row + j - d, row + j + d, row + j - dn, row + j + dn, row + j - 1, row + j + 1, t, th);
-    while (bits) {
-      out.push_back(Candidate{i, j + __builtin_ctz(bits)});
-      bits &= bits - 1;
-    }
   }
 #endif
-  for (; j <= j1; ++j)
-    scalar(j);
 }
 
-// Candidate peaks along the columns (every step-th column) at row i within [j0, j1].
-void columnCandidates(const unsigned char *c, int W, int H, int i, int j0, int j1, int d, int threshold, int step,
-                      std::vector<Candidate> &out)
+// Candidate peaks along the columns (every step-th column) at row i within [j0, j1]. Only the flagged
+// blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()). \e zeros: a row of W
+// zero scores, standing for the rows beyond the image border (the score there counts as 0).
+void columnCandidates(const unsigned char *c, const unsigned char *flags, const unsigned char *zeros, int W, int H,
+                      int i, int j0, int j1, int d, int threshold, int step, std::vector<Candidate> &out)
 {
   if (i < 1 || i > H - 2)
     return;
   const unsigned char *row = c + static_cast<size_t>(i) * W;
   const ptrdiff_t stride = W;
   const int dn = d / 2 + 1, half = (threshold + 1) / 2;
+  auto scalar = [&](int first, int last) {
+    for (int j = first; j <= last; ++j) {
+      if (!flags[j >> 4] || j % step != 0)
+        continue;
+      const unsigned char *column = c + j; // the column j, row 0
+      const int bg = std::max(std::min(scoreAt(column, stride, i, -d, H), scoreAt(column, stride, i, -dn, H)),
+                              std::min(scoreAt(column, stride, i, d, H), scoreAt(column, stride, i, dn, H)));
+      const int near = std::max(scoreAt(column, stride, i, -dn, H), scoreAt(column, stride, i, dn, H));
+      if (isCandidate(row[j], bg, near, row[j - stride], row[j + stride], threshold, half))
+        out.push_back(Candidate{j, i});
+    }
+  };
   int j = j0;
 #if defined(__SSE2__)
-  if (i - d >= 0 && i + d < H) {
+  // Whole blocks of 16 columns inside [j0, j1], 16 pixels at once.
+  const int firstBlock = (j0 + 15) >> 4, lastBlock = (j1 - 15) >> 4;
+  if (firstBlock <= lastBlock) {
     const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
-    for (; j + 15 <= j1; j += 16) {
-      int bits = candidates16(row + j, row + j - d * stride, row + j + d * stride, row + j - dn * stride,
-                              row + j + dn * stride, row + j - stride, row + j + stride, t, th);
-      while (bits) {
-        const int k = __builtin_ctz(bits);
-        if ((j + k) % step == 0)
-          out.push_back(Candidate{j + k, i});
-        bits &= bits - 1;
+    auto rowAt = [&](int r) { return r >= 0 && r < H ? c + static_cast<size_t>(r) * W : zeros; };
+    const unsigned char *up = rowAt(i - d), *down = rowAt(i + d), *nearUp = rowAt(i - dn), *nearDown = rowAt(i + dn);
+    scalar(j0, 16 * firstBlock - 1);
+    for (int b = firstBlock; b <= lastBlock; ++b) {
+      if (!flags[b])
+        continue;
+      const int k = 16 * b;
+      int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
+      for (; bits; bits &= bits - 1) {
+        const int jj = k + __builtin_ctz(bits);
+        if (jj % step == 0)
+          out.push_back(Candidate{jj, i});
       }
     }
+    j = 16 * (lastBlock + 1);
   }
 #endif
-  for (; j <= j1; ++j) {
-    const unsigned char *column = c + j; // the column j, row 0
-    const int bg = std::max(std::min(scoreAt(column, stride, i, -d, H), scoreAt(column, stride, i, -dn, H)),
-                            std::min(scoreAt(column, stride, i, d, H), scoreAt(column, stride, i, dn, H)));
-    const int near = std::max(scoreAt(column, stride, i, -dn, H), scoreAt(column, stride, i, dn, H));
-    if (j % step == 0 && isCandidate(row[j], bg, near, row[j - stride], row[j + stride], threshold, half))
-      out.push_back(Candidate{j, i});
-  }
+  (void)zeros;
+  scalar(j, j1);
 }
 
-// A measured stripe crossing.
-struct Crossing
-{
-  vpImagePoint point;
-  bool alongRow;
-  int line, first, last; // the half-maximum run [first, last] along the scan line
-};
-
-// Access to the score and the pixels along one scan line.
+// Access to the score and the pixels along one scan line: pointers to its first pixel and the stride
+// between its pixels, set once per candidate (the accesses of the profile tests are then one multiply-add).
 struct ScanLine
 {
-  const unsigned char *score;
-  const unsigned char *rgba;
+  const unsigned char *score; // the whole score image
   int W, H;
   bool alongRow;
   int line;
-  int length() const { return alongRow ? W : H; }
-  size_t index(int pos) const { return alongRow ? static_cast<size_t>(line) * W + pos : static_cast<size_t>(pos) * W + line; }
-  int at(int pos) const { return score[index(pos)]; }
+  const unsigned char *lineScore, *lineRgba; // pixel 0 of the line in the score and in the RGBA buffer
+  ptrdiff_t stride;                          // pixels between two consecutive pixels of the line
+  int n;                                     // length of the line
+  ScanLine(const unsigned char *score_, const unsigned char *rgba, int W_, int H_, bool alongRow_, int line_)
+    : score(score_), W(W_), H(H_), alongRow(alongRow_), line(line_),
+      lineScore(score_ + (alongRow_ ? static_cast<size_t>(line_) * W_ : static_cast<size_t>(line_))),
+      lineRgba(rgba + 4 * (alongRow_ ? static_cast<size_t>(line_) * W_ : static_cast<size_t>(line_))),
+      stride(alongRow_ ? 1 : W_), n(alongRow_ ? W_ : H_)
+  {
+  }
+  int length() const { return n; }
+  int at(int pos) const { return lineScore[pos * stride]; }
   // Unclipped red dominance of the pixel (negative for grey or other colours).
   int dominance(int pos) const
   {
-    const unsigned char *p = rgba + 4 * index(pos);
+    const unsigned char *p = lineRgba + 4 * pos * stride;
     return p[0] - std::max(p[1], p[2]);
   }
-  int red(int pos) const { return rgba[4 * index(pos)]; }
+  int red(int pos) const { return lineRgba[4 * pos * stride]; }
 };
 
 // Run of scores above `level` through (i, j) along the direction (di, dj), up to limit pixels per side:
@@ -265,20 +330,22 @@ struct Run
 {
   int length, maxScore;
 };
+// (di, dj) is (1, 0) or (0, 1). The scores are integers: v > level is v > floor(level).
 Run runThrough(const unsigned char *score, int W, int H, int i, int j, int di, int dj, double level, int limit)
 {
-  Run run = {1, score[static_cast<size_t>(i) * W + j]};
-  for (int sign = -1; sign <= 1; sign += 2)
-    for (int k = 1; k <= limit; ++k) {
-      const int ii = i + sign * k * di, jj = j + sign * k * dj;
-      if (ii < 0 || jj < 0 || ii >= H || jj >= W)
-        break;
-      const int v = score[static_cast<size_t>(ii) * W + jj];
-      if (!(v > level))
-        break;
-      ++run.length;
-      run.maxScore = std::max(run.maxScore, v);
-    }
+  const int above = static_cast<int>(std::floor(level));
+  const unsigned char *centre = score + static_cast<size_t>(i) * W + j;
+  const ptrdiff_t stride = static_cast<ptrdiff_t>(di) * W + dj;
+  const int before = std::min(limit, di ? i : j), after = std::min(limit, di ? H - 1 - i : W - 1 - j);
+  Run run = {1, *centre};
+  for (int k = 1; k <= before && centre[-k * stride] > above; ++k) {
+    ++run.length;
+    run.maxScore = std::max(run.maxScore, static_cast<int>(centre[-k * stride]));
+  }
+  for (int k = 1; k <= after && centre[k * stride] > above; ++k) {
+    ++run.length;
+    run.maxScore = std::max(run.maxScore, static_cast<int>(centre[k * stride]));
+  }
   return run;
 }
 
@@ -304,10 +371,11 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
     return IGNORED;
   // Half-maximum run.
   const double half = bg + 0.5 * contrast;
+  const int aboveHalf = static_cast<int>(std::floor(half)); // integer scores: s > half is s > floor(half)
   int a = p, b = p;
-  while (a - 1 >= 0 && s.at(a - 1) > half && p - a <= d)
+  while (a - 1 >= 0 && s.at(a - 1) > aboveHalf && p - a <= d)
     --a;
-  while (b + 1 < n && s.at(b + 1) > half && b - p <= d)
+  while (b + 1 < n && s.at(b + 1) > aboveHalf && b - p <= d)
     ++b;
   out.alongRow = s.alongRow;
   out.line = s.line;
@@ -347,10 +415,11 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
     return IGNORED;
   // Centroid of the score above a quarter of the contrast, over the connected part around the peak.
   const double level = bg + 0.25 * contrast;
+  const int aboveLevel = static_cast<int>(std::floor(level));
   int lo = a, hi = b;
-  while (lo - 1 >= 0 && s.at(lo - 1) > level && p - lo < d - 1)
+  while (lo - 1 >= 0 && s.at(lo - 1) > aboveLevel && p - lo < d - 1)
     --lo;
-  while (hi + 1 < n && s.at(hi + 1) > level && hi - p < d - 1)
+  while (hi + 1 < n && s.at(hi + 1) > aboveLevel && hi - p < d - 1)
     ++hi;
   double sumW = 0.0, sumWk = 0.0;
   for (int k = lo; k <= hi; ++k) {
@@ -375,19 +444,28 @@ int root(std::vector<int> &parent, int k)
   return k;
 }
 
-// Keeps the crossings that belong to chains (neighbours within `link` pixels) at least minLength long.
-std::vector<bool> longChains(const std::vector<Crossing> &crossings, int W, int H, double link, double minLength)
+// Marks in work.keep the crossings of work.crossings that belong to chains (neighbours within `link`
+// pixels) at least minLength long.
+void longChains(RidgeWorkspace &work, int W, int H, double link, double minLength)
 {
+  const std::vector<Crossing> &crossings = work.crossings;
   const int n = static_cast<int>(crossings.size());
-  std::vector<bool> keep(n, true);
+  std::vector<bool> &keep = work.keep;
+  keep.assign(n, true);
   if (minLength <= 0.0 || n == 0)
-    return keep;
+    return;
   // Grid of cells of side >= link (4 px at least: a small grid) with a list of crossings per cell: the
   // neighbours are in the 3 x 3 cells around, each pair seen once from its first cell in scan order (the
-  // cell itself with the later crossings, and the 4 cells after it).
+  // cell itself with the later crossings, and the 4 cells after it). The grid (cellHead) stays allocated and
+  // all -1 between frames: only the cells used are reset afterwards, so the cost follows the crossings,
+  // not the image size.
   const double side = std::max(4.0, link);
   const int columns = static_cast<int>(W / side) + 3, rows = static_cast<int>(H / side) + 3;
-  std::vector<int> head(static_cast<size_t>(columns) * rows, -1), next(n, -1), cellOf(n);
+  std::vector<int> &head = work.cellHead, &next = work.next, &cellOf = work.cellOf, &parent = work.parent;
+  if (head.size() != static_cast<size_t>(columns) * rows)
+    head.assign(static_cast<size_t>(columns) * rows, -1);
+  next.resize(n);
+  cellOf.resize(n);
   for (int k = n - 1; k >= 0; --k) { // lists in increasing index order
     const int cx = static_cast<int>(crossings[k].point.get_u() / side) + 1;
     const int cy = static_cast<int>(crossings[k].point.get_v() / side) + 1;
@@ -395,7 +473,7 @@ std::vector<bool> longChains(const std::vector<Crossing> &crossings, int W, int 
     next[k] = head[cellOf[k]];
     head[cellOf[k]] = k;
   }
-  std::vector<int> parent(n);
+  parent.resize(n);
   std::iota(parent.begin(), parent.end(), 0);
   const double link2 = link * link;
   const int after[4] = {1, columns - 1, columns, columns + 1};
@@ -415,31 +493,34 @@ std::vector<bool> longChains(const std::vector<Crossing> &crossings, int W, int 
       for (int q = head[cellOf[k] + offset]; q >= 0; q = next[q])
         join(k, q);
   }
+  for (int k = 0; k < n; ++k)
+    head[cellOf[k]] = -1;
   // Extent of each chain: bounding-box diagonal.
-  std::vector<double> minU(n, 1e30), maxU(n, -1e30), minV(n, 1e30), maxV(n, -1e30);
+  work.minU.assign(n, 1e30);
+  work.maxU.assign(n, -1e30);
+  work.minV.assign(n, 1e30);
+  work.maxV.assign(n, -1e30);
   for (int k = 0; k < n; ++k) {
     parent[k] = root(parent, k);
     const int r = parent[k];
     const vpImagePoint &p = crossings[k].point;
-    minU[r] = std::min(minU[r], p.get_u());
-    maxU[r] = std::max(maxU[r], p.get_u());
-    minV[r] = std::min(minV[r], p.get_v());
-    maxV[r] = std::max(maxV[r], p.get_v());
+    work.minU[r] = std::min(work.minU[r], p.get_u());
+    work.maxU[r] = std::max(work.maxU[r], p.get_u());
+    work.minV[r] = std::min(work.minV[r], p.get_v());
+    work.maxV[r] = std::max(work.maxV[r], p.get_v());
   }
   const double min2 = minLength * minLength;
   for (int k = 0; k < n; ++k) {
     const int r = parent[k];
-    const double du = maxU[r] - minU[r], dv = maxV[r] - minV[r];
+    const double du = work.maxU[r] - work.minU[r], dv = work.maxV[r] - work.minV[r];
     keep[k] = du * du + dv * dv >= min2;
   }
-  return keep;
 }
 } // namespace
 
 std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSettings &settings,
-                                      const RowIntervals *scoreRegion, const RowIntervals *searchRegion,
-                                      std::vector<unsigned char> &score, std::vector<StripeRun> &runs,
-                                      RidgeReport &report)
+                                      const RegionSpans *scoreRegion, const RegionSpans *searchRegion,
+                                      RidgeWorkspace &work, std::vector<StripeRun> &runs, RidgeReport &report)
 {
   std::vector<vpImagePoint> points;
   runs.clear();
@@ -460,19 +541,27 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   // scored) are measured: one crossing per run, a later peak inside a measured run is skipped (the
   // candidates come line by line for the rows, row by row for the columns: one run end per column).
   const int d = settings.maxWidth, step = settings.step;
+  const int flagStride = (W + 15) >> 4; // blocks of 16 columns
+  std::vector<unsigned char> &score = work.score;
   score.resize(static_cast<size_t>(W) * H);
-  std::vector<Candidate> rowPeaks, columnPeaks;
-  rowPeaks.reserve(4096);
-  columnPeaks.reserve(4096);
+  work.blockFlags.resize(static_cast<size_t>(flagStride) * H, 0);
+  const unsigned char *flags = work.blockFlags.data();
+  std::vector<Candidate> &rowPeaks = work.rowPeaks, &columnPeaks = work.columnPeaks;
+  rowPeaks.clear();
+  columnPeaks.clear();
+  work.zeros.assign(W, 0);
   auto searchColumns = [&](int r) {
+    const unsigned char *rowFlags = flags + static_cast<size_t>(r) * flagStride;
     if (searchRegion == nullptr)
-      columnCandidates(score.data(), W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
+      columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
     else
-      for (const std::pair<int, int> &span : (*searchRegion)[r])
-        columnCandidates(score.data(), W, H, r, span.first, span.second, d, threshold, step, columnPeaks);
+      for (const Span *span = searchRegion->begin(r); span != searchRegion->end(r); ++span)
+        columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, span->first, span->second, d, threshold,
+                         step, columnPeaks);
   };
-  std::vector<Crossing> crossings;
-  std::vector<int> lastEnd(W, -1);
+  std::vector<Crossing> &crossings = work.crossings;
+  crossings.clear();
+  work.lastEnd.assign(W, -1);
   int lastRow = -1, lastRowEnd = -1;
   size_t nextRowPeak = 0, nextColumnPeak = 0;
   auto measure = [&](const Candidate &c, bool alongRow) {
@@ -480,10 +569,10 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
       lastRow = c.line;
       lastRowEnd = -1;
     }
-    int &end = alongRow ? lastRowEnd : lastEnd[c.line];
+    int &end = alongRow ? lastRowEnd : work.lastEnd[c.line];
     if (c.pos <= end)
       return;
-    const ScanLine s = {score.data(), rgba, W, H, alongRow, c.line};
+    const ScanLine s(score.data(), rgba, W, H, alongRow, c.line);
     Crossing crossing;
     const Verdict verdict = analyse(s, c.pos, settings, threshold, crossing);
     if (verdict == IGNORED)
@@ -502,17 +591,19 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   };
   for (int i = 0; i < H; ++i) {
     const size_t offset = static_cast<size_t>(i) * W;
+    unsigned char *rowFlags = work.blockFlags.data() + static_cast<size_t>(i) * flagStride;
     if (scoreRegion == nullptr) {
-      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation);
+      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation, threshold, rowFlags);
       if (i % step == 0)
-        rowCandidates(score.data(), W, i, 0, W - 1, d, threshold, rowPeaks);
+        rowCandidates(score.data(), rowFlags, W, i, 0, W - 1, d, threshold, rowPeaks);
     } else {
-      for (const std::pair<int, int> &span : (*scoreRegion)[i])
-        scoreSpan(rgba + 4 * (offset + span.first), &score[offset + span.first], span.second - span.first + 1,
-                  settings.saturation);
+      // The spans start at multiples of 16 columns (see RegionSpans): the blocks of the flags.
+      for (const Span *span = scoreRegion->begin(i); span != scoreRegion->end(i); ++span)
+        scoreSpan(rgba + 4 * (offset + span->first), &score[offset + span->first], span->second - span->first + 1,
+                  settings.saturation, threshold, rowFlags + (span->first >> 4));
       if (i % step == 0)
-        for (const std::pair<int, int> &span : (*searchRegion)[i])
-          rowCandidates(score.data(), W, i, span.first, span.second, d, threshold, rowPeaks);
+        for (const Span *span = searchRegion->begin(i); span != searchRegion->end(i); ++span)
+          rowCandidates(score.data(), rowFlags, W, i, span->first, span->second, d, threshold, rowPeaks);
     }
     if (i - d >= 0)
       searchColumns(i - d);
@@ -522,13 +613,13 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     searchColumns(r);
   measureUpTo(H);
 
-  // 5. Continuity: drop the short chains.
-  const std::vector<bool> keep = longChains(crossings, W, H, 2.0 * step + 0.5, settings.minSegment);
+  // 3. Continuity: drop the short chains.
+  longChains(work, W, H, 2.0 * step + 0.5, settings.minSegment);
   points.reserve(crossings.size());
   for (size_t k = 0; k < crossings.size(); ++k) {
     const Crossing &c = crossings[k];
-    runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, keep[k]});
-    if (keep[k])
+    runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, work.keep[k]});
+    if (work.keep[k])
       points.push_back(c.point);
   }
   return points;

@@ -42,10 +42,24 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
 vpLaserConicDetector::vpLaserConicDetector()
   : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
     m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
-    m_minValue(80), m_region(), m_regionMargin(0.0), m_mask(), m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0),
-    m_noise(0.0), m_score(), m_runs()
+    m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(), m_maskDirty(false), m_height(0), m_width(0),
+    m_threshold(0.0), m_noise(0.0), m_work(), m_runs()
 {
 }
+
+vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vpLaserDetector::RidgeWorkspace) {}
+
+vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &) : m_work(new vpLaserDetector::RidgeWorkspace) {}
+
+vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(const vpWorkspace &)
+{
+  // The buffers are not state: each detector keeps its own. The rasterised region belongs to the settings
+  // being replaced, whatever its generation number says.
+  m_work->regionValid = false;
+  return *this;
+}
+
+vpLaserConicDetector::vpWorkspace::~vpWorkspace() = default;
 
 void vpLaserConicDetector::setMinContrast(double greyLevels)
 {
@@ -63,6 +77,7 @@ void vpLaserConicDetector::setMaxStripeWidth(unsigned int pixels)
 {
   check(pixels > 0 && pixels <= 100, "the maximum stripe width must be in [1, 100] pixels");
   m_maxStripeWidth = pixels;
+  ++m_regionGeneration; // the scored band is the search band dilated by the stripe width
 }
 
 void vpLaserConicDetector::setSaturationLevel(unsigned int level)
@@ -107,6 +122,7 @@ void vpLaserConicDetector::setSearchRegion(const std::vector<vpImagePoint> &trac
     check(std::isfinite(p.get_u()) && std::isfinite(p.get_v()), "a point of the search region is not finite");
   m_region = trace;
   m_regionMargin = margin;
+  ++m_regionGeneration;
 }
 
 void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
@@ -143,22 +159,25 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
   check(!points.empty(), "the conic has no real point near the image");
   m_region = points;
   m_regionMargin = margin;
+  ++m_regionGeneration;
 }
 
-void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
-                                           std::vector<std::vector<std::pair<int, int> > > &rows) const
+namespace
 {
-  // The band is rasterised in blocks of 16 columns (the width the scans process at once) by 8 rows: each
-  // point marks the blocks that its square of half side margin + extra touches.
-  const int blockW = 16, blockH = 8, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
+// Rasterises the points' squares of half side m into bands of 8 rows by blocks of 16 columns (the width
+// the scans and the block flags process at once), then into the column spans of each band.
+void rasterise(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W,
+               vpLaserDetector::RegionSpans &out)
+{
+  const int blockW = 16, blockH = out.bandHeight, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
   std::vector<unsigned char> marked(static_cast<size_t>(nbX) * nbY, 0);
-  const double m = m_regionMargin + extra;
-  // One point per cell of a quarter of the margin marks its square: more points in the cell add nothing
-  // (the band stays at least 3/4 of margin + extra wide around every point).
-  const double cellSize = std::max(1.0, 0.25 * m_regionMargin);
+  // One point per cell of a quarter of the margin marks its square: more points in the cell add little
+  // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
+  // reaches at least m - 0.36 margin around every point).
+  const double cellSize = std::max(1.0, 0.25 * margin);
   const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2, cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
   std::vector<unsigned char> used(static_cast<size_t>(cellColumns) * cellRows, 0);
-  for (const vpImagePoint &p : m_region) {
+  for (const vpImagePoint &p : region) {
     const double u = p.get_u(), v = p.get_v();
     if (u < -m || v < -m || u > W - 1 + m || v > H - 1 + m)
       continue; // the square does not meet the image
@@ -171,10 +190,9 @@ void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
     for (int bi = i0 / blockH; bi <= i1 / blockH; ++bi)
       std::fill(&marked[static_cast<size_t>(bi) * nbX + j0 / blockW], &marked[static_cast<size_t>(bi) * nbX + j1 / blockW] + 1, 1);
   }
-  rows.resize(H);
+  out.spans.clear();
+  out.bandStart.assign(1, 0);
   for (int bi = 0; bi < nbY; ++bi) {
-    std::vector<std::pair<int, int> > &spans = rows[bi * blockH];
-    spans.clear();
     const unsigned char *row = &marked[static_cast<size_t>(bi) * nbX];
     for (int b = 0; b < nbX; ++b) {
       if (!row[b])
@@ -182,11 +200,26 @@ void vpLaserConicDetector::regionIntervals(int H, int W, int extra,
       const int start = b;
       while (b + 1 < nbX && row[b + 1])
         ++b;
-      spans.push_back(std::make_pair(start * blockW, std::min(W - 1, (b + 1) * blockW - 1)));
+      out.spans.push_back(vpLaserDetector::Span(start * blockW, std::min(W - 1, (b + 1) * blockW - 1)));
     }
-    for (int i = bi * blockH + 1; i < std::min(H, (bi + 1) * blockH); ++i)
-      rows[i] = spans;
+    out.bandStart.push_back(static_cast<int>(out.spans.size()));
   }
+}
+} // namespace
+
+void vpLaserConicDetector::rasteriseRegion(int H, int W)
+{
+  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  if (work.regionValid && work.regionGeneration == m_regionGeneration && work.regionHeight == static_cast<unsigned int>(H) &&
+      work.regionWidth == static_cast<unsigned int>(W))
+    return;
+  // Everything the ridge tests read lies within the stripe width + 2 of a searched pixel.
+  rasterise(m_region, m_regionMargin, m_regionMargin + m_maxStripeWidth + 2, H, W, work.scoreRegion);
+  rasterise(m_region, m_regionMargin, m_regionMargin, H, W, work.searchRegion);
+  work.regionValid = true;
+  work.regionGeneration = m_regionGeneration;
+  work.regionHeight = static_cast<unsigned int>(H);
+  work.regionWidth = static_cast<unsigned int>(W);
 }
 
 const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
@@ -216,15 +249,12 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
                                                     static_cast<int>(m_step)};
   vpLaserDetector::RidgeReport report;
   std::vector<vpImagePoint> points;
+  vpLaserDetector::RidgeWorkspace &work = m_work.get();
   if (m_region.empty() || I.getSize() == 0)
-    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, m_score, m_runs, report);
+    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
   else {
-    // Everything the ridge tests read lies within the stripe width + 2 of a searched pixel.
-    const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
-    vpLaserDetector::RowIntervals scoreRows, searchRows;
-    regionIntervals(H, W, static_cast<int>(m_maxStripeWidth) + 2, scoreRows);
-    regionIntervals(H, W, 0, searchRows);
-    points = vpLaserDetector::detectRidge(I, settings, &scoreRows, &searchRows, m_score, m_runs, report);
+    rasteriseRegion(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
+    points = vpLaserDetector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report);
   }
   m_threshold = report.threshold;
   m_noise = report.noise;

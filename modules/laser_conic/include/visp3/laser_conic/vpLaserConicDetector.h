@@ -10,6 +10,7 @@
 #ifndef VP_LASER_CONIC_DETECTOR_H
 #define VP_LASER_CONIC_DETECTOR_H
 
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,11 @@
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
+
+namespace vpLaserDetector
+{
+struct RidgeWorkspace;
+}
 
 //! A stripe run measured by vpLaserConicDetector (the diagnostic mask getMask() is drawn from them).
 struct vpLaserConicDetectorRun
@@ -195,8 +201,25 @@ public:
   double getNoiseLevel() const { return m_noise; }
 
 private:
-  //! Rows of the search region and their column intervals, for an image of \e H x \e W pixels, dilated by \e extra.
-  void regionIntervals(int H, int W, int extra, std::vector<std::vector<std::pair<int, int> > > &rows) const;
+  /*!
+    Work buffers of the ridge detector, kept from frame to frame (no allocation once a frame of the size
+    has been processed); a copy of the detector starts with buffers of its own, empty.
+  */
+  class VISP_EXPORT vpWorkspace
+  {
+  public:
+    vpWorkspace();                                     //!< empty buffers
+    vpWorkspace(const vpWorkspace &other);             //!< empty buffers (nothing is copied)
+    vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region
+    ~vpWorkspace();                                    //!< frees the buffers
+    vpLaserDetector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
+
+  private:
+    std::unique_ptr<vpLaserDetector::RidgeWorkspace> m_work;
+  };
+
+  //! Rasterises the search region for an image of \e H x \e W pixels into the workspace (once per region and size).
+  void rasteriseRegion(int H, int W);
 
   vpDetectionMethod m_method;
   double m_minContrast, m_noiseFactor, m_minSegmentLength;
@@ -204,11 +227,12 @@ private:
   int m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue;
   std::vector<vpImagePoint> m_region; //!< sampled search region (empty: whole image)
   double m_regionMargin;
+  unsigned int m_regionGeneration; //!< changes with the region or the stripe width: the rasterisation is then redone
   mutable vpImage<unsigned char> m_mask; //!< drawn from m_runs by getMask() when m_maskDirty
   mutable bool m_maskDirty;
   unsigned int m_height, m_width;        //!< size of the last image
   double m_threshold, m_noise;
-  std::vector<unsigned char> m_score; //!< score buffer, reused from frame to frame
+  vpWorkspace m_work; //!< score, block flags, candidates, chaining grid and rasterised region of the ridge method
   std::vector<vpLaserConicDetectorRun> m_runs; //!< stripe runs of the last ridge detection
 };
 
