@@ -428,20 +428,26 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   return true;
 }
 
+namespace
+{
+//! \e covariance, or notComputedError naming \e getter when the last estimate computed none.
+const vpMatrix &computedCovariance(const vpMatrix &covariance, const char *getter)
+{
+  if (covariance.size() == 0)
+    throw vpLaserConicException(vpLaserConicException::notComputedError,
+                                std::string("vpLaserConicPose::") + getter +
+                                  ": no covariance computed; call setCovarianceComputation(true) before a "
+                                  "successful computePlane()");
+  return covariance;
+}
+} // namespace
+
 vpMatrix vpLaserConicPose::getCovarianceMatrix() const
 {
-  if (m_covariance.size() == 0)
-    throw vpLaserConicException(vpLaserConicException::notComputedError,
-                                "vpLaserConicPose::getCovarianceMatrix: no covariance computed; call "
-                                "setCovarianceComputation(true) before a successful computePlane()");
-  return m_covariance;
+  return computedCovariance(m_covariance, "getCovarianceMatrix");
 }
 
 vpMatrix vpLaserConicPose::getPlaneCovarianceMatrix() const
 {
-  if (m_planeCovariance.size() == 0)
-    throw vpLaserConicException(vpLaserConicException::notComputedError,
-                                "vpLaserConicPose::getPlaneCovarianceMatrix: no covariance computed; call "
-                                "setCovarianceComputation(true) before a successful computePlane()");
-  return m_planeCovariance;
+  return computedCovariance(m_planeCovariance, "getPlaneCovarianceMatrix");
 }
