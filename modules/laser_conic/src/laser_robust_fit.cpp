@@ -19,6 +19,8 @@
 
 #include <visp3/robust/vpRobustScale.h>
 
+#include "laser_geometry.h"
+
 namespace vpLaserRobustFit
 {
 namespace
@@ -139,20 +141,21 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
   explains worst (which a redescending loss, or a tight inlier threshold, would do).
 */
 bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal, bool robust, int iterations,
-                    Eigen::Vector4d &plane)
+                    Eigen::Vector4d &plane, std::vector<double> &residuals)
 {
   const int n = static_cast<int>(trace.size());
-  if (!robust)
-    return vpLaserSolvers::refinePlane(trace.data(), n, cone, plane, iterations);
-  std::vector<double> w(trace.size(), 1.0);
-  for (int round = 0; round < kIrlsRounds; ++round) {
-    const std::vector<double> r = allResiduals(trace, vpLaserSolvers::conicFromPlane(plane, cone), focal);
-    const double sigma = vpRobustMadScale(r);
-    for (size_t k = 0; k < trace.size(); ++k)
-      w[k] = vpRobustWeight(vpRobustLoss::HUBER, r[k], sigma);
-    if (!vpLaserSolvers::refinePlaneWeighted(trace.data(), w.data(), n, cone, plane, kIrlsIterations))
+  if (robust) {
+    // The residuals of the final plane come from the refinement's own last pass.
+    if (!vpLaserSolvers::internal::refinePlaneHuber(trace.data(), n, cone, plane, kIrlsRounds, kIrlsIterations,
+                                                    residuals))
       return false;
+    for (double &r : residuals)
+      r *= focal;
+    return true;
   }
+  if (!vpLaserSolvers::refinePlane(trace.data(), n, cone, plane, iterations))
+    return false;
+  residuals = allResiduals(trace, normalised(vpLaserSolvers::conicFromPlane(plane, cone)), focal);
   return true;
 }
 
@@ -332,15 +335,16 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   const bool hasFreePlane = vpLaserSolvers::planePair(freeConic, cone, freePlane);
   // The constrained fit starts from the RANSAC plane (GP-3) or from the plane of the free conic.
   Eigen::Vector4d constrainedPlane = startPlane.head<3>().norm() > 0.0 ? startPlane : freePlane;
+  std::vector<double> rc;
   const bool hasConstrained = constrainedPlane.head<3>().norm() > 0.0 &&
                               constrainedFit(trace, cone, s.focal, s.adaptive && s.finalFit != FinalFit::FREE,
                                              s.finalFit == FinalFit::FREE ? kHealthIterations : 20,
-                                             constrainedPlane) &&
+                                             constrainedPlane, rc) &&
                               constrainedPlane.allFinite();
   const Eigen::Matrix3d constrainedConic =
       hasConstrained ? normalised(vpLaserSolvers::conicFromPlane(constrainedPlane, cone)) : Eigen::Matrix3d::Zero();
-  const std::vector<double> rc =
-      hasConstrained ? allResiduals(trace, constrainedConic, s.focal) : std::vector<double>();
+  if (!hasConstrained)
+    rc.clear();
   res.rmsConstrained = hasConstrained ? rms(rc) : std::numeric_limits<double>::quiet_NaN();
 
   bool useConstrained = false;

@@ -9,9 +9,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+
+#include <visp3/robust/vpRobustScale.h>
 
 #include "laser_geometry.h"
 
@@ -29,6 +34,8 @@ struct PlaneConics
 {
   Eigen::Matrix3d c;     //!< conic of the plane (not normalised: the Sampson distance is scale-free)
   Eigen::Matrix3d dc[3]; //!< derivatives of c along t1, t2 and d
+  Eigen::Vector3d t[2];  //!< the tangents: dc[k] = t[k] w^T + w t[k]^T for k < 2
+  Eigen::Vector3d w;     //!< G^T M apex
 };
 
 /*!
@@ -45,8 +52,11 @@ PlaneConics planeConics(const Eigen::Vector4d &plane, const Eigen::Vector3d tang
   pc.c = G.transpose() * MG;
   pc.c = 0.5 * (pc.c + pc.c.transpose());
   const Eigen::Vector3d w = MG.transpose() * apex;
-  for (int k = 0; k < 2; ++k)
+  for (int k = 0; k < 2; ++k) {
     pc.dc[k] = tangents[k] * w.transpose() + w * tangents[k].transpose();
+    pc.t[k] = tangents[k];
+  }
+  pc.w = w;
   pc.dc[2] = MG + MG.transpose();
   return pc;
 }
@@ -60,84 +70,128 @@ struct NormalEquations
 };
 
 /*!
-  One pass over the points. The signed Sampson distance is r = A / (2 sqrt(B)) with A = x^T c x and
+  Residuals and Jacobian rows of every point at one plane, kept so that a reweighting (IRLS) forms
+  its normal equations without evaluating the conic again. NaN residual (zero Jacobian) where the
+  conic has no gradient.
+*/
+struct PointTerms
+{
+  std::vector<double> r, j0, j1, j2;
+  void resize(int n)
+  {
+    const size_t m = static_cast<size_t>(n);
+    r.resize(m);
+    j0.resize(m);
+    j1.resize(m);
+    j2.resize(m);
+  }
+};
+
+//! Upper triangle of J^T J (row-wise), J^T r and the cost, summed point by point.
+struct Sums
+{
+  double h[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  double g[3] = {0.0, 0.0, 0.0};
+  double cost = 0.0;
+  void add(double w, double r, double J0, double J1, double J2)
+  {
+    const double wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
+    cost += w * r * r;
+    h[0] += wJ0 * J0;
+    h[1] += wJ0 * J1;
+    h[2] += wJ0 * J2;
+    h[3] += wJ1 * J1;
+    h[4] += wJ1 * J2;
+    h[5] += wJ2 * J2;
+    g[0] += wJ0 * r;
+    g[1] += wJ1 * r;
+    g[2] += wJ2 * r;
+  }
+  NormalEquations equations() const
+  {
+    NormalEquations ne;
+    ne.JtJ << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
+    ne.Jtr << g[0], g[1], g[2];
+    ne.cost = cost;
+    return ne;
+  }
+};
+
+//! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic).
+NormalEquations assemble(const PointTerms &t, const double *weights, int n)
+{
+  Sums sums;
+  for (int i = 0; i < n; ++i) {
+    const size_t k = static_cast<size_t>(i);
+    if (t.r[k] == t.r[k]) // not NaN: the conic has a gradient there
+      sums.add(weights[i], t.r[k], t.j0[k], t.j1[k], t.j2[k]);
+  }
+  return sums.equations();
+}
+
+/*!
+  One pass over the points: their terms stored and the normal equations (unit weights when
+  \e weights is null). The signed Sampson distance is r = A / (2 sqrt(B)) with A = x^T c x and
   B = |(c x)_{1,2}|^2, so dr = (dA - A dB / (2 B)) / (2 sqrt(B)) with dA = x^T dc x and
   dB = 2 (c x)_{1,2} . (dc x)_{1,2}. Points where the conic has no gradient are skipped.
 */
-NormalEquations accumulate(const Eigen::Vector2d *points, const double *weights, int n, const PlaneConics &pc)
+NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weights, int n, const PlaneConics &pc,
+                              PointTerms &t)
 {
-  const ConicCoefficients c(pc.c);
-  const ConicCoefficients dc[3] = {ConicCoefficients(pc.dc[0]), ConicCoefficients(pc.dc[1]),
-                                   ConicCoefficients(pc.dc[2])};
-  double h[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}; // upper triangle of J^T J, row-wise
-  double g[3] = {0.0, 0.0, 0.0};
-  double cost = 0.0;
+  // The normal moves along t: dc = t w^T + w t^T (rank 2), so with homogeneous x, x^T dc x = 2 (t.x)(w.x)
+  // and (dc x)_{1,2} = t_{1,2} (w.x) + w_{1,2} (t.x): a few products per point instead of a conic each.
+  const ConicCoefficients c(pc.c), dd(pc.dc[2]);
+  const double w0 = pc.w(0), w1 = pc.w(1), w2 = pc.w(2);
+  const double t00 = pc.t[0](0), t01 = pc.t[0](1), t02 = pc.t[0](2);
+  const double t10 = pc.t[1](0), t11 = pc.t[1](1), t12 = pc.t[1](2);
+  t.resize(n);
+  Sums sums;
   for (int i = 0; i < n; ++i) {
     const double x = points[i](0), y = points[i](1);
     double v0, v1;
     const double A = c.apply(x, y, v0, v1);
     const double B = v0 * v0 + v1 * v1;
-    if (!(B > 0.0))
+    const size_t k = static_cast<size_t>(i);
+    if (!(B > 0.0)) {
+      t.r[k] = std::numeric_limits<double>::quiet_NaN();
+      t.j0[k] = t.j1[k] = t.j2[k] = 0.0;
       continue;
-    const double invRoot = 0.5 / std::sqrt(B), ratio = A / (2.0 * B);
-    double J[3];
-    for (int k = 0; k < 3; ++k) {
-      double w0, w1;
-      const double dA = dc[k].apply(x, y, w0, w1);
-      J[k] = (dA - ratio * 2.0 * (v0 * w0 + v1 * w1)) * invRoot;
     }
+    const double invRoot = 0.5 / std::sqrt(B), ratio = A / B;
+    const double wx = w0 * x + w1 * y + w2, vw = v0 * w0 + v1 * w1;
+    const double tx0 = t00 * x + t01 * y + t02, vt0 = v0 * t00 + v1 * t01;
+    const double tx1 = t10 * x + t11 * y + t12, vt1 = v0 * t10 + v1 * t11;
+    double u0, u1;
+    const double dA2 = dd.apply(x, y, u0, u1);
+    const double J0 = (2.0 * tx0 * wx - ratio * (vt0 * wx + vw * tx0)) * invRoot;
+    const double J1 = (2.0 * tx1 * wx - ratio * (vt1 * wx + vw * tx1)) * invRoot;
+    const double J2 = (dA2 - ratio * (v0 * u0 + v1 * u1)) * invRoot;
     const double r = A * invRoot;
-    if (weights) {
-      // Weighted least squares: scale the residual and its gradient by the square root of the weight.
-      const double sw = std::sqrt(weights[i]);
-      for (int k = 0; k < 3; ++k)
-        J[k] *= sw;
-      const double rw = r * sw;
-      cost += rw * rw;
-      h[0] += J[0] * J[0];
-      h[1] += J[0] * J[1];
-      h[2] += J[0] * J[2];
-      h[3] += J[1] * J[1];
-      h[4] += J[1] * J[2];
-      h[5] += J[2] * J[2];
-      for (int k = 0; k < 3; ++k)
-        g[k] += J[k] * rw;
-      continue;
-    }
-    cost += r * r;
-    h[0] += J[0] * J[0];
-    h[1] += J[0] * J[1];
-    h[2] += J[0] * J[2];
-    h[3] += J[1] * J[1];
-    h[4] += J[1] * J[2];
-    h[5] += J[2] * J[2];
-    for (int k = 0; k < 3; ++k)
-      g[k] += J[k] * r;
+    t.r[k] = r;
+    t.j0[k] = J0;
+    t.j1[k] = J1;
+    t.j2[k] = J2;
+    sums.add(weights ? weights[i] : 1.0, r, J0, J1, J2);
   }
-  NormalEquations ne;
-  ne.JtJ << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
-  ne.Jtr << g[0], g[1], g[2];
-  ne.cost = cost;
-  return ne;
+  return sums.equations();
 }
 
-//! A plane and the normal equations evaluated there, in its own tangent basis.
+//! A plane, its terms and the normal equations evaluated there, in its own tangent basis.
 struct Iterate
 {
   Eigen::Vector4d plane;
   Eigen::Vector3d tangents[2];
   NormalEquations ne;
+  PointTerms terms;
 };
 
-Iterate evaluate(const Eigen::Vector4d &plane, const Eigen::Vector2d *points, const double *weights, int n,
-                 const Eigen::Vector3d &apex, const Eigen::Matrix3d &M)
+void evaluate(const Eigen::Vector4d &plane, const Eigen::Vector2d *points, const double *weights, int n,
+              const Eigen::Vector3d &apex, const Eigen::Matrix3d &M, Iterate &it)
 {
-  Iterate it;
   it.plane = plane;
   it.tangents[0] = plane.head<3>().unitOrthogonal();
   it.tangents[1] = plane.head<3>().cross(it.tangents[0]);
-  it.ne = accumulate(points, weights, n, planeConics(plane, it.tangents, apex, M));
-  return it;
+  it.ne = evaluateTerms(points, weights, n, planeConics(plane, it.tangents, apex, M), it.terms);
 }
 
 //! Plane moved by delta: normal retracted onto the unit sphere, altitude shifted.
@@ -154,27 +208,18 @@ bool negligible(const Eigen::Vector3d &delta, double altitude)
 {
   return std::abs(delta(0)) < 1e-14 && std::abs(delta(1)) < 1e-14 && std::abs(delta(2)) < 1e-14 * altitude;
 }
-} // namespace
 
-bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane, int iterations)
+/*!
+  Levenberg-Marquardt iterations from \e current (evaluated with the same weights). Each iteration is
+  one pass over the points: a rejected step reuses the normal equations of the current plane with
+  more damping, an accepted one brings those of the new plane (\e next is the scratch iterate). The
+  loop ends when the Gauss-Newton model promises (or the last step gave) a relative decrease of the
+  cost below kTolerance, far below the statistical uncertainty of the plane for any realistic noise.
+*/
+void levenbergMarquardt(const Eigen::Vector2d *points, const double *weights, int n, const Eigen::Vector3d &apex,
+                        const Eigen::Matrix3d &M, int iterations, Iterate &current, Iterate &next)
 {
-  return refinePlaneWeighted(points, nullptr, n, cone, plane, iterations);
-}
-
-bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
-                         Eigen::Vector4d &plane, int iterations)
-{
-  if (n < 3 || points == nullptr || !plane.allFinite() || !(plane.head<3>().norm() > 0.0) || !(plane(3) > 0.0))
-    return false;
-  const Eigen::Matrix3d M = internal::laserConeForm(cone);
-  Iterate current = evaluate(plane / plane.head<3>().norm(), points, weights, n, cone.apex, M);
-  if (!std::isfinite(current.ne.cost))
-    return false;
   double damping = 1e-3;
-  // Each iteration is one pass over the points: a rejected step reuses the normal equations of the
-  // current plane with more damping, an accepted one brings those of the new plane. The loop ends
-  // when the Gauss-Newton model promises (or the last step gave) a relative decrease of the cost
-  // below kTolerance, far below the statistical uncertainty of the plane for any realistic noise.
   const double kTolerance = 1e-6;
   for (int it = 0; it < iterations && current.ne.cost > 0.0; ++it) {
     Eigen::Matrix3d A = current.ne.JtJ;
@@ -191,10 +236,10 @@ bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, i
       damping *= 10.0;
       continue;
     }
-    const Iterate next = evaluate(candidate, points, weights, n, cone.apex, M);
+    evaluate(candidate, points, weights, n, apex, M, next);
     if (next.ne.cost < current.ne.cost) {
       const double gain = (current.ne.cost - next.ne.cost) / current.ne.cost;
-      current = next;
+      std::swap(current, next);
       damping = std::max(1e-9, 0.1 * damping);
       if (gain < kTolerance)
         break;
@@ -202,7 +247,58 @@ bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, i
       damping *= 10.0;
     }
   }
+}
+
+bool validStart(const Eigen::Vector2d *points, int n, const Eigen::Vector4d &plane)
+{
+  return n >= 3 && points != nullptr && plane.allFinite() && plane.head<3>().norm() > 0.0 && plane(3) > 0.0;
+}
+} // namespace
+
+bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane, int iterations)
+{
+  return refinePlaneWeighted(points, nullptr, n, cone, plane, iterations);
+}
+
+bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
+                         Eigen::Vector4d &plane, int iterations)
+{
+  if (!validStart(points, n, plane))
+    return false;
+  const Eigen::Matrix3d M = internal::laserConeForm(cone);
+  Iterate current, next;
+  evaluate(plane / plane.head<3>().norm(), points, weights, n, cone.apex, M, current);
+  if (!std::isfinite(current.ne.cost))
+    return false;
+  levenbergMarquardt(points, weights, n, cone.apex, M, iterations, current, next);
   plane = current.plane;
   return true;
 }
+
+namespace internal
+{
+bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane, int rounds,
+                      int iterations, std::vector<double> &residuals)
+{
+  if (!validStart(points, n, plane))
+    return false;
+  const Eigen::Matrix3d M = internal::laserConeForm(cone);
+  Iterate current, next;
+  evaluate(plane / plane.head<3>().norm(), points, nullptr, n, cone.apex, M, current);
+  std::vector<double> w(static_cast<size_t>(n));
+  for (int round = 0; round < rounds; ++round) {
+    // Weights at the scale of the residuals of the current plane (kept from its last evaluation).
+    const double sigma = vpRobustMadScale(current.terms.r);
+    for (int i = 0; i < n; ++i)
+      w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, current.terms.r[static_cast<size_t>(i)], sigma);
+    current.ne = assemble(current.terms, w.data(), n);
+    if (!std::isfinite(current.ne.cost))
+      return false;
+    levenbergMarquardt(points, w.data(), n, cone.apex, M, iterations, current, next);
+  }
+  plane = current.plane;
+  residuals = current.terms.r;
+  return true;
+}
+} // namespace internal
 } // namespace vpLaserSolvers
