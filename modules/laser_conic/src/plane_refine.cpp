@@ -134,10 +134,12 @@ NormalEquations assemble(const PointTerms &t, const double *weights, int n)
   \e weights is null). The signed Sampson distance is r = A / (2 sqrt(B)) with A = x^T c x and
   B = |(c x)_{1,2}|^2, so dr = (dA - A dB / (2 B)) / (2 sqrt(B)) with dA = x^T dc x and
   dB = 2 (c x)_{1,2} . (dc x)_{1,2}. Points where the conic has no gradient are skipped.
+  Two points at a time (Eigen::Array2d: one SIMD register), with the sums kept per lane.
 */
 NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weights, int n, const PlaneConics &pc,
                               PointTerms &t)
 {
+  typedef Eigen::Array2d P;
   // The normal moves along t: dc = t w^T + w t^T (rank 2), so with homogeneous x, x^T dc x = 2 (t.x)(w.x)
   // and (dc x)_{1,2} = t_{1,2} (w.x) + w_{1,2} (t.x): a few products per point instead of a conic each.
   const ConicCoefficients c(pc.c), dd(pc.dc[2]);
@@ -145,35 +147,61 @@ NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weigh
   const double t00 = pc.t[0](0), t01 = pc.t[0](1), t02 = pc.t[0](2);
   const double t10 = pc.t[1](0), t11 = pc.t[1](1), t12 = pc.t[1](2);
   t.resize(n);
-  Sums sums;
-  for (int i = 0; i < n; ++i) {
-    const double x = points[i](0), y = points[i](1);
-    double v0, v1;
-    const double A = c.apply(x, y, v0, v1);
-    const double B = v0 * v0 + v1 * v1;
-    const size_t k = static_cast<size_t>(i);
-    if (!(B > 0.0)) {
-      t.r[k] = std::numeric_limits<double>::quiet_NaN();
-      t.j0[k] = t.j1[k] = t.j2[k] = 0.0;
-      continue;
+  P h0 = P::Zero(), h1 = P::Zero(), h2 = P::Zero(), h3 = P::Zero(), h4 = P::Zero(), h5 = P::Zero();
+  P g0 = P::Zero(), g1 = P::Zero(), g2 = P::Zero(), cost = P::Zero();
+  for (int i = 0; i < n; i += 2) {
+    const bool pair = i + 1 < n; // the last point of an odd count goes alone (lane 1 weighted 0)
+    const int i1 = pair ? i + 1 : i;
+    const P x(points[i](0), points[i1](0)), y(points[i](1), points[i1](1));
+    P w(weights ? weights[i] : 1.0, pair ? (weights ? weights[i1] : 1.0) : 0.0);
+    const P v0 = c.a * x + c.b * y + c.d, v1 = c.b * x + c.e * y + c.f;
+    const P A = x * v0 + y * v1 + (c.d * x + c.f * y + c.g);
+    const P B = v0 * v0 + v1 * v1;
+    const P invRoot = 0.5 / B.sqrt(), ratio = A / B;
+    const P wx = w0 * x + w1 * y + w2, vw = v0 * w0 + v1 * w1;
+    const P tx0 = t00 * x + t01 * y + t02, vt0 = v0 * t00 + v1 * t01;
+    const P tx1 = t10 * x + t11 * y + t12, vt1 = v0 * t10 + v1 * t11;
+    const P u0 = dd.a * x + dd.b * y + dd.d, u1 = dd.b * x + dd.e * y + dd.f;
+    const P dA2 = x * u0 + y * u1 + (dd.d * x + dd.f * y + dd.g);
+    P J0 = (2.0 * tx0 * wx - ratio * (vt0 * wx + vw * tx0)) * invRoot;
+    P J1 = (2.0 * tx1 * wx - ratio * (vt1 * wx + vw * tx1)) * invRoot;
+    P J2 = (dA2 - ratio * (v0 * u0 + v1 * u1)) * invRoot;
+    P r = A * invRoot;
+    const int lanes = pair ? 2 : 1;
+    for (int l = 0; l < lanes; ++l) {
+      const size_t k = static_cast<size_t>(i + l);
+      if (B(l) > 0.0) {
+        t.r[k] = r(l);
+        t.j0[k] = J0(l);
+        t.j1[k] = J1(l);
+        t.j2[k] = J2(l);
+      } else {
+        t.r[k] = std::numeric_limits<double>::quiet_NaN();
+        t.j0[k] = t.j1[k] = t.j2[k] = 0.0;
+      }
     }
-    const double invRoot = 0.5 / std::sqrt(B), ratio = A / B;
-    const double wx = w0 * x + w1 * y + w2, vw = v0 * w0 + v1 * w1;
-    const double tx0 = t00 * x + t01 * y + t02, vt0 = v0 * t00 + v1 * t01;
-    const double tx1 = t10 * x + t11 * y + t12, vt1 = v0 * t10 + v1 * t11;
-    double u0, u1;
-    const double dA2 = dd.apply(x, y, u0, u1);
-    const double J0 = (2.0 * tx0 * wx - ratio * (vt0 * wx + vw * tx0)) * invRoot;
-    const double J1 = (2.0 * tx1 * wx - ratio * (vt1 * wx + vw * tx1)) * invRoot;
-    const double J2 = (dA2 - ratio * (v0 * u0 + v1 * u1)) * invRoot;
-    const double r = A * invRoot;
-    t.r[k] = r;
-    t.j0[k] = J0;
-    t.j1[k] = J1;
-    t.j2[k] = J2;
-    sums.add(weights ? weights[i] : 1.0, r, J0, J1, J2);
+    if (!(B > 0.0).all()) { // no gradient: no contribution
+      for (int l = 0; l < 2; ++l)
+        if (!(B(l) > 0.0))
+          w(l) = r(l) = J0(l) = J1(l) = J2(l) = 0.0;
+    }
+    const P wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
+    cost += w * r * r;
+    h0 += wJ0 * J0;
+    h1 += wJ0 * J1;
+    h2 += wJ0 * J2;
+    h3 += wJ1 * J1;
+    h4 += wJ1 * J2;
+    h5 += wJ2 * J2;
+    g0 += wJ0 * r;
+    g1 += wJ1 * r;
+    g2 += wJ2 * r;
   }
-  return sums.equations();
+  NormalEquations ne;
+  ne.JtJ << h0.sum(), h1.sum(), h2.sum(), h1.sum(), h3.sum(), h4.sum(), h2.sum(), h4.sum(), h5.sum();
+  ne.Jtr << g0.sum(), g1.sum(), g2.sum();
+  ne.cost = cost.sum();
+  return ne;
 }
 
 //! A plane, its terms and the normal equations evaluated there, in its own tangent basis.

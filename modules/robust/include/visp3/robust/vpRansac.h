@@ -40,6 +40,13 @@ struct vpRansacOptions
   */
   int localRounds = 1;
   /*!
+    Relative gain of inliers over the last locally optimised model that a new best model needs for
+    its own local optimisation (0: every new best model is refitted). Once a refit has gathered the
+    consensus, the later best models are mostly other samples of the same structure, a few inliers
+    better: refitting them again costs a full scoring per round and seldom changes the consensus.
+  */
+  double localOptimisationGain = 0.0;
+  /*!
     Size of the preemptive test subset (0 disables the test): a fixed random subset of the data, drawn
     once per call, on which every hypothesis of the main loop is scored first, by blocks of
     vpRansacPretestBlock data. A hypothesis is dropped before the full scoring as soon as its inliers
@@ -354,6 +361,7 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
   };
   int needed = options.maxTrials;
   int trial = 0;
+  int optimisedCount = 0; // inliers of the last locally optimised model
   for (; trial < needed || trial < options.minTrials; ++trial) {
     if (trial >= options.maxTrials)
       break;
@@ -365,9 +373,12 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
         continue;
       if (!vpRansacDetail::challenge(estimator, hypotheses[k], thr2, best, bestScore, report.inliers, scratch))
         continue;
-      if (options.localOptimisation && bestScore.first > s)
+      if (options.localOptimisation && bestScore.first > s &&
+          bestScore.first > (1.0 + options.localOptimisationGain) * optimisedCount) {
         vpRansacDetail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
                                           scratch);
+        optimisedCount = bestScore.first;
+      }
       needed = vpRansacTrialCount(options.probability, 1.0 - double(bestScore.first) / n, s, options.maxTrials);
     }
   }
