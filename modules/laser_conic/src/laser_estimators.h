@@ -157,10 +157,7 @@ public:
     const double thr2Times4 = 4.0 * thr2;
     int count = 0;
     double sum = 0.0;
-    for (int i = begin; i < end; ++i) {
-      double v0, v1;
-      const double algebraic = c.apply(m_x[i], m_y[i], v0, v1);
-      const double a2 = algebraic * algebraic, g2 = v0 * v0 + v1 * v1;
+    auto one = [&](int i, double a2, double g2) {
       if (a2 < thr2Times4 * g2) {
         if (inliers)
           inliers[count] = i;
@@ -169,6 +166,28 @@ public:
       } else {
         sum += thr2;
       }
+    };
+    int i = begin;
+    // Two points per SIMD register; a pair of outliers (most pairs for most hypotheses) takes no branch
+    // per point. The sum runs in the order of the points, as the scalar loop would.
+    typedef Eigen::Array2d P;
+    for (; i + 1 < end; i += 2) {
+      const P x = P::Map(&m_x[static_cast<size_t>(i)]), y = P::Map(&m_y[static_cast<size_t>(i)]);
+      const P v0 = c.a * x + c.b * y + c.d, v1 = c.b * x + c.e * y + c.f;
+      const P algebraic = x * v0 + y * v1 + (c.d * x + c.f * y + c.g);
+      const P a2 = algebraic * algebraic, g2 = v0 * v0 + v1 * v1;
+      if (!(a2 < thr2Times4 * g2).any()) {
+        sum += thr2;
+        sum += thr2;
+        continue;
+      }
+      one(i, a2(0), g2(0));
+      one(i + 1, a2(1), g2(1));
+    }
+    for (; i < end; ++i) {
+      double v0, v1;
+      const double algebraic = c.apply(m_x[static_cast<size_t>(i)], m_y[static_cast<size_t>(i)], v0, v1);
+      one(i, algebraic * algebraic, v0 * v0 + v1 * v1);
     }
     cost += sum;
     return count;
