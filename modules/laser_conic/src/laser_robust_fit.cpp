@@ -107,19 +107,19 @@ Eigen::Matrix3d normalised(const Eigen::Matrix3d &c)
   gathers the rest of the trace. \return false when no ellipse fits the consensus.
 */
 bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &inliers, Eigen::Matrix3d &c,
-                  double &sigma)
+                  double &sigma, std::vector<double> &traceResiduals)
 {
   if (!vpLaserEstimators::fitEllipseOn(points, inliers, c))
     return false;
   std::vector<int> next;
-  bool current = false; // sigma is that of the final inliers to the final conic
+  bool current = false; // traceResiduals and sigma are those of the final inliers to the final conic
   for (int round = 0; round < kCollectRounds; ++round) {
     const std::vector<double> r = allResiduals(points, c, s.focal);
-    std::vector<double> rin;
-    rin.reserve(inliers.size());
+    traceResiduals.clear();
+    traceResiduals.reserve(inliers.size());
     for (int i : inliers)
-      rin.push_back(r[static_cast<size_t>(i)]);
-    sigma = vpRobustMadScale(rin);
+      traceResiduals.push_back(r[static_cast<size_t>(i)]);
+    sigma = vpRobustMadScale(traceResiduals);
     current = true;
     vpRobustCollect(r, std::max(s.threshold, s.scaleFactor * sigma), next);
     Eigen::Matrix3d refit;
@@ -129,8 +129,10 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
     c = refit;
     current = false;
   }
-  if (!current)
-    sigma = vpRobustMadScale(residualsOf(points, inliers, c, s.focal));
+  if (!current) {
+    traceResiduals = residualsOf(points, inliers, c, s.focal);
+    sigma = vpRobustMadScale(traceResiduals);
+  }
   return true;
 }
 
@@ -314,13 +316,15 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
 {
   res.inliers = inliers;
   Eigen::Matrix3d freeConic;
+  std::vector<double> rf; // residuals (pixels) of the trace to the free conic
   if (s.adaptive) {
-    if (!collectTrace(points, s, res.inliers, freeConic, res.sigma))
+    if (!collectTrace(points, s, res.inliers, freeConic, res.sigma, rf))
       return Outcome::NOT_AN_ELLIPSE;
   } else {
     if (!vpLaserEstimators::fitEllipseOn(points, res.inliers, freeConic))
       return Outcome::NOT_AN_ELLIPSE;
-    res.sigma = vpRobustMadScale(residualsOf(points, res.inliers, freeConic, s.focal));
+    rf = residualsOf(points, res.inliers, freeConic, s.focal);
+    res.sigma = vpRobustMadScale(rf);
   }
   res.coverage = arcCoverage(points, res.inliers, freeConic);
   if (s.minCoverage > 0.0 && res.coverage < s.minCoverage)
@@ -328,7 +332,6 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
 
   const PointList trace = subset(points, res.inliers);
   const int n = static_cast<int>(trace.size());
-  const std::vector<double> rf = allResiduals(trace, freeConic, s.focal);
   res.rmsFree = rms(rf);
 
   Eigen::Vector4d freePlane = Eigen::Vector4d::Zero();

@@ -123,7 +123,7 @@ NormalEquations assemble(const PointTerms &t, const double *weights, int n)
   Sums sums;
   for (int i = 0; i < n; ++i) {
     const size_t k = static_cast<size_t>(i);
-    if (t.r[k] == t.r[k]) // not NaN: the conic has a gradient there
+    if (weights[i] != 0.0) // zero weight, NaN residual (no gradient): no contribution
       sums.add(weights[i], t.r[k], t.j0[k], t.j1[k], t.j2[k]);
   }
   return sums.equations();
@@ -167,23 +167,28 @@ NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weigh
     P J1 = (2.0 * tx1 * wx - ratio * (vt1 * wx + vw * tx1)) * invRoot;
     P J2 = (dA2 - ratio * (v0 * u0 + v1 * u1)) * invRoot;
     P r = A * invRoot;
-    const int lanes = pair ? 2 : 1;
-    for (int l = 0; l < lanes; ++l) {
-      const size_t k = static_cast<size_t>(i + l);
-      if (B(l) > 0.0) {
-        t.r[k] = r(l);
-        t.j0[k] = J0(l);
-        t.j1[k] = J1(l);
-        t.j2[k] = J2(l);
-      } else {
-        t.r[k] = std::numeric_limits<double>::quiet_NaN();
-        t.j0[k] = t.j1[k] = t.j2[k] = 0.0;
-      }
+    if (pair) {
+      P::Map(&t.r[static_cast<size_t>(i)]) = r;
+      P::Map(&t.j0[static_cast<size_t>(i)]) = J0;
+      P::Map(&t.j1[static_cast<size_t>(i)]) = J1;
+      P::Map(&t.j2[static_cast<size_t>(i)]) = J2;
+    } else {
+      t.r[static_cast<size_t>(i)] = r(0);
+      t.j0[static_cast<size_t>(i)] = J0(0);
+      t.j1[static_cast<size_t>(i)] = J1(0);
+      t.j2[static_cast<size_t>(i)] = J2(0);
     }
-    if (!(B > 0.0).all()) { // no gradient: no contribution
-      for (int l = 0; l < 2; ++l)
-        if (!(B(l) > 0.0))
-          w(l) = r(l) = J0(l) = J1(l) = J2(l) = 0.0;
+    if (!(B > 0.0).all()) { // no gradient: NaN residual, zero Jacobian, no contribution
+      for (int l = 0; l < 2; ++l) {
+        if (B(l) > 0.0)
+          continue;
+        if (l == 0 || pair) {
+          const size_t k = static_cast<size_t>(i + l);
+          t.r[k] = std::numeric_limits<double>::quiet_NaN();
+          t.j0[k] = t.j1[k] = t.j2[k] = 0.0;
+        }
+        w(l) = r(l) = J0(l) = J1(l) = J2(l) = 0.0;
+      }
     }
     const P wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
     cost += w * r * r;
@@ -317,7 +322,7 @@ bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &con
   for (int round = 0; round < rounds; ++round) {
     // Weights at the scale of the residuals of the current plane (kept from its last evaluation).
     const double sigma = vpRobustMadScale(current.terms.r);
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < n; ++i) // NaN residuals (no gradient) get a zero weight
       w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, current.terms.r[static_cast<size_t>(i)], sigma);
     current.ne = assemble(current.terms, w.data(), n);
     if (!std::isfinite(current.ne.cost))
