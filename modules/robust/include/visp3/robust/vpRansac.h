@@ -348,6 +348,8 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
                                                                          double(bestScore.first) / n, options.pretestRisk);
       minimumFor = bestScore.first;
     }
+    if (minimum[static_cast<size_t>(looks - 1)] == 0)
+      return true; // the best model has too few inliers for the subset to reject anything
     int count = 0;
     for (int l = 0; l < looks; ++l) {
       for (int k = l * vpRansacPretestBlock; k < (l + 1) * vpRansacPretestBlock; ++k) {
