@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include <visp3/core/vpConfig.h>
@@ -29,18 +30,20 @@
 */
 inline double vpRobustMadScale(std::vector<double> residuals)
 {
-  std::vector<double> a;
-  a.reserve(residuals.size());
-  for (double r : residuals)
-    if (std::isfinite(r))
-      a.push_back(std::abs(r));
-  if (a.empty())
+  // Absolute values of the finite residuals, compacted in place without a branch per value.
+  size_t count = 0;
+  for (double r : residuals) {
+    residuals[count] = std::abs(r);
+    count += std::isfinite(r) ? 1 : 0;
+  }
+  if (count == 0)
     return 0.0;
-  const size_t mid = a.size() / 2;
-  std::nth_element(a.begin(), a.begin() + mid, a.end());
-  double median = a[mid];
-  if (a.size() % 2 == 0) {
-    const double below = *std::max_element(a.begin(), a.begin() + mid);
+  residuals.resize(count);
+  const size_t mid = count / 2;
+  std::nth_element(residuals.begin(), residuals.begin() + static_cast<std::ptrdiff_t>(mid), residuals.end());
+  double median = residuals[mid];
+  if (count % 2 == 0) {
+    const double below = *std::max_element(residuals.begin(), residuals.begin() + static_cast<std::ptrdiff_t>(mid));
     median = 0.5 * (median + below);
   }
   return 1.4826 * median;
