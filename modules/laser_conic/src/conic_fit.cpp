@@ -47,6 +47,22 @@ Vector6d conicRow(const Eigen::Matrix3d &T, const Eigen::Vector2d &p)
   return row;
 }
 
+//! Dot product of two arrays with four partial sums (the additions do not wait for one another).
+double dot(const double *a, const double *b, int m)
+{
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  int i = 0;
+  for (; i + 3 < m; i += 4) {
+    s0 += a[i] * b[i];
+    s1 += a[i + 1] * b[i + 1];
+    s2 += a[i + 2] * b[i + 2];
+    s3 += a[i + 3] * b[i + 3];
+  }
+  for (; i < m; ++i)
+    s0 += a[i] * b[i];
+  return (s0 + s1) + (s2 + s3);
+}
+
 /*!
   Upper-triangular factor R (6x6) of a QR of the DLT system of n points, by blocks of kBlockRows
   rows: the R of the rows seen so far is updated with the next block by six Householder reflections,
@@ -68,9 +84,7 @@ Matrix6d triangularFactor(const Eigen::Matrix3d &T, const Eigen::Vector2d *point
     }
     for (int k = 0; k < 6; ++k) {
       double *x = X[k];
-      double norm2 = 0.0;
-      for (int i = 0; i < m; ++i)
-        norm2 += x[i] * x[i];
+      const double norm2 = dot(x, x, m);
       if (norm2 == 0.0)
         continue; // the block is already zero in that column
       const double alpha = R[k][k];
@@ -82,13 +96,10 @@ Matrix6d triangularFactor(const Eigen::Matrix3d &T, const Eigen::Vector2d *point
       R[k][k] = beta;
       for (int j = k + 1; j < 6; ++j) {
         double *xj = X[j];
-        double dot = R[k][j];
+        const double f = tau * (R[k][j] + dot(x, xj, m));
+        R[k][j] -= f;
         for (int i = 0; i < m; ++i)
-          dot += x[i] * xj[i];
-        dot *= tau;
-        R[k][j] -= dot;
-        for (int i = 0; i < m; ++i)
-          xj[i] -= dot * x[i];
+          xj[i] -= f * x[i];
       }
     }
   }
