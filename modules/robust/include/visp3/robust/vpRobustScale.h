@@ -55,10 +55,15 @@ inline double vpRobustMadScale(std::vector<double> residuals)
 */
 inline void vpRobustCollect(const std::vector<double> &residuals, double threshold, std::vector<int> &inliers)
 {
-  inliers.clear();
-  for (size_t i = 0; i < residuals.size(); ++i)
-    if (std::abs(residuals[i]) < threshold)
-      inliers.push_back(static_cast<int>(i));
+  // Without a branch per residual (inliers and outliers alternate at random near a trace): each
+  // index is written at the end of the list, which advances only for an inlier.
+  inliers.resize(residuals.size());
+  size_t count = 0;
+  for (size_t i = 0; i < residuals.size(); ++i) {
+    inliers[count] = static_cast<int>(i);
+    count += std::abs(residuals[i]) < threshold ? 1 : 0;
+  }
+  inliers.resize(count);
 }
 
 //! \ingroup group_robust Robust losses of vpRobustWeight().
