@@ -83,8 +83,9 @@ inline double vpRobustWeight(vpRobustLoss loss, double r, double sigma)
   if (!(sigma > 0.0) || !std::isfinite(r))
     return std::isfinite(r) ? 1.0 : 0.0;
   if (loss == vpRobustLoss::HUBER) {
+    // min(1, k / |r|) is 1 exactly when |r| <= k (k / 0 = inf), and compiles without a branch.
     const double k = 1.345 * sigma, a = std::abs(r);
-    return a <= k ? 1.0 : k / a;
+    return std::min(1.0, k / a);
   }
   const double u = r / (2.3849 * sigma);
   return 1.0 / (1.0 + u * u);
