@@ -281,19 +281,18 @@ bool freeCovariance(const PointList &trace, const LaserCone &cone, double focal,
 */
 double approximateAtan2(double y, double x)
 {
+  // Without branches (the points come in any order around the ellipse): the octant enters through
+  // 0/1 factors and the sign of y through copysign.
   const double ax = std::abs(x), ay = std::abs(y);
-  const bool steep = ay > ax;
-  const double z = steep ? ax / ay : ay / ax, z2 = z * z;
+  const double z = std::min(ax, ay) / std::max(ax, ay), z2 = z * z;
   double a = 0.0028662257;
   for (double k : {-0.0161657367, 0.0429096138, -0.0752896400, 0.1065626393, -0.1420889944, 0.1999355085,
                    -0.3333314528, 1.0})
     a = a * z2 + k;
   a *= z;
-  if (steep)
-    a = 0.5 * M_PI - a;
-  if (x < 0.0 || (x == 0.0 && std::signbit(x)))
-    a = M_PI - a;
-  return std::signbit(y) ? -a : a;
+  a += static_cast<double>(ay > ax) * (0.5 * M_PI - 2.0 * a);       // above the diagonal: pi / 2 - a
+  a += static_cast<double>(std::signbit(x)) * (M_PI - 2.0 * a); // left half-plane: pi - a
+  return std::copysign(a, y);
 }
 
 /*!
