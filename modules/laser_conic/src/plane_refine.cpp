@@ -87,46 +87,37 @@ struct PointTerms
   }
 };
 
-//! Upper triangle of J^T J (row-wise), J^T r and the cost, summed point by point.
-struct Sums
-{
-  double h[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  double g[3] = {0.0, 0.0, 0.0};
-  double cost = 0.0;
-  void add(double w, double r, double J0, double J1, double J2)
-  {
-    const double wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
-    cost += w * r * r;
-    h[0] += wJ0 * J0;
-    h[1] += wJ0 * J1;
-    h[2] += wJ0 * J2;
-    h[3] += wJ1 * J1;
-    h[4] += wJ1 * J2;
-    h[5] += wJ2 * J2;
-    g[0] += wJ0 * r;
-    g[1] += wJ1 * r;
-    g[2] += wJ2 * r;
-  }
-  NormalEquations equations() const
-  {
-    NormalEquations ne;
-    ne.JtJ << h[0], h[1], h[2], h[1], h[3], h[4], h[2], h[4], h[5];
-    ne.Jtr << g[0], g[1], g[2];
-    ne.cost = cost;
-    return ne;
-  }
-};
-
-//! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic).
+//! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic), by pairs.
 NormalEquations assemble(const PointTerms &t, const double *weights, int n)
 {
-  Sums sums;
-  for (int i = 0; i < n; ++i) {
-    const size_t k = static_cast<size_t>(i);
-    if (weights[i] != 0.0) // zero weight, NaN residual (no gradient): no contribution
-      sums.add(weights[i], t.r[k], t.j0[k], t.j1[k], t.j2[k]);
+  typedef Eigen::Array2d P;
+  P h0 = P::Zero(), h1 = P::Zero(), h2 = P::Zero(), h3 = P::Zero(), h4 = P::Zero(), h5 = P::Zero();
+  P g0 = P::Zero(), g1 = P::Zero(), g2 = P::Zero(), cost = P::Zero();
+  for (int i = 0; i < n; i += 2) {
+    const bool pair = i + 1 < n;
+    const int i1 = pair ? i + 1 : i;
+    const size_t k0 = static_cast<size_t>(i), k1 = static_cast<size_t>(i1);
+    // Zero weight (NaN residual: no gradient, or the missing second point of an odd count): no contribution.
+    const P w(weights[i], pair ? weights[i1] : 0.0);
+    const P r((w(0) != 0.0) ? t.r[k0] : 0.0, (w(1) != 0.0) ? t.r[k1] : 0.0);
+    const P J0(t.j0[k0], t.j0[k1]), J1(t.j1[k0], t.j1[k1]), J2(t.j2[k0], t.j2[k1]);
+    const P wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
+    cost += w * r * r;
+    h0 += wJ0 * J0;
+    h1 += wJ0 * J1;
+    h2 += wJ0 * J2;
+    h3 += wJ1 * J1;
+    h4 += wJ1 * J2;
+    h5 += wJ2 * J2;
+    g0 += wJ0 * r;
+    g1 += wJ1 * r;
+    g2 += wJ2 * r;
   }
-  return sums.equations();
+  NormalEquations ne;
+  ne.JtJ << h0.sum(), h1.sum(), h2.sum(), h1.sum(), h3.sum(), h4.sum(), h2.sum(), h4.sum(), h5.sum();
+  ne.Jtr << g0.sum(), g1.sum(), g2.sum();
+  ne.cost = cost.sum();
+  return ne;
 }
 
 /*!
