@@ -87,20 +87,14 @@ struct PointTerms
   }
 };
 
-//! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic), by pairs.
-NormalEquations assemble(const PointTerms &t, const double *weights, int n)
+//! Weighted sums of the normal equations (upper triangle of J^T J, J^T r, cost), one lane per point of a pair.
+struct PairSums
 {
   typedef Eigen::Array2d P;
   P h0 = P::Zero(), h1 = P::Zero(), h2 = P::Zero(), h3 = P::Zero(), h4 = P::Zero(), h5 = P::Zero();
   P g0 = P::Zero(), g1 = P::Zero(), g2 = P::Zero(), cost = P::Zero();
-  for (int i = 0; i < n; i += 2) {
-    const bool pair = i + 1 < n;
-    const int i1 = pair ? i + 1 : i;
-    const size_t k0 = static_cast<size_t>(i), k1 = static_cast<size_t>(i1);
-    // Zero weight (NaN residual: no gradient, or the missing second point of an odd count): no contribution.
-    const P w(weights[i], pair ? weights[i1] : 0.0);
-    const P r((w(0) != 0.0) ? t.r[k0] : 0.0, (w(1) != 0.0) ? t.r[k1] : 0.0);
-    const P J0(t.j0[k0], t.j0[k1]), J1(t.j1[k0], t.j1[k1]), J2(t.j2[k0], t.j2[k1]);
+  void add(const P &w, const P &r, const P &J0, const P &J1, const P &J2)
+  {
     const P wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
     cost += w * r * r;
     h0 += wJ0 * J0;
@@ -113,11 +107,32 @@ NormalEquations assemble(const PointTerms &t, const double *weights, int n)
     g1 += wJ1 * r;
     g2 += wJ2 * r;
   }
-  NormalEquations ne;
-  ne.JtJ << h0.sum(), h1.sum(), h2.sum(), h1.sum(), h3.sum(), h4.sum(), h2.sum(), h4.sum(), h5.sum();
-  ne.Jtr << g0.sum(), g1.sum(), g2.sum();
-  ne.cost = cost.sum();
-  return ne;
+  NormalEquations equations() const
+  {
+    NormalEquations ne;
+    ne.JtJ << h0.sum(), h1.sum(), h2.sum(), h1.sum(), h3.sum(), h4.sum(), h2.sum(), h4.sum(), h5.sum();
+    ne.Jtr << g0.sum(), g1.sum(), g2.sum();
+    ne.cost = cost.sum();
+    return ne;
+  }
+};
+
+//! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic), by pairs.
+NormalEquations assemble(const PointTerms &t, const double *weights, int n)
+{
+  typedef Eigen::Array2d P;
+  PairSums sums;
+  for (int i = 0; i < n; i += 2) {
+    const bool pair = i + 1 < n;
+    const int i1 = pair ? i + 1 : i;
+    const size_t k0 = static_cast<size_t>(i), k1 = static_cast<size_t>(i1);
+    // Zero weight (NaN residual: no gradient, or the missing second point of an odd count): no contribution.
+    const P w(weights[i], pair ? weights[i1] : 0.0);
+    const P r((w(0) != 0.0) ? t.r[k0] : 0.0, (w(1) != 0.0) ? t.r[k1] : 0.0);
+    const P J0(t.j0[k0], t.j0[k1]), J1(t.j1[k0], t.j1[k1]), J2(t.j2[k0], t.j2[k1]);
+    sums.add(w, r, J0, J1, J2);
+  }
+  return sums.equations();
 }
 
 /*!
@@ -138,8 +153,7 @@ NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weigh
   const double t00 = pc.t[0](0), t01 = pc.t[0](1), t02 = pc.t[0](2);
   const double t10 = pc.t[1](0), t11 = pc.t[1](1), t12 = pc.t[1](2);
   t.resize(n);
-  P h0 = P::Zero(), h1 = P::Zero(), h2 = P::Zero(), h3 = P::Zero(), h4 = P::Zero(), h5 = P::Zero();
-  P g0 = P::Zero(), g1 = P::Zero(), g2 = P::Zero(), cost = P::Zero();
+  PairSums sums;
   for (int i = 0; i < n; i += 2) {
     const bool pair = i + 1 < n; // the last point of an odd count goes alone (lane 1 weighted 0)
     const int i1 = pair ? i + 1 : i;
@@ -181,23 +195,9 @@ NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weigh
         w(l) = r(l) = J0(l) = J1(l) = J2(l) = 0.0;
       }
     }
-    const P wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
-    cost += w * r * r;
-    h0 += wJ0 * J0;
-    h1 += wJ0 * J1;
-    h2 += wJ0 * J2;
-    h3 += wJ1 * J1;
-    h4 += wJ1 * J2;
-    h5 += wJ2 * J2;
-    g0 += wJ0 * r;
-    g1 += wJ1 * r;
-    g2 += wJ2 * r;
+    sums.add(w, r, J0, J1, J2);
   }
-  NormalEquations ne;
-  ne.JtJ << h0.sum(), h1.sum(), h2.sum(), h1.sum(), h3.sum(), h4.sum(), h2.sum(), h4.sum(), h5.sum();
-  ne.Jtr << g0.sum(), g1.sum(), g2.sum();
-  ne.cost = cost.sum();
-  return ne;
+  return sums.equations();
 }
 
 //! A plane, its terms and the normal equations evaluated there, in its own tangent basis.
