@@ -5,6 +5,7 @@
 // Conic fitting by DLT (Boutteau et al., JMIV 2018, eq. 29-31) on Hartley-normalised points.
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/QR>
@@ -46,27 +47,67 @@ Vector6d conicRow(const Eigen::Matrix3d &T, const Eigen::Vector2d &p)
   return row;
 }
 
+//! Dot product of two arrays with four partial sums (the additions do not wait for one another).
+double dot(const double *a, const double *b, int m)
+{
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  int i = 0;
+  for (; i + 3 < m; i += 4) {
+    s0 += a[i] * b[i];
+    s1 += a[i + 1] * b[i + 1];
+    s2 += a[i + 2] * b[i + 2];
+    s3 += a[i + 3] * b[i + 3];
+  }
+  for (; i < m; ++i)
+    s0 += a[i] * b[i];
+  return (s0 + s1) + (s2 + s3);
+}
+
 /*!
-  Upper-triangular factor R (6x6) of a QR of the DLT system of n points, computed by blocks on the
-  stack: each block stacks the R of the rows seen so far over the next rows (zero-padded), and its
-  own R is the R of all those rows (R^T R = A^T A is preserved by orthogonal transformations).
+  Upper-triangular factor R (6x6) of a QR of the DLT system of n points, by blocks of kBlockRows
+  rows: the R of the rows seen so far is updated with the next block by six Householder reflections,
+  each zeroing one column of the block under the diagonal of R. Since R is already triangular, a
+  reflection touches one row of R and the block only (R^T R = A^T A is preserved), and the block is
+  kept column by column on the stack so that the updates are contiguous loops.
 */
 Matrix6d triangularFactor(const Eigen::Matrix3d &T, const Eigen::Vector2d *points, int n)
 {
-  typedef Eigen::Matrix<double, 64, 6> Block;
-  Block block = Block::Zero();
-  int rows = 6; // the first 6 rows hold the running R
-  for (int i = 0; i < n; ++i) {
-    block.row(rows++) = conicRow(T, points[i]).transpose();
-    if (rows == Block::RowsAtCompileTime || i + 1 == n) {
-      block.bottomRows(Block::RowsAtCompileTime - rows).setZero();
-      const Eigen::HouseholderQR<Block> qr(block);
-      const Matrix6d R = qr.matrixQR().topRows<6>().triangularView<Eigen::Upper>();
-      block.topRows<6>() = R;
-      rows = 6;
+  constexpr int kBlockRows = 64;
+  double R[6][6] = {};          // R[k][j], upper triangle
+  double X[6][kBlockRows];      // the block, column j = X[j]
+  for (int start = 0; start < n; start += kBlockRows) {
+    const int m = std::min(kBlockRows, n - start);
+    for (int i = 0; i < m; ++i) {
+      const Vector6d row = conicRow(T, points[start + i]);
+      for (int j = 0; j < 6; ++j)
+        X[j][i] = row(j);
+    }
+    for (int k = 0; k < 6; ++k) {
+      double *x = X[k];
+      const double norm2 = dot(x, x, m);
+      if (norm2 == 0.0)
+        continue; // the block is already zero in that column
+      const double alpha = R[k][k];
+      const double beta = -std::copysign(std::sqrt(alpha * alpha + norm2), alpha);
+      // Reflector (1 at row k of R, v in the block) with H = I - tau [1; v] [1; v]^T.
+      const double scale = 1.0 / (alpha - beta), tau = (beta - alpha) / beta;
+      for (int i = 0; i < m; ++i)
+        x[i] *= scale;
+      R[k][k] = beta;
+      for (int j = k + 1; j < 6; ++j) {
+        double *xj = X[j];
+        const double f = tau * (R[k][j] + dot(x, xj, m));
+        R[k][j] -= f;
+        for (int i = 0; i < m; ++i)
+          xj[i] -= f * x[i];
+      }
     }
   }
-  return block.topRows<6>();
+  Matrix6d out = Matrix6d::Zero();
+  for (int k = 0; k < 6; ++k)
+    for (int j = k; j < 6; ++j)
+      out(k, j) = R[k][j];
+  return out;
 }
 
 /*!

@@ -155,20 +155,32 @@ public:
   {
     const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
     const double thr2Times4 = 4.0 * thr2;
+    // Branch-free: inliers of a good hypothesis are interleaved with outliers at random, so a branch
+    // per point would be mispredicted half of the time. Each point's values and index are written at
+    // the current end of the inlier buffers, which only advances for an inlier; the inliers' squared
+    // distances (one division each) are summed afterwards.
+    constexpr int kChunk = 64;
+    double a2s[kChunk], g2s[kChunk];
+    int local[kChunk];
     int count = 0;
     double sum = 0.0;
-    for (int i = begin; i < end; ++i) {
-      double v0, v1;
-      const double algebraic = c.apply(m_x[i], m_y[i], v0, v1);
-      const double a2 = algebraic * algebraic, g2 = v0 * v0 + v1 * v1;
-      if (a2 < thr2Times4 * g2) {
-        if (inliers)
-          inliers[count] = i;
-        ++count;
-        sum += a2 / (4.0 * g2);
-      } else {
-        sum += thr2;
+    for (int first = begin; first < end; first += kChunk) {
+      const int last = std::min(end, first + kChunk);
+      int *idx = inliers ? inliers + count : local;
+      int k = 0;
+      for (int i = first; i < last; ++i) {
+        double v0, v1;
+        const double algebraic = c.apply(m_x[static_cast<size_t>(i)], m_y[static_cast<size_t>(i)], v0, v1);
+        const double a2 = algebraic * algebraic, g2 = v0 * v0 + v1 * v1;
+        a2s[k] = a2;
+        g2s[k] = g2;
+        idx[k] = i;
+        k += a2 < thr2Times4 * g2 ? 1 : 0; // NaN (no gradient) is never an inlier
       }
+      for (int j = 0; j < k; ++j)
+        sum += a2s[j] / (4.0 * g2s[j]);
+      sum += (last - first - k) * thr2;
+      count += k;
     }
     cost += sum;
     return count;

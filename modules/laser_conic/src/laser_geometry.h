@@ -12,6 +12,7 @@
 #define VP_LASER_GEOMETRY_H
 
 #include <algorithm>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -69,6 +70,17 @@ struct ConicCoefficients
     return (algebraic * algebraic) / (4.0 * (v0 * v0 + v1 * v1));
   }
 };
+/*!
+  Iteratively reweighted refinement of a plane (d > 0) on trace points: \e rounds rounds, each of
+  Huber weights (vpRobustWeight(), k = 1.345 sigma) at the MAD scale sigma of the residuals of the
+  current plane, then refinePlaneWeighted() with those weights (\e iterations iterations at most).
+  \e residuals receives the signed Sampson distances (normalized units) of the points to the final
+  plane's conic, NaN where it has no gradient. The residuals of each plane are kept from the pass
+  that evaluated it: no extra pass per round. \return false on invalid input or non-finite residuals.
+*/
+bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane, int rounds,
+                      int iterations, std::vector<double> &residuals);
+
 /*!
   True when two of the \e n points of a minimal sample are closer than \e relative times the largest
   distance between two of them (or all coincide). Two nearly coincident points of a minimal sample

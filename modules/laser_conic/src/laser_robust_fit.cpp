@@ -19,6 +19,8 @@
 
 #include <visp3/robust/vpRobustScale.h>
 
+#include "laser_geometry.h"
+
 namespace vpLaserRobustFit
 {
 namespace
@@ -67,7 +69,17 @@ std::vector<double> allResiduals(const PointList &points, const Eigen::Matrix3d 
 {
   const vpLaserSolvers::internal::ConicCoefficients k(c);
   std::vector<double> r(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
+  // Two points per SIMD register (the square root and the division dominate), the same operations
+  // per point as the scalar tail.
+  typedef Eigen::Array2d P;
+  size_t i = 0;
+  for (; i + 1 < points.size(); i += 2) {
+    const P x(points[i](0), points[i + 1](0)), y(points[i](1), points[i + 1](1));
+    const P v0 = k.a * x + k.b * y + k.d, v1 = k.b * x + k.e * y + k.f;
+    const P a = x * v0 + y * v1 + (k.d * x + k.f * y + k.g);
+    P::Map(&r[i]) = focal * a / (2.0 * (v0 * v0 + v1 * v1).sqrt());
+  }
+  for (; i < points.size(); ++i) {
     double v0, v1;
     const double a = k.apply(points[i](0), points[i](1), v0, v1);
     r[i] = focal * a / (2.0 * std::sqrt(v0 * v0 + v1 * v1));
@@ -105,19 +117,19 @@ Eigen::Matrix3d normalised(const Eigen::Matrix3d &c)
   gathers the rest of the trace. \return false when no ellipse fits the consensus.
 */
 bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &inliers, Eigen::Matrix3d &c,
-                  double &sigma)
+                  double &sigma, std::vector<double> &traceResiduals)
 {
   if (!vpLaserEstimators::fitEllipseOn(points, inliers, c))
     return false;
   std::vector<int> next;
-  bool current = false; // sigma is that of the final inliers to the final conic
+  bool current = false; // traceResiduals and sigma are those of the final inliers to the final conic
   for (int round = 0; round < kCollectRounds; ++round) {
     const std::vector<double> r = allResiduals(points, c, s.focal);
-    std::vector<double> rin;
-    rin.reserve(inliers.size());
+    traceResiduals.clear();
+    traceResiduals.reserve(inliers.size());
     for (int i : inliers)
-      rin.push_back(r[static_cast<size_t>(i)]);
-    sigma = vpRobustMadScale(rin);
+      traceResiduals.push_back(r[static_cast<size_t>(i)]);
+    sigma = vpRobustMadScale(traceResiduals);
     current = true;
     vpRobustCollect(r, std::max(s.threshold, s.scaleFactor * sigma), next);
     Eigen::Matrix3d refit;
@@ -127,8 +139,10 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
     c = refit;
     current = false;
   }
-  if (!current)
-    sigma = vpRobustMadScale(residualsOf(points, inliers, c, s.focal));
+  if (!current) {
+    traceResiduals = residualsOf(points, inliers, c, s.focal);
+    sigma = vpRobustMadScale(traceResiduals);
+  }
   return true;
 }
 
@@ -139,20 +153,21 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
   explains worst (which a redescending loss, or a tight inlier threshold, would do).
 */
 bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal, bool robust, int iterations,
-                    Eigen::Vector4d &plane)
+                    Eigen::Vector4d &plane, std::vector<double> &residuals)
 {
   const int n = static_cast<int>(trace.size());
-  if (!robust)
-    return vpLaserSolvers::refinePlane(trace.data(), n, cone, plane, iterations);
-  std::vector<double> w(trace.size(), 1.0);
-  for (int round = 0; round < kIrlsRounds; ++round) {
-    const std::vector<double> r = allResiduals(trace, vpLaserSolvers::conicFromPlane(plane, cone), focal);
-    const double sigma = vpRobustMadScale(r);
-    for (size_t k = 0; k < trace.size(); ++k)
-      w[k] = vpRobustWeight(vpRobustLoss::HUBER, r[k], sigma);
-    if (!vpLaserSolvers::refinePlaneWeighted(trace.data(), w.data(), n, cone, plane, kIrlsIterations))
+  if (robust) {
+    // The residuals of the final plane come from the refinement's own last pass.
+    if (!vpLaserSolvers::internal::refinePlaneHuber(trace.data(), n, cone, plane, kIrlsRounds, kIrlsIterations,
+                                                    residuals))
       return false;
+    for (double &r : residuals)
+      r *= focal;
+    return true;
   }
+  if (!vpLaserSolvers::refinePlane(trace.data(), n, cone, plane, iterations))
+    return false;
+  residuals = allResiduals(trace, normalised(vpLaserSolvers::conicFromPlane(plane, cone)), focal);
   return true;
 }
 
@@ -269,6 +284,43 @@ bool freeCovariance(const PointList &trace, const LaserCone &cone, double focal,
   cov = G * (sigma2 * info.inverse()) * G.transpose();
   return cov.allFinite();
 }
+/*!
+  atan2(y, x) to within 2e-8 rad, from the polynomial of atan on [0, 1] of Abramowitz and Stegun
+  (4.4.49), for the angular bins of arcCoverage(): only angles near a bin edge need the exact value.
+  The arguments are finite and not both zero.
+*/
+double approximateAtan2(double y, double x)
+{
+  // Without branches (the points come in any order around the ellipse): the octant enters through
+  // 0/1 factors and the sign of y through copysign.
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double z = std::min(ax, ay) / std::max(ax, ay), z2 = z * z;
+  double a = 0.0028662257;
+  for (double k : {-0.0161657367, 0.0429096138, -0.0752896400, 0.1065626393, -0.1420889944, 0.1999355085,
+                   -0.3333314528, 1.0})
+    a = a * z2 + k;
+  a *= z;
+  a += static_cast<double>(ay > ax) * (0.5 * M_PI - 2.0 * a);       // above the diagonal: pi / 2 - a
+  a += static_cast<double>(std::signbit(x)) * (M_PI - 2.0 * a); // left half-plane: pi - a
+  return std::copysign(a, y);
+}
+
+/*!
+  Bin of \e u among \e bins equal angular bins of [-pi, pi]: floor((atan2(u1, u0) + pi) bins / (2 pi)),
+  from approximateAtan2() unless the angle is within 1e-6 rad of a bin edge (then std::atan2, so that
+  the bin is the one the exact angle gives).
+*/
+int angularBin(const Eigen::Vector2d &u, int bins)
+{
+  const double perRadian = bins / (2.0 * M_PI);
+  if (std::isfinite(u(0)) && std::isfinite(u(1)) && (u(0) != 0.0 || u(1) != 0.0)) {
+    const double t = (approximateAtan2(u(1), u(0)) + M_PI) * perRadian, f = std::floor(t);
+    const double margin = 1e-6 * perRadian;
+    if (t - f > margin && f + 1.0 - t > margin)
+      return static_cast<int>(f);
+  }
+  return static_cast<int>(std::floor((std::atan2(u(1), u(0)) + M_PI) * perRadian));
+}
 } // namespace
 
 double arcCoverage(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &conic)
@@ -287,7 +339,7 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
   std::vector<char> occupied(kBins, 0);
   for (int i : indices) {
     const Eigen::Vector2d u = U * (points[i] - centre);
-    const int bin = static_cast<int>(std::floor((std::atan2(u(1), u(0)) + M_PI) * (kBins / (2.0 * M_PI))));
+    const int bin = angularBin(u, kBins);
     occupied[static_cast<size_t>(std::min(kBins - 1, std::max(0, bin)))] = 1;
   }
   int first = -1, last = -1, gap = 0;
@@ -311,13 +363,15 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
 {
   res.inliers = inliers;
   Eigen::Matrix3d freeConic;
+  std::vector<double> rf; // residuals (pixels) of the trace to the free conic
   if (s.adaptive) {
-    if (!collectTrace(points, s, res.inliers, freeConic, res.sigma))
+    if (!collectTrace(points, s, res.inliers, freeConic, res.sigma, rf))
       return Outcome::NOT_AN_ELLIPSE;
   } else {
     if (!vpLaserEstimators::fitEllipseOn(points, res.inliers, freeConic))
       return Outcome::NOT_AN_ELLIPSE;
-    res.sigma = vpRobustMadScale(residualsOf(points, res.inliers, freeConic, s.focal));
+    rf = residualsOf(points, res.inliers, freeConic, s.focal);
+    res.sigma = vpRobustMadScale(rf);
   }
   res.coverage = arcCoverage(points, res.inliers, freeConic);
   if (s.minCoverage > 0.0 && res.coverage < s.minCoverage)
@@ -325,22 +379,22 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
 
   const PointList trace = subset(points, res.inliers);
   const int n = static_cast<int>(trace.size());
-  const std::vector<double> rf = allResiduals(trace, freeConic, s.focal);
   res.rmsFree = rms(rf);
 
   Eigen::Vector4d freePlane = Eigen::Vector4d::Zero();
   const bool hasFreePlane = vpLaserSolvers::planePair(freeConic, cone, freePlane);
   // The constrained fit starts from the RANSAC plane (GP-3) or from the plane of the free conic.
   Eigen::Vector4d constrainedPlane = startPlane.head<3>().norm() > 0.0 ? startPlane : freePlane;
+  std::vector<double> rc;
   const bool hasConstrained = constrainedPlane.head<3>().norm() > 0.0 &&
                               constrainedFit(trace, cone, s.focal, s.adaptive && s.finalFit != FinalFit::FREE,
                                              s.finalFit == FinalFit::FREE ? kHealthIterations : 20,
-                                             constrainedPlane) &&
+                                             constrainedPlane, rc) &&
                               constrainedPlane.allFinite();
   const Eigen::Matrix3d constrainedConic =
       hasConstrained ? normalised(vpLaserSolvers::conicFromPlane(constrainedPlane, cone)) : Eigen::Matrix3d::Zero();
-  const std::vector<double> rc =
-      hasConstrained ? allResiduals(trace, constrainedConic, s.focal) : std::vector<double>();
+  if (!hasConstrained)
+    rc.clear();
   res.rmsConstrained = hasConstrained ? rms(rc) : std::numeric_limits<double>::quiet_NaN();
 
   bool useConstrained = false;

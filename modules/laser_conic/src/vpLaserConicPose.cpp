@@ -350,6 +350,11 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     vpLaserEstimators::PlaneModel model;
     // The plane refinement is cheap and a refined plane often gathers inliers its start missed.
     options.localRounds = 3;
+    // Most GP-3 hypotheses of a contaminated trace (one outlier among the three points) predict a
+    // conic far from the trace: a few data of a random subset suffice to drop them.
+    options.pretestSize = 64;
+    // Later best models a few inliers better than the refitted consensus are not refitted again.
+    options.localOptimisationGain = 0.02;
     found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, !m_scaleAdaptive, model,
                                  report);
     startPlane = model.plane;

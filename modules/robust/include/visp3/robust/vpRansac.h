@@ -39,7 +39,32 @@ struct vpRansacOptions
     started from is refitted again on its own consensus set.
   */
   int localRounds = 1;
+  /*!
+    Relative gain of inliers over the last locally optimised model that a new best model needs for
+    its own local optimisation (0: every new best model is refitted). Once a refit has gathered the
+    consensus, the later best models are mostly other samples of the same structure, a few inliers
+    better: refitting them again costs a full scoring per round and seldom changes the consensus.
+  */
+  double localOptimisationGain = 0.0;
+  /*!
+    Size of the preemptive test subset (0 disables the test): a fixed random subset of the data, drawn
+    once per call, on which every hypothesis of the main loop is scored first, by blocks of
+    vpRansacPretestBlock data. A hypothesis is dropped before the full scoring as soon as its inliers
+    on the subset make it implausible that it has as many inliers as the best model so far
+    (Chernoff-Hoeffding bound of the binomial tail, risk pretestRisk per look): most hypotheses of a
+    contaminated data set are dropped after a few data instead of being scored on about half of them.
+    Only worth it for large data sets (ignored when the data are fewer than four times the subset).
+  */
+  int pretestSize = 0;
+  /*!
+    Probability bound of dropping, by the preemptive test, a hypothesis that has at least as many
+    inliers as the best model so far (per look at the subset).
+  */
+  double pretestRisk = 1e-3;
 };
+
+//! Data scored at a time by the preemptive test of vpRansacLoop() (see vpRansacOptions::pretestSize).
+constexpr int vpRansacPretestBlock = 16;
 
 /*!
   \ingroup group_robust
@@ -131,6 +156,28 @@ int scoreRange(const Estimator &estimator, const typename Estimator::Model &m, i
     }
     return count;
   }
+}
+
+/*!
+  Smallest number of inliers among \e m random data that does not reject, at risk \e risk, a model
+  whose inlier ratio is at least \e p: the Chernoff bound P(X <= c) <= exp(-m KL(c/m || p)) of the
+  binomial tail, which also holds for sampling without replacement (Hoeffding 1963). 0 for p <= 0.
+*/
+inline int pretestMinimum(int m, double p, double risk)
+{
+  if (!(p > 0.0))
+    return 0;
+  const double bound = std::log(1.0 / risk);
+  int c = static_cast<int>(std::ceil(m * p)); // never rejected at or above the expected count
+  while (c > 0) {
+    const double q = double(c - 1) / m; // would c - 1 inliers be rejected?
+    const double kl = (q > 0.0 ? q * std::log(q / p) : 0.0) +
+                      (p < 1.0 ? (1.0 - q) * std::log((1.0 - q) / (1.0 - p)) : std::numeric_limits<double>::infinity());
+    if (m * kl > bound)
+      break;
+    --c;
+  }
+  return c;
 }
 
 //! True when score a ranks before score b: more inliers, then a lower truncated cost.
@@ -244,7 +291,9 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, type
     there. An estimator provides it to score a block of data in one tight loop (no per-datum call,
     no square root); it must agree with residual() up to rounding at the threshold.
 
-  A datum is an inlier when residual < threshold. Hypotheses are ranked by inlier count, then by
+  A datum is an inlier when residual < threshold. With options.pretestSize > 0, each hypothesis is
+  first scored on a fixed random subset of the data and dropped when its inliers there make it
+  implausible that it beats the best model (see vpRansacOptions::pretestSize). Hypotheses are ranked by inlier count, then by
   the sum of truncated squared residuals. The loop stops after the adaptive count computed from the
   best inlier ratio so far, at least options.minTrials and at most options.maxTrials samples.
   Local optimisation runs only when a sample gives a new best model.
@@ -270,8 +319,51 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
   std::array<Model, Estimator::kMaxModels> hypotheses{};
   std::vector<int> scratch; // consensus set of the hypothesis being scored
   std::pair<int, double> bestScore(0, std::numeric_limits<double>::infinity());
+  // Preemptive test: a fixed random subset (own generator: the sample sequence does not depend on it),
+  // and for each look at it the fewest inliers a hypothesis as good as the best so far would show.
+  const int pretest = options.pretestSize > 0 && n >= 4 * options.pretestSize
+                          ? (options.pretestSize + vpRansacPretestBlock - 1) / vpRansacPretestBlock * vpRansacPretestBlock
+                          : 0;
+  std::vector<int> subset(static_cast<size_t>(pretest));
+  if (pretest > 0) {
+    std::mt19937 rng(options.seed ^ 0x5bd1e995u);
+    std::vector<int> all(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i)
+      all[static_cast<size_t>(i)] = i;
+    for (int k = 0; k < pretest; ++k) { // partial Fisher-Yates shuffle
+      std::uniform_int_distribution<int> pick(k, n - 1);
+      std::swap(all[static_cast<size_t>(k)], all[static_cast<size_t>(pick(rng))]);
+    }
+    std::copy(all.begin(), all.begin() + pretest, subset.begin());
+  }
+  const int looks = pretest / vpRansacPretestBlock;
+  std::vector<int> minimum(static_cast<size_t>(looks), 0); // per look, for the current best score
+  int minimumFor = 0;                                      // the best inlier count minimum was computed for
+  auto passesPretest = [&](const Model &m) {
+    if (pretest == 0 || bestScore.first <= 0)
+      return true;
+    if (minimumFor != bestScore.first) {
+      for (int l = 0; l < looks; ++l)
+        minimum[static_cast<size_t>(l)] = vpRansacDetail::pretestMinimum((l + 1) * vpRansacPretestBlock,
+                                                                         double(bestScore.first) / n, options.pretestRisk);
+      minimumFor = bestScore.first;
+    }
+    if (minimum[static_cast<size_t>(looks - 1)] == 0)
+      return true; // the best model has too few inliers for the subset to reject anything
+    int count = 0;
+    for (int l = 0; l < looks; ++l) {
+      for (int k = l * vpRansacPretestBlock; k < (l + 1) * vpRansacPretestBlock; ++k) {
+        const double r = estimator.residual(m, subset[static_cast<size_t>(k)]);
+        count += r * r < thr2 ? 1 : 0; // NaN is never an inlier
+      }
+      if (count < minimum[static_cast<size_t>(l)])
+        return false;
+    }
+    return true;
+  };
   int needed = options.maxTrials;
   int trial = 0;
+  int optimisedCount = 0; // inliers of the last locally optimised model
   for (; trial < needed || trial < options.minTrials; ++trial) {
     if (trial >= options.maxTrials)
       break;
@@ -279,11 +371,16 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
     const int count = estimator.solveMinimal(sample.data(), hypotheses.data());
     for (int k = 0; k < count; ++k) {
       ++report.models;
+      if (!passesPretest(hypotheses[k]))
+        continue;
       if (!vpRansacDetail::challenge(estimator, hypotheses[k], thr2, best, bestScore, report.inliers, scratch))
         continue;
-      if (options.localOptimisation && bestScore.first > s)
+      if (options.localOptimisation && bestScore.first > s &&
+          bestScore.first > (1.0 + options.localOptimisationGain) * optimisedCount) {
         vpRansacDetail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
                                           scratch);
+        optimisedCount = bestScore.first;
+      }
       needed = vpRansacTrialCount(options.probability, 1.0 - double(bestScore.first) / n, s, options.maxTrials);
     }
   }

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include <visp3/core/vpConfig.h>
@@ -29,18 +30,20 @@
 */
 inline double vpRobustMadScale(std::vector<double> residuals)
 {
-  std::vector<double> a;
-  a.reserve(residuals.size());
-  for (double r : residuals)
-    if (std::isfinite(r))
-      a.push_back(std::abs(r));
-  if (a.empty())
+  // Absolute values of the finite residuals, compacted in place without a branch per value.
+  size_t count = 0;
+  for (double r : residuals) {
+    residuals[count] = std::abs(r);
+    count += std::isfinite(r) ? 1 : 0;
+  }
+  if (count == 0)
     return 0.0;
-  const size_t mid = a.size() / 2;
-  std::nth_element(a.begin(), a.begin() + mid, a.end());
-  double median = a[mid];
-  if (a.size() % 2 == 0) {
-    const double below = *std::max_element(a.begin(), a.begin() + mid);
+  residuals.resize(count);
+  const size_t mid = count / 2;
+  std::nth_element(residuals.begin(), residuals.begin() + static_cast<std::ptrdiff_t>(mid), residuals.end());
+  double median = residuals[mid];
+  if (count % 2 == 0) {
+    const double below = *std::max_element(residuals.begin(), residuals.begin() + static_cast<std::ptrdiff_t>(mid));
     median = 0.5 * (median + below);
   }
   return 1.4826 * median;
@@ -52,10 +55,15 @@ inline double vpRobustMadScale(std::vector<double> residuals)
 */
 inline void vpRobustCollect(const std::vector<double> &residuals, double threshold, std::vector<int> &inliers)
 {
-  inliers.clear();
-  for (size_t i = 0; i < residuals.size(); ++i)
-    if (std::abs(residuals[i]) < threshold)
-      inliers.push_back(static_cast<int>(i));
+  // Without a branch per residual (inliers and outliers alternate at random near a trace): each
+  // index is written at the end of the list, which advances only for an inlier.
+  inliers.resize(residuals.size());
+  size_t count = 0;
+  for (size_t i = 0; i < residuals.size(); ++i) {
+    inliers[count] = static_cast<int>(i);
+    count += std::abs(residuals[i]) < threshold ? 1 : 0;
+  }
+  inliers.resize(count);
 }
 
 //! \ingroup group_robust Robust losses of vpRobustWeight().
@@ -75,8 +83,9 @@ inline double vpRobustWeight(vpRobustLoss loss, double r, double sigma)
   if (!(sigma > 0.0) || !std::isfinite(r))
     return std::isfinite(r) ? 1.0 : 0.0;
   if (loss == vpRobustLoss::HUBER) {
+    // min(1, k / |r|) is 1 exactly when |r| <= k (k / 0 = inf), and compiles without a branch.
     const double k = 1.345 * sigma, a = std::abs(r);
-    return a <= k ? 1.0 : k / a;
+    return std::min(1.0, k / a);
   }
   const double u = r / (2.3849 * sigma);
   return 1.0 / (1.0 + u * u);
