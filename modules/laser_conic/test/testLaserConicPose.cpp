@@ -58,6 +58,12 @@ struct Errors
 {
   std::vector<double> normal, altitude;
   int failures = 0;
+  //! Records the normal and altitude errors of \e plane against the true plane \e truth.
+  void add(const vpPlane &plane, const Eigen::Vector4d &truth)
+  {
+    normal.push_back(laser_test::normalError(toEigen(plane), truth));
+    altitude.push_back(laser_test::altitudeError(toEigen(plane), truth));
+  }
   void print(const std::string &what) const
   {
     std::printf("%-34s normal rad median %.2e max %.2e | altitude m median %.2e max %.2e | failures %d\n",
@@ -101,16 +107,14 @@ Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigne
       ++errors.failures;
       continue;
     }
-    const Eigen::Vector4d p = toEigen(plane);
-    errors.normal.push_back(laser_test::normalError(p, s.plane));
-    errors.altitude.push_back(laser_test::altitudeError(p, s.plane));
+    errors.add(plane, s.plane);
     double a, r, pi;
     vpLaserConicPose::computeAltitudeRollPitch(plane, a, r, pi);
     EXPECT_EQ(a, estimator.getAltitude());
     EXPECT_EQ(r, estimator.getRoll());
     EXPECT_EQ(pi, estimator.getPitch());
-    EXPECT_NEAR(p.head<3>().norm(), 1.0, 1e-12);
-    EXPECT_GT(p(3), 0.0);
+    EXPECT_NEAR(toEigen(plane).head<3>().norm(), 1.0, 1e-12);
+    EXPECT_GT(plane.getD(), 0.0);
   }
   return errors;
 }
@@ -214,8 +218,7 @@ TEST(LaserConicPose, ExactDistortedPixelsEveryMethod)
           ++exact.failures;
           continue;
         }
-        exact.normal.push_back(laser_test::normalError(toEigen(plane), s.plane));
-        exact.altitude.push_back(laser_test::altitudeError(toEigen(plane), s.plane));
+        exact.add(plane, s.plane);
         if (method == vpLaserConicPose::PLANE_PAIR) {
           vpLaserConicPose pinholeEstimator = makeEstimator(s.rig);
           pinholeEstimator.setCameraParameters(pinhole);
@@ -279,8 +282,7 @@ TEST(LaserConicPose, FiftyPercentOutliers)
         ++e.failures;
         continue;
       }
-      e.normal.push_back(laser_test::normalError(toEigen(plane), s.plane));
-      e.altitude.push_back(laser_test::altitudeError(toEigen(plane), s.plane));
+      e.add(plane, s.plane);
       const std::vector<unsigned int> inliers = estimator.getInliers();
       EXPECT_EQ(inliers.size(), 30u);
       for (unsigned int i : inliers)
