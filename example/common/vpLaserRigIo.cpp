@@ -210,8 +210,11 @@ bool readLaserYaml(const std::string &file, std::istream &in, vpLaserCalibration
     } else if (key == "std_dev_axis_deg" || key == "std_dev_apex_m" || key == "std_dev_opening_angle_deg") {
       const unsigned int n = key == "std_dev_axis_deg" ? 2 : (key == "std_dev_apex_m" ? 3 : 1);
       if (!parseYamlNumbers(value, n, v) || *std::min_element(v, v + n) < 0.0) {
-        error = at + ": " + key + " expects " + (n == 1 ? "a number" : "a list of " + std::to_string(n) + " numbers") +
-                " >= 0";
+        error = at + ": ";
+        error += key;
+        error += " expects ";
+        error += n == 1 ? std::string("a number") : "a list of " + std::to_string(n) + " numbers";
+        error += " >= 0";
         return false;
       }
       if (n == 2) {
@@ -237,7 +240,9 @@ bool readLaserYaml(const std::string &file, std::istream &in, vpLaserCalibration
       }
       result.nbViews = static_cast<unsigned int>(v[0]);
     } else {
-      error = at + ": unknown key '" + key + "'";
+      error = at + ": unknown key '";
+      error += key;
+      error += "'";
       return false;
     }
   }

@@ -88,7 +88,7 @@ public:
       Pc.emplace_back(uniform(-0.8, 0.8) * kHalfWidth * z, uniform(-0.8, 0.8) * kHalfHeight * z, z);
     }
     // A compact object: pull the points of the same depth range towards their mean (size metres).
-    if (size > 0.0 && depths.size() > 0) {
+    if (size > 0.0 && !depths.empty()) {
       const double z0 = uniform(depths[0].first, depths[0].second);
       Eigen::Vector3d c(uniform(-0.3, 0.3) * z0, uniform(-0.2, 0.2) * z0, z0);
       for (size_t i = 0; i < Pc.size(); ++i)
@@ -406,12 +406,17 @@ int main(int argc, char **argv)
     return cli.exitStatus();
   Generator gen(seed);
   std::cout << std::fixed;
-  ransacPureOutliers(gen, trials);
-  ransacInlierRecall(gen, trials);
-  signMixup(gen, trials);
-  lsqNearPoints(gen, trials);
-  p3pNoisyGravity(gen, trials);
-  p3pExactGravity(gen, trials);
+  try {
+    ransacPureOutliers(gen, trials);
+    ransacInlierRecall(gen, trials);
+    signMixup(gen, trials);
+    lsqNearPoints(gen, trials);
+    p3pNoisyGravity(gen, trials);
+    p3pExactGravity(gen, trials);
+  } catch (const std::exception &e) {
+    std::cerr << "gravity-robustness: " << e.what() << std::endl;
+    return EXIT_FAILURE;
+  }
   std::cout << (g_failedTargets ? std::to_string(g_failedTargets) + " target(s) MISSED" : std::string("All targets met"))
             << std::endl;
   return (check && g_failedTargets) ? EXIT_FAILURE : EXIT_SUCCESS;

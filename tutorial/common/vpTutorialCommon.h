@@ -178,9 +178,9 @@ private:
       return;
     m_display.reset();
 #if defined(VISP_HAVE_X11)
-    m_display.reset(new vpDisplayX(m_image, 50, 50, m_title));
+    m_display = std::make_unique<vpDisplayX>(m_image, 50, 50, m_title);
 #elif defined(VISP_HAVE_OPENCV)
-    m_display.reset(new vpDisplayOpenCV(m_image, 50, 50, m_title));
+    m_display = std::make_unique<vpDisplayOpenCV>(m_image, 50, 50, m_title);
 #else
     throw vpException(vpException::fatalError, "--display: ViSP was built without X11 and without OpenCV");
 #endif

@@ -116,7 +116,7 @@ bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogen
   const double clearance2 = m_cornerClearance * m_cornerClearance;
   for (int l = 0; l < pattern.height; ++l)
     for (int k = 0; k < pattern.width; ++k) {
-      const cv::Point2f &p = found[static_cast<size_t>(l * pattern.width + k)];
+      const cv::Point2f &p = found[static_cast<size_t>(l) * pattern.width + k];
       corners.push_back(vpImagePoint(p.y, p.x));
       bool nearLaser = false;
       if (m_laserClearancePoints != nullptr)

@@ -686,6 +686,7 @@ void vpLaserConicSimulator::renderImpl(vpImage<vpRGBa> &I, const vpRenderSetting
     if (polygon.size() < 3)
       continue;
     std::vector<cv::Point> pts;
+    pts.reserve(polygon.size());
     for (const vpImagePoint &p : polygon)
       pts.push_back(cv::Point(static_cast<int>(std::lround(p.get_u())), static_cast<int>(std::lround(p.get_v()))));
     const std::vector<std::vector<cv::Point> > polys(1, pts);

@@ -437,6 +437,7 @@ TEST(LaserConicCalibration, RobustLossRejectsLaserPointsOffTheGrid)
   const std::vector<vpHomogeneousMatrix> poses = gridPoses(10, 3);
   std::vector<std::vector<vpImagePoint> > points = laserPoints(poses, 0.5);
   std::vector<vpHomogeneousMatrix> walls;
+  walls.reserve(poses.size());
   for (const vpHomogeneousMatrix &cMg : poses)
     walls.push_back(vpHomogeneousMatrix(0, 0, 0.4, 0, 0, 0) * cMg);
   const std::vector<std::vector<vpImagePoint> > wallPoints = laserPoints(walls, 0.5, 120, 7);

@@ -832,12 +832,12 @@ TEST(LaserConicPose, DrawOverlay)
   vpImage<unsigned char> G(s.rig.height, s.rig.width, 0);
   vpLaserConicPose::draw(G, estimator, points, 1);
   int bright = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
+  for (const vpImagePoint &point : points) {
     bool found = false;
     for (int di = -1; di <= 1; ++di)
       for (int dj = -1; dj <= 1; ++dj) {
         unsigned int r, c;
-        pixel(points[i], di, dj, r, c);
+        pixel(point, di, dj, r, c);
         found = found || G[r][c] > 0;
       }
     bright += found ? 1 : 0;

@@ -39,7 +39,7 @@ vpColVector restReading(const vpRotationMatrix &imuRw) { return imuRw * vec(0, 0
 
 std::string tempFile(const std::string &name, const std::string &content)
 {
-  const std::string path = ::testing::TempDir() + name;
+  std::string path = ::testing::TempDir() + name;
   std::ofstream out(path.c_str());
   out << content;
   return path;

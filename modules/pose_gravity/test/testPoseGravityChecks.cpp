@@ -417,6 +417,7 @@ TEST(pose_gravity_Checks, LeastSquaresReweightingApproachesMaximumLikelihood)
     const Eigen::Vector3d t(gen.uniform(-1, 1), gen.uniform(-1, 1), gen.uniform(-1, 1));
     s.cMo = vpHomogeneousMatrix(vpTranslationVector(t.x(), t.y(), t.z()), cRo);
     std::vector<Eigen::Vector3d> Xo;
+    Xo.reserve(Pc.size());
     for (const Eigen::Vector3d &p : Pc)
       Xo.push_back(rotationOf(s.cMo).transpose() * (p - t));
     s.points = SceneGenerator::project(Xo, s.cMo);
