@@ -87,10 +87,11 @@ struct RidgeWorkspace
   std::vector<Crossing> crossings;
   std::vector<int> lastEnd;                  //!< per column, end of the last measured run
   std::vector<unsigned char> zeros;          //!< W zero scores: the rows beyond the image border
-  std::vector<int> cellHead;                 //!< chaining grid, every cell -1 between two frames
-  std::vector<int> next, cellOf, parent;     //!< chaining lists and union-find
+  std::vector<int> bandStart;                //!< chaining: first sorted crossing of each band of rows, plus the end
+  std::vector<int> order, cursor, parent;    //!< chaining: sorted order, band cursors, union-find
+  std::vector<double> sortedU, sortedV;      //!< chaining: the crossings' coordinates in sorted order
   std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes
-  std::vector<bool> keep;                    //!< crossings on long chains
+  std::vector<unsigned char> keep;           //!< crossings on long chains
   RegionSpans scoreRegion, searchRegion;     //!< rasterised search region (see vpLaserConicDetector)
   unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
   bool regionValid = false;

@@ -446,55 +446,71 @@ int root(std::vector<int> &parent, int k)
 
 // Marks in work.keep the crossings of work.crossings that belong to chains (neighbours within `link`
 // pixels) at least minLength long.
-void longChains(RidgeWorkspace &work, int W, int H, double link, double minLength)
+void longChains(RidgeWorkspace &work, int H, double link, double minLength)
 {
   const std::vector<Crossing> &crossings = work.crossings;
   const int n = static_cast<int>(crossings.size());
-  std::vector<bool> &keep = work.keep;
-  keep.assign(n, true);
+  std::vector<unsigned char> &keep = work.keep;
+  keep.assign(n, 1);
   if (minLength <= 0.0 || n == 0)
     return;
-  // Grid of cells of side >= link (4 px at least: a small grid) with a list of crossings per cell: the
-  // neighbours are in the 3 x 3 cells around, each pair seen once from its first cell in scan order (the
-  // cell itself with the later crossings, and the 4 cells after it). The grid (cellHead) stays allocated and
-  // all -1 between frames: only the cells used are reset afterwards, so the cost follows the crossings,
-  // not the image size.
-  const double side = std::max(4.0, link);
-  const int columns = static_cast<int>(W / side) + 3, rows = static_cast<int>(H / side) + 3;
-  std::vector<int> &head = work.cellHead, &next = work.next, &cellOf = work.cellOf, &parent = work.parent;
-  if (head.size() != static_cast<size_t>(columns) * rows)
-    head.assign(static_cast<size_t>(columns) * rows, -1);
-  next.resize(n);
-  cellOf.resize(n);
-  for (int k = n - 1; k >= 0; --k) { // lists in increasing index order
-    const int cx = static_cast<int>(crossings[k].point.get_u() / side) + 1;
-    const int cy = static_cast<int>(crossings[k].point.get_v() / side) + 1;
-    cellOf[k] = std::min(rows - 2, std::max(1, cy)) * columns + std::min(columns - 2, std::max(1, cx));
-    next[k] = head[cellOf[k]];
-    head[cellOf[k]] = k;
+  // The crossings sorted by bands of rows at least `link` high (counting sort), each band by u: the
+  // neighbours of a crossing lie after it in its band or in the next band, each pair seen once, found by a
+  // window sliding along u. The buffers have the size of the crossings and of the bands: nothing to reset
+  // between frames, and little memory to bring to cache (a grid of cells over the image is touched at
+  // random).
+  std::vector<int> &bandStart = work.bandStart, &order = work.order, &parent = work.parent, &cursor = work.cursor;
+  std::vector<double> &u = work.sortedU, &v = work.sortedV;
+  const double bandHeight = std::max(4.0, link);
+  const int bands = static_cast<int>(H / bandHeight) + 1;
+  auto bandOf = [&](const vpImagePoint &p) {
+    return std::min(bands - 1, std::max(0, static_cast<int>(p.get_v() / bandHeight)));
+  };
+  bandStart.assign(static_cast<size_t>(bands) + 1, 0);
+  for (const Crossing &c : crossings)
+    ++bandStart[static_cast<size_t>(bandOf(c.point)) + 1];
+  std::partial_sum(bandStart.begin(), bandStart.end(), bandStart.begin());
+  order.resize(n);
+  u.resize(n);
+  v.resize(n);
+  cursor.assign(bandStart.begin(), bandStart.end() - 1); // the next free place of each band
+  for (int k = 0; k < n; ++k) {
+    const int band = bandOf(crossings[k].point);
+    int pos = cursor[band]++;
+    // Insertion into the band, sorted by u (the crossings come row by row, nearly sorted in u in a band).
+    const double uk = crossings[k].point.get_u();
+    for (; pos > bandStart[band] && u[pos - 1] > uk; --pos) {
+      order[pos] = order[pos - 1];
+      u[pos] = u[pos - 1];
+      v[pos] = v[pos - 1];
+    }
+    order[pos] = k;
+    u[pos] = uk;
+    v[pos] = crossings[k].point.get_v();
   }
   parent.resize(n);
   std::iota(parent.begin(), parent.end(), 0);
   const double link2 = link * link;
-  const int after[4] = {1, columns - 1, columns, columns + 1};
-  auto join = [&](int k, int q) {
-    const double du = crossings[k].point.get_u() - crossings[q].point.get_u();
-    const double dv = crossings[k].point.get_v() - crossings[q].point.get_v();
+  auto join = [&](int a, int b) {
+    const double du = u[a] - u[b], dv = v[a] - v[b];
     if (du * du + dv * dv <= link2) {
-      const int ra = root(parent, k), rb = root(parent, q);
+      const int ra = root(parent, a), rb = root(parent, b);
       if (ra != rb)
         parent[ra] = rb;
     }
   };
-  for (int k = 0; k < n; ++k) {
-    for (int q = next[k]; q >= 0; q = next[q])
-      join(k, q);
-    for (int offset : after)
-      for (int q = head[cellOf[k] + offset]; q >= 0; q = next[q])
-        join(k, q);
+  for (int band = 0; band < bands; ++band) {
+    const int end = bandStart[band + 1], nextEnd = band + 1 < bands ? bandStart[band + 2] : end;
+    int next = end; // first crossing of the next band not left of the window
+    for (int a = bandStart[band]; a < end; ++a) {
+      for (int b = a + 1; b < end && u[b] <= u[a] + link; ++b)
+        join(a, b);
+      while (next < nextEnd && u[next] < u[a] - link)
+        ++next;
+      for (int b = next; b < nextEnd && u[b] <= u[a] + link; ++b)
+        join(a, b);
+    }
   }
-  for (int k = 0; k < n; ++k)
-    head[cellOf[k]] = -1;
   // Extent of each chain: bounding-box diagonal.
   work.minU.assign(n, 1e30);
   work.maxU.assign(n, -1e30);
@@ -503,17 +519,16 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
   for (int k = 0; k < n; ++k) {
     parent[k] = root(parent, k);
     const int r = parent[k];
-    const vpImagePoint &p = crossings[k].point;
-    work.minU[r] = std::min(work.minU[r], p.get_u());
-    work.maxU[r] = std::max(work.maxU[r], p.get_u());
-    work.minV[r] = std::min(work.minV[r], p.get_v());
-    work.maxV[r] = std::max(work.maxV[r], p.get_v());
+    work.minU[r] = std::min(work.minU[r], u[k]);
+    work.maxU[r] = std::max(work.maxU[r], u[k]);
+    work.minV[r] = std::min(work.minV[r], v[k]);
+    work.maxV[r] = std::max(work.maxV[r], v[k]);
   }
   const double min2 = minLength * minLength;
   for (int k = 0; k < n; ++k) {
     const int r = parent[k];
     const double du = work.maxU[r] - work.minU[r], dv = work.maxV[r] - work.minV[r];
-    keep[k] = du * du + dv * dv >= min2;
+    keep[order[k]] = du * du + dv * dv >= min2;
   }
 }
 } // namespace
@@ -614,11 +629,11 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   measureUpTo(H);
 
   // 3. Continuity: drop the short chains.
-  longChains(work, W, H, 2.0 * step + 0.5, settings.minSegment);
+  longChains(work, H, 2.0 * step + 0.5, settings.minSegment);
   points.reserve(crossings.size());
   for (size_t k = 0; k < crossings.size(); ++k) {
     const Crossing &c = crossings[k];
-    runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, work.keep[k]});
+    runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, work.keep[k] != 0});
     if (work.keep[k])
       points.push_back(c.point);
   }
