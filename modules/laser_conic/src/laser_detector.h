@@ -48,6 +48,7 @@ struct RidgeSettings
   int saturation;       //!< saturated red level
   double minSegment;    //!< shortest chain, pixels
   int step;             //!< sampling step of the scan lines
+  vpLaserConicDetector::vpInstructionSet instructions; //!< one the processor has (never INSTRUCTIONS_BEST)
 };
 
 //! What the ridge detector measured besides the points.

@@ -17,6 +17,14 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// AVX2 code paths, compiled for their functions only and chosen at run time (the library is built for any
+// x86-64 processor).
+#if defined(__SSE2__) && (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#define VSP_DETECTOR_AVX2 1
+#include <immintrin.h>
+#else
+#define VSP_DETECTOR_AVX2 0
+#endif
 
 namespace vpLaserDetector
 {
@@ -44,60 +52,157 @@ inline unsigned char scorePixel(const unsigned char *p, int saturation)
 // Scores n pixels starting at a column multiple of 16, and sets the flag of each block of 16 columns
 // (flags[0] for the first) to 0xFF when a score of the block reaches the threshold, else 0: no pixel of an
 // unflagged block can be a candidate (a candidate's score exceeds its background by the threshold), so
-// the candidate passes skip these blocks, most of a frame, without reading their scores again.
-void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
-               unsigned char *flags)
+// the candidate passes skip these blocks, most of a frame, without reading their scores again. Plain C++
+// from pixel j on (the vectorised versions below end with it).
+void scoreSpanScalar(const unsigned char *rgba, unsigned char *score, int j, int n, int saturation, int threshold,
+                     unsigned char *flags)
 {
-  int j = 0;
-#if defined(__SSE2__)
-  const __m128i thresholdBytes = _mm_set1_epi8(static_cast<char>(threshold));
-  // 16 pixels per step in 16-bit lanes, the same integer arithmetic as scorePixel().
-  const __m128i low8 = _mm_set1_epi32(0xFF), sat = _mm_set1_epi16(static_cast<short>(saturation));
-  const __m128i zero = _mm_setzero_si128(), ramp = _mm_set1_epi16(kSaturationRamp), third = _mm_set1_epi16(2185);
-  const __m128i rampStart = _mm_set1_epi32(std::max(0, saturation - kSaturationRamp));
-  for (; j + 16 <= n; j += 16) {
-    // Below the ramp (every R <= saturation - 30: nearly every block of a frame) the weight is exactly 1
-    // (m x 30 x 2185 >> 16 = m for m <= 255) and the score is the saturated byte difference R - max(G, B),
-    // computed in place in byte 0 of the RGBA lanes, without the 16-bit products.
-    const __m128i *in = reinterpret_cast<const __m128i *>(rgba + 4 * j);
-    const __m128i a0 = _mm_loadu_si128(in), a1 = _mm_loadu_si128(in + 1), a2 = _mm_loadu_si128(in + 2),
-                  a3 = _mm_loadu_si128(in + 3);
-    const __m128i redMax = _mm_and_si128(_mm_max_epu8(_mm_max_epu8(a0, a1), _mm_max_epu8(a2, a3)), low8);
-    if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(redMax, rampStart), zero)) == 0xFFFF) {
-      auto dominance = [&](__m128i a) {
-        return _mm_and_si128(_mm_subs_epu8(a, _mm_max_epu8(_mm_srli_epi32(a, 8), _mm_srli_epi32(a, 16))), low8);
-      };
-      const __m128i s = _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)),
-                                         _mm_packs_epi32(dominance(a2), dominance(a3)));
-      _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), s);
-      flags[j >> 4] = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, thresholdBytes), s)) ? 0xFF : 0;
-      continue;
-    }
-    __m128i half[2];
-    for (int h = 0; h < 2; ++h) {
-      const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h)));
-      const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h + 4)));
-      const __m128i r = _mm_packs_epi32(_mm_and_si128(a, low8), _mm_and_si128(b, low8));
-      const __m128i g = _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 8), low8), _mm_and_si128(_mm_srli_epi32(b, 8), low8));
-      const __m128i bl =
-          _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 16), low8), _mm_and_si128(_mm_srli_epi32(b, 16), low8));
-      const __m128i m = _mm_max_epi16(g, bl);
-      const __m128i t = _mm_min_epi16(_mm_max_epi16(_mm_sub_epi16(sat, r), zero), ramp);
-      const __m128i w = _mm_mulhi_epu16(_mm_mullo_epi16(m, t), third);
-      half[h] = _mm_max_epi16(_mm_sub_epi16(r, w), zero);
-    }
-    const __m128i s = _mm_packus_epi16(half[0], half[1]);
-    _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), s);
-    flags[j >> 4] = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, thresholdBytes), s)) ? 0xFF : 0;
-  }
-#endif
-  if (j < n)
-    flags[j >> 4] = 0;
   for (; j < n; ++j) {
+    if (j % 16 == 0)
+      flags[j >> 4] = 0;
     score[j] = scorePixel(rgba + 4 * j, saturation);
     if (score[j] >= threshold)
       flags[j >> 4] = 0xFF;
   }
+}
+
+#if defined(__SSE2__)
+// The constants of the vectorised score.
+struct ScoreConstants
+{
+  __m128i thresholdBytes, low8, sat, zero, ramp, third, rampStart;
+  ScoreConstants(int saturation, int threshold)
+    : thresholdBytes(_mm_set1_epi8(static_cast<char>(threshold))), low8(_mm_set1_epi32(0xFF)),
+      sat(_mm_set1_epi16(static_cast<short>(saturation))), zero(_mm_setzero_si128()),
+      ramp(_mm_set1_epi16(kSaturationRamp)), third(_mm_set1_epi16(2185)),
+      rampStart(_mm_set1_epi32(std::max(0, saturation - kSaturationRamp)))
+  {
+  }
+};
+
+// 0xFF when a score of the 16 reaches the threshold, else 0.
+inline unsigned char blockFlag(__m128i s, const ScoreConstants &k)
+{
+  return _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, k.thresholdBytes), s)) ? 0xFF : 0;
+}
+
+// Score of the 16 pixels from rgba (16-bit lanes, the same integer arithmetic as scorePixel()) and their flag.
+inline void scoreBlockRamp(const unsigned char *rgba, unsigned char *score, unsigned char *flag, const ScoreConstants &k)
+{
+  __m128i half[2];
+  for (int h = 0; h < 2; ++h) {
+    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (8 * h)));
+    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (8 * h + 4)));
+    const __m128i r = _mm_packs_epi32(_mm_and_si128(a, k.low8), _mm_and_si128(b, k.low8));
+    const __m128i g =
+        _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 8), k.low8), _mm_and_si128(_mm_srli_epi32(b, 8), k.low8));
+    const __m128i bl =
+        _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 16), k.low8), _mm_and_si128(_mm_srli_epi32(b, 16), k.low8));
+    const __m128i m = _mm_max_epi16(g, bl);
+    const __m128i t = _mm_min_epi16(_mm_max_epi16(_mm_sub_epi16(k.sat, r), k.zero), k.ramp);
+    const __m128i w = _mm_mulhi_epu16(_mm_mullo_epi16(m, t), k.third);
+    half[h] = _mm_max_epi16(_mm_sub_epi16(r, w), k.zero);
+  }
+  const __m128i s = _mm_packus_epi16(half[0], half[1]);
+  _mm_storeu_si128(reinterpret_cast<__m128i *>(score), s);
+  *flag = blockFlag(s, k);
+}
+
+// The same, faster when no red channel of the 16 reaches the ramp (nearly every block of a frame): the
+// weight is then exactly 1 (m x 30 x 2185 >> 16 = m for m <= 255) and the score is the saturated byte
+// difference R - max(G, B), computed in place in byte 0 of the RGBA lanes, without the 16-bit products.
+inline void scoreBlock(const unsigned char *rgba, unsigned char *score, unsigned char *flag, const ScoreConstants &k)
+{
+  const __m128i *in = reinterpret_cast<const __m128i *>(rgba);
+  const __m128i a0 = _mm_loadu_si128(in), a1 = _mm_loadu_si128(in + 1), a2 = _mm_loadu_si128(in + 2),
+                a3 = _mm_loadu_si128(in + 3);
+  const __m128i redMax = _mm_and_si128(_mm_max_epu8(_mm_max_epu8(a0, a1), _mm_max_epu8(a2, a3)), k.low8);
+  if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(redMax, k.rampStart), k.zero)) != 0xFFFF) {
+    scoreBlockRamp(rgba, score, flag, k);
+    return;
+  }
+  auto dominance = [&](__m128i a) {
+    return _mm_and_si128(_mm_subs_epu8(a, _mm_max_epu8(_mm_srli_epi32(a, 8), _mm_srli_epi32(a, 16))), k.low8);
+  };
+  const __m128i s = _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)),
+                                     _mm_packs_epi32(dominance(a2), dominance(a3)));
+  _mm_storeu_si128(reinterpret_cast<__m128i *>(score), s);
+  *flag = blockFlag(s, k);
+}
+
+// scoreSpanScalar() 16 pixels at a time (SSE2).
+void scoreSpanSse2(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
+                   unsigned char *flags)
+{
+  const ScoreConstants k(saturation, threshold);
+  int j = 0;
+  for (; j + 16 <= n; j += 16)
+    scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k);
+  scoreSpanScalar(rgba, score, j, n, saturation, threshold, flags);
+}
+
+#if VSP_DETECTOR_AVX2
+// R - max(G, B) of 8 RGBA pixels, saturated at 0, in byte 0 of their 32-bit lanes (the others 0).
+__attribute__((target("avx2"))) inline __m256i dominance8(__m256i a, __m256i low8)
+{
+  return _mm256_and_si256(_mm256_subs_epu8(a, _mm256_max_epu8(_mm256_srli_epi32(a, 8), _mm256_srli_epi32(a, 16))), low8);
+}
+
+// scoreSpanScalar() 32 pixels at a time (AVX2), on processors that have it (see detectRidge()).
+__attribute__((target("avx2"))) void scoreSpanAvx2(const unsigned char *rgba, unsigned char *score, int n,
+                                                   int saturation, int threshold, unsigned char *flags)
+{
+  const ScoreConstants k(saturation, threshold);
+  const __m256i low8 = _mm256_set1_epi32(0xFF), zero = _mm256_setzero_si256();
+  const __m256i rampStart = _mm256_set1_epi32(std::max(0, saturation - kSaturationRamp));
+  const __m256i thresholdBytes = _mm256_set1_epi8(static_cast<char>(threshold));
+  // The packs work within 128-bit lanes: they leave the groups of 4 pixels in the order 0 2 4 6 1 3 5 7.
+  const __m256i groups = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+  int j = 0;
+  for (; j + 32 <= n; j += 32) {
+    const __m256i *in = reinterpret_cast<const __m256i *>(rgba + 4 * j);
+    const __m256i a0 = _mm256_loadu_si256(in), a1 = _mm256_loadu_si256(in + 1), a2 = _mm256_loadu_si256(in + 2),
+                  a3 = _mm256_loadu_si256(in + 3);
+    const __m256i redMax = _mm256_and_si256(_mm256_max_epu8(_mm256_max_epu8(a0, a1), _mm256_max_epu8(a2, a3)), low8);
+    if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_subs_epu8(redMax, rampStart), zero)) != -1) {
+      scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k); // a red channel in the ramp: 16-bit arithmetic
+      scoreBlock(rgba + 4 * (j + 16), score + j + 16, flags + (j >> 4) + 1, k);
+      continue;
+    }
+    const __m256i packed = _mm256_packus_epi16(_mm256_packs_epi32(dominance8(a0, low8), dominance8(a1, low8)),
+                                               _mm256_packs_epi32(dominance8(a2, low8), dominance8(a3, low8)));
+    const __m256i s = _mm256_permutevar8x32_epi32(packed, groups);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(score + j), s);
+    const unsigned int reached =
+        static_cast<unsigned int>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_max_epu8(s, thresholdBytes), s)));
+    flags[j >> 4] = (reached & 0xFFFFu) ? 0xFF : 0;
+    flags[(j >> 4) + 1] = (reached >> 16) ? 0xFF : 0;
+  }
+  for (; j + 16 <= n; j += 16)
+    scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k);
+  scoreSpanScalar(rgba, score, j, n, saturation, threshold, flags);
+}
+#endif
+#endif
+
+// scoreSpanScalar() with the instruction set \e instructions (one the processor has).
+void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
+               unsigned char *flags, vpLaserConicDetector::vpInstructionSet instructions)
+{
+#if defined(__SSE2__)
+#if VSP_DETECTOR_AVX2
+  if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2) {
+    scoreSpanAvx2(rgba, score, n, saturation, threshold, flags);
+    return;
+  }
+#endif
+  if (instructions != vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
+    scoreSpanSse2(rgba, score, n, saturation, threshold, flags);
+    return;
+  }
+#endif
+  (void)instructions;
+  scoreSpanScalar(rgba, score, 0, n, saturation, threshold, flags);
 }
 
 // Robust noise of the unclipped score r - max(g, b): 1.4826 MAD / sqrt(2) of its differences two pixels
@@ -193,18 +298,39 @@ inline int scoreAt(const unsigned char *line, ptrdiff_t stride, int j, int k, in
   return j + k >= 0 && j + k < n ? line[(j + k) * stride] : 0;
 }
 
+// Candidate peaks of the row \e row (W pixels, index i) within [j0, j1], a subrange of [1, W - 2], pixel
+// by pixel (see rowCandidates()).
+void rowCandidatesScalar(const unsigned char *row, const unsigned char *flags, int W, int i, int j0, int j1, int d,
+                         int threshold, std::vector<Candidate> &out)
+{
+  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
+  for (int j = j0; j <= j1; ++j) {
+    if (!flags[j >> 4])
+      continue;
+    const int bg = std::max(std::min(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, -dn, W)),
+                            std::min(scoreAt(row, 1, j, d, W), scoreAt(row, 1, j, dn, W)));
+    const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
+    if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
+      out.push_back(Candidate{i, j});
+  }
+}
+
 // Candidate peaks along row i within [j0, j1] (near the image border one background side only). Only the
 // flagged blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()).
 void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, int i, int j0, int j1, int d,
-                   int threshold, std::vector<Candidate> &out)
+                   int threshold, vpLaserConicDetector::vpInstructionSet instructions, std::vector<Candidate> &out)
 {
   j0 = std::max(j0, 1);
   j1 = std::min(j1, W - 2);
   if (j0 > j1)
     return;
   const unsigned char *row = c + static_cast<size_t>(i) * W;
-  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
+  if (instructions == vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
+    rowCandidatesScalar(row, flags, W, i, j0, j1, d, threshold, out);
+    return;
+  }
 #if defined(__SSE2__)
+  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
   const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
   // A block whose samples leave the row (near the image border) or that the range cuts is tested on a copy
   // of its surroundings padded with zeros: the score beyond the ends counts as 0 (see scoreAt()).
@@ -233,15 +359,7 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
       out.push_back(Candidate{i, k + __builtin_ctz(bits)});
   }
 #else
-  for (int j = j0; j <= j1; ++j) {
-    if (!flags[j >> 4])
-      continue;
-    const int bg = std::max(std::min(scoreAt(row, 1, j, -d, W), scoreAt(row, 1, j, -dn, W)),
-                            std::min(scoreAt(row, 1, j, d, W), scoreAt(row, 1, j, dn, W)));
-    const int near = std::max(scoreAt(row, 1, j, -dn, W), scoreAt(row, 1, j, dn, W));
-    if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
-      out.push_back(Candidate{i, j});
-  }
+  rowCandidatesScalar(row, flags, W, i, j0, j1, d, threshold, out);
 #endif
 }
 
@@ -249,7 +367,8 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
 // blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()). \e zeros: a row of W
 // zero scores, standing for the rows beyond the image border (the score there counts as 0).
 void columnCandidates(const unsigned char *c, const unsigned char *flags, const unsigned char *zeros, int W, int H,
-                      int i, int j0, int j1, int d, int threshold, int step, std::vector<Candidate> &out)
+                      int i, int j0, int j1, int d, int threshold, int step,
+                      vpLaserConicDetector::vpInstructionSet instructions, std::vector<Candidate> &out)
 {
   if (i < 1 || i > H - 2)
     return;
@@ -272,7 +391,7 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
 #if defined(__SSE2__)
   // Whole blocks of 16 columns inside [j0, j1], 16 pixels at once.
   const int firstBlock = (j0 + 15) >> 4, lastBlock = (j1 - 15) >> 4;
-  if (firstBlock <= lastBlock) {
+  if (firstBlock <= lastBlock && instructions != vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
     const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
     auto rowAt = [&](int r) { return r >= 0 && r < H ? c + static_cast<size_t>(r) * W : zeros; };
     const unsigned char *up = rowAt(i - d), *down = rowAt(i + d), *nearUp = rowAt(i - dn), *nearDown = rowAt(i + dn);
@@ -291,7 +410,7 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
     j = 16 * (lastBlock + 1);
   }
 #endif
-  (void)zeros;
+  (void)zeros, (void)instructions;
   scalar(j, j1);
 }
 
@@ -568,11 +687,12 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   auto searchColumns = [&](int r) {
     const unsigned char *rowFlags = flags + static_cast<size_t>(r) * flagStride;
     if (searchRegion == nullptr)
-      columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
+      columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, 0, W - 1, d, threshold, step,
+                       settings.instructions, columnPeaks);
     else
       for (const Span *span = searchRegion->begin(r); span != searchRegion->end(r); ++span)
         columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, span->first, span->second, d, threshold,
-                         step, columnPeaks);
+                         step, settings.instructions, columnPeaks);
   };
   std::vector<Crossing> &crossings = work.crossings;
   crossings.clear();
@@ -608,17 +728,18 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     const size_t offset = static_cast<size_t>(i) * W;
     unsigned char *rowFlags = work.blockFlags.data() + static_cast<size_t>(i) * flagStride;
     if (scoreRegion == nullptr) {
-      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation, threshold, rowFlags);
+      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation, threshold, rowFlags, settings.instructions);
       if (i % step == 0)
-        rowCandidates(score.data(), rowFlags, W, i, 0, W - 1, d, threshold, rowPeaks);
+        rowCandidates(score.data(), rowFlags, W, i, 0, W - 1, d, threshold, settings.instructions, rowPeaks);
     } else {
       // The spans start at multiples of 16 columns (see RegionSpans): the blocks of the flags.
       for (const Span *span = scoreRegion->begin(i); span != scoreRegion->end(i); ++span)
         scoreSpan(rgba + 4 * (offset + span->first), &score[offset + span->first], span->second - span->first + 1,
-                  settings.saturation, threshold, rowFlags + (span->first >> 4));
+                  settings.saturation, threshold, rowFlags + (span->first >> 4), settings.instructions);
       if (i % step == 0)
         for (const Span *span = searchRegion->begin(i); span != searchRegion->end(i); ++span)
-          rowCandidates(score.data(), rowFlags, W, i, span->first, span->second, d, threshold, rowPeaks);
+          rowCandidates(score.data(), rowFlags, W, i, span->first, span->second, d, threshold, settings.instructions,
+                        rowPeaks);
     }
     if (i - d >= 0)
       searchColumns(i - d);

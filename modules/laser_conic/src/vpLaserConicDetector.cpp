@@ -41,7 +41,7 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
 
 vpLaserConicDetector::vpLaserConicDetector()
   : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
-    m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
+    m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_instructions(INSTRUCTIONS_BEST), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
     m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(), m_maskDirty(false), m_height(0), m_width(0),
     m_threshold(0.0), m_noise(0.0), m_work(), m_runs()
 {
@@ -96,6 +96,26 @@ void vpLaserConicDetector::setSamplingStep(unsigned int step)
 {
   check(step > 0, "the sampling step must be positive");
   m_step = step;
+}
+
+vpLaserConicDetector::vpInstructionSet vpLaserConicDetector::getBestInstructionSet()
+{
+#if defined(__SSE2__)
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2)
+    return INSTRUCTIONS_AVX2;
+#endif
+  return INSTRUCTIONS_SSE2;
+#else
+  return INSTRUCTIONS_SCALAR;
+#endif
+}
+
+vpLaserConicDetector::vpInstructionSet vpLaserConicDetector::getInstructionSetUsed() const
+{
+  const vpInstructionSet best = getBestInstructionSet();
+  return m_instructions == INSTRUCTIONS_BEST || m_instructions > best ? best : m_instructions;
 }
 
 void vpLaserConicDetector::setHueRange(int maxHueLow, int minHueHigh)
@@ -246,7 +266,7 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   }
   const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
                                                     static_cast<int>(m_saturationLevel), m_minSegmentLength,
-                                                    static_cast<int>(m_step)};
+                                                    static_cast<int>(m_step), getInstructionSetUsed()};
   vpLaserDetector::RidgeReport report;
   std::vector<vpImagePoint> points;
   vpLaserDetector::RidgeWorkspace &work = m_work.get();

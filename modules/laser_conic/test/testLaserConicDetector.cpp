@@ -537,3 +537,66 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(3, 3, 0.0), 20.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(2, 3, 1.0), 20.0), vpLaserConicException);
 }
+
+TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
+{
+  // The scalar, SSE2 and AVX2 passes compute the same integer scores and tests: the points must be
+  // identical, bit for bit and in the same order, on stripes whose red channel stays below the saturation
+  // ramp (byte arithmetic), saturates (16-bit arithmetic), on white tiles, a colourful floor, in a search
+  // region, and on an image whose width is not a multiple of 16 or 32 (the scalar ends of the rows).
+  HardCase white;
+  white.name = "white_tiles";
+  white.settings.floor = vpLaserConicSimulator::FLOOR_WHITE_TILES;
+  white.settings.laserPower = 500.0;
+  white.settings.whiteCore = 0.6;
+  HardCase mosaic;
+  mosaic.name = "mosaic";
+  mosaic.settings.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
+  mosaic.settings.laserPower = 200.0;
+  const std::vector<HardCase> cases = {dimCase(), saturatedCase(), white, mosaic};
+  const vpLaserConicDetector::vpInstructionSet best = vpLaserConicDetector::getBestInstructionSet();
+  std::vector<vpLaserConicDetector::vpInstructionSet> sets = {vpLaserConicDetector::INSTRUCTIONS_SCALAR};
+  for (vpLaserConicDetector::vpInstructionSet set : {vpLaserConicDetector::INSTRUCTIONS_SSE2, vpLaserConicDetector::INSTRUCTIONS_AVX2})
+    if (set <= best)
+      sets.push_back(set);
+  std::cout << "instruction sets compared: " << sets.size() << " (best " << best << ")" << std::endl;
+  unsigned int seed = 50;
+  for (const HardCase &c : cases) {
+    vpLaserConicSimulator sim = makeSimulator(c.cMg, seed++);
+    vpImage<vpRGBa> rendered, odd(kHeight - 3, kWidth - 21);
+    sim.render(rendered, c.settings);
+    for (unsigned int i = 0; i < odd.getHeight(); ++i)
+      for (unsigned int j = 0; j < odd.getWidth(); ++j)
+        odd[i][j] = rendered[i][j];
+    for (const vpImage<vpRGBa> *I : {&rendered, &odd})
+      for (bool region : {false, true}) {
+        std::vector<vpImagePoint> reference;
+        double referenceThreshold = 0.0;
+        for (vpLaserConicDetector::vpInstructionSet set : sets) {
+          vpLaserConicDetector detector;
+          detector.setInstructionSet(set);
+          EXPECT_EQ(detector.getInstructionSetUsed(), set);
+          if (region)
+            detector.setSearchRegion(sim.tracePoints(720), 20.0);
+          const std::vector<vpImagePoint> points = detector.detect(*I);
+          if (set == vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
+            reference = points;
+            referenceThreshold = detector.getThreshold();
+            EXPECT_GT(points.size(), 1000u) << c.name; // a trace was found: the comparison means something
+            continue;
+          }
+          EXPECT_EQ(detector.getThreshold(), referenceThreshold) << c.name;
+          ASSERT_EQ(points.size(), reference.size()) << c.name << " instruction set " << set;
+          for (size_t k = 0; k < points.size(); ++k)
+            ASSERT_TRUE(points[k].get_u() == reference[k].get_u() && points[k].get_v() == reference[k].get_v())
+                << c.name << " instruction set " << set << " point " << k;
+        }
+      }
+  }
+  // An instruction set the processor lacks is replaced by the best one.
+  vpLaserConicDetector detector;
+  EXPECT_EQ(detector.getInstructionSet(), vpLaserConicDetector::INSTRUCTIONS_BEST);
+  EXPECT_EQ(detector.getInstructionSetUsed(), best);
+  detector.setInstructionSet(vpLaserConicDetector::INSTRUCTIONS_AVX2);
+  EXPECT_EQ(detector.getInstructionSetUsed(), std::min(best, vpLaserConicDetector::INSTRUCTIONS_AVX2));
+}

@@ -95,9 +95,23 @@ public:
   };
 
   /*!
+    Instruction set of the vectorised passes of the ridge method (score, candidate search). Every choice
+    gives the same points; the library is built for any x86-64 processor and picks the AVX2 code at run
+    time when the processor has it.
+  */
+  enum vpInstructionSet
+  {
+    INSTRUCTIONS_SCALAR, //!< plain C++ (reference)
+    INSTRUCTIONS_SSE2,   //!< 16 pixels at a time (every x86-64 processor)
+    INSTRUCTIONS_AVX2,   //!< 32 pixels at a time where it pays (processors with AVX2)
+    INSTRUCTIONS_BEST    //!< the best this processor has (default)
+  };
+
+  /*!
     Detector with the defaults: ridge method, minimum contrast 10 grey levels, noise factor 5, stripes of at
     most 12 pixels, saturation level 250, segments of at least 50 pixels, every row and column, no search
-    region; for the HSV method hue <= 10 or >= 170, saturation >= 80, value >= 80.
+    region, the best instruction set of the processor; for the HSV method hue <= 10 or >= 170, saturation
+    >= 80, value >= 80.
   */
   vpLaserConicDetector();
 
@@ -154,6 +168,18 @@ public:
   void setSamplingStep(unsigned int step);
   //! Sampling step of the scan lines.
   unsigned int getSamplingStep() const { return m_step; }
+
+  /*!
+    Ridge method: instruction set of the vectorised passes; default INSTRUCTIONS_BEST. One the processor
+    lacks is replaced by the best it has (see getInstructionSetUsed()); the points do not depend on it.
+  */
+  void setInstructionSet(vpInstructionSet instructions) { m_instructions = instructions; }
+  //! Instruction set asked for by setInstructionSet().
+  vpInstructionSet getInstructionSet() const { return m_instructions; }
+  //! Instruction set the detection runs with: the one asked for, or the best of this processor if it lacks it.
+  vpInstructionSet getInstructionSetUsed() const;
+  //! Best instruction set of this processor (and build): INSTRUCTIONS_AVX2, INSTRUCTIONS_SSE2 or INSTRUCTIONS_SCALAR.
+  static vpInstructionSet getBestInstructionSet();
 
   /*!
     Ridge method: searches only within \e margin pixels of the given points (e.g. the trace or the inliers
@@ -224,6 +250,7 @@ private:
   vpDetectionMethod m_method;
   double m_minContrast, m_noiseFactor, m_minSegmentLength;
   unsigned int m_maxStripeWidth, m_saturationLevel, m_step;
+  vpInstructionSet m_instructions;
   int m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue;
   std::vector<vpImagePoint> m_region; //!< sampled search region (empty: whole image)
   double m_regionMargin;
