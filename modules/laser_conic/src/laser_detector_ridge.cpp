@@ -273,23 +273,60 @@ inline int candidates16(const unsigned char *v, const unsigned char *far0, const
                         const unsigned char *near0, const unsigned char *near1, const unsigned char *before,
                         const unsigned char *after, __m128i threshold, __m128i halfThreshold)
 {
+  // No early exit: the blocks tested are those with a score reaching the threshold (see scoreSpan()), and
+  // on a colourful floor whether one of their pixels passes a first test is a coin toss for the processor,
+  // dearer to guess wrong than the remaining loads and comparisons.
   const __m128i x = load16(v), zero = _mm_setzero_si128();
-  // Most blocks of a frame have no score reaching the threshold: one test skips the other loads.
-  if (_mm_movemask_epi8(atLeast(x, zero, threshold)) == 0)
-    return 0;
   const __m128i saturated = _mm_cmpeq_epi8(x, _mm_set1_epi8(static_cast<char>(0xFF))); // a plateau of 255 may be wide
   const __m128i n0 = load16(near0), n1 = load16(near1);
   // The inside of a red floor patch reaches the threshold but not its own level at d / 2 + 1 pixels plus
-  // half the threshold: on a colourful floor this test alone ends most of the blocks that pass the first.
+  // half the threshold.
   const __m128i nearTest = _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(n0, n1), halfThreshold));
-  if (_mm_movemask_epi8(nearTest) == 0)
-    return 0;
   const __m128i bg = _mm_max_epu8(_mm_min_epu8(load16(far0), n0), _mm_min_epu8(load16(far1), n1));
   const __m128i high = _mm_and_si128(atLeast(x, bg, threshold), nearTest);
   const __m128i notAbove = _mm_cmpeq_epi8(_mm_subs_epu8(x, load16(before)), zero);
   const __m128i notBelow = _mm_cmpeq_epi8(_mm_subs_epu8(load16(after), x), zero);
   return _mm_movemask_epi8(_mm_andnot_si128(notAbove, _mm_and_si128(high, notBelow)));
 }
+#endif
+
+#if VSP_DETECTOR_AVX2
+__attribute__((target("avx2"))) inline __m256i load32(const unsigned char *p)
+{
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i *>(p));
+}
+
+// atLeast() on 32 bytes.
+__attribute__((target("avx2"))) inline __m256i atLeast32(__m256i v, __m256i b, __m256i t)
+{
+  const __m256i excess = _mm256_subs_epu8(v, b);
+  return _mm256_cmpeq_epi8(_mm256_max_epu8(excess, t), excess);
+}
+
+// candidates16() on 32 consecutive pixels (AVX2): bit k of the result for pixel k.
+__attribute__((target("avx2"))) inline unsigned int
+candidates32(const unsigned char *v, const unsigned char *far0, const unsigned char *far1, const unsigned char *near0,
+             const unsigned char *near1, const unsigned char *before, const unsigned char *after, __m256i threshold,
+             __m256i halfThreshold)
+{
+  const __m256i x = load32(v), zero = _mm256_setzero_si256();
+  const __m256i saturated = _mm256_cmpeq_epi8(x, _mm256_set1_epi8(static_cast<char>(0xFF)));
+  const __m256i n0 = load32(near0), n1 = load32(near1);
+  const __m256i nearTest = _mm256_or_si256(saturated, atLeast32(x, _mm256_max_epu8(n0, n1), halfThreshold));
+  const __m256i bg = _mm256_max_epu8(_mm256_min_epu8(load32(far0), n0), _mm256_min_epu8(load32(far1), n1));
+  const __m256i high = _mm256_and_si256(atLeast32(x, bg, threshold), nearTest);
+  const __m256i notAbove = _mm256_cmpeq_epi8(_mm256_subs_epu8(x, load32(before)), zero);
+  const __m256i notBelow = _mm256_cmpeq_epi8(_mm256_subs_epu8(load32(after), x), zero);
+  return static_cast<unsigned int>(_mm256_movemask_epi8(_mm256_andnot_si256(notAbove, _mm256_and_si256(high, notBelow))));
+}
+
+// The blocks of 16 columns b, b + 1 (b + 1 <= last) of a row flags: whether one of them has a score reaching
+// the threshold.
+inline bool pairFlagged(const unsigned char *flags, int b, int last)
+{
+  return flags[b] || (b + 1 <= last && flags[b + 1]);
+}
+
 #endif
 
 // Score at offset k along a line of n pixels from position j (0 beyond the ends).
@@ -315,6 +352,71 @@ void rowCandidatesScalar(const unsigned char *row, const unsigned char *flags, i
   }
 }
 
+#if defined(__SSE2__)
+// candidates16() on the block of 16 pixels of a row (W pixels) from column k; a block whose samples leave
+// the row (near the image border) is tested on a copy of its surroundings padded with zeros: the score beyond
+// the ends counts as 0 (see scoreAt()).
+class RowBlockTest
+{
+public:
+  RowBlockTest(int d, int threshold)
+    : m_d(d), m_dn(d / 2 + 1), m_t(_mm_set1_epi8(static_cast<char>(threshold))),
+      m_th(_mm_set1_epi8(static_cast<char>((threshold + 1) / 2)))
+  {
+  }
+  int operator()(const unsigned char *row, int W, int k) const
+  {
+    const int d = m_d, dn = m_dn;
+    if (k >= d && k + 15 + d < W)
+      return candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, m_t, m_th);
+    unsigned char padded[16 + 2 * 101];
+    const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
+    std::memset(padded, 0, sizeof(padded));
+    const int first = std::max(0, from);
+    std::memcpy(padded + (first - from), row + first, static_cast<size_t>(to - first + 1));
+    const unsigned char *x = padded + d + 1;
+    return candidates16(x, x - d, x + d, x - dn, x + dn, x - 1, x + 1, m_t, m_th);
+  }
+
+private:
+  int m_d, m_dn;
+  __m128i m_t, m_th;
+};
+
+#if VSP_DETECTOR_AVX2
+// The SSE2 loop of rowCandidates() 32 pixels at a time (AVX2) where the samples stay in the row, block by
+// block near its ends. Pixels of an unflagged block of a pair are never candidates (no score reaches the
+// threshold there): testing the pair as one changes nothing.
+__attribute__((target("avx2"))) void rowCandidatesAvx2(const unsigned char *row, const unsigned char *flags, int W,
+                                                       int i, int j0, int j1, int d, int threshold,
+                                                       std::vector<Candidate> &out)
+{
+  const int dn = d / 2 + 1, last = j1 >> 4;
+  const RowBlockTest test(d, threshold);
+  const __m256i t = _mm256_set1_epi8(static_cast<char>(threshold)),
+                th = _mm256_set1_epi8(static_cast<char>((threshold + 1) / 2));
+  for (int b = j0 >> 4; b <= last; b += 2) {
+    if (!pairFlagged(flags, b, last))
+      continue;
+    const int k = 16 * b;
+    unsigned int bits;
+    if (k >= d && k + 31 + d < W)
+      bits = candidates32(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
+    else
+      bits = (flags[b] ? static_cast<unsigned int>(test(row, W, k)) : 0u) |
+             (b + 1 <= last && flags[b + 1] ? static_cast<unsigned int>(test(row, W, k + 16)) << 16 : 0u);
+    // Only the pixels of [j0, j1].
+    if (k < j0)
+      bits &= ~0u << (j0 - k);
+    if (k + 31 > j1)
+      bits &= (1u << (j1 - k + 1)) - 1u;
+    for (; bits; bits &= bits - 1)
+      out.push_back(Candidate{i, k + __builtin_ctz(bits)});
+  }
+}
+#endif
+#endif
+
 // Candidate peaks along row i within [j0, j1] (near the image border one background side only). Only the
 // flagged blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()).
 void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, int i, int j0, int j1, int d,
@@ -330,26 +432,18 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
     return;
   }
 #if defined(__SSE2__)
-  const int dn = d / 2 + 1, half = (threshold + 1) / 2;
-  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
-  // A block whose samples leave the row (near the image border) or that the range cuts is tested on a copy
-  // of its surroundings padded with zeros: the score beyond the ends counts as 0 (see scoreAt()).
-  unsigned char padded[16 + 2 * 101];
+#if VSP_DETECTOR_AVX2
+  if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2) {
+    rowCandidatesAvx2(row, flags, W, i, j0, j1, d, threshold, out);
+    return;
+  }
+#endif
+  const RowBlockTest test(d, threshold);
   for (int b = j0 >> 4; b <= j1 >> 4; ++b) {
     if (!flags[b])
       continue;
     const int k = 16 * b;
-    int bits;
-    if (k >= d && k + 15 + d < W)
-      bits = candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
-    else {
-      const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
-      std::memset(padded, 0, sizeof(padded));
-      const int first = std::max(0, from);
-      std::memcpy(padded + (first - from), row + first, static_cast<size_t>(to - first + 1));
-      const unsigned char *x = padded + d + 1;
-      bits = candidates16(x, x - d, x + d, x - dn, x + dn, x - 1, x + 1, t, th);
-    }
+    int bits = test(row, W, k);
     // Only the pixels of [j0, j1].
     if (k < j0)
       bits &= static_cast<int>(~0u << (j0 - k));
@@ -362,6 +456,37 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
   rowCandidatesScalar(row, flags, W, i, j0, j1, d, threshold, out);
 #endif
 }
+
+#if VSP_DETECTOR_AVX2
+// The whole blocks [firstBlock, lastBlock] of the column pass of columnCandidates(), two at a time (AVX2):
+// row, up, down, nearUp, nearDown: row i and the rows d and d / 2 + 1 away (or zeros beyond the image).
+__attribute__((target("avx2"))) void columnBlocksAvx2(const unsigned char *row, const unsigned char *up,
+                                                      const unsigned char *down, const unsigned char *nearUp,
+                                                      const unsigned char *nearDown, ptrdiff_t stride,
+                                                      const unsigned char *flags, int firstBlock, int lastBlock,
+                                                      int threshold, int step, int i, std::vector<Candidate> &out)
+{
+  const __m256i t = _mm256_set1_epi8(static_cast<char>(threshold)),
+                th = _mm256_set1_epi8(static_cast<char>((threshold + 1) / 2));
+  const __m128i t16 = _mm_set1_epi8(static_cast<char>(threshold)),
+                th16 = _mm_set1_epi8(static_cast<char>((threshold + 1) / 2));
+  for (int b = firstBlock; b <= lastBlock; b += 2) {
+    if (!pairFlagged(flags, b, lastBlock))
+      continue;
+    const int k = 16 * b;
+    unsigned int bits =
+        b + 1 <= lastBlock
+            ? candidates32(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th)
+            : static_cast<unsigned int>(candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k,
+                                                     row + k - stride, row + k + stride, t16, th16));
+    for (; bits; bits &= bits - 1) {
+      const int jj = k + __builtin_ctz(bits);
+      if (jj % step == 0)
+        out.push_back(Candidate{jj, i});
+    }
+  }
+}
+#endif
 
 // Candidate peaks along the columns (every step-th column) at row i within [j0, j1]. Only the flagged
 // blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()). \e zeros: a row of W
@@ -396,17 +521,22 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
     auto rowAt = [&](int r) { return r >= 0 && r < H ? c + static_cast<size_t>(r) * W : zeros; };
     const unsigned char *up = rowAt(i - d), *down = rowAt(i + d), *nearUp = rowAt(i - dn), *nearDown = rowAt(i + dn);
     scalar(j0, 16 * firstBlock - 1);
-    for (int b = firstBlock; b <= lastBlock; ++b) {
-      if (!flags[b])
-        continue;
-      const int k = 16 * b;
-      int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
-      for (; bits; bits &= bits - 1) {
-        const int jj = k + __builtin_ctz(bits);
-        if (jj % step == 0)
-          out.push_back(Candidate{jj, i});
+#if VSP_DETECTOR_AVX2
+    if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2)
+      columnBlocksAvx2(row, up, down, nearUp, nearDown, stride, flags, firstBlock, lastBlock, threshold, step, i, out);
+    else
+#endif
+      for (int b = firstBlock; b <= lastBlock; ++b) {
+        if (!flags[b])
+          continue;
+        const int k = 16 * b;
+        int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
+        for (; bits; bits &= bits - 1) {
+          const int jj = k + __builtin_ctz(bits);
+          if (jj % step == 0)
+            out.push_back(Candidate{jj, i});
+        }
       }
-    }
     j = 16 * (lastBlock + 1);
   }
 #endif
