@@ -579,10 +579,10 @@ struct Run
 {
   int length, maxScore;
 };
-// (di, dj) is (1, 0) or (0, 1). The scores are integers: v > level is v > floor(level).
-Run runThrough(const unsigned char *score, int W, int H, int i, int j, int di, int dj, double level, int limit)
+// (di, dj) is (1, 0) or (0, 1); \e above: the integer part of the level (the scores are integers: v > level
+// is v > floor(level)).
+Run runThrough(const unsigned char *score, int W, int H, int i, int j, int di, int dj, int above, int limit)
 {
-  const int above = static_cast<int>(std::floor(level));
   const unsigned char *centre = score + static_cast<size_t>(i) * W + j;
   const ptrdiff_t stride = static_cast<ptrdiff_t>(di) * W + dj;
   const int before = std::min(limit, di ? i : j), after = std::min(limit, di ? H - 1 - i : W - 1 - j);
@@ -619,8 +619,7 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
   if (contrast < threshold)
     return IGNORED;
   // Half-maximum run.
-  const double half = bg + 0.5 * contrast;
-  const int aboveHalf = static_cast<int>(std::floor(half)); // integer scores: s > half is s > floor(half)
+  const int aboveHalf = bg + contrast / 2; // floor(half): integer scores, s > half is s > floor(half)
   int a = p, b = p;
   while (a - 1 >= 0 && s.at(a - 1) > aboveHalf && p - a <= d)
     --a;
@@ -652,7 +651,7 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
   }
   // The other scan direction crosses the stripe more steeply here: it measures this part of the curve.
   const int i = s.alongRow ? s.line : p, j = s.alongRow ? p : s.line;
-  const Run across = runThrough(s.score, s.W, s.H, i, j, s.alongRow ? 1 : 0, s.alongRow ? 0 : 1, half, d + 1);
+  const Run across = runThrough(s.score, s.W, s.H, i, j, s.alongRow ? 1 : 0, s.alongRow ? 0 : 1, aboveHalf, d + 1);
   if (across.length < b - a + 1)
     return IGNORED;
   // A line grazing the edge of a stripe (nearly tangent to it) runs inside the stripe's flank: its contrast
@@ -664,7 +663,7 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
     return IGNORED;
   // Centroid of the score above a quarter of the contrast, over the connected part around the peak.
   const double level = bg + 0.25 * contrast;
-  const int aboveLevel = static_cast<int>(std::floor(level));
+  const int aboveLevel = bg + contrast / 4; // floor(level)
   int lo = a, hi = b;
   while (lo - 1 >= 0 && s.at(lo - 1) > aboveLevel && p - lo < d - 1)
     --lo;
