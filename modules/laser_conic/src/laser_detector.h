@@ -30,13 +30,14 @@ typedef std::pair<int, int> Span;
 */
 struct RegionSpans
 {
-  int bandHeight = 8;          //!< rows per band
+  static const int bandShift = 3;              //!< rows per band: 2^bandShift (a shift, not a division, per row)
+  static const int bandHeight = 1 << bandShift; //!< rows per band
   std::vector<Span> spans;     //!< the spans of every band, band after band
   std::vector<int> bandStart;  //!< first span of each band, plus the end
   //! First span of row i.
-  const Span *begin(int i) const { return spans.data() + bandStart[static_cast<size_t>(i / bandHeight)]; }
+  const Span *begin(int i) const { return spans.data() + bandStart[static_cast<size_t>(i >> bandShift)]; }
   //! One past the last span of row i.
-  const Span *end(int i) const { return spans.data() + bandStart[static_cast<size_t>(i / bandHeight) + 1]; }
+  const Span *end(int i) const { return spans.data() + bandStart[static_cast<size_t>(i >> bandShift) + 1]; }
 };
 
 //! Settings of the ridge detector (see vpLaserConicDetector).
@@ -90,6 +91,7 @@ struct RidgeWorkspace
   std::vector<unsigned char> zeros;          //!< W zero scores: the rows beyond the image border
   std::vector<int> bandStart;                //!< chaining: first sorted crossing of each band of rows, plus the end
   std::vector<int> order, cursor, parent;    //!< chaining: sorted order, band cursors, union-find
+  std::vector<int> bandOf;                   //!< chaining: band of each crossing
   std::vector<double> sortedU, sortedV;      //!< chaining: the crossings' coordinates in sorted order
   std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes
   std::vector<unsigned char> keep;           //!< crossings on long chains

@@ -725,21 +725,26 @@ void longChains(RidgeWorkspace &work, int H, double link, double minLength)
   // random).
   std::vector<int> &bandStart = work.bandStart, &order = work.order, &parent = work.parent, &cursor = work.cursor;
   std::vector<double> &u = work.sortedU, &v = work.sortedV;
-  const double bandHeight = std::max(4.0, link);
-  const int bands = static_cast<int>(H / bandHeight) + 1;
-  auto bandOf = [&](const vpImagePoint &p) {
-    return std::min(bands - 1, std::max(0, static_cast<int>(p.get_v() / bandHeight)));
-  };
+  // Bands of 2^shift >= max(4, link) rows: the band of a crossing is the integer part of v shifted.
+  int shift = 2;
+  while ((1 << shift) < link)
+    ++shift;
+  const int bands = (H >> shift) + 1;
+  std::vector<int> &bandOf = work.bandOf;
+  bandOf.resize(n);
   bandStart.assign(static_cast<size_t>(bands) + 1, 0);
-  for (const Crossing &c : crossings)
-    ++bandStart[static_cast<size_t>(bandOf(c.point)) + 1];
+  for (int k = 0; k < n; ++k) {
+    const int row = std::min(H - 1, std::max(0, static_cast<int>(crossings[k].point.get_v())));
+    bandOf[k] = row >> shift;
+    ++bandStart[static_cast<size_t>(bandOf[k]) + 1];
+  }
   std::partial_sum(bandStart.begin(), bandStart.end(), bandStart.begin());
   order.resize(n);
   u.resize(n);
   v.resize(n);
   cursor.assign(bandStart.begin(), bandStart.end() - 1); // the next free place of each band
   for (int k = 0; k < n; ++k) {
-    const int band = bandOf(crossings[k].point);
+    const int band = bandOf[k];
     int pos = cursor[band]++;
     // Insertion into the band, sorted by u (the crossings come row by row, nearly sorted in u in a band).
     const double uk = crossings[k].point.get_u();

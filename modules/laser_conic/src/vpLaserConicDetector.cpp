@@ -189,7 +189,7 @@ namespace
 void rasterise(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W,
                vpLaserDetector::RegionSpans &out)
 {
-  const int blockW = 16, blockH = out.bandHeight, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
+  const int blockW = 16, blockH = vpLaserDetector::RegionSpans::bandHeight, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
   std::vector<unsigned char> marked(static_cast<size_t>(nbX) * nbY, 0);
   // One point per cell of a quarter of the margin marks its square: more points in the cell add little
   // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
