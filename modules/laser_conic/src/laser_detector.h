@@ -90,9 +90,10 @@ struct RidgeWorkspace
   std::vector<int> lastEnd;                  //!< per column, end of the last measured run
   std::vector<unsigned char> zeros;          //!< W zero scores: the rows beyond the image border
   std::vector<int> bandStart;                //!< chaining: first sorted crossing of each band of rows, plus the end
-  std::vector<int> order, cursor, parent;    //!< chaining: sorted order, band cursors, union-find
-  std::vector<int> bandOf;                   //!< chaining: band of each crossing
+  std::vector<int> order, cursor, parent;    //!< chaining: sorted order, column then band cursors, union-find
+  std::vector<int> bandOf, columnOf, byColumn; //!< chaining: band and column of each crossing, column order
   std::vector<double> sortedU, sortedV;      //!< chaining: the crossings' coordinates in sorted order
+  std::vector<int> sortedColumn;             //!< chaining: the crossings' columns in sorted order
   std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes
   std::vector<unsigned char> keep;           //!< crossings on long chains
   RegionSpans scoreRegion, searchRegion;     //!< rasterised search region (see vpLaserConicDetector)

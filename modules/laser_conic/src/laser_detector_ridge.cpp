@@ -710,7 +710,7 @@ int root(std::vector<int> &parent, int k)
 
 // Marks in work.keep the crossings of work.crossings that belong to chains (neighbours within `link`
 // pixels) at least minLength long.
-void longChains(RidgeWorkspace &work, int H, double link, double minLength)
+void longChains(RidgeWorkspace &work, int W, int H, double link, double minLength)
 {
   const std::vector<Crossing> &crossings = work.crossings;
   const int n = static_cast<int>(crossings.size());
@@ -718,48 +718,53 @@ void longChains(RidgeWorkspace &work, int H, double link, double minLength)
   keep.assign(n, 1);
   if (minLength <= 0.0 || n == 0)
     return;
-  // The crossings sorted by bands of rows at least `link` high (counting sort), each band by u: the
-  // neighbours of a crossing lie after it in its band or in the next band, each pair seen once, found by a
-  // window sliding along u. The buffers have the size of the crossings and of the bands: nothing to reset
-  // between frames, and little memory to bring to cache (a grid of cells over the image is touched at
-  // random).
+  // The crossings sorted by bands of rows at least `link` high, each band by column (two counting sorts,
+  // by column then by band: no comparison whose outcome the processor must guess): the neighbours of a
+  // crossing lie after it in its band or in the next band, within ceil(link) columns, each pair seen once,
+  // found by a window sliding along the columns. The buffers have the size of the crossings and of the
+  // image's width and height: nothing to reset between frames, and little memory to bring to cache (a grid
+  // of cells over the image is touched at random).
   std::vector<int> &bandStart = work.bandStart, &order = work.order, &parent = work.parent, &cursor = work.cursor;
+  std::vector<int> &bandOf = work.bandOf, &columnOf = work.columnOf, &byColumn = work.byColumn;
   std::vector<double> &u = work.sortedU, &v = work.sortedV;
+  std::vector<int> &column = work.sortedColumn;
   // Bands of 2^shift >= max(4, link) rows: the band of a crossing is the integer part of v shifted.
   int shift = 2;
   while ((1 << shift) < link)
     ++shift;
   const int bands = (H >> shift) + 1;
-  std::vector<int> &bandOf = work.bandOf;
   bandOf.resize(n);
+  columnOf.resize(n);
   bandStart.assign(static_cast<size_t>(bands) + 1, 0);
+  cursor.assign(static_cast<size_t>(W) + 1, 0); // first the column counts
   for (int k = 0; k < n; ++k) {
-    const int row = std::min(H - 1, std::max(0, static_cast<int>(crossings[k].point.get_v())));
-    bandOf[k] = row >> shift;
+    const vpImagePoint &p = crossings[k].point;
+    bandOf[k] = std::min(H - 1, std::max(0, static_cast<int>(p.get_v()))) >> shift;
+    columnOf[k] = std::min(W - 1, std::max(0, static_cast<int>(p.get_u())));
     ++bandStart[static_cast<size_t>(bandOf[k]) + 1];
+    ++cursor[static_cast<size_t>(columnOf[k]) + 1];
   }
   std::partial_sum(bandStart.begin(), bandStart.end(), bandStart.begin());
+  std::partial_sum(cursor.begin(), cursor.end(), cursor.begin());
+  byColumn.resize(n);
+  for (int k = 0; k < n; ++k)
+    byColumn[cursor[columnOf[k]]++] = k;
+  cursor.assign(bandStart.begin(), bandStart.end() - 1); // the next free place of each band
   order.resize(n);
+  for (int k : byColumn)
+    order[cursor[bandOf[k]]++] = k;
   u.resize(n);
   v.resize(n);
-  cursor.assign(bandStart.begin(), bandStart.end() - 1); // the next free place of each band
-  for (int k = 0; k < n; ++k) {
-    const int band = bandOf[k];
-    int pos = cursor[band]++;
-    // Insertion into the band, sorted by u (the crossings come row by row, nearly sorted in u in a band).
-    const double uk = crossings[k].point.get_u();
-    for (; pos > bandStart[band] && u[pos - 1] > uk; --pos) {
-      order[pos] = order[pos - 1];
-      u[pos] = u[pos - 1];
-      v[pos] = v[pos - 1];
-    }
-    order[pos] = k;
-    u[pos] = uk;
-    v[pos] = crossings[k].point.get_v();
+  column.resize(n);
+  for (int pos = 0; pos < n; ++pos) {
+    u[pos] = crossings[order[pos]].point.get_u();
+    v[pos] = crossings[order[pos]].point.get_v();
+    column[pos] = columnOf[order[pos]];
   }
   parent.resize(n);
   std::iota(parent.begin(), parent.end(), 0);
   const double link2 = link * link;
+  const int reach = static_cast<int>(std::ceil(link)); // |du| <= link: the columns differ by ceil(link) at most
   auto join = [&](int a, int b) {
     const double du = u[a] - u[b], dv = v[a] - v[b];
     if (du * du + dv * dv <= link2) {
@@ -772,11 +777,11 @@ void longChains(RidgeWorkspace &work, int H, double link, double minLength)
     const int end = bandStart[band + 1], nextEnd = band + 1 < bands ? bandStart[band + 2] : end;
     int next = end; // first crossing of the next band not left of the window
     for (int a = bandStart[band]; a < end; ++a) {
-      for (int b = a + 1; b < end && u[b] <= u[a] + link; ++b)
+      for (int b = a + 1; b < end && column[b] <= column[a] + reach; ++b)
         join(a, b);
-      while (next < nextEnd && u[next] < u[a] - link)
+      while (next < nextEnd && column[next] < column[a] - reach)
         ++next;
-      for (int b = next; b < nextEnd && u[b] <= u[a] + link; ++b)
+      for (int b = next; b < nextEnd && column[b] <= column[a] + reach; ++b)
         join(a, b);
     }
   }
@@ -900,7 +905,7 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   measureUpTo(H);
 
   // 3. Continuity: drop the short chains.
-  longChains(work, H, 2.0 * step + 0.5, settings.minSegment);
+  longChains(work, W, H, 2.0 * step + 0.5, settings.minSegment);
   points.reserve(crossings.size());
   for (size_t k = 0; k < crossings.size(); ++k) {
     const Crossing &c = crossings[k];
