@@ -101,13 +101,18 @@ struct RidgeWorkspace
   bool regionValid = false;
 };
 
-//! Fills \e mask (resized to H x W) from the runs: 255 on the accepted runs, 100 on the rejected ones.
-void drawRuns(const std::vector<StripeRun> &runs, unsigned int H, unsigned int W, vpImage<unsigned char> &mask);
+/*!
+  Fills \e mask (resized to H x W) with the runs of the last ridge detection: the rejected candidate runs
+  \e runs and the measured crossings of \e work, 255 on the crossings kept (on long chains), 100 on the others.
+*/
+void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
+              vpImage<unsigned char> &mask);
 
 /*!
   Ridge detector. \e scoreRegion / \e searchRegion: null for the whole image, else the rows to score
-  (the search region dilated by the background distance) and the rows to search. \e work holds the buffers;
-  \e runs receives the measured stripe runs (see drawRuns()).
+  (the search region dilated by the background distance) and the rows to search. \e work holds the buffers
+  and, until the next detection, the measured crossings; \e runs receives the rejected candidate runs (see
+  drawRuns()).
 */
 std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSettings &settings,
                                       const RegionSpans *scoreRegion, const RegionSpans *searchRegion,

@@ -813,6 +813,8 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
 {
   std::vector<vpImagePoint> points;
   runs.clear();
+  work.crossings.clear();
+  work.keep.clear();
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
   if (H == 0 || W == 0)
     return points;
@@ -906,29 +908,33 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
 
   // 3. Continuity: drop the short chains.
   longChains(work, W, H, 2.0 * step + 0.5, settings.minSegment);
-  points.reserve(crossings.size());
-  for (size_t k = 0; k < crossings.size(); ++k) {
-    const Crossing &c = crossings[k];
-    runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, work.keep[k] != 0});
+  // The runs of the crossings stay in the workspace for the mask (see drawRuns()).
+  points.reserve(static_cast<size_t>(std::count(work.keep.begin(), work.keep.end(), 1)));
+  for (size_t k = 0; k < crossings.size(); ++k)
     if (work.keep[k])
-      points.push_back(c.point);
-  }
+      points.push_back(crossings[k].point);
   return points;
 }
 } // namespace vpLaserDetector
 
 namespace vpLaserDetector
 {
-void drawRuns(const std::vector<StripeRun> &runs, unsigned int H, unsigned int W, vpImage<unsigned char> &mask)
+void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
+              vpImage<unsigned char> &mask)
 {
   mask.resize(H, W, 0);
-  for (const StripeRun &r : runs) {
-    const unsigned char value = r.accepted ? 255 : 100;
-    for (int k = r.first; k <= r.last; ++k) {
-      unsigned char &m = r.alongRow ? mask[static_cast<unsigned int>(r.line)][static_cast<unsigned int>(k)]
-                                    : mask[static_cast<unsigned int>(k)][static_cast<unsigned int>(r.line)];
+  auto draw = [&mask](bool alongRow, int line, int first, int last, unsigned char value) {
+    for (int k = first; k <= last; ++k) {
+      unsigned char &m = alongRow ? mask[static_cast<unsigned int>(line)][static_cast<unsigned int>(k)]
+                                  : mask[static_cast<unsigned int>(k)][static_cast<unsigned int>(line)];
       m = std::max(m, value);
     }
+  };
+  for (const StripeRun &r : runs)
+    draw(r.alongRow, r.line, r.first, r.last, r.accepted ? 255 : 100);
+  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k) {
+    const Crossing &c = work.crossings[k];
+    draw(c.alongRow, c.line, c.first, c.last, work.keep[k] ? 255 : 100);
   }
 }
 } // namespace vpLaserDetector

@@ -245,7 +245,7 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
 const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
 {
   if (m_maskDirty) {
-    vpLaserDetector::drawRuns(m_runs, m_height, m_width, m_mask);
+    vpLaserDetector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask);
     m_maskDirty = false;
   }
   return m_mask;

@@ -239,6 +239,7 @@ private:
     vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region
     ~vpWorkspace();                                    //!< frees the buffers
     vpLaserDetector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
+    const vpLaserDetector::RidgeWorkspace &get() const { return *m_work; } //!< the buffers (read only)
 
   private:
     std::unique_ptr<vpLaserDetector::RidgeWorkspace> m_work;
@@ -259,8 +260,8 @@ private:
   mutable bool m_maskDirty;
   unsigned int m_height, m_width;        //!< size of the last image
   double m_threshold, m_noise;
-  vpWorkspace m_work; //!< score, block flags, candidates, chaining grid and rasterised region of the ridge method
-  std::vector<vpLaserConicDetectorRun> m_runs; //!< stripe runs of the last ridge detection
+  vpWorkspace m_work; //!< score, block flags, candidates, crossings, chaining and rasterised region of the ridge method
+  std::vector<vpLaserConicDetectorRun> m_runs; //!< rejected candidate runs of the last ridge detection (its crossings are in m_work)
 };
 
 #endif
