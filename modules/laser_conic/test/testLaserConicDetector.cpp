@@ -375,10 +375,12 @@ TEST(LaserConicDetector, TheHsvDetectorMissesTheDimStripeAndSplitsTheSaturatedOn
   EXPECT_GT(saturated.offTrace, 0.5); // the two red flanks measured apart, each > 2 px off the centre
 }
 
-TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
+namespace
 {
-  // White tiles under a lamp whose reflection is white light without red: the stripe saturates to white
-  // over the tiles, red only at its flanks.
+//! White tiles under a lamp whose reflection is white light without red: the stripe saturates to white over
+//! the tiles, red only at its flanks.
+HardCase whiteTilesCase()
+{
   HardCase c;
   c.name = "white_tiles";
   c.settings.floor = vpLaserConicSimulator::FLOOR_WHITE_TILES;
@@ -390,8 +392,25 @@ TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
   c.settings.laserPower = 500.0;
   c.settings.whiteCore = 0.6;
   c.settings.bloom = 0.04;
+  return c;
+}
+
+//! Colourful mosaic floor (warm patches, some close to the laser's red) under a lamp.
+HardCase mosaicCase()
+{
+  HardCase c;
+  c.name = "mosaic";
+  c.settings.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
+  c.settings.laserPower = 200.0;
+  c.settings.specular = 60.0;
+  return c;
+}
+} // namespace
+
+TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
+{
   vpLaserConicDetector detector;
-  const Quality q = runCase(c, 25, detector);
+  const Quality q = runCase(whiteTilesCase(), 25, detector);
   expectQuality(q, 0.9, 0.5, 0.01);
 }
 
@@ -405,12 +424,7 @@ TEST(LaserConicDetector, StripeOnBrightGreyAndColourfulFloors)
   const Quality g = runCase(grey, 26, detector);
   expectQuality(g, 0.95, 0.3, 0.005);
 
-  HardCase mosaic;
-  mosaic.name = "mosaic";
-  mosaic.settings.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
-  mosaic.settings.laserPower = 200.0;
-  mosaic.settings.specular = 60.0;
-  const Quality m = runCase(mosaic, 27, detector);
+  const Quality m = runCase(mosaicCase(), 27, detector);
   expectQuality(m, 0.9, 0.3, 0.05);
   EXPECT_LT(m.nbPoints, 4000u); // about one point per pixel of trace (~2700 px), not the floor's texture
 }
@@ -544,16 +558,7 @@ TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
   // identical, bit for bit and in the same order, on stripes whose red channel stays below the saturation
   // ramp (byte arithmetic), saturates (16-bit arithmetic), on white tiles, a colourful floor, in a search
   // region, and on an image whose width is not a multiple of 16 or 32 (the scalar ends of the rows).
-  HardCase white;
-  white.name = "white_tiles";
-  white.settings.floor = vpLaserConicSimulator::FLOOR_WHITE_TILES;
-  white.settings.laserPower = 500.0;
-  white.settings.whiteCore = 0.6;
-  HardCase mosaic;
-  mosaic.name = "mosaic";
-  mosaic.settings.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
-  mosaic.settings.laserPower = 200.0;
-  const std::vector<HardCase> cases = {dimCase(), saturatedCase(), white, mosaic};
+  const std::vector<HardCase> cases = {dimCase(), saturatedCase(), whiteTilesCase(), mosaicCase()};
   const vpLaserConicDetector::vpInstructionSet best = vpLaserConicDetector::getBestInstructionSet();
   std::vector<vpLaserConicDetector::vpInstructionSet> sets = {vpLaserConicDetector::INSTRUCTIONS_SCALAR};
   for (vpLaserConicDetector::vpInstructionSet set : {vpLaserConicDetector::INSTRUCTIONS_SSE2, vpLaserConicDetector::INSTRUCTIONS_AVX2})
