@@ -49,13 +49,22 @@ vpLaserConicDetector::vpLaserConicDetector()
 
 vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vpLaserDetector::RidgeWorkspace) {}
 
-vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &) : m_work(new vpLaserDetector::RidgeWorkspace) {}
+vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &other) : m_work(new vpLaserDetector::RidgeWorkspace)
+{
+  // The last detection's crossings are state (the mask is drawn from them); the buffers are not.
+  m_work->crossings = other.m_work->crossings;
+  m_work->keep = other.m_work->keep;
+}
 
-vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(const vpWorkspace &)
+vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(const vpWorkspace &other)
 {
   // The buffers are not state: each detector keeps its own. The rasterised region belongs to the settings
-  // being replaced, whatever its generation number says.
-  m_work->regionValid = false;
+  // being replaced, whatever its generation number says. The last detection's crossings are state.
+  if (this != &other) {
+    m_work->regionValid = false;
+    m_work->crossings = other.m_work->crossings;
+    m_work->keep = other.m_work->keep;
+  }
   return *this;
 }
 

@@ -141,12 +141,21 @@ TEST(LaserConicDetector, MaskMarksTheStripe)
   sim.render(I);
   vpLaserConicDetector detector;
   const std::vector<vpImagePoint> points = detector.detect(I);
+  // A copy, or a detector assigned from it, before the mask is drawn (on demand, from the last detection).
+  vpLaserConicDetector other = detector, assigned;
+  assigned.detect(vpImage<vpRGBa>(10, 10, vpRGBa(0, 0, 0, 255)));
+  assigned = detector;
   const vpImage<unsigned char> &mask = detector.getMask();
   ASSERT_EQ(mask.getWidth(), kWidth);
   ASSERT_EQ(mask.getHeight(), kHeight);
   for (const vpImagePoint &p : points)
     EXPECT_EQ(mask[static_cast<unsigned int>(std::lround(p.get_i()))][static_cast<unsigned int>(std::lround(p.get_j()))],
               255);
+  for (const vpLaserConicDetector *d : {&other, &assigned}) { // the same mask
+    const vpImage<unsigned char> &copy = d->getMask();
+    ASSERT_EQ(copy.getSize(), mask.getSize());
+    EXPECT_TRUE(std::equal(copy.bitmap, copy.bitmap + copy.getSize(), mask.bitmap));
+  }
 }
 
 TEST(LaserConicDetector, RejectsBlobsAndIgnoresOtherColours)

@@ -235,8 +235,8 @@ private:
   {
   public:
     vpWorkspace();                                     //!< empty buffers
-    vpWorkspace(const vpWorkspace &other);             //!< empty buffers (nothing is copied)
-    vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region
+    vpWorkspace(const vpWorkspace &other);             //!< empty buffers, the last detection's crossings copied
+    vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region, copies the crossings
     ~vpWorkspace();                                    //!< frees the buffers
     vpLaserDetector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
     const vpLaserDetector::RidgeWorkspace &get() const { return *m_work; } //!< the buffers (read only)
