@@ -148,7 +148,7 @@ __attribute__((target("avx2"))) inline __m256i dominance8(__m256i a, __m256i low
   return _mm256_and_si256(_mm256_subs_epu8(a, _mm256_max_epu8(_mm256_srli_epi32(a, 8), _mm256_srli_epi32(a, 16))), low8);
 }
 
-// scoreSpanScalar() 32 pixels at a time (AVX2), on processors that have it (see detectRidge()).
+// scoreSpanScalar() 32 pixels at a time (AVX2), on processors that have it (see scoreSpan()).
 __attribute__((target("avx2"))) void scoreSpanAvx2(const unsigned char *rgba, unsigned char *score, int n,
                                                    int saturation, int threshold, unsigned char *flags)
 {
@@ -165,7 +165,7 @@ __attribute__((target("avx2"))) void scoreSpanAvx2(const unsigned char *rgba, un
                   a3 = _mm256_loadu_si256(in + 3);
     const __m256i redMax = _mm256_and_si256(_mm256_max_epu8(_mm256_max_epu8(a0, a1), _mm256_max_epu8(a2, a3)), low8);
     if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_subs_epu8(redMax, rampStart), zero)) != -1) {
-      scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k); // a red channel in the ramp: 16-bit arithmetic
+      scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k); // a red above the ramp start: 16-bit arithmetic
       scoreBlock(rgba + 4 * (j + 16), score + j + 16, flags + (j >> 4) + 1, k);
       continue;
     }
