@@ -388,8 +388,8 @@ public:
     unsigned char padded[16 + 2 * 101];
     const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
     std::memset(padded, 0, sizeof(padded));
-    const int first = std::max(0, from);
-    std::memcpy(padded + (first - from), row + first, static_cast<size_t>(to - first + 1));
+    const int first = std::max(0, from), count = to - first + 1;
+    std::memcpy(padded + (first - from), row + first, static_cast<size_t>(count));
     const unsigned char *x = padded + d + 1;
     return candidates16(x, x - d, x + d, x - dn, x + dn, x - 1, x + 1, m_t, m_th);
   }
