@@ -49,7 +49,7 @@ namespace
 struct Options
 {
   std::string camera, cameraName = "Camera", laser, imagesDir, listFile, output, overlays, truth;
-  std::string methodName = "GP3", detectorName = "ridge";
+  std::string methodName = "GP3", detectorName = "ridge", instructions = "best";
   double threshold = 2.0;
   unsigned int seed = 0;
   // Detector settings (defaults of vpLaserConicDetector).
@@ -74,7 +74,7 @@ vpCommandLine commandLine(Options &options)
                     "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
                     "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
                     "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
-                    "          [--truth groundtruth.csv] [--max-altitude-error MM]",
+                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]",
                     "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
@@ -104,6 +104,9 @@ vpCommandLine commandLine(Options &options)
   cli.addDouble("--min-segment", options.minSegment, "PX",
                 "ridge: shortest chain of points kept, pixels (default 50; 0 keeps all)", vpCommandLine::NON_NEGATIVE);
   cli.addUnsigned("--sampling-step", options.samplingStep, "N", "scan one row/column in N (default 1)", 1);
+  cli.addChoice("--instructions", options.instructions, {"best", "avx2", "sse2", "scalar"}, "SET",
+                "ridge: instruction set of the vectorised passes, the same points with each (default best: AVX2 "
+                "when the processor has it, else SSE2)");
   cli.addDouble("--track", options.track, "PX",
                 "ridge: search within PX pixels of the previous frame's inliers when it had a plane (default 0: "
                 "whole image every frame)",
@@ -238,6 +241,10 @@ vpLaserConicDetector makeDetector(const Options &options)
   detector.setSaturationLevel(options.saturationLevel);
   detector.setMinSegmentLength(options.minSegment);
   detector.setSamplingStep(options.samplingStep);
+  detector.setInstructionSet(options.instructions == "avx2"     ? vpLaserConicDetector::INSTRUCTIONS_AVX2
+                             : options.instructions == "sse2"   ? vpLaserConicDetector::INSTRUCTIONS_SSE2
+                             : options.instructions == "scalar" ? vpLaserConicDetector::INSTRUCTIONS_SCALAR
+                                                                : vpLaserConicDetector::INSTRUCTIONS_BEST);
   return detector;
 }
 

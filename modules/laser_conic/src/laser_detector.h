@@ -30,13 +30,14 @@ typedef std::pair<int, int> Span;
 */
 struct RegionSpans
 {
-  int bandHeight = 8;          //!< rows per band
+  static const int bandShift = 3;              //!< rows per band: 2^bandShift (a shift, not a division, per row)
+  static const int bandHeight = 1 << bandShift; //!< rows per band
   std::vector<Span> spans;     //!< the spans of every band, band after band
   std::vector<int> bandStart;  //!< first span of each band, plus the end
   //! First span of row i.
-  const Span *begin(int i) const { return spans.data() + bandStart[static_cast<size_t>(i / bandHeight)]; }
+  const Span *begin(int i) const { return spans.data() + bandStart[static_cast<size_t>(i >> bandShift)]; }
   //! One past the last span of row i.
-  const Span *end(int i) const { return spans.data() + bandStart[static_cast<size_t>(i / bandHeight) + 1]; }
+  const Span *end(int i) const { return spans.data() + bandStart[static_cast<size_t>(i >> bandShift) + 1]; }
 };
 
 //! Settings of the ridge detector (see vpLaserConicDetector).
@@ -48,6 +49,7 @@ struct RidgeSettings
   int saturation;       //!< saturated red level
   double minSegment;    //!< shortest chain, pixels
   int step;             //!< sampling step of the scan lines
+  vpLaserConicDetector::vpInstructionSet instructions; //!< one the processor has (never INSTRUCTIONS_BEST)
 };
 
 //! What the ridge detector measured besides the points.
@@ -87,22 +89,30 @@ struct RidgeWorkspace
   std::vector<Crossing> crossings;
   std::vector<int> lastEnd;                  //!< per column, end of the last measured run
   std::vector<unsigned char> zeros;          //!< W zero scores: the rows beyond the image border
-  std::vector<int> cellHead;                 //!< chaining grid, every cell -1 between two frames
-  std::vector<int> next, cellOf, parent;     //!< chaining lists and union-find
+  std::vector<int> bandStart;                //!< chaining: first sorted crossing of each band of rows, plus the end
+  std::vector<int> order, cursor, parent;    //!< chaining: sorted order, column then band cursors, union-find
+  std::vector<int> bandOf, columnOf, byColumn; //!< chaining: band and column of each crossing, column order
+  std::vector<double> sortedU, sortedV;      //!< chaining: the crossings' coordinates in sorted order
+  std::vector<int> sortedColumn;             //!< chaining: the crossings' columns in sorted order
   std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes
-  std::vector<bool> keep;                    //!< crossings on long chains
+  std::vector<unsigned char> keep;           //!< crossings on long chains
   RegionSpans scoreRegion, searchRegion;     //!< rasterised search region (see vpLaserConicDetector)
   unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
   bool regionValid = false;
 };
 
-//! Fills \e mask (resized to H x W) from the runs: 255 on the accepted runs, 100 on the rejected ones.
-void drawRuns(const std::vector<StripeRun> &runs, unsigned int H, unsigned int W, vpImage<unsigned char> &mask);
+/*!
+  Fills \e mask (resized to H x W) with the runs of the last ridge detection: the rejected candidate runs
+  \e runs and the measured crossings of \e work, 255 on the crossings kept (on long chains), 100 on the others.
+*/
+void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
+              vpImage<unsigned char> &mask);
 
 /*!
   Ridge detector. \e scoreRegion / \e searchRegion: null for the whole image, else the rows to score
-  (the search region dilated by the background distance) and the rows to search. \e work holds the buffers;
-  \e runs receives the measured stripe runs (see drawRuns()).
+  (the search region dilated by the background distance) and the rows to search. \e work holds the buffers
+  and, until the next detection, the measured crossings; \e runs receives the rejected candidate runs (see
+  drawRuns()).
 */
 std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSettings &settings,
                                       const RegionSpans *scoreRegion, const RegionSpans *searchRegion,

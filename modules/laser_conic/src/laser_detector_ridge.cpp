@@ -17,6 +17,14 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// AVX2 code paths, compiled for their functions only and chosen at run time (the library is built for any
+// x86-64 processor).
+#if defined(__SSE2__) && (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#define VSP_DETECTOR_AVX2 1
+#include <immintrin.h>
+#else
+#define VSP_DETECTOR_AVX2 0
+#endif
 
 namespace vpLaserDetector
 {
@@ -44,60 +52,157 @@ inline unsigned char scorePixel(const unsigned char *p, int saturation)
 // Scores n pixels starting at a column multiple of 16, and sets the flag of each block of 16 columns
 // (flags[0] for the first) to 0xFF when a score of the block reaches the threshold, else 0: no pixel of an
 // unflagged block can be a candidate (a candidate's score exceeds its background by the threshold), so
-// the candidate passes skip these blocks, most of a frame, without reading their scores again.
-void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
-               unsigned char *flags)
+// the candidate passes skip these blocks, most of a frame, without reading their scores again. Plain C++
+// from pixel j on (the vectorised versions below end with it).
+void scoreSpanScalar(const unsigned char *rgba, unsigned char *score, int j, int n, int saturation, int threshold,
+                     unsigned char *flags)
 {
-  int j = 0;
-#if defined(__SSE2__)
-  const __m128i thresholdBytes = _mm_set1_epi8(static_cast<char>(threshold));
-  // 16 pixels per step in 16-bit lanes, the same integer arithmetic as scorePixel().
-  const __m128i low8 = _mm_set1_epi32(0xFF), sat = _mm_set1_epi16(static_cast<short>(saturation));
-  const __m128i zero = _mm_setzero_si128(), ramp = _mm_set1_epi16(kSaturationRamp), third = _mm_set1_epi16(2185);
-  const __m128i rampStart = _mm_set1_epi32(std::max(0, saturation - kSaturationRamp));
-  for (; j + 16 <= n; j += 16) {
-    // Below the ramp (every R <= saturation - 30: nearly every block of a frame) the weight is exactly 1
-    // (m x 30 x 2185 >> 16 = m for m <= 255) and the score is the saturated byte difference R - max(G, B),
-    // computed in place in byte 0 of the RGBA lanes, without the 16-bit products.
-    const __m128i *in = reinterpret_cast<const __m128i *>(rgba + 4 * j);
-    const __m128i a0 = _mm_loadu_si128(in), a1 = _mm_loadu_si128(in + 1), a2 = _mm_loadu_si128(in + 2),
-                  a3 = _mm_loadu_si128(in + 3);
-    const __m128i redMax = _mm_and_si128(_mm_max_epu8(_mm_max_epu8(a0, a1), _mm_max_epu8(a2, a3)), low8);
-    if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(redMax, rampStart), zero)) == 0xFFFF) {
-      auto dominance = [&](__m128i a) {
-        return _mm_and_si128(_mm_subs_epu8(a, _mm_max_epu8(_mm_srli_epi32(a, 8), _mm_srli_epi32(a, 16))), low8);
-      };
-      const __m128i s = _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)),
-                                         _mm_packs_epi32(dominance(a2), dominance(a3)));
-      _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), s);
-      flags[j >> 4] = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, thresholdBytes), s)) ? 0xFF : 0;
-      continue;
-    }
-    __m128i half[2];
-    for (int h = 0; h < 2; ++h) {
-      const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h)));
-      const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (j + 8 * h + 4)));
-      const __m128i r = _mm_packs_epi32(_mm_and_si128(a, low8), _mm_and_si128(b, low8));
-      const __m128i g = _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 8), low8), _mm_and_si128(_mm_srli_epi32(b, 8), low8));
-      const __m128i bl =
-          _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 16), low8), _mm_and_si128(_mm_srli_epi32(b, 16), low8));
-      const __m128i m = _mm_max_epi16(g, bl);
-      const __m128i t = _mm_min_epi16(_mm_max_epi16(_mm_sub_epi16(sat, r), zero), ramp);
-      const __m128i w = _mm_mulhi_epu16(_mm_mullo_epi16(m, t), third);
-      half[h] = _mm_max_epi16(_mm_sub_epi16(r, w), zero);
-    }
-    const __m128i s = _mm_packus_epi16(half[0], half[1]);
-    _mm_storeu_si128(reinterpret_cast<__m128i *>(score + j), s);
-    flags[j >> 4] = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, thresholdBytes), s)) ? 0xFF : 0;
-  }
-#endif
-  if (j < n)
-    flags[j >> 4] = 0;
   for (; j < n; ++j) {
+    if (j % 16 == 0)
+      flags[j >> 4] = 0;
     score[j] = scorePixel(rgba + 4 * j, saturation);
     if (score[j] >= threshold)
       flags[j >> 4] = 0xFF;
   }
+}
+
+#if defined(__SSE2__)
+// The constants of the vectorised score.
+struct ScoreConstants
+{
+  __m128i thresholdBytes, low8, sat, zero, ramp, third, rampStart;
+  ScoreConstants(int saturation, int threshold)
+    : thresholdBytes(_mm_set1_epi8(static_cast<char>(threshold))), low8(_mm_set1_epi32(0xFF)),
+      sat(_mm_set1_epi16(static_cast<short>(saturation))), zero(_mm_setzero_si128()),
+      ramp(_mm_set1_epi16(kSaturationRamp)), third(_mm_set1_epi16(2185)),
+      rampStart(_mm_set1_epi32(std::max(0, saturation - kSaturationRamp)))
+  {
+  }
+};
+
+// 0xFF when a score of the 16 reaches the threshold, else 0.
+inline unsigned char blockFlag(__m128i s, const ScoreConstants &k)
+{
+  return _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(s, k.thresholdBytes), s)) ? 0xFF : 0;
+}
+
+// Score of the 16 pixels from rgba (16-bit lanes, the same integer arithmetic as scorePixel()) and their flag.
+inline void scoreBlockRamp(const unsigned char *rgba, unsigned char *score, unsigned char *flag, const ScoreConstants &k)
+{
+  __m128i half[2];
+  for (int h = 0; h < 2; ++h) {
+    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (8 * h)));
+    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i *>(rgba + 4 * (8 * h + 4)));
+    const __m128i r = _mm_packs_epi32(_mm_and_si128(a, k.low8), _mm_and_si128(b, k.low8));
+    const __m128i g =
+        _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 8), k.low8), _mm_and_si128(_mm_srli_epi32(b, 8), k.low8));
+    const __m128i bl =
+        _mm_packs_epi32(_mm_and_si128(_mm_srli_epi32(a, 16), k.low8), _mm_and_si128(_mm_srli_epi32(b, 16), k.low8));
+    const __m128i m = _mm_max_epi16(g, bl);
+    const __m128i t = _mm_min_epi16(_mm_max_epi16(_mm_sub_epi16(k.sat, r), k.zero), k.ramp);
+    const __m128i w = _mm_mulhi_epu16(_mm_mullo_epi16(m, t), k.third);
+    half[h] = _mm_max_epi16(_mm_sub_epi16(r, w), k.zero);
+  }
+  const __m128i s = _mm_packus_epi16(half[0], half[1]);
+  _mm_storeu_si128(reinterpret_cast<__m128i *>(score), s);
+  *flag = blockFlag(s, k);
+}
+
+// The same, faster when no red channel of the 16 reaches the ramp (nearly every block of a frame): the
+// weight is then exactly 1 (m x 30 x 2185 >> 16 = m for m <= 255) and the score is the saturated byte
+// difference R - max(G, B), computed in place in byte 0 of the RGBA lanes, without the 16-bit products.
+inline void scoreBlock(const unsigned char *rgba, unsigned char *score, unsigned char *flag, const ScoreConstants &k)
+{
+  const __m128i *in = reinterpret_cast<const __m128i *>(rgba);
+  const __m128i a0 = _mm_loadu_si128(in), a1 = _mm_loadu_si128(in + 1), a2 = _mm_loadu_si128(in + 2),
+                a3 = _mm_loadu_si128(in + 3);
+  const __m128i redMax = _mm_and_si128(_mm_max_epu8(_mm_max_epu8(a0, a1), _mm_max_epu8(a2, a3)), k.low8);
+  if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(redMax, k.rampStart), k.zero)) != 0xFFFF) {
+    scoreBlockRamp(rgba, score, flag, k);
+    return;
+  }
+  auto dominance = [&](__m128i a) {
+    return _mm_and_si128(_mm_subs_epu8(a, _mm_max_epu8(_mm_srli_epi32(a, 8), _mm_srli_epi32(a, 16))), k.low8);
+  };
+  const __m128i s = _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)),
+                                     _mm_packs_epi32(dominance(a2), dominance(a3)));
+  _mm_storeu_si128(reinterpret_cast<__m128i *>(score), s);
+  *flag = blockFlag(s, k);
+}
+
+// scoreSpanScalar() 16 pixels at a time (SSE2).
+void scoreSpanSse2(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
+                   unsigned char *flags)
+{
+  const ScoreConstants k(saturation, threshold);
+  int j = 0;
+  for (; j + 16 <= n; j += 16)
+    scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k);
+  scoreSpanScalar(rgba, score, j, n, saturation, threshold, flags);
+}
+
+#if VSP_DETECTOR_AVX2
+// R - max(G, B) of 8 RGBA pixels, saturated at 0, in byte 0 of their 32-bit lanes (the others 0).
+__attribute__((target("avx2"))) inline __m256i dominance8(__m256i a, __m256i low8)
+{
+  return _mm256_and_si256(_mm256_subs_epu8(a, _mm256_max_epu8(_mm256_srli_epi32(a, 8), _mm256_srli_epi32(a, 16))), low8);
+}
+
+// scoreSpanScalar() 32 pixels at a time (AVX2), on processors that have it (see scoreSpan()).
+__attribute__((target("avx2"))) void scoreSpanAvx2(const unsigned char *rgba, unsigned char *score, int n,
+                                                   int saturation, int threshold, unsigned char *flags)
+{
+  const ScoreConstants k(saturation, threshold);
+  const __m256i low8 = _mm256_set1_epi32(0xFF), zero = _mm256_setzero_si256();
+  const __m256i rampStart = _mm256_set1_epi32(std::max(0, saturation - kSaturationRamp));
+  const __m256i thresholdBytes = _mm256_set1_epi8(static_cast<char>(threshold));
+  // The packs work within 128-bit lanes: they leave the groups of 4 pixels in the order 0 2 4 6 1 3 5 7.
+  const __m256i groups = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+  int j = 0;
+  for (; j + 32 <= n; j += 32) {
+    const __m256i *in = reinterpret_cast<const __m256i *>(rgba + 4 * j);
+    const __m256i a0 = _mm256_loadu_si256(in), a1 = _mm256_loadu_si256(in + 1), a2 = _mm256_loadu_si256(in + 2),
+                  a3 = _mm256_loadu_si256(in + 3);
+    const __m256i redMax = _mm256_and_si256(_mm256_max_epu8(_mm256_max_epu8(a0, a1), _mm256_max_epu8(a2, a3)), low8);
+    if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_subs_epu8(redMax, rampStart), zero)) != -1) {
+      scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k); // a red above the ramp start: 16-bit arithmetic
+      scoreBlock(rgba + 4 * (j + 16), score + j + 16, flags + (j >> 4) + 1, k);
+      continue;
+    }
+    const __m256i packed = _mm256_packus_epi16(_mm256_packs_epi32(dominance8(a0, low8), dominance8(a1, low8)),
+                                               _mm256_packs_epi32(dominance8(a2, low8), dominance8(a3, low8)));
+    const __m256i s = _mm256_permutevar8x32_epi32(packed, groups);
+    _mm256_storeu_si256(reinterpret_cast<__m256i *>(score + j), s);
+    const unsigned int reached =
+        static_cast<unsigned int>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_max_epu8(s, thresholdBytes), s)));
+    flags[j >> 4] = (reached & 0xFFFFu) ? 0xFF : 0;
+    flags[(j >> 4) + 1] = (reached >> 16) ? 0xFF : 0;
+  }
+  for (; j + 16 <= n; j += 16)
+    scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k);
+  scoreSpanScalar(rgba, score, j, n, saturation, threshold, flags);
+}
+#endif
+#endif
+
+// scoreSpanScalar() with the instruction set \e instructions (one the processor has).
+void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
+               unsigned char *flags, vpLaserConicDetector::vpInstructionSet instructions)
+{
+#if defined(__SSE2__)
+#if VSP_DETECTOR_AVX2
+  if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2) {
+    scoreSpanAvx2(rgba, score, n, saturation, threshold, flags);
+    return;
+  }
+#endif
+  if (instructions != vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
+    scoreSpanSse2(rgba, score, n, saturation, threshold, flags);
+    return;
+  }
+#endif
+  (void)instructions;
+  scoreSpanScalar(rgba, score, 0, n, saturation, threshold, flags);
 }
 
 // Robust noise of the unclipped score r - max(g, b): 1.4826 MAD / sqrt(2) of its differences two pixels
@@ -106,13 +211,25 @@ void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int satur
 double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region)
 {
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
-  std::vector<uint32_t> histogram(511, 0);
+  // Four histograms filled in turn, added at the end: most samples fall in a few bins, and consecutive
+  // increments of one counter would wait for each other.
+  std::vector<uint32_t> histograms(4 * 511, 0);
   uint64_t count = 0;
   auto sampleSpan = [&](const unsigned char *row, int j0, int j1) {
-    for (int j = j0; j + 2 <= j1; j += 4) {
+    auto bin = [row](int j) {
       const unsigned char *p = row + 4 * j, *q = p + 8;
-      const int a = p[0] - std::max(p[1], p[2]), b = q[0] - std::max(q[1], q[2]);
-      ++histogram[std::abs(a - b)];
+      return std::abs(p[0] - std::max(p[1], p[2]) - (q[0] - std::max(q[1], q[2])));
+    };
+    int j = j0;
+    for (; j + 14 <= j1; j += 16) {
+      ++histograms[bin(j)];
+      ++histograms[511 + bin(j + 4)];
+      ++histograms[2 * 511 + bin(j + 8)];
+      ++histograms[3 * 511 + bin(j + 12)];
+      count += 4;
+    }
+    for (; j + 2 <= j1; j += 4) {
+      ++histograms[bin(j)];
       ++count;
     }
   };
@@ -126,6 +243,10 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region)
   }
   if (count == 0)
     return 0.0;
+  std::vector<uint32_t> histogram(histograms.begin(), histograms.begin() + 511);
+  for (int h = 1; h < 4; ++h)
+    for (size_t k = 0; k < histogram.size(); ++k)
+      histogram[k] += histograms[h * 511 + k];
   // Median of the absolute differences, interpolated inside its bin.
   const double half = 0.5 * count;
   uint64_t below = 0;
@@ -168,17 +289,15 @@ inline int candidates16(const unsigned char *v, const unsigned char *far0, const
                         const unsigned char *near0, const unsigned char *near1, const unsigned char *before,
                         const unsigned char *after, __m128i threshold, __m128i halfThreshold)
 {
+  // No early exit: the blocks tested are those with a score reaching the threshold (see scoreSpan()), and
+  // on a colourful floor whether one of their pixels passes a first test is a coin toss for the processor,
+  // dearer to guess wrong than the remaining loads and comparisons.
   const __m128i x = load16(v), zero = _mm_setzero_si128();
-  // Most blocks of a frame have no score reaching the threshold: one test skips the other loads.
-  if (_mm_movemask_epi8(atLeast(x, zero, threshold)) == 0)
-    return 0;
   const __m128i saturated = _mm_cmpeq_epi8(x, _mm_set1_epi8(static_cast<char>(0xFF))); // a plateau of 255 may be wide
   const __m128i n0 = load16(near0), n1 = load16(near1);
   // The inside of a red floor patch reaches the threshold but not its own level at d / 2 + 1 pixels plus
-  // half the threshold: on a colourful floor this test alone ends most of the blocks that pass the first.
+  // half the threshold.
   const __m128i nearTest = _mm_or_si128(saturated, atLeast(x, _mm_max_epu8(n0, n1), halfThreshold));
-  if (_mm_movemask_epi8(nearTest) == 0)
-    return 0;
   const __m128i bg = _mm_max_epu8(_mm_min_epu8(load16(far0), n0), _mm_min_epu8(load16(far1), n1));
   const __m128i high = _mm_and_si128(atLeast(x, bg, threshold), nearTest);
   const __m128i notAbove = _mm_cmpeq_epi8(_mm_subs_epu8(x, load16(before)), zero);
@@ -187,52 +306,57 @@ inline int candidates16(const unsigned char *v, const unsigned char *far0, const
 }
 #endif
 
+#if VSP_DETECTOR_AVX2
+__attribute__((target("avx2"))) inline __m256i load32(const unsigned char *p)
+{
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i *>(p));
+}
+
+// atLeast() on 32 bytes.
+__attribute__((target("avx2"))) inline __m256i atLeast32(__m256i v, __m256i b, __m256i t)
+{
+  const __m256i excess = _mm256_subs_epu8(v, b);
+  return _mm256_cmpeq_epi8(_mm256_max_epu8(excess, t), excess);
+}
+
+// candidates16() on 32 consecutive pixels (AVX2): bit k of the result for pixel k.
+__attribute__((target("avx2"))) inline unsigned int
+candidates32(const unsigned char *v, const unsigned char *far0, const unsigned char *far1, const unsigned char *near0,
+             const unsigned char *near1, const unsigned char *before, const unsigned char *after, __m256i threshold,
+             __m256i halfThreshold)
+{
+  const __m256i x = load32(v), zero = _mm256_setzero_si256();
+  const __m256i saturated = _mm256_cmpeq_epi8(x, _mm256_set1_epi8(static_cast<char>(0xFF)));
+  const __m256i n0 = load32(near0), n1 = load32(near1);
+  const __m256i nearTest = _mm256_or_si256(saturated, atLeast32(x, _mm256_max_epu8(n0, n1), halfThreshold));
+  const __m256i bg = _mm256_max_epu8(_mm256_min_epu8(load32(far0), n0), _mm256_min_epu8(load32(far1), n1));
+  const __m256i high = _mm256_and_si256(atLeast32(x, bg, threshold), nearTest);
+  const __m256i notAbove = _mm256_cmpeq_epi8(_mm256_subs_epu8(x, load32(before)), zero);
+  const __m256i notBelow = _mm256_cmpeq_epi8(_mm256_subs_epu8(load32(after), x), zero);
+  return static_cast<unsigned int>(_mm256_movemask_epi8(_mm256_andnot_si256(notAbove, _mm256_and_si256(high, notBelow))));
+}
+
+// The blocks of 16 columns b, b + 1 (b + 1 <= last) of a row flags: whether one of them has a score reaching
+// the threshold.
+inline bool pairFlagged(const unsigned char *flags, int b, int last)
+{
+  return flags[b] || (b + 1 <= last && flags[b + 1]);
+}
+
+#endif
+
 // Score at offset k along a line of n pixels from position j (0 beyond the ends).
 inline int scoreAt(const unsigned char *line, ptrdiff_t stride, int j, int k, int n)
 {
   return j + k >= 0 && j + k < n ? line[(j + k) * stride] : 0;
 }
 
-// Candidate peaks along row i within [j0, j1] (near the image border one background side only). Only the
-// flagged blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()).
-void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, int i, int j0, int j1, int d,
-                   int threshold, std::vector<Candidate> &out)
+// Candidate peaks of the row \e row (W pixels, index i) within [j0, j1], a subrange of [1, W - 2], pixel
+// by pixel (see rowCandidates()).
+void rowCandidatesScalar(const unsigned char *row, const unsigned char *flags, int W, int i, int j0, int j1, int d,
+                         int threshold, std::vector<Candidate> &out)
 {
-  j0 = std::max(j0, 1);
-  j1 = std::min(j1, W - 2);
-  if (j0 > j1)
-    return;
-  const unsigned char *row = c + static_cast<size_t>(i) * W;
   const int dn = d / 2 + 1, half = (threshold + 1) / 2;
-#if defined(__SSE2__)
-  const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
-  // A block whose samples leave the row (near the image border) or that the range cuts is tested on a copy
-  // of its surroundings padded with zeros: the score beyond the ends counts as 0 (see scoreAt()).
-  unsigned char padded[16 + 2 * 101];
-  for (int b = j0 >> 4; b <= j1 >> 4; ++b) {
-    if (!flags[b])
-      continue;
-    const int k = 16 * b;
-    int bits;
-    if (k >= d && k + 15 + d < W)
-      bits = candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
-    else {
-      const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
-      std::memset(padded, 0, sizeof(padded));
-      const int first = std::max(0, from);
-      std::memcpy(padded + (first - from), row + first, static_cast<size_t>(to - first + 1));
-      const unsigned char *x = padded + d + 1;
-      bits = candidates16(x, x - d, x + d, x - dn, x + dn, x - 1, x + 1, t, th);
-    }
-    // Only the pixels of [j0, j1].
-    if (k < j0)
-      bits &= static_cast<int>(~0u << (j0 - k));
-    if (k + 15 > j1)
-      bits &= (1 << (j1 - k + 1)) - 1;
-    for (; bits; bits &= bits - 1)
-      out.push_back(Candidate{i, k + __builtin_ctz(bits)});
-  }
-#else
   for (int j = j0; j <= j1; ++j) {
     if (!flags[j >> 4])
       continue;
@@ -242,14 +366,150 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
     if (isCandidate(row[j], bg, near, row[j - 1], row[j + 1], threshold, half))
       out.push_back(Candidate{i, j});
   }
+}
+
+#if defined(__SSE2__)
+// candidates16() on the block of 16 pixels of a row (W pixels) from column k; a block whose samples leave
+// the row (near the image border) is tested on a copy of its surroundings padded with zeros: the score beyond
+// the ends counts as 0 (see scoreAt()).
+class RowBlockTest
+{
+public:
+  RowBlockTest(int d, int threshold)
+    : m_d(d), m_dn(d / 2 + 1), m_t(_mm_set1_epi8(static_cast<char>(threshold))),
+      m_th(_mm_set1_epi8(static_cast<char>((threshold + 1) / 2)))
+  {
+  }
+  int operator()(const unsigned char *row, int W, int k) const
+  {
+    const int d = m_d, dn = m_dn;
+    if (k >= d && k + 15 + d < W)
+      return candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, m_t, m_th);
+    unsigned char padded[16 + 2 * 101];
+    const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
+    std::memset(padded, 0, sizeof(padded));
+    const int first = std::max(0, from), count = to - first + 1;
+    std::memcpy(padded + (first - from), row + first, static_cast<size_t>(count));
+    const unsigned char *x = padded + d + 1;
+    return candidates16(x, x - d, x + d, x - dn, x + dn, x - 1, x + 1, m_t, m_th);
+  }
+
+private:
+  int m_d, m_dn;
+  __m128i m_t, m_th;
+};
+
+#if VSP_DETECTOR_AVX2
+// The SSE2 loop of rowCandidates() 32 pixels at a time (AVX2) where the samples stay in the row, block by
+// block near its ends. Pixels of an unflagged block of a pair are never candidates (no score reaches the
+// threshold there): testing the pair as one changes nothing.
+__attribute__((target("avx2"))) void rowCandidatesAvx2(const unsigned char *row, const unsigned char *flags, int W,
+                                                       int i, int j0, int j1, int d, int threshold,
+                                                       std::vector<Candidate> &out)
+{
+  const int dn = d / 2 + 1, last = j1 >> 4;
+  const RowBlockTest test(d, threshold);
+  const __m256i t = _mm256_set1_epi8(static_cast<char>(threshold)),
+                th = _mm256_set1_epi8(static_cast<char>((threshold + 1) / 2));
+  for (int b = j0 >> 4; b <= last; b += 2) {
+    if (!pairFlagged(flags, b, last))
+      continue;
+    const int k = 16 * b;
+    unsigned int bits;
+    if (k >= d && k + 31 + d < W)
+      bits = candidates32(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
+    else
+      bits = (flags[b] ? static_cast<unsigned int>(test(row, W, k)) : 0u) |
+             (b + 1 <= last && flags[b + 1] ? static_cast<unsigned int>(test(row, W, k + 16)) << 16 : 0u);
+    // Only the pixels of [j0, j1].
+    if (k < j0)
+      bits &= ~0u << (j0 - k);
+    if (k + 31 > j1)
+      bits &= (1u << (j1 - k + 1)) - 1u;
+    for (; bits; bits &= bits - 1)
+      out.push_back(Candidate{i, k + __builtin_ctz(bits)});
+  }
+}
+#endif
+#endif
+
+// Candidate peaks along row i within [j0, j1] (near the image border one background side only). Only the
+// flagged blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()).
+void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, int i, int j0, int j1, int d,
+                   int threshold, vpLaserConicDetector::vpInstructionSet instructions, std::vector<Candidate> &out)
+{
+  j0 = std::max(j0, 1);
+  j1 = std::min(j1, W - 2);
+  if (j0 > j1)
+    return;
+  const unsigned char *row = c + static_cast<size_t>(i) * W;
+  if (instructions == vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
+    rowCandidatesScalar(row, flags, W, i, j0, j1, d, threshold, out);
+    return;
+  }
+#if defined(__SSE2__)
+#if VSP_DETECTOR_AVX2
+  if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2) {
+    rowCandidatesAvx2(row, flags, W, i, j0, j1, d, threshold, out);
+    return;
+  }
+#endif
+  const RowBlockTest test(d, threshold);
+  for (int b = j0 >> 4; b <= j1 >> 4; ++b) {
+    if (!flags[b])
+      continue;
+    const int k = 16 * b;
+    int bits = test(row, W, k);
+    // Only the pixels of [j0, j1].
+    if (k < j0)
+      bits &= static_cast<int>(~0u << (j0 - k));
+    if (k + 15 > j1)
+      bits &= (1 << (j1 - k + 1)) - 1;
+    for (; bits; bits &= bits - 1)
+      out.push_back(Candidate{i, k + __builtin_ctz(bits)});
+  }
+#else
+  rowCandidatesScalar(row, flags, W, i, j0, j1, d, threshold, out);
 #endif
 }
+
+#if VSP_DETECTOR_AVX2
+// The whole blocks [firstBlock, lastBlock] of the column pass of columnCandidates(), two at a time (AVX2):
+// row, up, down, nearUp, nearDown: row i and the rows d and d / 2 + 1 away (or zeros beyond the image).
+__attribute__((target("avx2"))) void columnBlocksAvx2(const unsigned char *row, const unsigned char *up,
+                                                      const unsigned char *down, const unsigned char *nearUp,
+                                                      const unsigned char *nearDown, ptrdiff_t stride,
+                                                      const unsigned char *flags, int firstBlock, int lastBlock,
+                                                      int threshold, int step, int i, std::vector<Candidate> &out)
+{
+  const __m256i t = _mm256_set1_epi8(static_cast<char>(threshold)),
+                th = _mm256_set1_epi8(static_cast<char>((threshold + 1) / 2));
+  const __m128i t16 = _mm_set1_epi8(static_cast<char>(threshold)),
+                th16 = _mm_set1_epi8(static_cast<char>((threshold + 1) / 2));
+  for (int b = firstBlock; b <= lastBlock; b += 2) {
+    if (!pairFlagged(flags, b, lastBlock))
+      continue;
+    const int k = 16 * b;
+    unsigned int bits =
+        b + 1 <= lastBlock
+            ? candidates32(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th)
+            : static_cast<unsigned int>(candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k,
+                                                     row + k - stride, row + k + stride, t16, th16));
+    for (; bits; bits &= bits - 1) {
+      const int jj = k + __builtin_ctz(bits);
+      if (jj % step == 0)
+        out.push_back(Candidate{jj, i});
+    }
+  }
+}
+#endif
 
 // Candidate peaks along the columns (every step-th column) at row i within [j0, j1]. Only the flagged
 // blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()). \e zeros: a row of W
 // zero scores, standing for the rows beyond the image border (the score there counts as 0).
 void columnCandidates(const unsigned char *c, const unsigned char *flags, const unsigned char *zeros, int W, int H,
-                      int i, int j0, int j1, int d, int threshold, int step, std::vector<Candidate> &out)
+                      int i, int j0, int j1, int d, int threshold, int step,
+                      vpLaserConicDetector::vpInstructionSet instructions, std::vector<Candidate> &out)
 {
   if (i < 1 || i > H - 2)
     return;
@@ -272,26 +532,31 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
 #if defined(__SSE2__)
   // Whole blocks of 16 columns inside [j0, j1], 16 pixels at once.
   const int firstBlock = (j0 + 15) >> 4, lastBlock = (j1 - 15) >> 4;
-  if (firstBlock <= lastBlock) {
+  if (firstBlock <= lastBlock && instructions != vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
     const __m128i t = _mm_set1_epi8(static_cast<char>(threshold)), th = _mm_set1_epi8(static_cast<char>(half));
     auto rowAt = [&](int r) { return r >= 0 && r < H ? c + static_cast<size_t>(r) * W : zeros; };
     const unsigned char *up = rowAt(i - d), *down = rowAt(i + d), *nearUp = rowAt(i - dn), *nearDown = rowAt(i + dn);
     scalar(j0, 16 * firstBlock - 1);
-    for (int b = firstBlock; b <= lastBlock; ++b) {
-      if (!flags[b])
-        continue;
-      const int k = 16 * b;
-      int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
-      for (; bits; bits &= bits - 1) {
-        const int jj = k + __builtin_ctz(bits);
-        if (jj % step == 0)
-          out.push_back(Candidate{jj, i});
+#if VSP_DETECTOR_AVX2
+    if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2)
+      columnBlocksAvx2(row, up, down, nearUp, nearDown, stride, flags, firstBlock, lastBlock, threshold, step, i, out);
+    else
+#endif
+      for (int b = firstBlock; b <= lastBlock; ++b) {
+        if (!flags[b])
+          continue;
+        const int k = 16 * b;
+        int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
+        for (; bits; bits &= bits - 1) {
+          const int jj = k + __builtin_ctz(bits);
+          if (jj % step == 0)
+            out.push_back(Candidate{jj, i});
+        }
       }
-    }
     j = 16 * (lastBlock + 1);
   }
 #endif
-  (void)zeros;
+  (void)zeros, (void)instructions;
   scalar(j, j1);
 }
 
@@ -330,10 +595,10 @@ struct Run
 {
   int length, maxScore;
 };
-// (di, dj) is (1, 0) or (0, 1). The scores are integers: v > level is v > floor(level).
-Run runThrough(const unsigned char *score, int W, int H, int i, int j, int di, int dj, double level, int limit)
+// (di, dj) is (1, 0) or (0, 1); \e above: the integer part of the level (the scores are integers: v > level
+// is v > floor(level)).
+Run runThrough(const unsigned char *score, int W, int H, int i, int j, int di, int dj, int above, int limit)
 {
-  const int above = static_cast<int>(std::floor(level));
   const unsigned char *centre = score + static_cast<size_t>(i) * W + j;
   const ptrdiff_t stride = static_cast<ptrdiff_t>(di) * W + dj;
   const int before = std::min(limit, di ? i : j), after = std::min(limit, di ? H - 1 - i : W - 1 - j);
@@ -370,8 +635,7 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
   if (contrast < threshold)
     return IGNORED;
   // Half-maximum run.
-  const double half = bg + 0.5 * contrast;
-  const int aboveHalf = static_cast<int>(std::floor(half)); // integer scores: s > half is s > floor(half)
+  const int aboveHalf = bg + contrast / 2; // floor(half): integer scores, s > half is s > floor(half)
   int a = p, b = p;
   while (a - 1 >= 0 && s.at(a - 1) > aboveHalf && p - a <= d)
     --a;
@@ -403,7 +667,7 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
   }
   // The other scan direction crosses the stripe more steeply here: it measures this part of the curve.
   const int i = s.alongRow ? s.line : p, j = s.alongRow ? p : s.line;
-  const Run across = runThrough(s.score, s.W, s.H, i, j, s.alongRow ? 1 : 0, s.alongRow ? 0 : 1, half, d + 1);
+  const Run across = runThrough(s.score, s.W, s.H, i, j, s.alongRow ? 1 : 0, s.alongRow ? 0 : 1, aboveHalf, d + 1);
   if (across.length < b - a + 1)
     return IGNORED;
   // A line grazing the edge of a stripe (nearly tangent to it) runs inside the stripe's flank: its contrast
@@ -415,7 +679,7 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
     return IGNORED;
   // Centroid of the score above a quarter of the contrast, over the connected part around the peak.
   const double level = bg + 0.25 * contrast;
-  const int aboveLevel = static_cast<int>(std::floor(level));
+  const int aboveLevel = bg + contrast / 4; // floor(level)
   int lo = a, hi = b;
   while (lo - 1 >= 0 && s.at(lo - 1) > aboveLevel && p - lo < d - 1)
     --lo;
@@ -450,51 +714,77 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
 {
   const std::vector<Crossing> &crossings = work.crossings;
   const int n = static_cast<int>(crossings.size());
-  std::vector<bool> &keep = work.keep;
-  keep.assign(n, true);
+  std::vector<unsigned char> &keep = work.keep;
+  keep.assign(n, 1);
   if (minLength <= 0.0 || n == 0)
     return;
-  // Grid of cells of side >= link (4 px at least: a small grid) with a list of crossings per cell: the
-  // neighbours are in the 3 x 3 cells around, each pair seen once from its first cell in scan order (the
-  // cell itself with the later crossings, and the 4 cells after it). The grid (cellHead) stays allocated and
-  // all -1 between frames: only the cells used are reset afterwards, so the cost follows the crossings,
-  // not the image size.
-  const double side = std::max(4.0, link);
-  const int columns = static_cast<int>(W / side) + 3, rows = static_cast<int>(H / side) + 3;
-  std::vector<int> &head = work.cellHead, &next = work.next, &cellOf = work.cellOf, &parent = work.parent;
-  if (head.size() != static_cast<size_t>(columns) * rows)
-    head.assign(static_cast<size_t>(columns) * rows, -1);
-  next.resize(n);
-  cellOf.resize(n);
-  for (int k = n - 1; k >= 0; --k) { // lists in increasing index order
-    const int cx = static_cast<int>(crossings[k].point.get_u() / side) + 1;
-    const int cy = static_cast<int>(crossings[k].point.get_v() / side) + 1;
-    cellOf[k] = std::min(rows - 2, std::max(1, cy)) * columns + std::min(columns - 2, std::max(1, cx));
-    next[k] = head[cellOf[k]];
-    head[cellOf[k]] = k;
+  // The crossings sorted by bands of rows at least `link` high, each band by column (two counting sorts,
+  // by column then by band: no comparison whose outcome the processor must guess): the neighbours of a
+  // crossing lie after it in its band or in the next band, within ceil(link) columns, each pair seen once,
+  // found by a window sliding along the columns. The buffers have the size of the crossings and of the
+  // image's width and height: nothing to reset between frames, and little memory to bring to cache (a grid
+  // of cells over the image is touched at random).
+  std::vector<int> &bandStart = work.bandStart, &order = work.order, &parent = work.parent, &cursor = work.cursor;
+  std::vector<int> &bandOf = work.bandOf, &columnOf = work.columnOf, &byColumn = work.byColumn;
+  std::vector<double> &u = work.sortedU, &v = work.sortedV;
+  std::vector<int> &column = work.sortedColumn;
+  // Bands of 2^shift >= max(4, link) rows: the band of a crossing is the integer part of v shifted.
+  int shift = 2;
+  while ((1 << shift) < link)
+    ++shift;
+  const int bands = (H >> shift) + 1;
+  bandOf.resize(n);
+  columnOf.resize(n);
+  bandStart.assign(static_cast<size_t>(bands) + 1, 0);
+  cursor.assign(static_cast<size_t>(W) + 1, 0); // first the column counts
+  for (int k = 0; k < n; ++k) {
+    const vpImagePoint &p = crossings[k].point;
+    bandOf[k] = std::min(H - 1, std::max(0, static_cast<int>(p.get_v()))) >> shift;
+    columnOf[k] = std::min(W - 1, std::max(0, static_cast<int>(p.get_u())));
+    ++bandStart[static_cast<size_t>(bandOf[k]) + 1];
+    ++cursor[static_cast<size_t>(columnOf[k]) + 1];
+  }
+  std::partial_sum(bandStart.begin(), bandStart.end(), bandStart.begin());
+  std::partial_sum(cursor.begin(), cursor.end(), cursor.begin());
+  byColumn.resize(n);
+  for (int k = 0; k < n; ++k)
+    byColumn[cursor[columnOf[k]]++] = k;
+  cursor.assign(bandStart.begin(), bandStart.end() - 1); // the next free place of each band
+  order.resize(n);
+  for (int k : byColumn)
+    order[cursor[bandOf[k]]++] = k;
+  u.resize(n);
+  v.resize(n);
+  column.resize(n);
+  for (int pos = 0; pos < n; ++pos) {
+    u[pos] = crossings[order[pos]].point.get_u();
+    v[pos] = crossings[order[pos]].point.get_v();
+    column[pos] = columnOf[order[pos]];
   }
   parent.resize(n);
   std::iota(parent.begin(), parent.end(), 0);
   const double link2 = link * link;
-  const int after[4] = {1, columns - 1, columns, columns + 1};
-  auto join = [&](int k, int q) {
-    const double du = crossings[k].point.get_u() - crossings[q].point.get_u();
-    const double dv = crossings[k].point.get_v() - crossings[q].point.get_v();
+  const int reach = static_cast<int>(std::ceil(link)); // |du| <= link: the columns differ by ceil(link) at most
+  auto join = [&](int a, int b) {
+    const double du = u[a] - u[b], dv = v[a] - v[b];
     if (du * du + dv * dv <= link2) {
-      const int ra = root(parent, k), rb = root(parent, q);
+      const int ra = root(parent, a), rb = root(parent, b);
       if (ra != rb)
         parent[ra] = rb;
     }
   };
-  for (int k = 0; k < n; ++k) {
-    for (int q = next[k]; q >= 0; q = next[q])
-      join(k, q);
-    for (int offset : after)
-      for (int q = head[cellOf[k] + offset]; q >= 0; q = next[q])
-        join(k, q);
+  for (int band = 0; band < bands; ++band) {
+    const int end = bandStart[band + 1], nextEnd = band + 1 < bands ? bandStart[band + 2] : end;
+    int next = end; // first crossing of the next band not left of the window
+    for (int a = bandStart[band]; a < end; ++a) {
+      for (int b = a + 1; b < end && column[b] <= column[a] + reach; ++b)
+        join(a, b);
+      while (next < nextEnd && column[next] < column[a] - reach)
+        ++next;
+      for (int b = next; b < nextEnd && column[b] <= column[a] + reach; ++b)
+        join(a, b);
+    }
   }
-  for (int k = 0; k < n; ++k)
-    head[cellOf[k]] = -1;
   // Extent of each chain: bounding-box diagonal.
   work.minU.assign(n, 1e30);
   work.maxU.assign(n, -1e30);
@@ -503,17 +793,16 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
   for (int k = 0; k < n; ++k) {
     parent[k] = root(parent, k);
     const int r = parent[k];
-    const vpImagePoint &p = crossings[k].point;
-    work.minU[r] = std::min(work.minU[r], p.get_u());
-    work.maxU[r] = std::max(work.maxU[r], p.get_u());
-    work.minV[r] = std::min(work.minV[r], p.get_v());
-    work.maxV[r] = std::max(work.maxV[r], p.get_v());
+    work.minU[r] = std::min(work.minU[r], u[k]);
+    work.maxU[r] = std::max(work.maxU[r], u[k]);
+    work.minV[r] = std::min(work.minV[r], v[k]);
+    work.maxV[r] = std::max(work.maxV[r], v[k]);
   }
   const double min2 = minLength * minLength;
   for (int k = 0; k < n; ++k) {
     const int r = parent[k];
     const double du = work.maxU[r] - work.minU[r], dv = work.maxV[r] - work.minV[r];
-    keep[k] = du * du + dv * dv >= min2;
+    keep[order[k]] = du * du + dv * dv >= min2;
   }
 }
 } // namespace
@@ -524,6 +813,8 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
 {
   std::vector<vpImagePoint> points;
   runs.clear();
+  work.crossings.clear();
+  work.keep.clear();
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
   if (H == 0 || W == 0)
     return points;
@@ -553,11 +844,12 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   auto searchColumns = [&](int r) {
     const unsigned char *rowFlags = flags + static_cast<size_t>(r) * flagStride;
     if (searchRegion == nullptr)
-      columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, 0, W - 1, d, threshold, step, columnPeaks);
+      columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, 0, W - 1, d, threshold, step,
+                       settings.instructions, columnPeaks);
     else
       for (const Span *span = searchRegion->begin(r); span != searchRegion->end(r); ++span)
         columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, span->first, span->second, d, threshold,
-                         step, columnPeaks);
+                         step, settings.instructions, columnPeaks);
   };
   std::vector<Crossing> &crossings = work.crossings;
   crossings.clear();
@@ -593,17 +885,18 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     const size_t offset = static_cast<size_t>(i) * W;
     unsigned char *rowFlags = work.blockFlags.data() + static_cast<size_t>(i) * flagStride;
     if (scoreRegion == nullptr) {
-      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation, threshold, rowFlags);
+      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation, threshold, rowFlags, settings.instructions);
       if (i % step == 0)
-        rowCandidates(score.data(), rowFlags, W, i, 0, W - 1, d, threshold, rowPeaks);
+        rowCandidates(score.data(), rowFlags, W, i, 0, W - 1, d, threshold, settings.instructions, rowPeaks);
     } else {
       // The spans start at multiples of 16 columns (see RegionSpans): the blocks of the flags.
       for (const Span *span = scoreRegion->begin(i); span != scoreRegion->end(i); ++span)
         scoreSpan(rgba + 4 * (offset + span->first), &score[offset + span->first], span->second - span->first + 1,
-                  settings.saturation, threshold, rowFlags + (span->first >> 4));
+                  settings.saturation, threshold, rowFlags + (span->first >> 4), settings.instructions);
       if (i % step == 0)
         for (const Span *span = searchRegion->begin(i); span != searchRegion->end(i); ++span)
-          rowCandidates(score.data(), rowFlags, W, i, span->first, span->second, d, threshold, rowPeaks);
+          rowCandidates(score.data(), rowFlags, W, i, span->first, span->second, d, threshold, settings.instructions,
+                        rowPeaks);
     }
     if (i - d >= 0)
       searchColumns(i - d);
@@ -615,29 +908,33 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
 
   // 3. Continuity: drop the short chains.
   longChains(work, W, H, 2.0 * step + 0.5, settings.minSegment);
-  points.reserve(crossings.size());
-  for (size_t k = 0; k < crossings.size(); ++k) {
-    const Crossing &c = crossings[k];
-    runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, work.keep[k]});
+  // The runs of the crossings stay in the workspace for the mask (see drawRuns()).
+  points.reserve(static_cast<size_t>(std::count(work.keep.begin(), work.keep.end(), 1)));
+  for (size_t k = 0; k < crossings.size(); ++k)
     if (work.keep[k])
-      points.push_back(c.point);
-  }
+      points.push_back(crossings[k].point);
   return points;
 }
 } // namespace vpLaserDetector
 
 namespace vpLaserDetector
 {
-void drawRuns(const std::vector<StripeRun> &runs, unsigned int H, unsigned int W, vpImage<unsigned char> &mask)
+void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
+              vpImage<unsigned char> &mask)
 {
   mask.resize(H, W, 0);
-  for (const StripeRun &r : runs) {
-    const unsigned char value = r.accepted ? 255 : 100;
-    for (int k = r.first; k <= r.last; ++k) {
-      unsigned char &m = r.alongRow ? mask[static_cast<unsigned int>(r.line)][static_cast<unsigned int>(k)]
-                                    : mask[static_cast<unsigned int>(k)][static_cast<unsigned int>(r.line)];
+  auto draw = [&mask](bool alongRow, int line, int first, int last, unsigned char value) {
+    for (int k = first; k <= last; ++k) {
+      unsigned char &m = alongRow ? mask[static_cast<unsigned int>(line)][static_cast<unsigned int>(k)]
+                                  : mask[static_cast<unsigned int>(k)][static_cast<unsigned int>(line)];
       m = std::max(m, value);
     }
+  };
+  for (const StripeRun &r : runs)
+    draw(r.alongRow, r.line, r.first, r.last, r.accepted ? 255 : 100);
+  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k) {
+    const Crossing &c = work.crossings[k];
+    draw(c.alongRow, c.line, c.first, c.last, work.keep[k] ? 255 : 100);
   }
 }
 } // namespace vpLaserDetector

@@ -41,7 +41,7 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
 
 vpLaserConicDetector::vpLaserConicDetector()
   : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
-    m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
+    m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_instructions(INSTRUCTIONS_BEST), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
     m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(), m_maskDirty(false), m_height(0), m_width(0),
     m_threshold(0.0), m_noise(0.0), m_work(), m_runs()
 {
@@ -49,13 +49,22 @@ vpLaserConicDetector::vpLaserConicDetector()
 
 vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vpLaserDetector::RidgeWorkspace) {}
 
-vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &) : m_work(new vpLaserDetector::RidgeWorkspace) {}
+vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &other) : m_work(new vpLaserDetector::RidgeWorkspace)
+{
+  // The last detection's crossings are state (the mask is drawn from them); the buffers are not.
+  m_work->crossings = other.m_work->crossings;
+  m_work->keep = other.m_work->keep;
+}
 
-vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(const vpWorkspace &)
+vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(const vpWorkspace &other)
 {
   // The buffers are not state: each detector keeps its own. The rasterised region belongs to the settings
-  // being replaced, whatever its generation number says.
-  m_work->regionValid = false;
+  // being replaced, whatever its generation number says. The last detection's crossings are state.
+  if (this != &other) {
+    m_work->regionValid = false;
+    m_work->crossings = other.m_work->crossings;
+    m_work->keep = other.m_work->keep;
+  }
   return *this;
 }
 
@@ -96,6 +105,26 @@ void vpLaserConicDetector::setSamplingStep(unsigned int step)
 {
   check(step > 0, "the sampling step must be positive");
   m_step = step;
+}
+
+vpLaserConicDetector::vpInstructionSet vpLaserConicDetector::getBestInstructionSet()
+{
+#if defined(__SSE2__)
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2)
+    return INSTRUCTIONS_AVX2;
+#endif
+  return INSTRUCTIONS_SSE2;
+#else
+  return INSTRUCTIONS_SCALAR;
+#endif
+}
+
+vpLaserConicDetector::vpInstructionSet vpLaserConicDetector::getInstructionSetUsed() const
+{
+  const vpInstructionSet best = getBestInstructionSet();
+  return m_instructions == INSTRUCTIONS_BEST || m_instructions > best ? best : m_instructions;
 }
 
 void vpLaserConicDetector::setHueRange(int maxHueLow, int minHueHigh)
@@ -169,7 +198,7 @@ namespace
 void rasterise(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W,
                vpLaserDetector::RegionSpans &out)
 {
-  const int blockW = 16, blockH = out.bandHeight, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
+  const int blockW = 16, blockH = vpLaserDetector::RegionSpans::bandHeight, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
   std::vector<unsigned char> marked(static_cast<size_t>(nbX) * nbY, 0);
   // One point per cell of a quarter of the margin marks its square: more points in the cell add little
   // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
@@ -225,7 +254,7 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
 const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
 {
   if (m_maskDirty) {
-    vpLaserDetector::drawRuns(m_runs, m_height, m_width, m_mask);
+    vpLaserDetector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask);
     m_maskDirty = false;
   }
   return m_mask;
@@ -246,7 +275,7 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   }
   const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
                                                     static_cast<int>(m_saturationLevel), m_minSegmentLength,
-                                                    static_cast<int>(m_step)};
+                                                    static_cast<int>(m_step), getInstructionSetUsed()};
   vpLaserDetector::RidgeReport report;
   std::vector<vpImagePoint> points;
   vpLaserDetector::RidgeWorkspace &work = m_work.get();

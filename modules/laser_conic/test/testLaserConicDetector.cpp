@@ -141,12 +141,21 @@ TEST(LaserConicDetector, MaskMarksTheStripe)
   sim.render(I);
   vpLaserConicDetector detector;
   const std::vector<vpImagePoint> points = detector.detect(I);
+  // A copy, or a detector assigned from it, before the mask is drawn (on demand, from the last detection).
+  vpLaserConicDetector other = detector, assigned;
+  assigned.detect(vpImage<vpRGBa>(10, 10, vpRGBa(0, 0, 0, 255)));
+  assigned = detector;
   const vpImage<unsigned char> &mask = detector.getMask();
   ASSERT_EQ(mask.getWidth(), kWidth);
   ASSERT_EQ(mask.getHeight(), kHeight);
   for (const vpImagePoint &p : points)
     EXPECT_EQ(mask[static_cast<unsigned int>(std::lround(p.get_i()))][static_cast<unsigned int>(std::lround(p.get_j()))],
               255);
+  for (const vpLaserConicDetector *d : {&other, &assigned}) { // the same mask
+    const vpImage<unsigned char> &copy = d->getMask();
+    ASSERT_EQ(copy.getSize(), mask.getSize());
+    EXPECT_TRUE(std::equal(copy.bitmap, copy.bitmap + copy.getSize(), mask.bitmap));
+  }
 }
 
 TEST(LaserConicDetector, RejectsBlobsAndIgnoresOtherColours)
@@ -375,10 +384,12 @@ TEST(LaserConicDetector, TheHsvDetectorMissesTheDimStripeAndSplitsTheSaturatedOn
   EXPECT_GT(saturated.offTrace, 0.5); // the two red flanks measured apart, each > 2 px off the centre
 }
 
-TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
+namespace
 {
-  // White tiles under a lamp whose reflection is white light without red: the stripe saturates to white
-  // over the tiles, red only at its flanks.
+//! White tiles under a lamp whose reflection is white light without red: the stripe saturates to white over
+//! the tiles, red only at its flanks.
+HardCase whiteTilesCase()
+{
   HardCase c;
   c.name = "white_tiles";
   c.settings.floor = vpLaserConicSimulator::FLOOR_WHITE_TILES;
@@ -390,8 +401,25 @@ TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
   c.settings.laserPower = 500.0;
   c.settings.whiteCore = 0.6;
   c.settings.bloom = 0.04;
+  return c;
+}
+
+//! Colourful mosaic floor (warm patches, some close to the laser's red) under a lamp.
+HardCase mosaicCase()
+{
+  HardCase c;
+  c.name = "mosaic";
+  c.settings.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
+  c.settings.laserPower = 200.0;
+  c.settings.specular = 60.0;
+  return c;
+}
+} // namespace
+
+TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
+{
   vpLaserConicDetector detector;
-  const Quality q = runCase(c, 25, detector);
+  const Quality q = runCase(whiteTilesCase(), 25, detector);
   expectQuality(q, 0.9, 0.5, 0.01);
 }
 
@@ -405,12 +433,7 @@ TEST(LaserConicDetector, StripeOnBrightGreyAndColourfulFloors)
   const Quality g = runCase(grey, 26, detector);
   expectQuality(g, 0.95, 0.3, 0.005);
 
-  HardCase mosaic;
-  mosaic.name = "mosaic";
-  mosaic.settings.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
-  mosaic.settings.laserPower = 200.0;
-  mosaic.settings.specular = 60.0;
-  const Quality m = runCase(mosaic, 27, detector);
+  const Quality m = runCase(mosaicCase(), 27, detector);
   expectQuality(m, 0.9, 0.3, 0.05);
   EXPECT_LT(m.nbPoints, 4000u); // about one point per pixel of trace (~2700 px), not the floor's texture
 }
@@ -536,4 +559,58 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
   EXPECT_THROW(byConic.setSearchRegion(sim.tracePoints(10), 0.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(3, 3, 0.0), 20.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(2, 3, 1.0), 20.0), vpLaserConicException);
+}
+
+TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
+{
+  // The scalar, SSE2 and AVX2 passes compute the same integer scores and tests: the points must be
+  // identical, bit for bit and in the same order, on stripes whose red channel stays below the saturation
+  // ramp (byte arithmetic), saturates (16-bit arithmetic), on white tiles, a colourful floor, in a search
+  // region, and on an image whose width is not a multiple of 16 or 32 (the scalar ends of the rows).
+  const std::vector<HardCase> cases = {dimCase(), saturatedCase(), whiteTilesCase(), mosaicCase()};
+  const vpLaserConicDetector::vpInstructionSet best = vpLaserConicDetector::getBestInstructionSet();
+  std::vector<vpLaserConicDetector::vpInstructionSet> sets = {vpLaserConicDetector::INSTRUCTIONS_SCALAR};
+  for (vpLaserConicDetector::vpInstructionSet set : {vpLaserConicDetector::INSTRUCTIONS_SSE2, vpLaserConicDetector::INSTRUCTIONS_AVX2})
+    if (set <= best)
+      sets.push_back(set);
+  std::cout << "instruction sets compared: " << sets.size() << " (best " << best << ")" << std::endl;
+  unsigned int seed = 50;
+  for (const HardCase &c : cases) {
+    vpLaserConicSimulator sim = makeSimulator(c.cMg, seed++);
+    vpImage<vpRGBa> rendered, odd(kHeight - 3, kWidth - 21);
+    sim.render(rendered, c.settings);
+    for (unsigned int i = 0; i < odd.getHeight(); ++i)
+      for (unsigned int j = 0; j < odd.getWidth(); ++j)
+        odd[i][j] = rendered[i][j];
+    for (const vpImage<vpRGBa> *I : {&rendered, &odd})
+      for (bool region : {false, true}) {
+        std::vector<vpImagePoint> reference;
+        double referenceThreshold = 0.0;
+        for (vpLaserConicDetector::vpInstructionSet set : sets) {
+          vpLaserConicDetector detector;
+          detector.setInstructionSet(set);
+          EXPECT_EQ(detector.getInstructionSetUsed(), set);
+          if (region)
+            detector.setSearchRegion(sim.tracePoints(720), 20.0);
+          const std::vector<vpImagePoint> points = detector.detect(*I);
+          if (set == vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
+            reference = points;
+            referenceThreshold = detector.getThreshold();
+            EXPECT_GT(points.size(), 1000u) << c.name; // a trace was found: the comparison means something
+            continue;
+          }
+          EXPECT_EQ(detector.getThreshold(), referenceThreshold) << c.name;
+          ASSERT_EQ(points.size(), reference.size()) << c.name << " instruction set " << set;
+          for (size_t k = 0; k < points.size(); ++k)
+            ASSERT_TRUE(points[k].get_u() == reference[k].get_u() && points[k].get_v() == reference[k].get_v())
+                << c.name << " instruction set " << set << " point " << k;
+        }
+      }
+  }
+  // An instruction set the processor lacks is replaced by the best one.
+  vpLaserConicDetector detector;
+  EXPECT_EQ(detector.getInstructionSet(), vpLaserConicDetector::INSTRUCTIONS_BEST);
+  EXPECT_EQ(detector.getInstructionSetUsed(), best);
+  detector.setInstructionSet(vpLaserConicDetector::INSTRUCTIONS_AVX2);
+  EXPECT_EQ(detector.getInstructionSetUsed(), std::min(best, vpLaserConicDetector::INSTRUCTIONS_AVX2));
 }

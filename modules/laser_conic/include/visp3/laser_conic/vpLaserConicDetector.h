@@ -95,9 +95,23 @@ public:
   };
 
   /*!
+    Instruction set of the vectorised passes of the ridge method (score, candidate search). Every choice
+    gives the same points; the library is built for any x86-64 processor and picks the AVX2 code at run
+    time when the processor has it.
+  */
+  enum vpInstructionSet
+  {
+    INSTRUCTIONS_SCALAR, //!< plain C++ (reference)
+    INSTRUCTIONS_SSE2,   //!< 16 pixels at a time (every x86-64 processor)
+    INSTRUCTIONS_AVX2,   //!< 32 pixels at a time where it pays (processors with AVX2)
+    INSTRUCTIONS_BEST    //!< the best this processor has (default)
+  };
+
+  /*!
     Detector with the defaults: ridge method, minimum contrast 10 grey levels, noise factor 5, stripes of at
     most 12 pixels, saturation level 250, segments of at least 50 pixels, every row and column, no search
-    region; for the HSV method hue <= 10 or >= 170, saturation >= 80, value >= 80.
+    region, the best instruction set of the processor; for the HSV method hue <= 10 or >= 170, saturation
+    >= 80, value >= 80.
   */
   vpLaserConicDetector();
 
@@ -156,6 +170,18 @@ public:
   unsigned int getSamplingStep() const { return m_step; }
 
   /*!
+    Ridge method: instruction set of the vectorised passes; default INSTRUCTIONS_BEST. One the processor
+    lacks is replaced by the best it has (see getInstructionSetUsed()); the points do not depend on it.
+  */
+  void setInstructionSet(vpInstructionSet instructions) { m_instructions = instructions; }
+  //! Instruction set asked for by setInstructionSet().
+  vpInstructionSet getInstructionSet() const { return m_instructions; }
+  //! Instruction set the detection runs with: the one asked for, or the best of this processor if it lacks it.
+  vpInstructionSet getInstructionSetUsed() const;
+  //! Best instruction set of this processor (and build): INSTRUCTIONS_AVX2, INSTRUCTIONS_SSE2 or INSTRUCTIONS_SCALAR.
+  static vpInstructionSet getBestInstructionSet();
+
+  /*!
     Ridge method: searches only within \e margin pixels of the given points (e.g. the trace or the inliers
     of the previous frame; consecutive points along the curve must be closer than the margin).
     \exception vpLaserConicException::badValueError when the margin is not positive and finite, a point is
@@ -209,10 +235,11 @@ private:
   {
   public:
     vpWorkspace();                                     //!< empty buffers
-    vpWorkspace(const vpWorkspace &other);             //!< empty buffers (nothing is copied)
-    vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region
+    vpWorkspace(const vpWorkspace &other);             //!< empty buffers, the last detection's crossings copied
+    vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region, copies the crossings
     ~vpWorkspace();                                    //!< frees the buffers
     vpLaserDetector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
+    const vpLaserDetector::RidgeWorkspace &get() const { return *m_work; } //!< the buffers (read only)
 
   private:
     std::unique_ptr<vpLaserDetector::RidgeWorkspace> m_work;
@@ -224,6 +251,7 @@ private:
   vpDetectionMethod m_method;
   double m_minContrast, m_noiseFactor, m_minSegmentLength;
   unsigned int m_maxStripeWidth, m_saturationLevel, m_step;
+  vpInstructionSet m_instructions;
   int m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue;
   std::vector<vpImagePoint> m_region; //!< sampled search region (empty: whole image)
   double m_regionMargin;
@@ -232,8 +260,8 @@ private:
   mutable bool m_maskDirty;
   unsigned int m_height, m_width;        //!< size of the last image
   double m_threshold, m_noise;
-  vpWorkspace m_work; //!< score, block flags, candidates, chaining grid and rasterised region of the ridge method
-  std::vector<vpLaserConicDetectorRun> m_runs; //!< stripe runs of the last ridge detection
+  vpWorkspace m_work; //!< score, block flags, candidates, crossings, chaining and rasterised region of the ridge method
+  std::vector<vpLaserConicDetectorRun> m_runs; //!< rejected candidate runs of the last ridge detection (its crossings are in m_work)
 };
 
 #endif
