@@ -20,6 +20,7 @@
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
 #include "laser_geometry.h"
+#include "laser_kernels.h"
 
 namespace vpLaserEstimators
 {
@@ -147,51 +148,21 @@ public:
   }
   /*!
     Inliers among [begin, end), their truncated squared distances added to \e cost and their indices
-    written to \e inliers when not null (see vpRansacLoop()). The inlier test compares the squared
-    algebraic value with the threshold times the squared gradient: no division for the outliers,
-    which most hypotheses mostly see; NaN (no gradient) is never an inlier.
+    written to \e inliers when not null (see vpRansacLoop()): scoreConicChunk() on chunks of 64
+    points (no division for the inlier test, no square root, no branch per point; NaN, i.e. no
+    gradient, is never an inlier).
   */
   int scoreRange(const Model &m, int begin, int end, double thr2, double &cost, int *inliers) const
   {
     const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
-    const double thr2Times4 = 4.0 * thr2;
-    // Three passes per chunk of points. The first only computes, per point, the squared algebraic
-    // value and the squared half gradient: independent iterations over contiguous arrays, which the
-    // compiler vectorises. The second collects the inliers without a branch (inliers of a good
-    // hypothesis are interleaved with outliers at random, so a branch per point would be mispredicted
-    // half of the time): each index is written at the current end of the list, which only advances
-    // for an inlier, and the inliers' values are moved to the front. The third sums the inliers'
-    // squared distances (one division each).
     constexpr int kChunk = 64;
-    alignas(32) double a2s[kChunk], g2s[kChunk];
     int local[kChunk];
     int count = 0;
-    double sum = 0.0;
-    const double *xs = m_x.data(), *ys = m_y.data();
     for (int first = begin; first < end; first += kChunk) {
       const int size = std::min(end - first, kChunk);
-      const double *x = xs + first, *y = ys + first;
-      for (int j = 0; j < size; ++j) {
-        const double v0 = c.a * x[j] + c.b * y[j] + c.d, v1 = c.b * x[j] + c.e * y[j] + c.f;
-        const double algebraic = x[j] * v0 + y[j] * v1 + (c.d * x[j] + c.f * y[j] + c.g);
-        a2s[j] = algebraic * algebraic;
-        g2s[j] = v0 * v0 + v1 * v1;
-      }
-      int *idx = inliers ? inliers + count : local;
-      int k = 0;
-      for (int j = 0; j < size; ++j) {
-        const double a2 = a2s[j], g2 = g2s[j];
-        idx[k] = first + j;
-        a2s[k] = a2;
-        g2s[k] = g2;
-        k += a2 < thr2Times4 * g2 ? 1 : 0; // NaN (no gradient) is never an inlier
-      }
-      for (int j = 0; j < k; ++j)
-        sum += a2s[j] / (4.0 * g2s[j]);
-      sum += (size - k) * thr2;
-      count += k;
+      count += vpLaserSolvers::internal::scoreConicChunk(c, m_x.data() + first, m_y.data() + first, first, size, thr2,
+                                                         cost, inliers ? inliers + count : local);
     }
-    cost += sum;
     return count;
   }
   //! Local optimisation: geometric refinement of the plane (refinePlane) on a subset of the inliers.
