@@ -5,7 +5,9 @@
 // Per-point loops on four-lane vectors (see laser_kernels.h).
 #include "laser_kernels.h"
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 // Two builds of each kernel (baseline and AVX2, chosen once by the loader) where the compiler and
 // the platform support function multi-versioning; a single baseline build elsewhere.
@@ -27,6 +29,11 @@ typedef long long LaneMask __attribute__((vector_size(4 * sizeof(double))));
 #endif
 
 constexpr int kLanes = 4;
+
+inline double sqrtOf(double v) { return std::sqrt(v); }
+#if defined(__GNUC__)
+inline Lanes sqrtOf(const Lanes &v) { return Lanes{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])}; }
+#endif
 } // namespace
 
 VSP_LASER_KERNEL int scoreConicChunk(const ConicCoefficients &c, const double *x, const double *y, int first,
@@ -70,6 +77,181 @@ VSP_LASER_KERNEL int scoreConicChunk(const ConicCoefficients &c, const double *x
   }
   cost += sum;
   return count;
+}
+
+namespace
+{
+#if defined(__GNUC__)
+//! Lane sums of the normal equations, reduced to PlaneTermsSums at the end.
+struct LaneSums
+{
+  Lanes h[6], g[3], cost;
+};
+
+inline Lanes broadcast(double v) { return Lanes{v, v, v, v}; }
+
+//! Adds the weighted terms of four points.
+inline void accumulate(LaneSums &s, const Lanes &w, const Lanes &r, const Lanes &J0, const Lanes &J1, const Lanes &J2)
+{
+  const Lanes wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
+  s.cost += w * r * r;
+  s.h[0] += wJ0 * J0;
+  s.h[1] += wJ0 * J1;
+  s.h[2] += wJ0 * J2;
+  s.h[3] += wJ1 * J1;
+  s.h[4] += wJ1 * J2;
+  s.h[5] += wJ2 * J2;
+  s.g[0] += wJ0 * r;
+  s.g[1] += wJ1 * r;
+  s.g[2] += wJ2 * r;
+}
+
+inline double laneTotal(const Lanes &v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+
+inline void reduce(const LaneSums &s, PlaneTermsSums &out)
+{
+  for (int i = 0; i < 6; ++i)
+    out.h[i] += laneTotal(s.h[i]);
+  for (int i = 0; i < 3; ++i)
+    out.g[i] += laneTotal(s.g[i]);
+  out.cost += laneTotal(s.cost);
+}
+
+inline void clear(LaneSums &s)
+{
+  const Lanes z = broadcast(0.0);
+  for (Lanes &v : s.h)
+    v = z;
+  for (Lanes &v : s.g)
+    v = z;
+  s.cost = z;
+}
+#endif
+
+/*!
+  The terms of one point (the scalar form of the lanes below): the signed Sampson distance is
+  r = A / (2 sqrt(B)) with A = x^T c x and B = |(c x)_{1,2}|^2, so dr = (dA - A dB / (2 B)) / (2 sqrt(B))
+  with dA = x^T dc x and dB = 2 (c x)_{1,2} . (dc x)_{1,2}. Along a tangent, dc = t w^T + w t^T, so
+  x^T dc x = 2 (t.x)(w.x) and (dc x)_{1,2} = t_{1,2} (w.x) + w_{1,2} (t.x): a few products per point.
+  \return false where the conic has no gradient.
+*/
+template <class T>
+inline T pointTerms(const PlaneTermsCoefficients &k, const T &x, const T &y, T &J0, T &J1, T &J2, T &B)
+{
+  const ConicCoefficients &c = k.c, &dd = k.dd;
+  const T v0 = c.a * x + c.b * y + c.d, v1 = c.b * x + c.e * y + c.f;
+  const T A = x * v0 + y * v1 + (c.d * x + c.f * y + c.g);
+  B = v0 * v0 + v1 * v1;
+  const T invB = 1.0 / B;
+  const T invRoot = 0.5 * sqrtOf(invB), ratio = A * invB;
+  const T wx = k.w[0] * x + k.w[1] * y + k.w[2], vw = v0 * k.w[0] + v1 * k.w[1];
+  const T tx0 = k.t0[0] * x + k.t0[1] * y + k.t0[2], vt0 = v0 * k.t0[0] + v1 * k.t0[1];
+  const T tx1 = k.t1[0] * x + k.t1[1] * y + k.t1[2], vt1 = v0 * k.t1[0] + v1 * k.t1[1];
+  const T u0 = dd.a * x + dd.b * y + dd.d, u1 = dd.b * x + dd.e * y + dd.f;
+  const T dA2 = x * u0 + y * u1 + (dd.d * x + dd.f * y + dd.g);
+  J0 = (2.0 * tx0 * wx - ratio * (vt0 * wx + vw * tx0)) * invRoot;
+  J1 = (2.0 * tx1 * wx - ratio * (vt1 * wx + vw * tx1)) * invRoot;
+  J2 = (dA2 - ratio * (v0 * u0 + v1 * u1)) * invRoot;
+  return A * invRoot;
+}
+} // namespace
+
+VSP_LASER_KERNEL void planeTermsKernel(const PlaneTermsCoefficients &k, const Eigen::Vector2d *points,
+                                       const double *weights, int n, double *r, double *j0, double *j1, double *j2,
+                                       PlaneTermsSums &sums)
+{
+  sums = PlaneTermsSums();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  int i = 0;
+#if defined(__GNUC__)
+  LaneSums s;
+  clear(s);
+  const Lanes zero = broadcast(0.0), one = broadcast(1.0), nanLanes = broadcast(nan);
+  for (; i + kLanes <= n; i += kLanes) {
+    const Eigen::Vector2d *p = points + i;
+    const Lanes x = {p[0](0), p[1](0), p[2](0), p[3](0)}, y = {p[0](1), p[1](1), p[2](1), p[3](1)};
+    Lanes w = one;
+    if (weights)
+      std::memcpy(&w, weights + i, sizeof w);
+    Lanes J0, J1, J2, B;
+    Lanes res = pointTerms(k, x, y, J0, J1, J2, B);
+    const LaneMask valid = B > zero; // no gradient: NaN residual, zero derivatives, no contribution
+    J0 = valid ? J0 : zero;
+    J1 = valid ? J1 : zero;
+    J2 = valid ? J2 : zero;
+    w = valid ? w : zero;
+    const Lanes stored = valid ? res : nanLanes;
+    std::memcpy(r + i, &stored, sizeof stored);
+    std::memcpy(j0 + i, &J0, sizeof J0);
+    std::memcpy(j1 + i, &J1, sizeof J1);
+    std::memcpy(j2 + i, &J2, sizeof J2);
+    res = valid ? res : zero;
+    accumulate(s, w, res, J0, J1, J2);
+  }
+  reduce(s, sums);
+#endif
+  for (; i < n; ++i) {
+    double J0, J1, J2, B;
+    const double res = pointTerms(k, points[i](0), points[i](1), J0, J1, J2, B);
+    if (!(B > 0.0)) {
+      r[i] = nan;
+      j0[i] = j1[i] = j2[i] = 0.0;
+      continue;
+    }
+    r[i] = res;
+    j0[i] = J0;
+    j1[i] = J1;
+    j2[i] = J2;
+    const double w = weights ? weights[i] : 1.0;
+    const double wJ[3] = {w * J0, w * J1, w * J2}, J[3] = {J0, J1, J2};
+    sums.cost += w * res * res;
+    sums.h[0] += wJ[0] * J[0];
+    sums.h[1] += wJ[0] * J[1];
+    sums.h[2] += wJ[0] * J[2];
+    sums.h[3] += wJ[1] * J[1];
+    sums.h[4] += wJ[1] * J[2];
+    sums.h[5] += wJ[2] * J[2];
+    for (int m = 0; m < 3; ++m)
+      sums.g[m] += wJ[m] * res;
+  }
+}
+
+VSP_LASER_KERNEL void planeTermsSums(const double *r, const double *j0, const double *j1, const double *j2,
+                                     const double *weights, int n, PlaneTermsSums &sums)
+{
+  sums = PlaneTermsSums();
+  int i = 0;
+#if defined(__GNUC__)
+  LaneSums s;
+  clear(s);
+  const Lanes zero = broadcast(0.0);
+  for (; i + kLanes <= n; i += kLanes) {
+    Lanes w, res, J0, J1, J2;
+    std::memcpy(&w, weights + i, sizeof w);
+    std::memcpy(&res, r + i, sizeof res);
+    std::memcpy(&J0, j0 + i, sizeof J0);
+    std::memcpy(&J1, j1 + i, sizeof J1);
+    std::memcpy(&J2, j2 + i, sizeof J2);
+    res = w != zero ? res : zero; // a NaN residual has a zero weight
+    accumulate(s, w, res, J0, J1, J2);
+  }
+  reduce(s, sums);
+#endif
+  for (; i < n; ++i) {
+    const double w = weights[i];
+    if (w == 0.0)
+      continue;
+    const double wJ[3] = {w * j0[i], w * j1[i], w * j2[i]}, J[3] = {j0[i], j1[i], j2[i]};
+    sums.cost += w * r[i] * r[i];
+    sums.h[0] += wJ[0] * J[0];
+    sums.h[1] += wJ[0] * J[1];
+    sums.h[2] += wJ[0] * J[2];
+    sums.h[3] += wJ[1] * J[1];
+    sums.h[4] += wJ[1] * J[2];
+    sums.h[5] += wJ[2] * J[2];
+    for (int m = 0; m < 3; ++m)
+      sums.g[m] += wJ[m] * r[i];
+  }
 }
 } // namespace internal
 } // namespace vpLaserSolvers

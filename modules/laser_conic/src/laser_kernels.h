@@ -27,6 +27,40 @@ namespace internal
 */
 int scoreConicChunk(const ConicCoefficients &c, const double *x, const double *y, int first, int size, double thr2,
                     double &cost, int *inliers);
+
+/*!
+  What planeTermsKernel() needs of a plane: its image conic \e c, the derivative \e dd of the conic
+  along the altitude, and the vectors w and t_k of the rank-2 derivatives t_k w^T + w t_k^T along the
+  two tangents of the normal (plane_refine.cpp).
+*/
+struct PlaneTermsCoefficients
+{
+  ConicCoefficients c, dd;
+  double w[3], t0[3], t1[3];
+};
+
+/*!
+  Weighted sums of the normal equations of the plane refinement: upper triangle of J^T W J (h[0..5]
+  for (0,0), (0,1), (0,2), (1,1), (1,2), (2,2)), J^T W r (g[0..2]) and r^T W r (cost).
+*/
+struct PlaneTermsSums
+{
+  double h[6], g[3], cost;
+};
+
+/*!
+  One pass of the plane refinement over the n points: per point the signed Sampson distance r of
+  the point to the conic and its derivatives j0, j1, j2 along the three local coordinates of the
+  plane, stored in the arrays (NaN residual and zero derivatives where the conic has no gradient),
+  and their sums weighted by \e weights (unit weights when null; a point without gradient adds
+  nothing).
+*/
+void planeTermsKernel(const PlaneTermsCoefficients &k, const Eigen::Vector2d *points, const double *weights, int n,
+                      double *r, double *j0, double *j1, double *j2, PlaneTermsSums &sums);
+
+//! The weighted sums of planeTermsKernel() from stored terms (zero weight or NaN residual: no contribution).
+void planeTermsSums(const double *r, const double *j0, const double *j1, const double *j2, const double *weights,
+                    int n, PlaneTermsSums &sums);
 } // namespace internal
 } // namespace vpLaserSolvers
 
