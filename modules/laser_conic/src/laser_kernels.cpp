@@ -9,14 +9,6 @@
 #include <cstring>
 #include <limits>
 
-// Two builds of each kernel (baseline and AVX2, chosen once by the loader) where the compiler and
-// the platform support function multi-versioning; a single baseline build elsewhere.
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(__AVX2__)
-#define VSP_LASER_KERNEL __attribute__((target_clones("avx2", "default")))
-#else
-#define VSP_LASER_KERNEL
-#endif
-
 namespace vpLaserSolvers
 {
 namespace internal

@@ -15,6 +15,17 @@
 
 #include "laser_geometry.h"
 
+/*!
+  Marks a function to be compiled for the baseline instruction set and for AVX2, the loader choosing
+  one (function multi-versioning) where the compiler and the platform support it; a single build
+  elsewhere. The compiler vectorises the loops of each build for its own registers.
+*/
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(__AVX2__)
+#define VSP_LASER_KERNEL __attribute__((target_clones("avx2", "default")))
+#else
+#define VSP_LASER_KERNEL
+#endif
+
 namespace vpLaserSolvers
 {
 namespace internal
