@@ -6,6 +6,7 @@
 #include "laser_kernels.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -17,7 +18,7 @@ namespace
 {
 #if defined(__GNUC__)
 typedef double Lanes __attribute__((vector_size(4 * sizeof(double))));
-typedef long long LaneMask __attribute__((vector_size(4 * sizeof(double))));
+typedef std::int64_t LaneMask __attribute__((vector_size(4 * sizeof(double))));
 #endif
 
 constexpr int kLanes = 4;
@@ -243,6 +244,85 @@ VSP_LASER_KERNEL void planeTermsSums(const double *r, const double *j0, const do
     sums.h[5] += wJ[2] * J[2];
     for (int m = 0; m < 3; ++m)
       sums.g[m] += wJ[m] * r[i];
+  }
+}
+
+namespace
+{
+//! Sign bit as a 0/1 factor (scalar) or a lane mask.
+inline double signFactor(double v) { return static_cast<double>(std::signbit(v)); }
+inline double select(bool c, double a, double b) { return c ? a : b; }
+inline double absOf(double v) { return std::abs(v); }
+#if defined(__GNUC__)
+inline LaneMask signFactor(const Lanes &v)
+{
+  LaneMask bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  return bits < 0; // the sign bit is the integer sign
+}
+inline Lanes select(const LaneMask &c, const Lanes &a, const Lanes &b) { return c ? a : b; }
+inline Lanes absOf(const Lanes &v) { return v < 0.0 ? -v : v; }
+#endif
+
+/*!
+  The polynomial atan2 without branches (the points come in any order around the ellipse): the
+  octant enters through selected increments and the sign of y through a sign flip, in the same
+  operations for one value or four lanes.
+*/
+template <class T> inline T atan2Polynomial(const T &y, const T &x)
+{
+  const T ax = absOf(x), ay = absOf(y);
+  const auto above = ay > ax;
+  const T z = select(above, ax, ay) / select(above, ay, ax), z2 = z * z;
+  T a = z2 * 0.0028662257 - 0.0161657367;
+  for (double k : {0.0429096138, -0.0752896400, 0.1065626393, -0.1420889944, 0.1999355085, -0.3333314528, 1.0})
+    a = a * z2 + k;
+  a = a * z;
+  const T zero = T();
+  a = a + select(above, 0.5 * M_PI - 2.0 * a, zero); // above the diagonal: pi / 2 - a
+  a = a + select(signFactor(x), M_PI - 2.0 * a, zero); // left half-plane: pi - a
+  return select(signFactor(y), -a, a);
+}
+
+//! The bin of approximateAtan2(), or of std::atan2 near a bin edge or for invalid input.
+inline int binOf(double u0, double u1, double approximate, int bins)
+{
+  const double perRadian = bins / (2.0 * M_PI);
+  if (std::isfinite(u0) && std::isfinite(u1) && (u0 != 0.0 || u1 != 0.0)) {
+    const double t = (approximate + M_PI) * perRadian, f = std::floor(t);
+    const double margin = 1e-6 * perRadian;
+    if (t - f > margin && f + 1.0 - t > margin)
+      return static_cast<int>(f);
+  }
+  return static_cast<int>(std::floor((std::atan2(u1, u0) + M_PI) * perRadian));
+}
+} // namespace
+
+double approximateAtan2(double y, double x) { return atan2Polynomial(y, x); }
+
+VSP_LASER_KERNEL void ellipseBins(const Eigen::Vector2d *points, const int *indices, int n,
+                                  const Eigen::Vector2d &centre, const Eigen::Matrix2d &U, int bins, int *out)
+{
+  const double c0 = centre(0), c1 = centre(1), u00 = U(0, 0), u01 = U(0, 1), u11 = U(1, 1);
+  int i = 0;
+#if defined(__GNUC__)
+  for (; i + kLanes <= n; i += kLanes) {
+    Lanes px, py;
+    for (int l = 0; l < kLanes; ++l) {
+      px[l] = points[indices[i + l]](0);
+      py[l] = points[indices[i + l]](1);
+    }
+    const Lanes dx = px - c0, dy = py - c1;
+    const Lanes v0 = u00 * dx + u01 * dy, v1 = u11 * dy;
+    const Lanes a = atan2Polynomial(v1, v0);
+    for (int l = 0; l < kLanes; ++l)
+      out[i + l] = binOf(v0[l], v1[l], a[l], bins);
+  }
+#endif
+  for (; i < n; ++i) {
+    const double dx = points[indices[i]](0) - c0, dy = points[indices[i]](1) - c1;
+    const double v0 = u00 * dx + u01 * dy, v1 = u11 * dy;
+    out[i] = binOf(v0, v1, atan2Polynomial(v1, v0), bins);
   }
 }
 } // namespace internal

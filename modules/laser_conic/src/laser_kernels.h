@@ -72,6 +72,20 @@ void planeTermsKernel(const PlaneTermsCoefficients &k, const Eigen::Vector2d *po
 //! The weighted sums of planeTermsKernel() from stored terms (zero weight or NaN residual: no contribution).
 void planeTermsSums(const double *r, const double *j0, const double *j1, const double *j2, const double *weights,
                     int n, PlaneTermsSums &sums);
+/*!
+  atan2(y, x) to within 2e-8 rad, from the polynomial of atan on [0, 1] of Abramowitz and Stegun
+  (4.4.49). The arguments are finite and not both zero.
+*/
+double approximateAtan2(double y, double x);
+
+/*!
+  Angular bins of the points points[indices[i]], i < n, around an ellipse: with u = U (p - centre)
+  (U upper triangular, U^T U the quadratic part of the ellipse, so u lies on a circle), the bin is
+  floor((atan2(u1, u0) + pi) bins / (2 pi)), from approximateAtan2() unless the angle is within 1e-6
+  rad of a bin edge (then std::atan2, so that the bin is the one the exact angle gives).
+*/
+void ellipseBins(const Eigen::Vector2d *points, const int *indices, int n, const Eigen::Vector2d &centre,
+                 const Eigen::Matrix2d &U, int bins, int *out);
 } // namespace internal
 } // namespace vpLaserSolvers
 
