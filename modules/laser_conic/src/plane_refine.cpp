@@ -170,10 +170,12 @@ bool negligible(const Eigen::Vector3d &delta, double altitude)
   one pass over the points: a rejected step reuses the normal equations of the current plane with
   more damping, an accepted one brings those of the new plane (\e next is the scratch iterate). The
   loop ends when the Gauss-Newton model promises (or the last step gave) a relative decrease of the
-  cost below kTolerance, far below the statistical uncertainty of the plane for any realistic noise.
+  cost below kTolerance, far below the statistical uncertainty of the plane for any realistic noise,
+  or, with \e firstStepOnly, after the first accepted step.
 */
 void levenbergMarquardt(const Eigen::Vector2d *points, const double *weights, int n, const Eigen::Vector3d &apex,
-                        const Eigen::Matrix3d &M, int iterations, Iterate &current, Iterate &next)
+                        const Eigen::Matrix3d &M, int iterations, Iterate &current, Iterate &next,
+                        bool firstStepOnly = false)
 {
   double damping = 1e-3;
   const double kTolerance = 1e-6;
@@ -197,7 +199,7 @@ void levenbergMarquardt(const Eigen::Vector2d *points, const double *weights, in
       const double gain = (current.ne.cost - next.ne.cost) / current.ne.cost;
       std::swap(current, next);
       damping = std::max(1e-9, 0.1 * damping);
-      if (gain < kTolerance)
+      if (gain < kTolerance || firstStepOnly)
         break;
     } else {
       damping *= 10.0;
@@ -251,7 +253,10 @@ bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &con
     current.ne = assemble(current.terms, w.data(), n);
     if (!std::isfinite(current.ne.cost))
       return false;
-    levenbergMarquardt(points, w.data(), n, cone.apex, M, iterations, current, next);
+    // A round before the last only sets the residuals the next weights come from: converging it
+    // exactly is wasted, the last round absorbs what is left of its step (a fraction of a standard
+    // deviation of the plane) and runs to convergence.
+    levenbergMarquardt(points, w.data(), n, cone.apex, M, iterations, current, next, round + 1 < rounds);
   }
   plane = current.plane;
   residuals.assign(current.terms.r(), current.terms.r() + n);
