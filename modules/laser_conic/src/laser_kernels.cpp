@@ -19,6 +19,7 @@ namespace
 #if defined(__GNUC__)
 typedef double Lanes __attribute__((vector_size(4 * sizeof(double))));
 typedef std::int64_t LaneMask __attribute__((vector_size(4 * sizeof(double))));
+typedef int Quad __attribute__((vector_size(4 * sizeof(int))));
 #endif
 
 constexpr int kLanes = 4;
@@ -306,6 +307,8 @@ VSP_LASER_KERNEL void ellipseBins(const Eigen::Vector2d *points, const int *indi
   const double c0 = centre(0), c1 = centre(1), u00 = U(0, 0), u01 = U(0, 1), u11 = U(1, 1);
   int i = 0;
 #if defined(__GNUC__)
+  const double perRadian = bins / (2.0 * M_PI), margin = 1e-6 * perRadian;
+  const Lanes inf = broadcast(std::numeric_limits<double>::infinity());
   for (; i + kLanes <= n; i += kLanes) {
     Lanes px, py;
     for (int l = 0; l < kLanes; ++l) {
@@ -314,9 +317,19 @@ VSP_LASER_KERNEL void ellipseBins(const Eigen::Vector2d *points, const int *indi
     }
     const Lanes dx = px - c0, dy = py - c1;
     const Lanes v0 = u00 * dx + u01 * dy, v1 = u11 * dy;
-    const Lanes a = atan2Polynomial(v1, v0);
-    for (int l = 0; l < kLanes; ++l)
-      out[i + l] = binOf(v0[l], v1[l], a[l], bins);
+    const Lanes a = atan2Polynomial(v1, v0), t = (a + M_PI) * perRadian;
+    // t >= 0 for a valid angle, where truncation is the floor (out-of-range lanes, NaN included, are
+    // truncated from 0 instead); a lane is settled when its input is finite and not zero and its angle
+    // is not within the margin of a bin edge.
+    const Lanes inRange = (t >= 0.0) & (t < bins + 1.0) ? t : Lanes{};
+    const Quad whole = __builtin_convertvector(inRange, Quad);
+    const Lanes f = __builtin_convertvector(whole, Lanes);
+    const LaneMask settled = (absOf(v0) < inf) & (absOf(v1) < inf) & ((v0 != 0.0) | (v1 != 0.0)) &
+                             (t - f > margin) & (f + 1.0 - t > margin);
+    std::memcpy(out + i, &whole, sizeof whole);
+    if (!(settled[0] & settled[1] & settled[2] & settled[3]))
+      for (int l = 0; l < kLanes; ++l)
+        out[i + l] = binOf(v0[l], v1[l], a[l], bins);
   }
 #endif
   for (; i < n; ++i) {
