@@ -24,14 +24,9 @@ typedef Eigen::Matrix<double, 6, 6> Matrix6d;
 //! Similarity T moving the centroid to the origin and the mean distance to sqrt(2).
 bool hartleyNormalisation(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &T)
 {
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (int i = 0; i < n; ++i)
-    centroid += points[i];
-  centroid /= n;
-  double meanDistance = 0.0;
-  for (int i = 0; i < n; ++i)
-    meanDistance += (points[i] - centroid).norm();
-  meanDistance /= n;
+  double cx = 0.0, cy = 0.0, meanDistance = 0.0;
+  internal::centroidAndSpread(points, n, cx, cy, meanDistance);
+  const Eigen::Vector2d centroid(cx, cy);
   if (!(meanDistance > 0.0) || !std::isfinite(meanDistance))
     return false;
   const double s = std::sqrt(2.0) / meanDistance;

@@ -301,6 +301,66 @@ inline int binOf(double u0, double u1, double approximate, int bins)
 
 double approximateAtan2(double y, double x) { return atan2Polynomial(y, x); }
 
+VSP_LASER_KERNEL void huberWeights(const double *r, int n, double k, double *w)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  int i = 0;
+#if defined(__GNUC__)
+  const Lanes one = broadcast(1.0), infLanes = broadcast(inf);
+  for (; i + kLanes <= n; i += kLanes) {
+    Lanes a;
+    std::memcpy(&a, r + i, sizeof a);
+    a = absOf(a);
+    const Lanes q = k / a; // k / 0 = inf: weight 1
+    const Lanes weight = a < infLanes ? (q < one ? q : one) : Lanes{}; // NaN compares false: weight 0
+    std::memcpy(w + i, &weight, sizeof weight);
+  }
+#endif
+  for (; i < n; ++i) {
+    const double a = std::abs(r[i]);
+    w[i] = a < inf ? std::min(1.0, k / a) : 0.0;
+  }
+}
+
+VSP_LASER_KERNEL void centroidAndSpread(const Eigen::Vector2d *points, int n, double &cx, double &cy,
+                                        double &meanDistance)
+{
+  double sx = 0.0, sy = 0.0;
+  int i = 0;
+#if defined(__GNUC__)
+  Lanes ax = {}, ay = {};
+  for (; i + kLanes <= n; i += kLanes) {
+    const Eigen::Vector2d *p = points + i;
+    ax += Lanes{p[0](0), p[1](0), p[2](0), p[3](0)};
+    ay += Lanes{p[0](1), p[1](1), p[2](1), p[3](1)};
+  }
+  sx = laneTotal(ax);
+  sy = laneTotal(ay);
+#endif
+  for (; i < n; ++i) {
+    sx += points[i](0);
+    sy += points[i](1);
+  }
+  cx = sx / n;
+  cy = sy / n;
+  double sd = 0.0;
+  i = 0;
+#if defined(__GNUC__)
+  Lanes ad = {};
+  for (; i + kLanes <= n; i += kLanes) {
+    const Eigen::Vector2d *p = points + i;
+    const Lanes dx = Lanes{p[0](0), p[1](0), p[2](0), p[3](0)} - cx, dy = Lanes{p[0](1), p[1](1), p[2](1), p[3](1)} - cy;
+    ad += sqrtOf(dx * dx + dy * dy);
+  }
+  sd = laneTotal(ad);
+#endif
+  for (; i < n; ++i) {
+    const double dx = points[i](0) - cx, dy = points[i](1) - cy;
+    sd += std::sqrt(dx * dx + dy * dy);
+  }
+  meanDistance = sd / n;
+}
+
 VSP_LASER_KERNEL void ellipseBins(const Eigen::Vector2d *points, const int *indices, int n,
                                   const Eigen::Vector2d &centre, const Eigen::Matrix2d &U, int bins, int *out)
 {

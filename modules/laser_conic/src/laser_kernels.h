@@ -73,6 +73,18 @@ void planeTermsKernel(const PlaneTermsCoefficients &k, const Eigen::Vector2d *po
 void planeTermsSums(const double *r, const double *j0, const double *j1, const double *j2, const double *weights,
                     int n, PlaneTermsSums &sums);
 /*!
+  IRLS weights of the Huber loss, w = min(1, k / |r|) (1 for r = 0), 0 for a non-finite residual:
+  vpRobustWeight(vpRobustLoss::HUBER, r, k / 1.345) for k > 0, four residuals at a time.
+*/
+void huberWeights(const double *r, int n, double k, double *w);
+
+/*!
+  Centroid (cx, cy) of the points and their mean distance to it (the Hartley normalisation of the
+  conic fit), with four partial sums per quantity.
+*/
+void centroidAndSpread(const Eigen::Vector2d *points, int n, double &cx, double &cy, double &meanDistance);
+
+/*!
   atan2(y, x) to within 2e-8 rad, from the polynomial of atan on [0, 1] of Abramowitz and Stegun
   (4.4.49). The arguments are finite and not both zero.
 */

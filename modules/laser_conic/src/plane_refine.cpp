@@ -243,13 +243,18 @@ bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &con
   const Eigen::Matrix3d M = internal::laserConeForm(cone);
   Iterate current, next;
   evaluate(plane / plane.head<3>().norm(), points, nullptr, n, cone.apex, M, current);
-  std::vector<double> w(static_cast<size_t>(n));
+  std::vector<double> w(static_cast<size_t>(n)), scratch;
   for (int round = 0; round < rounds; ++round) {
     // Weights at the scale of the residuals of the current plane (kept from its last evaluation).
     const double *r = current.terms.r();
-    const double sigma = vpRobustMadScale(std::vector<double>(r, r + n));
-    for (int i = 0; i < n; ++i) // NaN residuals (no gradient) get a zero weight
-      w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, r[i], sigma);
+    scratch.assign(r, r + n);
+    const double sigma = vpRobustMadScale(std::move(scratch));
+    // vpRobustWeight(vpRobustLoss::HUBER, r, sigma) for every residual (NaN, no gradient: zero weight).
+    if (sigma > 0.0)
+      internal::huberWeights(r, n, 1.345 * sigma, w.data());
+    else
+      for (int i = 0; i < n; ++i)
+        w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, r[i], sigma);
     current.ne = assemble(current.terms, w.data(), n);
     if (!std::isfinite(current.ne.cost))
       return false;
