@@ -84,22 +84,6 @@ struct LaneSums
 
 inline Lanes broadcast(double v) { return Lanes{v, v, v, v}; }
 
-//! Adds the weighted terms of four points.
-inline void accumulate(LaneSums &s, const Lanes &w, const Lanes &r, const Lanes &J0, const Lanes &J1, const Lanes &J2)
-{
-  const Lanes wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
-  s.cost += w * r * r;
-  s.h[0] += wJ0 * J0;
-  s.h[1] += wJ0 * J1;
-  s.h[2] += wJ0 * J2;
-  s.h[3] += wJ1 * J1;
-  s.h[4] += wJ1 * J2;
-  s.h[5] += wJ2 * J2;
-  s.g[0] += wJ0 * r;
-  s.g[1] += wJ1 * r;
-  s.g[2] += wJ2 * r;
-}
-
 inline double laneTotal(const Lanes &v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
 inline void reduce(const LaneSums &s, PlaneTermsSums &out)
@@ -122,12 +106,29 @@ inline void clear(LaneSums &s)
 }
 #endif
 
+//! Adds the weighted terms of one point (T = double, Sums = PlaneTermsSums) or of four (Lanes, LaneSums).
+template <class Sums, class T>
+inline void addTerms(Sums &s, const T &w, const T &r, const T &J0, const T &J1, const T &J2)
+{
+  const T wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
+  s.cost += w * r * r;
+  s.h[0] += wJ0 * J0;
+  s.h[1] += wJ0 * J1;
+  s.h[2] += wJ0 * J2;
+  s.h[3] += wJ1 * J1;
+  s.h[4] += wJ1 * J2;
+  s.h[5] += wJ2 * J2;
+  s.g[0] += wJ0 * r;
+  s.g[1] += wJ1 * r;
+  s.g[2] += wJ2 * r;
+}
+
 /*!
   The terms of one point (the scalar form of the lanes below): the signed Sampson distance is
   r = A / (2 sqrt(B)) with A = x^T c x and B = |(c x)_{1,2}|^2, so dr = (dA - A dB / (2 B)) / (2 sqrt(B))
   with dA = x^T dc x and dB = 2 (c x)_{1,2} . (dc x)_{1,2}. Along a tangent, dc = t w^T + w t^T, so
   x^T dc x = 2 (t.x)(w.x) and (dc x)_{1,2} = t_{1,2} (w.x) + w_{1,2} (t.x): a few products per point.
-  \return false where the conic has no gradient.
+  \return r; \e B is 0 where the conic has no gradient (r and the derivatives are then meaningless).
 */
 template <class T>
 inline T pointTerms(const PlaneTermsCoefficients &k, const T &x, const T &y, T &J0, T &J1, T &J2, T &B)
@@ -180,7 +181,7 @@ VSP_LASER_KERNEL void planeTermsKernel(const PlaneTermsCoefficients &k, const Ei
     std::memcpy(j1 + i, &J1, sizeof J1);
     std::memcpy(j2 + i, &J2, sizeof J2);
     res = valid ? res : zero;
-    accumulate(s, w, res, J0, J1, J2);
+    addTerms(s, w, res, J0, J1, J2);
   }
   reduce(s, sums);
 #endif
@@ -196,17 +197,7 @@ VSP_LASER_KERNEL void planeTermsKernel(const PlaneTermsCoefficients &k, const Ei
     j0[i] = J0;
     j1[i] = J1;
     j2[i] = J2;
-    const double w = weights ? weights[i] : 1.0;
-    const double wJ[3] = {w * J0, w * J1, w * J2}, J[3] = {J0, J1, J2};
-    sums.cost += w * res * res;
-    sums.h[0] += wJ[0] * J[0];
-    sums.h[1] += wJ[0] * J[1];
-    sums.h[2] += wJ[0] * J[2];
-    sums.h[3] += wJ[1] * J[1];
-    sums.h[4] += wJ[1] * J[2];
-    sums.h[5] += wJ[2] * J[2];
-    for (int m = 0; m < 3; ++m)
-      sums.g[m] += wJ[m] * res;
+    addTerms(sums, weights ? weights[i] : 1.0, res, J0, J1, J2);
   }
 }
 
@@ -227,24 +218,13 @@ VSP_LASER_KERNEL void planeTermsSums(const double *r, const double *j0, const do
     std::memcpy(&J1, j1 + i, sizeof J1);
     std::memcpy(&J2, j2 + i, sizeof J2);
     res = w != zero ? res : zero; // a NaN residual has a zero weight
-    accumulate(s, w, res, J0, J1, J2);
+    addTerms(s, w, res, J0, J1, J2);
   }
   reduce(s, sums);
 #endif
   for (; i < n; ++i) {
-    const double w = weights[i];
-    if (w == 0.0)
-      continue;
-    const double wJ[3] = {w * j0[i], w * j1[i], w * j2[i]}, J[3] = {j0[i], j1[i], j2[i]};
-    sums.cost += w * r[i] * r[i];
-    sums.h[0] += wJ[0] * J[0];
-    sums.h[1] += wJ[0] * J[1];
-    sums.h[2] += wJ[0] * J[2];
-    sums.h[3] += wJ[1] * J[1];
-    sums.h[4] += wJ[1] * J[2];
-    sums.h[5] += wJ[2] * J[2];
-    for (int m = 0; m < 3; ++m)
-      sums.g[m] += wJ[m] * r[i];
+    if (weights[i] != 0.0) // a NaN residual has a zero weight
+      addTerms(sums, weights[i], r[i], j0[i], j1[i], j2[i]);
   }
 }
 
