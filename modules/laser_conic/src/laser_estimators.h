@@ -165,6 +165,20 @@ public:
     }
     return count;
   }
+  //! Inliers among the listed points (the preemptive test of vpRansacLoop()): the test of scoreRange().
+  int countInliers(const Model &m, const int *indices, int count, double thr2) const
+  {
+    const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
+    const double thr2Times4 = 4.0 * thr2;
+    int inliers = 0;
+    for (int k = 0; k < count; ++k) {
+      const size_t i = static_cast<size_t>(indices[k]);
+      double v0, v1;
+      const double algebraic = c.apply(m_x[i], m_y[i], v0, v1);
+      inliers += algebraic * algebraic < thr2Times4 * (v0 * v0 + v1 * v1) ? 1 : 0; // NaN is never an inlier
+    }
+    return inliers;
+  }
   //! Local optimisation: geometric refinement of the plane (refinePlane) on a subset of the inliers.
   bool refine(const std::vector<int> &inliers, Model &m) const
   {
