@@ -361,7 +361,7 @@ VSP_LASER_KERNEL void ellipseBins(const Eigen::Vector2d *points, const int *indi
     // t >= 0 for a valid angle, where truncation is the floor (out-of-range lanes, NaN included, are
     // truncated from 0 instead); a lane is settled when its input is finite and not zero and its angle
     // is not within the margin of a bin edge.
-    const Lanes inRange = (t >= 0.0) & (t < bins + 1.0) ? t : Lanes{};
+    const Lanes inRange = ((t >= 0.0) & (t < bins + 1.0)) ? t : Lanes{};
     const Quad whole = __builtin_convertvector(inRange, Quad);
     const Lanes f = __builtin_convertvector(whole, Lanes);
     const LaneMask settled = (absOf(v0) < inf) & (absOf(v1) < inf) & ((v0 != 0.0) | (v1 != 0.0)) &

@@ -18,9 +18,11 @@
 /*!
   Marks a function to be compiled for the baseline instruction set and for AVX2, the loader choosing
   one (function multi-versioning) where the compiler and the platform support it; a single build
-  elsewhere. The compiler vectorises the loops of each build for its own registers.
+  elsewhere (Clang included: it rejects the four-lane vectors the AVX2 build would pass to the
+  helpers it shares with the baseline one). The compiler vectorises the loops of each build for its
+  own registers.
 */
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(__AVX2__)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && !defined(__AVX2__)
 #define VSP_LASER_KERNEL __attribute__((target_clones("avx2", "default")))
 #else
 #define VSP_LASER_KERNEL
