@@ -212,11 +212,11 @@ std::vector<std::pair<std::string, vpLaserConicSimulator::vpRenderSettings> > be
 constexpr auto row = benchRow; // the shared builder of benchTable.h
 } // namespace
 
-int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int frames, unsigned int seed)
+int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int frames, int points, unsigned int seed)
 {
 #ifdef VSP_HAVE_LASER_CONIC
   const vspBench::LaserRig rig = vspBench::defaultRig();
-  const std::vector<LaserFrame> data = makeFrames(rig, seed, frames, outlierRatio);
+  const std::vector<LaserFrame> data = makeFrames(rig, seed, frames, outlierRatio, points);
   vpLaserConicPose estimator = makeEstimator(rig);
   const vpLaserConicPose::vpLaserConicMethod method =
       methodName == "pp3" ? vpLaserConicPose::PP3
@@ -234,7 +234,7 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
               100.0 * outlierRatio, good, frames, static_cast<double>(trials) / frames);
   return 0;
 #else
-  (void)methodName, (void)outlierRatio, (void)frames, (void)seed;
+  (void)methodName, (void)outlierRatio, (void)frames, (void)points, (void)seed;
   return 1;
 #endif
 }

@@ -12,6 +12,7 @@
 #include <Eigen/SVD>
 
 #include "laser_geometry.h"
+#include "laser_kernels.h"
 
 namespace vpLaserSolvers
 {
@@ -23,14 +24,9 @@ typedef Eigen::Matrix<double, 6, 6> Matrix6d;
 //! Similarity T moving the centroid to the origin and the mean distance to sqrt(2).
 bool hartleyNormalisation(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &T)
 {
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (int i = 0; i < n; ++i)
-    centroid += points[i];
-  centroid /= n;
-  double meanDistance = 0.0;
-  for (int i = 0; i < n; ++i)
-    meanDistance += (points[i] - centroid).norm();
-  meanDistance /= n;
+  double cx = 0.0, cy = 0.0, meanDistance = 0.0;
+  internal::centroidAndSpread(points, n, cx, cy, meanDistance);
+  const Eigen::Vector2d centroid(cx, cy);
   if (!(meanDistance > 0.0) || !std::isfinite(meanDistance))
     return false;
   const double s = std::sqrt(2.0) / meanDistance;
@@ -48,7 +44,7 @@ Vector6d conicRow(const Eigen::Matrix3d &T, const Eigen::Vector2d &p)
 }
 
 //! Dot product of two arrays with four partial sums (the additions do not wait for one another).
-double dot(const double *a, const double *b, int m)
+inline double dot(const double *a, const double *b, int m)
 {
   double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
   int i = 0;
@@ -68,9 +64,10 @@ double dot(const double *a, const double *b, int m)
   rows: the R of the rows seen so far is updated with the next block by six Householder reflections,
   each zeroing one column of the block under the diagonal of R. Since R is already triangular, a
   reflection touches one row of R and the block only (R^T R = A^T A is preserved), and the block is
-  kept column by column on the stack so that the updates are contiguous loops.
+  kept column by column on the stack so that the updates are contiguous loops (built for SSE2 and
+  AVX2, see laser_kernels.h).
 */
-Matrix6d triangularFactor(const Eigen::Matrix3d &T, const Eigen::Vector2d *points, int n)
+VSP_LASER_KERNEL Matrix6d triangularFactor(const Eigen::Matrix3d &T, const Eigen::Vector2d *points, int n)
 {
   constexpr int kBlockRows = 64;
   double R[6][6] = {};          // R[k][j], upper triangle

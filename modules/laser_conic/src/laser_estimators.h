@@ -20,6 +20,7 @@
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
 #include "laser_geometry.h"
+#include "laser_kernels.h"
 
 namespace vpLaserEstimators
 {
@@ -147,43 +148,36 @@ public:
   }
   /*!
     Inliers among [begin, end), their truncated squared distances added to \e cost and their indices
-    written to \e inliers when not null (see vpRansacLoop()). The inlier test compares the squared
-    algebraic value with the threshold times the squared gradient: no division for the outliers,
-    which most hypotheses mostly see; NaN (no gradient) is never an inlier.
+    written to \e inliers when not null (see vpRansacLoop()): scoreConicChunk() on chunks of 64
+    points (no division for the inlier test, no square root, no branch per point; NaN, i.e. no
+    gradient, is never an inlier).
   */
   int scoreRange(const Model &m, int begin, int end, double thr2, double &cost, int *inliers) const
   {
     const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
-    const double thr2Times4 = 4.0 * thr2;
-    // Branch-free: inliers of a good hypothesis are interleaved with outliers at random, so a branch
-    // per point would be mispredicted half of the time. Each point's values and index are written at
-    // the current end of the inlier buffers, which only advances for an inlier; the inliers' squared
-    // distances (one division each) are summed afterwards.
     constexpr int kChunk = 64;
-    double a2s[kChunk], g2s[kChunk];
     int local[kChunk];
     int count = 0;
-    double sum = 0.0;
     for (int first = begin; first < end; first += kChunk) {
-      const int last = std::min(end, first + kChunk);
-      int *idx = inliers ? inliers + count : local;
-      int k = 0;
-      for (int i = first; i < last; ++i) {
-        double v0, v1;
-        const double algebraic = c.apply(m_x[static_cast<size_t>(i)], m_y[static_cast<size_t>(i)], v0, v1);
-        const double a2 = algebraic * algebraic, g2 = v0 * v0 + v1 * v1;
-        a2s[k] = a2;
-        g2s[k] = g2;
-        idx[k] = i;
-        k += a2 < thr2Times4 * g2 ? 1 : 0; // NaN (no gradient) is never an inlier
-      }
-      for (int j = 0; j < k; ++j)
-        sum += a2s[j] / (4.0 * g2s[j]);
-      sum += (last - first - k) * thr2;
-      count += k;
+      const int size = std::min(end - first, kChunk);
+      count += vpLaserSolvers::internal::scoreConicChunk(c, m_x.data() + first, m_y.data() + first, first, size, thr2,
+                                                         cost, inliers ? inliers + count : local);
     }
-    cost += sum;
     return count;
+  }
+  //! Inliers among the listed points (the preemptive test of vpRansacLoop()): the test of scoreRange().
+  int countInliers(const Model &m, const int *indices, int count, double thr2) const
+  {
+    const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
+    const double thr2Times4 = 4.0 * thr2;
+    int inliers = 0;
+    for (int k = 0; k < count; ++k) {
+      const size_t i = static_cast<size_t>(indices[k]);
+      double v0, v1;
+      const double algebraic = c.apply(m_x[i], m_y[i], v0, v1);
+      inliers += algebraic * algebraic < thr2Times4 * (v0 * v0 + v1 * v1) ? 1 : 0; // NaN is never an inlier
+    }
+    return inliers;
   }
   //! Local optimisation: geometric refinement of the plane (refinePlane) on a subset of the inliers.
   bool refine(const std::vector<int> &inliers, Model &m) const

@@ -73,7 +73,8 @@ struct ConicCoefficients
 /*!
   Iteratively reweighted refinement of a plane (d > 0) on trace points: \e rounds rounds, each of
   Huber weights (vpRobustWeight(), k = 1.345 sigma) at the MAD scale sigma of the residuals of the
-  current plane, then refinePlaneWeighted() with those weights (\e iterations iterations at most).
+  current plane, then refinePlaneWeighted() with those weights (\e iterations iterations at most;
+  the rounds before the last stop after their first accepted step).
   \e residuals receives the signed Sampson distances (normalized units) of the points to the final
   plane's conic, NaN where it has no gradient. The residuals of each plane are kept from the pass
   that evaluated it: no extra pass per round. \return false on invalid input or non-finite residuals.

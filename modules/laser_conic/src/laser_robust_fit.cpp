@@ -20,6 +20,7 @@
 #include <visp3/robust/vpRobustScale.h>
 
 #include "laser_geometry.h"
+#include "laser_kernels.h"
 
 namespace vpLaserRobustFit
 {
@@ -284,43 +285,6 @@ bool freeCovariance(const PointList &trace, const LaserCone &cone, double focal,
   cov = G * (sigma2 * info.inverse()) * G.transpose();
   return cov.allFinite();
 }
-/*!
-  atan2(y, x) to within 2e-8 rad, from the polynomial of atan on [0, 1] of Abramowitz and Stegun
-  (4.4.49), for the angular bins of arcCoverage(): only angles near a bin edge need the exact value.
-  The arguments are finite and not both zero.
-*/
-double approximateAtan2(double y, double x)
-{
-  // Without branches (the points come in any order around the ellipse): the octant enters through
-  // 0/1 factors and the sign of y through copysign.
-  const double ax = std::abs(x), ay = std::abs(y);
-  const double z = std::min(ax, ay) / std::max(ax, ay), z2 = z * z;
-  double a = 0.0028662257;
-  for (double k : {-0.0161657367, 0.0429096138, -0.0752896400, 0.1065626393, -0.1420889944, 0.1999355085,
-                   -0.3333314528, 1.0})
-    a = a * z2 + k;
-  a *= z;
-  a += static_cast<double>(ay > ax) * (0.5 * M_PI - 2.0 * a);       // above the diagonal: pi / 2 - a
-  a += static_cast<double>(std::signbit(x)) * (M_PI - 2.0 * a); // left half-plane: pi - a
-  return std::copysign(a, y);
-}
-
-/*!
-  Bin of \e u among \e bins equal angular bins of [-pi, pi]: floor((atan2(u1, u0) + pi) bins / (2 pi)),
-  from approximateAtan2() unless the angle is within 1e-6 rad of a bin edge (then std::atan2, so that
-  the bin is the one the exact angle gives).
-*/
-int angularBin(const Eigen::Vector2d &u, int bins)
-{
-  const double perRadian = bins / (2.0 * M_PI);
-  if (std::isfinite(u(0)) && std::isfinite(u(1)) && (u(0) != 0.0 || u(1) != 0.0)) {
-    const double t = (approximateAtan2(u(1), u(0)) + M_PI) * perRadian, f = std::floor(t);
-    const double margin = 1e-6 * perRadian;
-    if (t - f > margin && f + 1.0 - t > margin)
-      return static_cast<int>(f);
-  }
-  return static_cast<int>(std::floor((std::atan2(u(1), u(0)) + M_PI) * perRadian));
-}
 } // namespace
 
 double arcCoverage(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &conic)
@@ -336,15 +300,15 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
   const Eigen::Matrix2d U = llt.matrixU(); // A = U^T U: U (x - centre) lies on a circle
   // Occupied bins of 0.5 deg around the ellipse; the coverage is the circle minus its largest empty run.
   constexpr int kBins = 720;
-  std::vector<char> occupied(kBins, 0);
-  for (int i : indices) {
-    const Eigen::Vector2d u = U * (points[i] - centre);
-    const int bin = angularBin(u, kBins);
-    occupied[static_cast<size_t>(std::min(kBins - 1, std::max(0, bin)))] = 1;
-  }
+  std::vector<int> bins(indices.size());
+  vpLaserSolvers::internal::ellipseBins(points.data(), indices.data(), static_cast<int>(indices.size()), centre, U,
+                                        kBins, bins.data());
+  char occupied[kBins] = {};
+  for (int bin : bins)
+    occupied[std::min(kBins - 1, std::max(0, bin))] = 1;
   int first = -1, last = -1, gap = 0;
   for (int b = 0; b < kBins; ++b) {
-    if (!occupied[static_cast<size_t>(b)])
+    if (!occupied[b])
       continue;
     if (last >= 0)
       gap = std::max(gap, b - last - 1);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include <visp3/robust/vpRobustScale.h>
 
 #include "laser_geometry.h"
+#include "laser_kernels.h"
 
 namespace vpLaserSolvers
 {
@@ -72,132 +74,62 @@ struct NormalEquations
 /*!
   Residuals and Jacobian rows of every point at one plane, kept so that a reweighting (IRLS) forms
   its normal equations without evaluating the conic again. NaN residual (zero Jacobian) where the
-  conic has no gradient.
+  conic has no gradient. One buffer of 4 n values (r, j0, j1, j2), allocated once per refinement
+  and swapped between iterates.
 */
 struct PointTerms
 {
-  std::vector<double> r, j0, j1, j2;
+  std::unique_ptr<double[]> values;
+  int size = 0, capacity = 0;
   void resize(int n)
   {
-    const size_t m = static_cast<size_t>(n);
-    r.resize(m);
-    j0.resize(m);
-    j1.resize(m);
-    j2.resize(m);
+    if (n > capacity) {
+      values.reset(new double[4 * static_cast<size_t>(n)]);
+      capacity = n;
+    }
+    size = n;
   }
+  double *r() const { return values.get(); }
+  double *j0() const { return values.get() + capacity; }
+  double *j1() const { return values.get() + 2 * static_cast<size_t>(capacity); }
+  double *j2() const { return values.get() + 3 * static_cast<size_t>(capacity); }
 };
 
-//! Weighted sums of the normal equations (upper triangle of J^T J, J^T r, cost), one lane per point of a pair.
-struct PairSums
+NormalEquations equationsOf(const internal::PlaneTermsSums &s)
 {
-  typedef Eigen::Array2d P;
-  P h0 = P::Zero(), h1 = P::Zero(), h2 = P::Zero(), h3 = P::Zero(), h4 = P::Zero(), h5 = P::Zero();
-  P g0 = P::Zero(), g1 = P::Zero(), g2 = P::Zero(), cost = P::Zero();
-  void add(const P &w, const P &r, const P &J0, const P &J1, const P &J2)
-  {
-    const P wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
-    cost += w * r * r;
-    h0 += wJ0 * J0;
-    h1 += wJ0 * J1;
-    h2 += wJ0 * J2;
-    h3 += wJ1 * J1;
-    h4 += wJ1 * J2;
-    h5 += wJ2 * J2;
-    g0 += wJ0 * r;
-    g1 += wJ1 * r;
-    g2 += wJ2 * r;
-  }
-  NormalEquations equations() const
-  {
-    NormalEquations ne;
-    ne.JtJ << h0.sum(), h1.sum(), h2.sum(), h1.sum(), h3.sum(), h4.sum(), h2.sum(), h4.sum(), h5.sum();
-    ne.Jtr << g0.sum(), g1.sum(), g2.sum();
-    ne.cost = cost.sum();
-    return ne;
-  }
-};
+  NormalEquations ne;
+  ne.JtJ << s.h[0], s.h[1], s.h[2], s.h[1], s.h[3], s.h[4], s.h[2], s.h[4], s.h[5];
+  ne.Jtr << s.g[0], s.g[1], s.g[2];
+  ne.cost = s.cost;
+  return ne;
+}
 
-//! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic), by pairs.
+//! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic).
 NormalEquations assemble(const PointTerms &t, const double *weights, int n)
 {
-  typedef Eigen::Array2d P;
-  PairSums sums;
-  for (int i = 0; i < n; i += 2) {
-    const bool pair = i + 1 < n;
-    const int i1 = pair ? i + 1 : i;
-    const size_t k0 = static_cast<size_t>(i), k1 = static_cast<size_t>(i1);
-    // Zero weight (NaN residual: no gradient, or the missing second point of an odd count): no contribution.
-    const P w(weights[i], pair ? weights[i1] : 0.0);
-    const P r((w(0) != 0.0) ? t.r[k0] : 0.0, (w(1) != 0.0) ? t.r[k1] : 0.0);
-    const P J0(t.j0[k0], t.j0[k1]), J1(t.j1[k0], t.j1[k1]), J2(t.j2[k0], t.j2[k1]);
-    sums.add(w, r, J0, J1, J2);
-  }
-  return sums.equations();
+  internal::PlaneTermsSums sums;
+  internal::planeTermsSums(t.r(), t.j0(), t.j1(), t.j2(), weights, n, sums);
+  return equationsOf(sums);
 }
 
 /*!
   One pass over the points: their terms stored and the normal equations (unit weights when
-  \e weights is null). The signed Sampson distance is r = A / (2 sqrt(B)) with A = x^T c x and
-  B = |(c x)_{1,2}|^2, so dr = (dA - A dB / (2 B)) / (2 sqrt(B)) with dA = x^T dc x and
-  dB = 2 (c x)_{1,2} . (dc x)_{1,2}. Points where the conic has no gradient are skipped.
-  Two points at a time (Eigen::Array2d: one SIMD register), with the sums kept per lane.
+  \e weights is null), by internal::planeTermsKernel(). Points where the conic has no gradient
+  are skipped.
 */
 NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weights, int n, const PlaneConics &pc,
                               PointTerms &t)
 {
-  typedef Eigen::Array2d P;
-  // The normal moves along t: dc = t w^T + w t^T (rank 2), so with homogeneous x, x^T dc x = 2 (t.x)(w.x)
-  // and (dc x)_{1,2} = t_{1,2} (w.x) + w_{1,2} (t.x): a few products per point instead of a conic each.
-  const ConicCoefficients c(pc.c), dd(pc.dc[2]);
-  const double w0 = pc.w(0), w1 = pc.w(1), w2 = pc.w(2);
-  const double t00 = pc.t[0](0), t01 = pc.t[0](1), t02 = pc.t[0](2);
-  const double t10 = pc.t[1](0), t11 = pc.t[1](1), t12 = pc.t[1](2);
-  t.resize(n);
-  PairSums sums;
-  for (int i = 0; i < n; i += 2) {
-    const bool pair = i + 1 < n; // the last point of an odd count goes alone (lane 1 weighted 0)
-    const int i1 = pair ? i + 1 : i;
-    const P x(points[i](0), points[i1](0)), y(points[i](1), points[i1](1));
-    P w(weights ? weights[i] : 1.0, pair ? (weights ? weights[i1] : 1.0) : 0.0);
-    const P v0 = c.a * x + c.b * y + c.d, v1 = c.b * x + c.e * y + c.f;
-    const P A = x * v0 + y * v1 + (c.d * x + c.f * y + c.g);
-    const P B = v0 * v0 + v1 * v1;
-    const P invRoot = 0.5 / B.sqrt(), ratio = A / B;
-    const P wx = w0 * x + w1 * y + w2, vw = v0 * w0 + v1 * w1;
-    const P tx0 = t00 * x + t01 * y + t02, vt0 = v0 * t00 + v1 * t01;
-    const P tx1 = t10 * x + t11 * y + t12, vt1 = v0 * t10 + v1 * t11;
-    const P u0 = dd.a * x + dd.b * y + dd.d, u1 = dd.b * x + dd.e * y + dd.f;
-    const P dA2 = x * u0 + y * u1 + (dd.d * x + dd.f * y + dd.g);
-    P J0 = (2.0 * tx0 * wx - ratio * (vt0 * wx + vw * tx0)) * invRoot;
-    P J1 = (2.0 * tx1 * wx - ratio * (vt1 * wx + vw * tx1)) * invRoot;
-    P J2 = (dA2 - ratio * (v0 * u0 + v1 * u1)) * invRoot;
-    P r = A * invRoot;
-    if (pair) {
-      P::Map(&t.r[static_cast<size_t>(i)]) = r;
-      P::Map(&t.j0[static_cast<size_t>(i)]) = J0;
-      P::Map(&t.j1[static_cast<size_t>(i)]) = J1;
-      P::Map(&t.j2[static_cast<size_t>(i)]) = J2;
-    } else {
-      t.r[static_cast<size_t>(i)] = r(0);
-      t.j0[static_cast<size_t>(i)] = J0(0);
-      t.j1[static_cast<size_t>(i)] = J1(0);
-      t.j2[static_cast<size_t>(i)] = J2(0);
-    }
-    if (!(B > 0.0).all()) { // no gradient: NaN residual, zero Jacobian, no contribution
-      for (int l = 0; l < 2; ++l) {
-        if (B(l) > 0.0)
-          continue;
-        if (l == 0 || pair) {
-          const size_t k = static_cast<size_t>(i + l);
-          t.r[k] = std::numeric_limits<double>::quiet_NaN();
-          t.j0[k] = t.j1[k] = t.j2[k] = 0.0;
-        }
-        w(l) = r(l) = J0(l) = J1(l) = J2(l) = 0.0;
-      }
-    }
-    sums.add(w, r, J0, J1, J2);
+  internal::PlaneTermsCoefficients k{ConicCoefficients(pc.c), ConicCoefficients(pc.dc[2]), {}, {}, {}};
+  for (int i = 0; i < 3; ++i) {
+    k.w[i] = pc.w(i);
+    k.t0[i] = pc.t[0](i);
+    k.t1[i] = pc.t[1](i);
   }
-  return sums.equations();
+  t.resize(n);
+  internal::PlaneTermsSums sums;
+  internal::planeTermsKernel(k, points, weights, n, t.r(), t.j0(), t.j1(), t.j2(), sums);
+  return equationsOf(sums);
 }
 
 //! A plane, its terms and the normal equations evaluated there, in its own tangent basis.
@@ -238,10 +170,12 @@ bool negligible(const Eigen::Vector3d &delta, double altitude)
   one pass over the points: a rejected step reuses the normal equations of the current plane with
   more damping, an accepted one brings those of the new plane (\e next is the scratch iterate). The
   loop ends when the Gauss-Newton model promises (or the last step gave) a relative decrease of the
-  cost below kTolerance, far below the statistical uncertainty of the plane for any realistic noise.
+  cost below kTolerance, far below the statistical uncertainty of the plane for any realistic noise,
+  or, with \e firstStepOnly, after the first accepted step.
 */
 void levenbergMarquardt(const Eigen::Vector2d *points, const double *weights, int n, const Eigen::Vector3d &apex,
-                        const Eigen::Matrix3d &M, int iterations, Iterate &current, Iterate &next)
+                        const Eigen::Matrix3d &M, int iterations, Iterate &current, Iterate &next,
+                        bool firstStepOnly = false)
 {
   double damping = 1e-3;
   const double kTolerance = 1e-6;
@@ -265,7 +199,7 @@ void levenbergMarquardt(const Eigen::Vector2d *points, const double *weights, in
       const double gain = (current.ne.cost - next.ne.cost) / current.ne.cost;
       std::swap(current, next);
       damping = std::max(1e-9, 0.1 * damping);
-      if (gain < kTolerance)
+      if (gain < kTolerance || firstStepOnly)
         break;
     } else {
       damping *= 10.0;
@@ -309,19 +243,28 @@ bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &con
   const Eigen::Matrix3d M = internal::laserConeForm(cone);
   Iterate current, next;
   evaluate(plane / plane.head<3>().norm(), points, nullptr, n, cone.apex, M, current);
-  std::vector<double> w(static_cast<size_t>(n));
+  std::vector<double> w(static_cast<size_t>(n)), scratch;
   for (int round = 0; round < rounds; ++round) {
     // Weights at the scale of the residuals of the current plane (kept from its last evaluation).
-    const double sigma = vpRobustMadScale(current.terms.r);
-    for (int i = 0; i < n; ++i) // NaN residuals (no gradient) get a zero weight
-      w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, current.terms.r[static_cast<size_t>(i)], sigma);
+    const double *r = current.terms.r();
+    scratch.assign(r, r + n);
+    const double sigma = vpRobustMadScale(std::move(scratch));
+    // vpRobustWeight(vpRobustLoss::HUBER, r, sigma) for every residual (NaN, no gradient: zero weight).
+    if (sigma > 0.0)
+      internal::huberWeights(r, n, 1.345 * sigma, w.data());
+    else
+      for (int i = 0; i < n; ++i)
+        w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, r[i], sigma);
     current.ne = assemble(current.terms, w.data(), n);
     if (!std::isfinite(current.ne.cost))
       return false;
-    levenbergMarquardt(points, w.data(), n, cone.apex, M, iterations, current, next);
+    // A round before the last only sets the residuals the next weights come from: converging it
+    // exactly is wasted, the last round absorbs what is left of its step (a fraction of a standard
+    // deviation of the plane) and runs to convergence.
+    levenbergMarquardt(points, w.data(), n, cone.apex, M, iterations, current, next, round + 1 < rounds);
   }
   plane = current.plane;
-  residuals = current.terms.r;
+  residuals.assign(current.terms.r(), current.terms.r() + n);
   return true;
 }
 } // namespace internal

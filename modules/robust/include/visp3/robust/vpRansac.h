@@ -129,6 +129,37 @@ struct HasScoreRange<E, std::void_t<decltype(std::declval<const E &>().scoreRang
 {
 };
 
+//! Detects the optional `countInliers()` member of an estimator (see vpRansacLoop()).
+template <class E, class = void> struct HasCountInliers : std::false_type
+{
+};
+template <class E>
+struct HasCountInliers<E, std::void_t<decltype(std::declval<const E &>().countInliers(
+                              std::declval<const typename E::Model &>(), static_cast<const int *>(nullptr), 0, 0.0))> >
+  : std::true_type
+{
+};
+
+/*!
+  Number of inliers among the data indices[0, count): the estimator's own countInliers() when it has
+  one, otherwise one residual() call per datum.
+*/
+template <class Estimator>
+int countInliers(const Estimator &estimator, const typename Estimator::Model &m, const int *indices, int count,
+                 double thr2)
+{
+  if constexpr (HasCountInliers<Estimator>::value) {
+    return estimator.countInliers(m, indices, count, thr2);
+  } else {
+    int inliers = 0;
+    for (int k = 0; k < count; ++k) {
+      const double r = estimator.residual(m, indices[k]);
+      inliers += r * r < thr2 ? 1 : 0; // NaN is never an inlier
+    }
+    return inliers;
+  }
+}
+
 /*!
   Inliers among the data [begin, end), their truncated squared residuals added to \e cost and, when
   \e inliers is not null, their indices written there: the estimator's own scoreRange() when it has
@@ -289,7 +320,10 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, type
     the number of data of [begin, end) whose squared residual is below thr2, adding their squared
     residual (thr2 for the others) to cost and, when inliers is not null, writing their indices
     there. An estimator provides it to score a block of data in one tight loop (no per-datum call,
-    no square root); it must agree with residual() up to rounding at the threshold.
+    no square root); it must agree with residual() up to rounding at the threshold;
+  - optionally `int countInliers(const Model &m, const int *indices, int count, double thr2) const`:
+    the number of the listed data whose squared residual is below thr2 (the preemptive test), with
+    the same agreement with residual().
 
   A datum is an inlier when residual < threshold. With options.pretestSize > 0, each hypothesis is
   first scored on a fixed random subset of the data and dropped when its inliers there make it
@@ -352,10 +386,8 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
       return true; // the best model has too few inliers for the subset to reject anything
     int count = 0;
     for (int l = 0; l < looks; ++l) {
-      for (int k = l * vpRansacPretestBlock; k < (l + 1) * vpRansacPretestBlock; ++k) {
-        const double r = estimator.residual(m, subset[static_cast<size_t>(k)]);
-        count += r * r < thr2 ? 1 : 0; // NaN is never an inlier
-      }
+      count += vpRansacDetail::countInliers(estimator, m, subset.data() + l * vpRansacPretestBlock,
+                                            vpRansacPretestBlock, thr2);
       if (count < minimum[static_cast<size_t>(l)])
         return false;
     }

@@ -18,15 +18,78 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include <visp3/core/vpConfig.h>
+
+namespace vpRobustDetail
+{
+//! \e x when \e keep, +0 otherwise, by a bit mask: compilers turn a select of doubles into a branch.
+inline double zeroUnless(bool keep, double x)
+{
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  bits &= ~static_cast<std::uint64_t>(0) * static_cast<std::uint64_t>(keep);
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
+/*!
+  The k-th and (k-1)-th smallest of v[0, n) (finite, non-negative; 1 <= k < n), v reordered. Exact,
+  like std::nth_element, whose partitioning mispredicts a branch for about every other value of
+  random data: a histogram of the values over their range (bin = floor((v - lo) scale), monotone in
+  v, so every value of a lower bin is below every value of a higher one) locates the bin of the k-th
+  value in one branch-free pass; its values are moved to the front and the search goes on among them.
+  A few levels leave a handful of values for std::nth_element.
+*/
+inline void selectPair(double *v, size_t n, size_t k, double &kth, double &previous)
+{
+  constexpr int kBins = 256;
+  constexpr size_t kSmall = 32;
+  // Largest value of the bins left below the current range; used only when the k-th value ends first
+  // in its range, which some value below then precedes (values >= 0, so 0 stands for none).
+  double below = 0.0;
+  for (int level = 0; level < 4 && n > kSmall; ++level) {
+    double lo = v[0], hi = v[0];
+    for (size_t i = 1; i < n; ++i) {
+      lo = std::min(lo, v[i]);
+      hi = std::max(hi, v[i]);
+    }
+    const double scale = kBins / (hi - lo);
+    if (!(hi > lo) || !std::isfinite(scale))
+      break; // all equal, or a range too narrow for bins
+    unsigned int counts[kBins] = {};
+    for (size_t i = 0; i < n; ++i)
+      ++counts[std::min(kBins - 1, static_cast<int>((v[i] - lo) * scale))];
+    int bin = 0;
+    size_t before = 0;
+    while (before + counts[bin] <= k)
+      before += counts[bin++];
+    // The values of that bin to the front (branch-free), the largest value below it kept.
+    size_t m = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const double x = v[i];
+      const int b = std::min(kBins - 1, static_cast<int>((x - lo) * scale));
+      below = std::max(below, zeroUnless(b < bin, x));
+      v[m] = x;
+      m += b == bin ? 1 : 0;
+    }
+    n = m;
+    k -= before;
+  }
+  std::nth_element(v, v + static_cast<std::ptrdiff_t>(k), v + static_cast<std::ptrdiff_t>(n));
+  kth = v[k];
+  previous = k > 0 ? *std::max_element(v, v + static_cast<std::ptrdiff_t>(k)) : below;
+}
+} // namespace vpRobustDetail
 
 /*!
   \ingroup group_robust
   Robust standard deviation of zero-mean residuals: 1.4826 times the median of their absolute values
   (MAD about zero; 1.4826 makes it consistent for Gaussian residuals). Non-finite values are ignored;
-  0 for an empty set. \e residuals is taken by value (partially sorted).
+  0 for an empty set. \e residuals is taken by value (reordered).
 */
 inline double vpRobustMadScale(std::vector<double> residuals)
 {
@@ -38,14 +101,13 @@ inline double vpRobustMadScale(std::vector<double> residuals)
   }
   if (count == 0)
     return 0.0;
-  residuals.resize(count);
+  if (count == 1)
+    return 1.4826 * residuals[0];
   const size_t mid = count / 2;
-  std::nth_element(residuals.begin(), residuals.begin() + static_cast<std::ptrdiff_t>(mid), residuals.end());
-  double median = residuals[mid];
-  if (count % 2 == 0) {
-    const double below = *std::max_element(residuals.begin(), residuals.begin() + static_cast<std::ptrdiff_t>(mid));
+  double median = 0.0, below = 0.0;
+  vpRobustDetail::selectPair(residuals.data(), count, mid, median, below);
+  if (count % 2 == 0)
     median = 0.5 * (median + below);
-  }
   return 1.4826 * median;
 }
 
