@@ -193,13 +193,13 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 
 namespace
 {
-// Rasterises the points' squares of half side m into bands of 8 rows by blocks of 16 columns (the width
-// the scans and the block flags process at once), then into the column spans of each band.
-void rasterise(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W,
-               vpLaserDetector::RegionSpans &out)
+// Marks the blocks of 16 columns by bands of 8 rows (the width the scans and the block flags process at once,
+// the height of the bands of spans) that meet the points' squares of half side m: \e marked, nbY x nbX.
+void markBlocks(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W, int nbX,
+                std::vector<unsigned char> &marked)
 {
-  const int blockW = 16, blockH = vpLaserDetector::RegionSpans::bandHeight, nbX = (W + blockW - 1) / blockW, nbY = (H + blockH - 1) / blockH;
-  std::vector<unsigned char> marked(static_cast<size_t>(nbX) * nbY, 0);
+  const int blockW = 16, blockH = vpLaserDetector::RegionSpans::bandHeight, nbY = (H + blockH - 1) / blockH;
+  marked.assign(static_cast<size_t>(nbX) * nbY, 0);
   // One point per cell of a quarter of the margin marks its square: more points in the cell add little
   // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
   // reaches at least m - 0.36 margin around every point).
@@ -219,6 +219,30 @@ void rasterise(const std::vector<vpImagePoint> &region, double margin, double m,
     for (int bi = i0 / blockH; bi <= i1 / blockH; ++bi)
       std::fill(&marked[static_cast<size_t>(bi) * nbX + j0 / blockW], &marked[static_cast<size_t>(bi) * nbX + j1 / blockW] + 1, 1);
   }
+}
+
+// The marked blocks dilated by rx blocks along the rows and ry bands along the columns.
+std::vector<unsigned char> dilateBlocks(const std::vector<unsigned char> &marked, int nbX, int rx, int ry)
+{
+  const int nbY = static_cast<int>(marked.size()) / nbX;
+  std::vector<unsigned char> wide(marked.size(), 0), out(marked.size(), 0);
+  for (int bi = 0; bi < nbY; ++bi)
+    for (int b = 0; b < nbX; ++b)
+      if (marked[static_cast<size_t>(bi) * nbX + b])
+        std::fill(&wide[static_cast<size_t>(bi) * nbX + std::max(0, b - rx)],
+                  &wide[static_cast<size_t>(bi) * nbX + std::min(nbX - 1, b + rx)] + 1, 1);
+  for (int bi = 0; bi < nbY; ++bi)
+    for (int di = -ry; di <= ry; ++di)
+      if (bi + di >= 0 && bi + di < nbY)
+        for (int b = 0; b < nbX; ++b)
+          out[static_cast<size_t>(bi) * nbX + b] |= wide[static_cast<size_t>(bi + di) * nbX + b];
+  return out;
+}
+
+// The column spans of each band of the marked blocks.
+void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, vpLaserDetector::RegionSpans &out)
+{
+  const int blockW = 16, nbY = static_cast<int>(marked.size()) / nbX;
   out.spans.clear();
   out.bandStart.assign(1, 0);
   for (int bi = 0; bi < nbY; ++bi) {
@@ -242,9 +266,17 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
   if (work.regionValid && work.regionGeneration == m_regionGeneration && work.regionHeight == static_cast<unsigned int>(H) &&
       work.regionWidth == static_cast<unsigned int>(W))
     return;
-  // Everything the ridge tests read lies within the stripe width + 2 of a searched pixel.
-  rasterise(m_region, m_regionMargin, m_regionMargin + m_maxStripeWidth + 2, H, W, work.scoreRegion);
-  rasterise(m_region, m_regionMargin, m_regionMargin, H, W, work.searchRegion);
+  // The ridge tests of a searched pixel read the score up to the stripe width + 1 pixels away along its row
+  // and its column. The searched blocks are thus dilated by that reach rounded up to whole blocks and bands:
+  // every score read is of this frame (the score buffer is kept from frame to frame), whatever part of its
+  // block a searched pixel lies in.
+  const int nbX = (W + 15) / 16, reach = static_cast<int>(m_maxStripeWidth) + 1;
+  std::vector<unsigned char> searched;
+  markBlocks(m_region, m_regionMargin, m_regionMargin, H, W, nbX, searched);
+  blocksToSpans(searched, nbX, W, work.searchRegion);
+  blocksToSpans(dilateBlocks(searched, nbX, (reach + 15) / 16,
+                             (reach + vpLaserDetector::RegionSpans::bandHeight - 1) / vpLaserDetector::RegionSpans::bandHeight),
+                nbX, W, work.scoreRegion);
   work.regionValid = true;
   work.regionGeneration = m_regionGeneration;
   work.regionHeight = static_cast<unsigned int>(H);

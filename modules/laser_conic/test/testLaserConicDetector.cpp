@@ -20,6 +20,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpPolygon.h>
+#include <visp3/core/vpUniRand.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
 #include "laser_sim_test_utils.h"
@@ -559,6 +560,43 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
   EXPECT_THROW(byConic.setSearchRegion(sim.tracePoints(10), 0.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(3, 3, 0.0), 20.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(2, 3, 1.0), 20.0), vpLaserConicException);
+}
+
+TEST(LaserConicDetector, SearchRegionIgnoresThePreviousFrames)
+{
+  // The score buffer is kept from frame to frame and a search region scores only around the band: a frame's
+  // points must not depend on the scores an earlier frame left outside it. The band is the trace shifted
+  // sideways, so that the stripe runs along and across the band's edges (where the ridge tests read the
+  // score up to the stripe width + 1 pixels beyond the searched blocks), and the earlier frame is noise
+  // (random scores everywhere, detected in the whole image).
+  HardCase c = mosaicCase();
+  vpLaserConicSimulator sim = makeSimulator(c.cMg, 45);
+  vpImage<vpRGBa> I, noise(kHeight, kWidth);
+  sim.render(I, c.settings);
+  vpUniRand rng(46);
+  for (unsigned int i = 0; i < noise.getHeight(); ++i)
+    for (unsigned int j = 0; j < noise.getWidth(); ++j)
+      noise[i][j] = vpRGBa(static_cast<unsigned char>(rng.uniform(0, 256)), static_cast<unsigned char>(rng.uniform(0, 256)),
+                           static_cast<unsigned char>(rng.uniform(0, 256)), 255);
+  size_t compared = 0;
+  for (double shift : {12.0, 18.0, 24.0, 30.0}) {
+    std::vector<vpImagePoint> band = sim.tracePoints(720);
+    for (vpImagePoint &p : band)
+      p.set_uv(p.get_u() + shift, p.get_v() + 0.5 * shift);
+    vpLaserConicDetector fresh, reused;
+    fresh.setSearchRegion(band, 20.0);
+    const std::vector<vpImagePoint> expected = fresh.detect(I);
+    reused.detect(noise);
+    reused.setSearchRegion(band, 20.0);
+    const std::vector<vpImagePoint> points = reused.detect(I);
+    EXPECT_GT(expected.size(), 500u) << "shift " << shift; // the band still holds a good part of the trace
+    ASSERT_EQ(points.size(), expected.size()) << "shift " << shift;
+    for (size_t k = 0; k < points.size(); ++k)
+      ASSERT_TRUE(points[k].get_u() == expected[k].get_u() && points[k].get_v() == expected[k].get_v())
+          << "shift " << shift << " point " << k;
+    compared += points.size();
+  }
+  std::cout << "points compared after a noise frame: " << compared << std::endl;
 }
 
 TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
