@@ -24,9 +24,9 @@ typedef int Quad __attribute__((vector_size(4 * sizeof(int))));
 
 constexpr int kLanes = 4;
 
-inline double sqrtOf(double v) { return std::sqrt(v); }
+VSP_LASER_INLINE double sqrtOf(double v) { return std::sqrt(v); }
 #if defined(__GNUC__)
-inline Lanes sqrtOf(const Lanes &v) { return Lanes{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])}; }
+VSP_LASER_INLINE Lanes sqrtOf(const Lanes &v) { return Lanes{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])}; }
 #endif
 } // namespace
 
@@ -82,11 +82,11 @@ struct LaneSums
   Lanes h[6], g[3], cost;
 };
 
-inline Lanes broadcast(double v) { return Lanes{v, v, v, v}; }
+VSP_LASER_INLINE Lanes broadcast(double v) { return Lanes{v, v, v, v}; }
 
-inline double laneTotal(const Lanes &v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+VSP_LASER_INLINE double laneTotal(const Lanes &v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
-inline void reduce(const LaneSums &s, PlaneTermsSums &out)
+VSP_LASER_INLINE void reduce(const LaneSums &s, PlaneTermsSums &out)
 {
   for (int i = 0; i < 6; ++i)
     out.h[i] += laneTotal(s.h[i]);
@@ -95,7 +95,7 @@ inline void reduce(const LaneSums &s, PlaneTermsSums &out)
   out.cost += laneTotal(s.cost);
 }
 
-inline void clear(LaneSums &s)
+VSP_LASER_INLINE void clear(LaneSums &s)
 {
   const Lanes z = broadcast(0.0);
   for (Lanes &v : s.h)
@@ -108,7 +108,7 @@ inline void clear(LaneSums &s)
 
 //! Adds the weighted terms of one point (T = double, Sums = PlaneTermsSums) or of four (Lanes, LaneSums).
 template <class Sums, class T>
-inline void addTerms(Sums &s, const T &w, const T &r, const T &J0, const T &J1, const T &J2)
+VSP_LASER_INLINE void addTerms(Sums &s, const T &w, const T &r, const T &J0, const T &J1, const T &J2)
 {
   const T wJ0 = w * J0, wJ1 = w * J1, wJ2 = w * J2;
   s.cost += w * r * r;
@@ -131,7 +131,7 @@ inline void addTerms(Sums &s, const T &w, const T &r, const T &J0, const T &J1, 
   \return r; \e B is 0 where the conic has no gradient (r and the derivatives are then meaningless).
 */
 template <class T>
-inline T pointTerms(const PlaneTermsCoefficients &k, const T &x, const T &y, T &J0, T &J1, T &J2, T &B)
+VSP_LASER_INLINE T pointTerms(const PlaneTermsCoefficients &k, const T &x, const T &y, T &J0, T &J1, T &J2, T &B)
 {
   const ConicCoefficients &c = k.c, &dd = k.dd;
   const T v0 = c.a * x + c.b * y + c.d, v1 = c.b * x + c.e * y + c.f;
@@ -231,18 +231,18 @@ VSP_LASER_KERNEL void planeTermsSums(const double *r, const double *j0, const do
 namespace
 {
 //! Sign bit as a 0/1 factor (scalar) or a lane mask.
-inline double signFactor(double v) { return static_cast<double>(std::signbit(v)); }
-inline double select(bool c, double a, double b) { return c ? a : b; }
-inline double absOf(double v) { return std::abs(v); }
+VSP_LASER_INLINE double signFactor(double v) { return static_cast<double>(std::signbit(v)); }
+VSP_LASER_INLINE double select(bool c, double a, double b) { return c ? a : b; }
+VSP_LASER_INLINE double absOf(double v) { return std::abs(v); }
 #if defined(__GNUC__)
-inline LaneMask signFactor(const Lanes &v)
+VSP_LASER_INLINE LaneMask signFactor(const Lanes &v)
 {
   LaneMask bits;
   std::memcpy(&bits, &v, sizeof bits);
   return bits < 0; // the sign bit is the integer sign
 }
-inline Lanes select(const LaneMask &c, const Lanes &a, const Lanes &b) { return c ? a : b; }
-inline Lanes absOf(const Lanes &v) { return v < 0.0 ? -v : v; }
+VSP_LASER_INLINE Lanes select(const LaneMask &c, const Lanes &a, const Lanes &b) { return c ? a : b; }
+VSP_LASER_INLINE Lanes absOf(const Lanes &v) { return v < 0.0 ? -v : v; }
 #endif
 
 /*!
@@ -250,7 +250,7 @@ inline Lanes absOf(const Lanes &v) { return v < 0.0 ? -v : v; }
   octant enters through selected increments and the sign of y through a sign flip, in the same
   operations for one value or four lanes.
 */
-template <class T> inline T atan2Polynomial(const T &y, const T &x)
+template <class T> VSP_LASER_INLINE T atan2Polynomial(const T &y, const T &x)
 {
   const T ax = absOf(x), ay = absOf(y);
   const auto above = ay > ax;
@@ -266,7 +266,7 @@ template <class T> inline T atan2Polynomial(const T &y, const T &x)
 }
 
 //! The bin of approximateAtan2(), or of std::atan2 near a bin edge or for invalid input.
-inline int binOf(double u0, double u1, double approximate, int bins)
+VSP_LASER_INLINE int binOf(double u0, double u1, double approximate, int bins)
 {
   const double perRadian = bins / (2.0 * M_PI);
   if (std::isfinite(u0) && std::isfinite(u1) && (u0 != 0.0 || u1 != 0.0)) {

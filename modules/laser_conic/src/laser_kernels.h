@@ -28,6 +28,19 @@
 #define VSP_LASER_KERNEL
 #endif
 
+/*!
+  Marks a helper of the kernels: always inlined, so that each build of a kernel (see VSP_LASER_KERNEL)
+  compiles it for its own instruction set. An out-of-line helper would be compiled once, for the
+  baseline, and an AVX2 kernel passing or returning four-lane vectors would then call it with
+  another calling convention (what -Wpsabi warns of): wrong values in any build that does not inline
+  (debug builds, sanitizers).
+*/
+#if defined(__GNUC__)
+#define VSP_LASER_INLINE inline __attribute__((always_inline))
+#else
+#define VSP_LASER_INLINE inline
+#endif
+
 namespace vpLaserSolvers
 {
 namespace internal

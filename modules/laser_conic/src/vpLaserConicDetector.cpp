@@ -286,10 +286,10 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
 const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
 {
   if (m_maskDirty) {
-    vpLaserDetector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask);
+    vpLaserDetector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask.image);
     m_maskDirty = false;
   }
-  return m_mask;
+  return m_mask.image;
 }
 
 std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
@@ -303,7 +303,7 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   if (m_method == DETECTION_HSV) {
     const vpLaserDetector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
                                                     static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
-    return vpLaserDetector::detectHsv(I, settings, m_mask);
+    return vpLaserDetector::detectHsv(I, settings, m_mask.image);
   }
   const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
                                                     static_cast<int>(m_saturationLevel), m_minSegmentLength,

@@ -273,7 +273,7 @@ void vpLaserConicSimulator::setGroundTexture(const vpImage<vpRGBa> &texture, dou
   if (!std::isfinite(metresPerTexel) || metresPerTexel <= 0.0 || !std::isfinite(x0) || !std::isfinite(y0))
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicSimulator: the texel size must be positive and the origin finite");
-  m_texture = texture;
+  m_texture.image = texture;
   m_texelSize = metresPerTexel;
   m_textureX0 = x0;
   m_textureY0 = y0;
@@ -497,8 +497,8 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
         continue; // historical path: the texture as is, no lighting
       }
       vpLaserSimFloor::albedo(settings.floor, X, Y, sceneSeed, albedo, gloss);
-      if (m_texture.getSize() != 0 &&
-          sampleTexture(m_texture, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
+      if (m_texture.image.getSize() != 0 &&
+          sampleTexture(m_texture.image, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
         gloss = 0.2f;
       if (m_boardX != 0 && chessboardGrey(X, Y, m_boardX, m_boardY, m_boardSquare) >= 0.f) {
         // Average of 4 sub-pixel samples (rays interpolated between the pixel centres).

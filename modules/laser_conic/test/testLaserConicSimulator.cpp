@@ -41,6 +41,27 @@ double coneAngleOf(const vpImagePoint &p, const vpCameraParameters &cam, const v
 }
 } // namespace
 
+TEST(LaserConicSimulator, CopiesRenderTheSameImages)
+{
+  // Copies and assignments with and without a ground texture (an empty one must not be copied: ViSP 3.5
+  // would memcpy from a null pointer, which the sanitizer build reports).
+  vpLaserConicSimulator plain = makeSimulator(groundPose());
+  vpLaserConicSimulator textured = makeSimulator(groundPose());
+  textured.setGroundTexture(vpImage<vpRGBa>(16, 16, vpRGBa(180, 140, 60, 255)), 0.05, -0.4, -0.4);
+  vpLaserConicSimulator plainCopy(plain), texturedCopy(textured), assigned = textured;
+  assigned = plain; // drops the texture
+  vpImage<vpRGBa> a, b, c, d, e;
+  plain.render(a);
+  plainCopy.render(b);
+  assigned.render(c);
+  textured.render(d);
+  texturedCopy.render(e);
+  EXPECT_TRUE(a == b);
+  EXPECT_TRUE(a == c);
+  EXPECT_TRUE(d == e);
+  EXPECT_FALSE(a == d); // the texture shows
+}
+
 TEST(LaserConicSimulator, GroundPlaneFacesTheCamera)
 {
   for (double flip : {0.0, M_PI}) {

@@ -19,6 +19,7 @@
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
+#include <visp3/laser_conic/vpLaserConicImageMember.h>
 
 namespace vpLaserDetector
 {
@@ -256,7 +257,7 @@ private:
   std::vector<vpImagePoint> m_region; //!< sampled search region (empty: whole image)
   double m_regionMargin;
   unsigned int m_regionGeneration; //!< changes with the region or the stripe width: the rasterisation is then redone
-  mutable vpImage<unsigned char> m_mask; //!< drawn from m_runs by getMask() when m_maskDirty
+  mutable vpLaserConicImageMember<unsigned char> m_mask; //!< drawn from m_runs by getMask() when m_maskDirty
   mutable bool m_maskDirty;
   unsigned int m_height, m_width;        //!< size of the last image
   double m_threshold, m_noise;

@@ -18,6 +18,7 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpPlane.h>
 #include <visp3/core/vpRGBa.h>
+#include <visp3/laser_conic/vpLaserConicImageMember.h>
 
 /*!
   \ingroup group_laser_conic
@@ -298,7 +299,7 @@ private:
   vpHomogeneousMatrix m_cMl, m_cMg;
   unsigned int m_seed;
   std::mt19937 m_rng;
-  vpImage<vpRGBa> m_texture;               //!< texture of setGroundTexture()
+  vpLaserConicImageMember<vpRGBa> m_texture; //!< texture of setGroundTexture()
   double m_texelSize, m_textureX0, m_textureY0; //!< its placement
   unsigned int m_boardX, m_boardY;          //!< chessboard squares (0: none)
   double m_boardSquare;                     //!< chessboard square size, metres
