@@ -49,11 +49,9 @@ vpLaserConicDetector::vpLaserConicDetector()
 
 vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vpLaserDetector::RidgeWorkspace) {}
 
-vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &other) : m_work(new vpLaserDetector::RidgeWorkspace)
+vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &other) : vpWorkspace()
 {
-  // The last detection's crossings are state (the mask is drawn from them); the buffers are not.
-  m_work->crossings = other.m_work->crossings;
-  m_work->keep = other.m_work->keep;
+  *this = other; // empty buffers of its own, the last detection's crossings copied (see operator=)
 }
 
 vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(const vpWorkspace &other)
