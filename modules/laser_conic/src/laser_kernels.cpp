@@ -265,7 +265,7 @@ template <class T> VSP_LASER_INLINE T atan2Polynomial(const T &y, const T &x)
   return select(signFactor(y), -a, a);
 }
 
-//! The bin of approximateAtan2(), or of std::atan2 near a bin edge or for invalid input.
+//! The bin of the angle \e approximate (atan2Polynomial()), or of std::atan2 near a bin edge or for invalid input.
 VSP_LASER_INLINE int binOf(double u0, double u1, double approximate, int bins)
 {
   const double perRadian = bins / (2.0 * M_PI);
@@ -278,8 +278,6 @@ VSP_LASER_INLINE int binOf(double u0, double u1, double approximate, int bins)
   return static_cast<int>(std::floor((std::atan2(u1, u0) + M_PI) * perRadian));
 }
 } // namespace
-
-double approximateAtan2(double y, double x) { return atan2Polynomial(y, x); }
 
 VSP_LASER_KERNEL void huberWeights(const double *r, int n, double k, double *w)
 {

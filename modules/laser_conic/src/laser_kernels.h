@@ -100,16 +100,11 @@ void huberWeights(const double *r, int n, double k, double *w);
 void centroidAndSpread(const Eigen::Vector2d *points, int n, double &cx, double &cy, double &meanDistance);
 
 /*!
-  atan2(y, x) to within 2e-8 rad, from the polynomial of atan on [0, 1] of Abramowitz and Stegun
-  (4.4.49). The arguments are finite and not both zero.
-*/
-double approximateAtan2(double y, double x);
-
-/*!
   Angular bins of the points points[indices[i]], i < n, around an ellipse: with u = U (p - centre)
   (U upper triangular, U^T U the quadratic part of the ellipse, so u lies on a circle), the bin is
-  floor((atan2(u1, u0) + pi) bins / (2 pi)), from approximateAtan2() unless the angle is within 1e-6
-  rad of a bin edge (then std::atan2, so that the bin is the one the exact angle gives).
+  floor((atan2(u1, u0) + pi) bins / (2 pi)), from a polynomial atan2 (within 2e-8 rad: the polynomial
+  of atan on [0, 1] of Abramowitz and Stegun, 4.4.49) unless the angle is within 1e-6 rad of a bin
+  edge (then std::atan2, so that the bin is the one the exact angle gives).
 */
 void ellipseBins(const Eigen::Vector2d *points, const int *indices, int n, const Eigen::Vector2d &centre,
                  const Eigen::Matrix2d &U, int bins, int *out);
