@@ -86,6 +86,13 @@ VSP_LASER_INLINE Lanes broadcast(double v) { return Lanes{v, v, v, v}; }
 
 VSP_LASER_INLINE double laneTotal(const Lanes &v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
+//! The coordinates of the four points from \e p, one point per lane.
+VSP_LASER_INLINE void loadFour(const Eigen::Vector2d *p, Lanes &x, Lanes &y)
+{
+  x = Lanes{p[0](0), p[1](0), p[2](0), p[3](0)};
+  y = Lanes{p[0](1), p[1](1), p[2](1), p[3](1)};
+}
+
 VSP_LASER_INLINE void reduce(const LaneSums &s, PlaneTermsSums &out)
 {
   for (int i = 0; i < 6; ++i)
@@ -163,8 +170,8 @@ VSP_LASER_KERNEL void planeTermsKernel(const PlaneTermsCoefficients &k, const Ei
   clear(s);
   const Lanes zero = broadcast(0.0), one = broadcast(1.0), nanLanes = broadcast(nan);
   for (; i + kLanes <= n; i += kLanes) {
-    const Eigen::Vector2d *p = points + i;
-    const Lanes x = {p[0](0), p[1](0), p[2](0), p[3](0)}, y = {p[0](1), p[1](1), p[2](1), p[3](1)};
+    Lanes x, y;
+    loadFour(points + i, x, y);
     Lanes w = one;
     if (weights)
       std::memcpy(&w, weights + i, sizeof w);
@@ -308,9 +315,10 @@ VSP_LASER_KERNEL void centroidAndSpread(const Eigen::Vector2d *points, int n, do
 #if defined(__GNUC__)
   Lanes ax = {}, ay = {};
   for (; i + kLanes <= n; i += kLanes) {
-    const Eigen::Vector2d *p = points + i;
-    ax += Lanes{p[0](0), p[1](0), p[2](0), p[3](0)};
-    ay += Lanes{p[0](1), p[1](1), p[2](1), p[3](1)};
+    Lanes x, y;
+    loadFour(points + i, x, y);
+    ax += x;
+    ay += y;
   }
   sx = laneTotal(ax);
   sy = laneTotal(ay);
@@ -326,8 +334,9 @@ VSP_LASER_KERNEL void centroidAndSpread(const Eigen::Vector2d *points, int n, do
 #if defined(__GNUC__)
   Lanes ad = {};
   for (; i + kLanes <= n; i += kLanes) {
-    const Eigen::Vector2d *p = points + i;
-    const Lanes dx = Lanes{p[0](0), p[1](0), p[2](0), p[3](0)} - cx, dy = Lanes{p[0](1), p[1](1), p[2](1), p[3](1)} - cy;
+    Lanes x, y;
+    loadFour(points + i, x, y);
+    const Lanes dx = x - cx, dy = y - cy;
     ad += sqrtOf(dx * dx + dy * dy);
   }
   sd = laneTotal(ad);
