@@ -9,6 +9,7 @@
   vpLaserConicSimulator. Without the laser_conic library (VSP_HAVE_LASER_CONIC undefined) only the
   OpenCV passes are timed.
 */
+#include <chrono>
 #include <random>
 #include <vector>
 
@@ -216,6 +217,32 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
 {
 #ifdef VSP_HAVE_LASER_CONIC
   const vspBench::LaserRig rig = vspBench::defaultRig();
+  if (methodName.compare(0, 7, "detect-") == 0) { // detection + GP-3 on the whole-frame benchmark's frames
+    std::vector<std::pair<std::string, vpLaserConicSimulator::vpRenderSettings> > floors = benchFloors();
+    const size_t f = methodName == "detect-dark" ? 0 : (methodName == "detect-grey" ? 1 : 2);
+    std::vector<vpImage<vpRGBa> > images;
+    std::vector<Eigen::Vector4d> truths;
+    renderFrames(rig, seed + 7, 6, floors[f].second, images, truths);
+    vpLaserConicDetector detector;
+    vpLaserConicPose estimator = makeEstimator(rig);
+    int good = 0;
+    size_t detected = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < frames; ++k) {
+      const size_t i = static_cast<size_t>(k) % images.size();
+      const std::vector<vpImagePoint> trace = detector.detect(images[i]);
+      detected += trace.size();
+      vpPlane plane;
+      try {
+        good += estimator.computePlane(trace, vpLaserConicPose::GP3, plane) && planeIsGood(toEigen(plane), truths[i]);
+      } catch (const vpException &) {
+      }
+    }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::printf("%s, %s: %d/%d frames good, %.0f points per frame, %.3f ms per frame (wall clock)\n", methodName.c_str(),
+                floors[f].first.c_str(), good, frames, static_cast<double>(detected) / frames, ms / frames);
+    return 0;
+  }
   const std::vector<LaserFrame> data = makeFrames(rig, seed, frames, outlierRatio, points);
   vpLaserConicPose estimator = makeEstimator(rig);
   const vpLaserConicPose::vpLaserConicMethod method =

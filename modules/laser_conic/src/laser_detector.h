@@ -97,6 +97,9 @@ struct RidgeWorkspace
   std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes
   std::vector<unsigned char> keep;           //!< crossings on long chains
   RegionSpans scoreRegion, searchRegion;     //!< rasterised search region (see vpLaserConicDetector)
+  std::vector<unsigned char> cells;          //!< coarse to fine: the cells near the coarse crossings kept
+  RegionSpans fineRegion;                    //!< coarse to fine: those cells rasterised
+  std::vector<unsigned char> coarseScore, coarseFlags, coarseZeros; //!< coarse to fine: the coarse columns
   unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
   bool regionValid = false;
 };

@@ -473,6 +473,15 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
 #endif
 }
 
+// The columns whose candidates a column pass keeps: the multiples of \e step and, when \e coarse is not 0,
+// those that are (coarseOnes) or are not multiples of \e coarse (see detectRidge(): coarse lines, then the others).
+struct ColumnSelection
+{
+  int step, coarse;
+  bool coarseOnes;
+  bool operator()(int j) const { return j % step == 0 && (coarse == 0 || (j % coarse == 0) == coarseOnes); }
+};
+
 #if VSP_DETECTOR_AVX2
 // The whole blocks [firstBlock, lastBlock] of the column pass of columnCandidates(), two at a time (AVX2):
 // row, up, down, nearUp, nearDown: row i and the rows d and d / 2 + 1 away (or zeros beyond the image).
@@ -480,7 +489,8 @@ __attribute__((target("avx2"))) void columnBlocksAvx2(const unsigned char *row, 
                                                       const unsigned char *down, const unsigned char *nearUp,
                                                       const unsigned char *nearDown, ptrdiff_t stride,
                                                       const unsigned char *flags, int firstBlock, int lastBlock,
-                                                      int threshold, int step, int i, std::vector<Candidate> &out)
+                                                      int threshold, const ColumnSelection &keep, int i,
+                                                      std::vector<Candidate> &out)
 {
   const __m256i t = _mm256_set1_epi8(static_cast<char>(threshold)),
                 th = _mm256_set1_epi8(static_cast<char>((threshold + 1) / 2));
@@ -497,18 +507,18 @@ __attribute__((target("avx2"))) void columnBlocksAvx2(const unsigned char *row, 
                                                      row + k - stride, row + k + stride, t16, th16));
     for (; bits; bits &= bits - 1) {
       const int jj = k + __builtin_ctz(bits);
-      if (jj % step == 0)
+      if (keep(jj))
         out.push_back(Candidate{jj, i});
     }
   }
 }
 #endif
 
-// Candidate peaks along the columns (every step-th column) at row i within [j0, j1]. Only the flagged
+// Candidate peaks along the columns (those that keep selects) at row i within [j0, j1]. Only the flagged
 // blocks of 16 columns are tested (flags: the row's block flags, see scoreSpan()). \e zeros: a row of W
 // zero scores, standing for the rows beyond the image border (the score there counts as 0).
 void columnCandidates(const unsigned char *c, const unsigned char *flags, const unsigned char *zeros, int W, int H,
-                      int i, int j0, int j1, int d, int threshold, int step,
+                      int i, int j0, int j1, int d, int threshold, const ColumnSelection &keep,
                       vpLaserConicDetector::vpInstructionSet instructions, std::vector<Candidate> &out)
 {
   if (i < 1 || i > H - 2)
@@ -518,7 +528,7 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
   const int dn = d / 2 + 1, half = (threshold + 1) / 2;
   auto scalar = [&](int first, int last) {
     for (int j = first; j <= last; ++j) {
-      if (!flags[j >> 4] || j % step != 0)
+      if (!flags[j >> 4] || !keep(j))
         continue;
       const unsigned char *column = c + j; // the column j, row 0
       const int bg = std::max(std::min(scoreAt(column, stride, i, -d, H), scoreAt(column, stride, i, -dn, H)),
@@ -539,7 +549,7 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
     scalar(j0, 16 * firstBlock - 1);
 #if VSP_DETECTOR_AVX2
     if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2)
-      columnBlocksAvx2(row, up, down, nearUp, nearDown, stride, flags, firstBlock, lastBlock, threshold, step, i, out);
+      columnBlocksAvx2(row, up, down, nearUp, nearDown, stride, flags, firstBlock, lastBlock, threshold, keep, i, out);
     else
 #endif
       for (int b = firstBlock; b <= lastBlock; ++b) {
@@ -549,7 +559,7 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
         int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
         for (; bits; bits &= bits - 1) {
           const int jj = k + __builtin_ctz(bits);
-          if (jj % step == 0)
+          if (keep(jj))
             out.push_back(Candidate{jj, i});
         }
       }
@@ -805,6 +815,252 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
     keep[order[k]] = du * du + dv * dv >= min2;
   }
 }
+// Coarse to fine (see detectRidge()): the coarse lines are every coarseFactor() x step-th. The largest
+// factor up to 8 for which a chain of the minimum length, setMinSegmentLength(), still crosses four coarse
+// lines; below 2 (short chains kept, or a sampling step already coarse), one pass.
+int coarseFactor(const RidgeSettings &settings)
+{
+  return std::min(8, static_cast<int>(settings.minSegment / (4.0 * settings.step)));
+}
+
+// The cells of 16 columns x RegionSpans::bandHeight rows holding a crossing kept by longChains(), with the
+// cells up to 16 pixels around, rasterised into \e region (spans on multiples of 16 columns).
+void aroundKeptCrossings(RidgeWorkspace &work, int W, int H, RegionSpans &region)
+{
+  const int cw = (W + 15) >> 4, ch = (H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
+  const int bandsAround = 16 >> RegionSpans::bandShift;
+  std::vector<unsigned char> &cells = work.cells;
+  cells.assign(static_cast<size_t>(cw) * ch, 0);
+  for (size_t k = 0; k < work.crossings.size(); ++k) {
+    if (!work.keep[k])
+      continue;
+    const vpImagePoint &p = work.crossings[k].point;
+    const int ci = std::min(ch - 1, std::max(0, static_cast<int>(p.get_v()) >> RegionSpans::bandShift));
+    const int cj = std::min(cw - 1, std::max(0, static_cast<int>(p.get_u()) >> 4));
+    for (int a = std::max(0, ci - bandsAround); a <= std::min(ch - 1, ci + bandsAround); ++a)
+      for (int b = std::max(0, cj - 1); b <= std::min(cw - 1, cj + 1); ++b)
+        cells[static_cast<size_t>(a) * cw + b] = 1;
+  }
+  region.spans.clear();
+  region.bandStart.assign(1, 0);
+  for (int a = 0; a < ch; ++a) {
+    const unsigned char *row = cells.data() + static_cast<size_t>(a) * cw;
+    for (int b = 0; b < cw; ++b) {
+      const int first = b;
+      while (b < cw && row[b])
+        ++b;
+      if (b > first)
+        region.spans.push_back(Span(16 * first, std::min(W - 1, 16 * b - 1)));
+    }
+    region.bandStart.push_back(static_cast<int>(region.spans.size()));
+  }
+}
+
+// One ridge detection: the score, the candidate searches along rows and columns and their measurement,
+// over the buffers of a RidgeWorkspace (see detectRidge()).
+class RidgeScan
+{
+public:
+  RidgeScan(const vpImage<vpRGBa> &I, const RidgeSettings &settings, int threshold, RidgeWorkspace &work,
+            std::vector<StripeRun> &runs)
+    : m_rgba(reinterpret_cast<const unsigned char *>(I.bitmap)), m_H(static_cast<int>(I.getHeight())),
+      m_W(static_cast<int>(I.getWidth())), m_flagStride((m_W + 15) >> 4), m_d(settings.maxWidth),
+      m_threshold(threshold), m_settings(settings), m_work(work), m_runs(runs)
+  {
+    work.score.resize(static_cast<size_t>(m_W) * m_H);
+    work.blockFlags.resize(static_cast<size_t>(m_flagStride) * m_H, 0);
+    work.zeros.assign(m_W, 0);
+    work.lastEnd.assign(m_W, -1);
+    work.rowPeaks.clear();
+    work.columnPeaks.clear();
+    work.crossings.clear();
+  }
+
+  /*!
+    The pass over the rows, while they are in cache: row i is scored (over \e scoreRegion only when not
+    null: nothing outside it is read) and, when a multiple of \e rowStep, searched along its length; the
+    columns are searched at row i - d, the last row whose neighbours up to d rows away are scored (every
+    coarseStep-th column when \e coarseStep is not 0, else those \e columns selects); the candidates of row
+    i - d - 1, the last row whose profiles (up to d + 1 rows away) are scored, are measured.
+  */
+  void streamRows(const RegionSpans *scoreRegion, const RegionSpans *searchRegion, int rowStep, int coarseStep,
+                  const ColumnSelection &columns)
+  {
+    if (coarseStep > 0)
+      startCoarseColumns(coarseStep);
+    auto searchColumnsAt = [&](int r) {
+      if (coarseStep > 0)
+        searchCoarseColumns(r, coarseStep);
+      else
+        searchColumns(r, searchRegion, columns);
+    };
+    for (int i = 0; i < m_H; ++i) {
+      scoreRow(i, scoreRegion);
+      if (i % rowStep == 0)
+        searchRow(i, searchRegion);
+      if (coarseStep > 0)
+        keepCoarseColumns(i, coarseStep);
+      if (i - m_d >= 0)
+        searchColumnsAt(i - m_d);
+      measureUpTo(i - m_d - 1);
+    }
+    for (int r = std::max(0, m_H - m_d); r < m_H; ++r)
+      searchColumnsAt(r);
+    measureUpTo(m_H);
+  }
+
+  /*!
+    Searches the lines of \e region that streamRows() left out (the rows multiple of \e step but not of
+    \e coarseStep, the columns \e columns selects), row by row over the scored image, and measures each
+    row's candidates at once.
+  */
+  void searchBetween(const RegionSpans &region, int step, int coarseStep, const ColumnSelection &columns)
+  {
+    for (int i = 0; i < m_H; ++i) {
+      if (region.begin(i) == region.end(i))
+        continue;
+      m_work.rowPeaks.clear();
+      m_work.columnPeaks.clear();
+      m_nextRowPeak = m_nextColumnPeak = 0;
+      if (i % step == 0 && i % coarseStep != 0)
+        searchRow(i, &region);
+      searchColumns(i, &region, columns);
+      measureUpTo(i);
+    }
+  }
+
+  //! Keeps the crossings work.keep marks; the others become rejected runs (for the mask, see drawRuns()).
+  void keepMarkedCrossings()
+  {
+    std::vector<Crossing> &crossings = m_work.crossings;
+    size_t kept = 0;
+    for (size_t k = 0; k < crossings.size(); ++k) {
+      const Crossing &c = crossings[k];
+      if (m_work.keep[k])
+        crossings[kept++] = c;
+      else
+        m_runs.push_back(StripeRun{c.alongRow, c.line, c.first, c.last, false});
+    }
+    crossings.resize(kept);
+  }
+
+private:
+  void scoreRow(int i, const RegionSpans *region)
+  {
+    const size_t offset = static_cast<size_t>(i) * m_W;
+    unsigned char *flags = m_work.blockFlags.data() + static_cast<size_t>(i) * m_flagStride;
+    if (region == nullptr) {
+      scoreSpan(m_rgba + 4 * offset, &m_work.score[offset], m_W, m_settings.saturation, m_threshold, flags,
+                m_settings.instructions);
+      return;
+    }
+    // The spans start at multiples of 16 columns (see RegionSpans): the blocks of the flags.
+    for (const Span *span = region->begin(i); span != region->end(i); ++span)
+      scoreSpan(m_rgba + 4 * (offset + span->first), &m_work.score[offset + span->first],
+                span->second - span->first + 1, m_settings.saturation, m_threshold, flags + (span->first >> 4),
+                m_settings.instructions);
+  }
+
+  const unsigned char *flagsOf(int i) const
+  {
+    return m_work.blockFlags.data() + static_cast<size_t>(i) * m_flagStride;
+  }
+
+  void searchRow(int i, const RegionSpans *region)
+  {
+    if (region == nullptr) {
+      rowCandidates(m_work.score.data(), flagsOf(i), m_W, i, 0, m_W - 1, m_d, m_threshold, m_settings.instructions,
+                    m_work.rowPeaks);
+      return;
+    }
+    for (const Span *span = region->begin(i); span != region->end(i); ++span)
+      rowCandidates(m_work.score.data(), flagsOf(i), m_W, i, span->first, span->second, m_d, m_threshold,
+                    m_settings.instructions, m_work.rowPeaks);
+  }
+
+  void searchColumns(int i, const RegionSpans *region, const ColumnSelection &columns)
+  {
+    if (region == nullptr) {
+      columnCandidates(m_work.score.data(), flagsOf(i), m_work.zeros.data(), m_W, m_H, i, 0, m_W - 1, m_d,
+                       m_threshold, columns, m_settings.instructions, m_work.columnPeaks);
+      return;
+    }
+    for (const Span *span = region->begin(i); span != region->end(i); ++span)
+      columnCandidates(m_work.score.data(), flagsOf(i), m_work.zeros.data(), m_W, m_H, i, span->first,
+                       span->second, m_d, m_threshold, columns, m_settings.instructions, m_work.columnPeaks);
+  }
+
+  // The coarse columns: the column tests read nothing across, so every coarseStep-th column of the score
+  // makes an image of its own, coarseStep times narrower, searched whole (all its blocks flagged); its
+  // candidates are mapped back to the image's columns.
+  int coarseWidth(int coarseStep) const { return (m_W - 1) / coarseStep + 1; }
+  void startCoarseColumns(int coarseStep)
+  {
+    const int w = coarseWidth(coarseStep);
+    m_work.coarseScore.resize(static_cast<size_t>(w) * m_H);
+    m_work.coarseFlags.assign(static_cast<size_t>((w + 15) >> 4), 0xFF);
+    m_work.coarseZeros.assign(w, 0);
+  }
+  void keepCoarseColumns(int i, int coarseStep)
+  {
+    const int w = coarseWidth(coarseStep);
+    const unsigned char *row = m_work.score.data() + static_cast<size_t>(i) * m_W;
+    unsigned char *coarse = m_work.coarseScore.data() + static_cast<size_t>(i) * w;
+    for (int k = 0; k < w; ++k)
+      coarse[k] = row[static_cast<size_t>(k) * coarseStep];
+  }
+  void searchCoarseColumns(int i, int coarseStep)
+  {
+    const int w = coarseWidth(coarseStep);
+    std::vector<Candidate> &peaks = m_work.columnPeaks;
+    const size_t first = peaks.size();
+    columnCandidates(m_work.coarseScore.data(), m_work.coarseFlags.data(), m_work.coarseZeros.data(), w, m_H, i, 0,
+                     w - 1, m_d, m_threshold, ColumnSelection{1, 0, true}, m_settings.instructions, peaks);
+    for (size_t k = first; k < peaks.size(); ++k)
+      peaks[k].line *= coarseStep;
+  }
+
+  // Measures the candidate c: one crossing per run, a later peak inside a measured run is skipped (the
+  // candidates come line by line for the rows, row by row for the columns: one run end per column).
+  void measure(const Candidate &c, bool alongRow)
+  {
+    if (alongRow && c.line != m_lastRow) {
+      m_lastRow = c.line;
+      m_lastRowEnd = -1;
+    }
+    int &end = alongRow ? m_lastRowEnd : m_work.lastEnd[static_cast<size_t>(c.line)];
+    if (c.pos <= end)
+      return;
+    const ScanLine s(m_work.score.data(), m_rgba, m_W, m_H, alongRow, c.line);
+    Crossing crossing;
+    const Verdict verdict = analyse(s, c.pos, m_settings, m_threshold, crossing);
+    if (verdict == IGNORED)
+      return;
+    end = crossing.last;
+    if (verdict == ACCEPTED)
+      m_work.crossings.push_back(crossing);
+    else
+      m_runs.push_back(StripeRun{alongRow, crossing.line, crossing.first, crossing.last, false});
+  }
+
+  // Measures the candidates of the rows <= r not measured yet.
+  void measureUpTo(int r)
+  {
+    const std::vector<Candidate> &rows = m_work.rowPeaks, &columns = m_work.columnPeaks;
+    for (; m_nextRowPeak < rows.size() && rows[m_nextRowPeak].line <= r; ++m_nextRowPeak)
+      measure(rows[m_nextRowPeak], true);
+    for (; m_nextColumnPeak < columns.size() && columns[m_nextColumnPeak].pos <= r; ++m_nextColumnPeak)
+      measure(columns[m_nextColumnPeak], false);
+  }
+
+  const unsigned char *m_rgba;
+  const int m_H, m_W, m_flagStride, m_d, m_threshold;
+  const RidgeSettings &m_settings;
+  RidgeWorkspace &m_work;
+  std::vector<StripeRun> &m_runs;
+  int m_lastRow = -1, m_lastRowEnd = -1;
+  size_t m_nextRowPeak = 0, m_nextColumnPeak = 0;
+};
 } // namespace
 
 std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSettings &settings,
@@ -818,101 +1074,40 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
   if (H == 0 || W == 0)
     return points;
-  const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
 
   // 1. Threshold from the image's own noise (a sparse sample of rows).
   report.noise = estimateNoise(I, scoreRegion);
   report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
   const int threshold = std::min(255, static_cast<int>(std::ceil(report.threshold)));
 
-  // 2. Score, candidates and profiles in one pass over the rows, while the rows are in cache: row i is
-  // scored (only over the region when one is given: nothing outside it is read) and searched along its
-  // length; the columns are searched at row i - d, the last row whose neighbours up to d rows away are
-  // scored; the candidates of row i - d - 1 (the last row whose profiles, up to d + 1 rows away, are
-  // scored) are measured: one crossing per run, a later peak inside a measured run is skipped (the
-  // candidates come line by line for the rows, row by row for the columns: one run end per column).
-  const int d = settings.maxWidth, step = settings.step;
-  const int flagStride = (W + 15) >> 4; // blocks of 16 columns
-  std::vector<unsigned char> &score = work.score;
-  score.resize(static_cast<size_t>(W) * H);
-  work.blockFlags.resize(static_cast<size_t>(flagStride) * H, 0);
-  const unsigned char *flags = work.blockFlags.data();
-  std::vector<Candidate> &rowPeaks = work.rowPeaks, &columnPeaks = work.columnPeaks;
-  rowPeaks.clear();
-  columnPeaks.clear();
-  work.zeros.assign(W, 0);
-  auto searchColumns = [&](int r) {
-    const unsigned char *rowFlags = flags + static_cast<size_t>(r) * flagStride;
-    if (searchRegion == nullptr)
-      columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, 0, W - 1, d, threshold, step,
-                       settings.instructions, columnPeaks);
-    else
-      for (const Span *span = searchRegion->begin(r); span != searchRegion->end(r); ++span)
-        columnCandidates(score.data(), rowFlags, work.zeros.data(), W, H, r, span->first, span->second, d, threshold,
-                         step, settings.instructions, columnPeaks);
-  };
-  std::vector<Crossing> &crossings = work.crossings;
-  crossings.clear();
-  work.lastEnd.assign(W, -1);
-  int lastRow = -1, lastRowEnd = -1;
-  size_t nextRowPeak = 0, nextColumnPeak = 0;
-  auto measure = [&](const Candidate &c, bool alongRow) {
-    if (alongRow && c.line != lastRow) {
-      lastRow = c.line;
-      lastRowEnd = -1;
-    }
-    int &end = alongRow ? lastRowEnd : work.lastEnd[c.line];
-    if (c.pos <= end)
-      return;
-    const ScanLine s(score.data(), rgba, W, H, alongRow, c.line);
-    Crossing crossing;
-    const Verdict verdict = analyse(s, c.pos, settings, threshold, crossing);
-    if (verdict == IGNORED)
-      return;
-    end = crossing.last;
-    if (verdict == ACCEPTED)
-      crossings.push_back(crossing);
-    else
-      runs.push_back(StripeRun{alongRow, crossing.line, crossing.first, crossing.last, false});
-  };
-  auto measureUpTo = [&](int r) { // every candidate of the rows <= r
-    for (; nextRowPeak < rowPeaks.size() && rowPeaks[nextRowPeak].line <= r; ++nextRowPeak)
-      measure(rowPeaks[nextRowPeak], true);
-    for (; nextColumnPeak < columnPeaks.size() && columnPeaks[nextColumnPeak].pos <= r; ++nextColumnPeak)
-      measure(columnPeaks[nextColumnPeak], false);
-  };
-  for (int i = 0; i < H; ++i) {
-    const size_t offset = static_cast<size_t>(i) * W;
-    unsigned char *rowFlags = work.blockFlags.data() + static_cast<size_t>(i) * flagStride;
-    if (scoreRegion == nullptr) {
-      scoreSpan(rgba + 4 * offset, &score[offset], W, settings.saturation, threshold, rowFlags, settings.instructions);
-      if (i % step == 0)
-        rowCandidates(score.data(), rowFlags, W, i, 0, W - 1, d, threshold, settings.instructions, rowPeaks);
-    } else {
-      // The spans start at multiples of 16 columns (see RegionSpans): the blocks of the flags.
-      for (const Span *span = scoreRegion->begin(i); span != scoreRegion->end(i); ++span)
-        scoreSpan(rgba + 4 * (offset + span->first), &score[offset + span->first], span->second - span->first + 1,
-                  settings.saturation, threshold, rowFlags + (span->first >> 4), settings.instructions);
-      if (i % step == 0)
-        for (const Span *span = searchRegion->begin(i); span != searchRegion->end(i); ++span)
-          rowCandidates(score.data(), rowFlags, W, i, span->first, span->second, d, threshold, settings.instructions,
-                        rowPeaks);
-    }
-    if (i - d >= 0)
-      searchColumns(i - d);
-    measureUpTo(i - d - 1);
+  // 2. Score, candidates and profiles. Over the whole image, coarse to fine: on a textured floor nearly
+  // every block of the image has candidates, most of them short ridges (a patch corner between two grout
+  // lines is a thin wedge of its colour), and measuring them all took most of a frame's time. The pass
+  // over the rows measures the candidates of the coarse lines only (every coarseStep-th row and column),
+  // whose crossings are chained as in 3. at the coarse scale; the other lines are then searched only near
+  // the coarse crossings on chains that may reach the minimum length. A chain of that length crosses four
+  // coarse lines at least, and its coarse crossings may fall short of its ends by up to a coarse step
+  // each way (hence the shorter coarse length). A search region is already small: one pass.
+  const int step = settings.step, factor = searchRegion == nullptr ? coarseFactor(settings) : 1;
+  RidgeScan scan(I, settings, threshold, work, runs);
+  if (factor < 2)
+    scan.streamRows(scoreRegion, searchRegion, step, 0, ColumnSelection{step, 0, true});
+  else {
+    const int coarseStep = factor * step;
+    scan.streamRows(nullptr, nullptr, coarseStep, coarseStep, ColumnSelection{coarseStep, 0, true});
+    longChains(work, W, H, 2.0 * coarseStep + 0.5, std::max(0.0, settings.minSegment - 3.0 * coarseStep));
+    aroundKeptCrossings(work, W, H, work.fineRegion);
+    scan.keepMarkedCrossings();
+    scan.searchBetween(work.fineRegion, step, coarseStep, ColumnSelection{step, coarseStep, false});
   }
-  for (int r = std::max(0, H - d); r < H; ++r)
-    searchColumns(r);
-  measureUpTo(H);
 
   // 3. Continuity: drop the short chains.
   longChains(work, W, H, 2.0 * step + 0.5, settings.minSegment);
   // The runs of the crossings stay in the workspace for the mask (see drawRuns()).
   points.reserve(static_cast<size_t>(std::count(work.keep.begin(), work.keep.end(), 1)));
-  for (size_t k = 0; k < crossings.size(); ++k)
+  for (size_t k = 0; k < work.crossings.size(); ++k)
     if (work.keep[k])
-      points.push_back(crossings[k].point);
+      points.push_back(work.crossings[k].point);
   return points;
 }
 } // namespace vpLaserDetector

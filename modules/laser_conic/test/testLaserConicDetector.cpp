@@ -652,3 +652,77 @@ TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
   detector.setInstructionSet(vpLaserConicDetector::INSTRUCTIONS_AVX2);
   EXPECT_EQ(detector.getInstructionSetUsed(), std::min(best, vpLaserConicDetector::INSTRUCTIONS_AVX2));
 }
+
+namespace
+{
+//! The points sorted by row then column (the order of a detection depends on how it searched).
+std::vector<std::pair<double, double> > sortedPoints(const std::vector<vpImagePoint> &points)
+{
+  std::vector<std::pair<double, double> > sorted;
+  for (const vpImagePoint &p : points)
+    sorted.push_back(std::make_pair(p.get_v(), p.get_u()));
+  std::sort(sorted.begin(), sorted.end());
+  return sorted;
+}
+
+//! A search region covering the whole image: the detector then searches every line in one pass.
+void searchEverywhere(vpLaserConicDetector &detector)
+{
+  detector.setSearchRegion({vpImagePoint(0, 0), vpImagePoint(kHeight, kWidth)}, 2.0 * (kWidth + kHeight));
+}
+} // namespace
+
+TEST(LaserConicDetector, CoarseToFineFindsThePointsOfTheFullSearch)
+{
+  // Over the whole image the detector measures the candidates of every 8th row and column, chains them,
+  // and searches the other lines only near the long coarse chains. It must return the very points of the
+  // search of every line (a search region covering the image is searched that way) on every hard case: the
+  // mosaic's wedges between grout lines, red distractors and clutter, a trace leaving the image behind an
+  // occluder with motion blur; with the default settings, a shorter minimum segment (40 px) and a sampling
+  // step of 2 (coarse lines every 12th).
+  HardCase distractors;
+  distractors.name = "distractors";
+  distractors.settings.distractors = {vpLaserConicSimulator::vpDistractor::disc(0.25, 0.05, 0.15),
+                                      vpLaserConicSimulator::vpDistractor::line(-0.3, 0.2, 0.1, 0.3, 0.004)};
+  distractors.settings.clutter = 80;
+  distractors.settings.clutterRadius = 0.5;
+  HardCase occluded;
+  occluded.name = "occluded_blurred";
+  occluded.cMg = vpHomogeneousMatrix(0.25, 0.12, 1.0, vpMath::rad(10), vpMath::rad(-8), 0.3);
+  occluded.settings.occluders.push_back({vpImagePoint(500, 1100), vpImagePoint(450, 1350), vpImagePoint(800, 1450),
+                                         vpImagePoint(850, 1150)});
+  occluded.settings.motionBlurLength = 6.0;
+  occluded.settings.motionBlurAngle = vpMath::rad(30);
+  occluded.settings.laserPower = 200.0;
+  const std::vector<HardCase> cases = {dimCase(), saturatedCase(), whiteTilesCase(), mosaicCase(), distractors,
+                                       occluded};
+  struct Setting
+  {
+    double minSegment;
+    unsigned int step;
+  };
+  unsigned int seed = 60;
+  size_t compared = 0;
+  for (const HardCase &c : cases) {
+    vpLaserConicSimulator sim = makeSimulator(c.cMg, seed++);
+    vpImage<vpRGBa> I;
+    sim.render(I, c.settings);
+    for (const Setting &setting : {Setting{50.0, 1}, Setting{40.0, 1}, Setting{50.0, 2}}) {
+      vpLaserConicDetector coarseToFine, everyLine;
+      for (vpLaserConicDetector *d : {&coarseToFine, &everyLine}) {
+        d->setMinSegmentLength(setting.minSegment);
+        d->setSamplingStep(setting.step);
+      }
+      searchEverywhere(everyLine);
+      const std::vector<std::pair<double, double> > expected = sortedPoints(everyLine.detect(I)),
+                                                    points = sortedPoints(coarseToFine.detect(I));
+      EXPECT_GT(expected.size(), 400u / setting.step) << c.name; // a trace was found
+      ASSERT_EQ(points.size(), expected.size()) << c.name << " min segment " << setting.minSegment << " step "
+                                                << setting.step;
+      for (size_t k = 0; k < points.size(); ++k)
+        ASSERT_TRUE(points[k] == expected[k]) << c.name << " point " << k;
+      compared += points.size();
+    }
+  }
+  std::cout << "points compared: " << compared << std::endl;
+}
