@@ -815,6 +815,19 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
     keep[order[k]] = du * du + dv * dv >= min2;
   }
 }
+#if defined(__SSE2__)
+// Bytes 0, 8, ..., 56 of the 64 bytes from p, to out (8 bytes): the coarse columns of a scored row.
+inline void everyEighthByte(const unsigned char *p, unsigned char *out)
+{
+  const __m128i low = _mm_set_epi32(0, 0xFF, 0, 0xFF); // byte 0 of each 8, in 32-bit lanes 0 and 2
+  const __m128i a = _mm_and_si128(load16(p), low), b = _mm_and_si128(load16(p + 16), low),
+                c = _mm_and_si128(load16(p + 32), low), d = _mm_and_si128(load16(p + 48), low);
+  // 16-bit lanes x0 0 x8 0 x16 0 x24 0, i.e. 32-bit lanes x0 x8 x16 x24; then 16-bit lanes x0 x8 ... x56.
+  const __m128i x = _mm_packs_epi32(_mm_packs_epi32(a, b), _mm_packs_epi32(c, d));
+  _mm_storel_epi64(reinterpret_cast<__m128i *>(out), _mm_packus_epi16(x, x));
+}
+#endif
+
 // Coarse to fine (see detectRidge()): the coarse lines are every coarseFactor() x step-th. The largest
 // factor up to 8 for which a chain of the minimum length, setMinSegmentLength(), still crosses four coarse
 // lines; below 2 (short chains kept, or a sampling step already coarse), one pass.
@@ -992,26 +1005,35 @@ private:
 
   // The coarse columns: the column tests read nothing across, so every coarseStep-th column of the score
   // makes an image of its own, coarseStep times narrower, searched whole (all its blocks flagged); its
-  // candidates are mapped back to the image's columns.
-  int coarseWidth(int coarseStep) const { return (m_W - 1) / coarseStep + 1; }
+  // candidates are mapped back to the image's columns. Its rows are padded with zeros to whole pairs of
+  // blocks (no pixel-by-pixel end: a zero score is never a candidate).
+  int coarseColumns(int coarseStep) const { return (m_W - 1) / coarseStep + 1; }
+  int coarseStride(int coarseStep) const { return (coarseColumns(coarseStep) + 31) & ~31; }
   void startCoarseColumns(int coarseStep)
   {
-    const int w = coarseWidth(coarseStep);
+    const int w = coarseStride(coarseStep);
     m_work.coarseScore.resize(static_cast<size_t>(w) * m_H);
-    m_work.coarseFlags.assign(static_cast<size_t>((w + 15) >> 4), 0xFF);
+    m_work.coarseFlags.assign(static_cast<size_t>(w >> 4), 0xFF);
     m_work.coarseZeros.assign(w, 0);
   }
   void keepCoarseColumns(int i, int coarseStep)
   {
-    const int w = coarseWidth(coarseStep);
+    const int n = coarseColumns(coarseStep), w = coarseStride(coarseStep);
     const unsigned char *row = m_work.score.data() + static_cast<size_t>(i) * m_W;
     unsigned char *coarse = m_work.coarseScore.data() + static_cast<size_t>(i) * w;
-    for (int k = 0; k < w; ++k)
+    int k = 0;
+#if defined(__SSE2__)
+    if (coarseStep == 8 && m_settings.instructions != vpLaserConicDetector::INSTRUCTIONS_SCALAR)
+      for (; 8 * k + 64 <= m_W; k += 8)
+        everyEighthByte(row + 8 * k, coarse + k);
+#endif
+    for (; k < n; ++k)
       coarse[k] = row[static_cast<size_t>(k) * coarseStep];
+    std::fill(coarse + n, coarse + w, 0);
   }
   void searchCoarseColumns(int i, int coarseStep)
   {
-    const int w = coarseWidth(coarseStep);
+    const int w = coarseStride(coarseStep);
     std::vector<Candidate> &peaks = m_work.columnPeaks;
     const size_t first = peaks.size();
     columnCandidates(m_work.coarseScore.data(), m_work.coarseFlags.data(), m_work.coarseZeros.data(), w, m_H, i, 0,
