@@ -1106,10 +1106,12 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   // every block of the image has candidates, most of them short ridges (a patch corner between two grout
   // lines is a thin wedge of its colour), and measuring them all took most of a frame's time. The pass
   // over the rows measures the candidates of the coarse lines only (every coarseStep-th row and column),
-  // whose crossings are chained as in 3. at the coarse scale; the other lines are then searched only near
-  // the coarse crossings on chains that may reach the minimum length. A chain of that length crosses four
-  // coarse lines at least, and its coarse crossings may fall short of its ends by up to a coarse step
-  // each way (hence the shorter coarse length). A search region is already small: one pass.
+  // whose crossings are chained as in 3.; the other lines are then searched only near the coarse crossings
+  // on chains that may reach the minimum length. A chain of that length crosses four coarse lines at least;
+  // its coarse crossings may fall short of its ends by up to a coarse step each way (hence the shorter
+  // coarse length), and a dim stripe misses a crossing here and there: the coarse links span three coarse
+  // steps, a missing crossing even at 45 degrees (two steps were not enough on the shipped hard sequence).
+  // A search region is already small: one pass.
   const int step = settings.step, factor = searchRegion == nullptr ? coarseFactor(settings) : 1;
   RidgeScan scan(I, settings, threshold, work, runs);
   if (factor < 2)
@@ -1117,7 +1119,7 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   else {
     const int coarseStep = factor * step;
     scan.streamRows(nullptr, nullptr, coarseStep, coarseStep, ColumnSelection{coarseStep, 0, true});
-    longChains(work, W, H, 2.0 * coarseStep + 0.5, std::max(0.0, settings.minSegment - 3.0 * coarseStep));
+    longChains(work, W, H, 3.0 * coarseStep + 0.5, std::max(0.0, settings.minSegment - 3.0 * coarseStep));
     aroundKeptCrossings(work, W, H, work.fineRegion);
     scan.keepMarkedCrossings();
     scan.searchBetween(work.fineRegion, step, coarseStep, ColumnSelection{step, coarseStep, false});
