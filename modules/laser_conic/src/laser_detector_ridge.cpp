@@ -836,12 +836,12 @@ int coarseFactor(const RidgeSettings &settings)
   return std::min(8, static_cast<int>(settings.minSegment / (4.0 * settings.step)));
 }
 
-// The cells of 16 columns x RegionSpans::bandHeight rows holding a crossing kept by longChains(), with the
-// cells up to 16 pixels around, rasterised into \e region (spans on multiples of 16 columns).
-void aroundKeptCrossings(RidgeWorkspace &work, int W, int H, RegionSpans &region)
+// Cells of 16 columns x RegionSpans::bandHeight rows over the image (work.cells): 1 on those within
+// \e reach pixels (at least, in whole cells) of a crossing that work.keep marks, else 0.
+void markCellsAroundKept(RidgeWorkspace &work, int W, int H, int reach)
 {
   const int cw = (W + 15) >> 4, ch = (H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
-  const int bandsAround = 16 >> RegionSpans::bandShift;
+  const int cellsAround = (reach + 15) >> 4, bandsAround = (reach + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
   std::vector<unsigned char> &cells = work.cells;
   cells.assign(static_cast<size_t>(cw) * ch, 0);
   for (size_t k = 0; k < work.crossings.size(); ++k) {
@@ -851,13 +851,29 @@ void aroundKeptCrossings(RidgeWorkspace &work, int W, int H, RegionSpans &region
     const int ci = std::min(ch - 1, std::max(0, static_cast<int>(p.get_v()) >> RegionSpans::bandShift));
     const int cj = std::min(cw - 1, std::max(0, static_cast<int>(p.get_u()) >> 4));
     for (int a = std::max(0, ci - bandsAround); a <= std::min(ch - 1, ci + bandsAround); ++a)
-      for (int b = std::max(0, cj - 1); b <= std::min(cw - 1, cj + 1); ++b)
+      for (int b = std::max(0, cj - cellsAround); b <= std::min(cw - 1, cj + cellsAround); ++b)
         cells[static_cast<size_t>(a) * cw + b] = 1;
   }
+}
+
+// Whether the crossing k lies in a marked cell (see markCellsAroundKept()).
+bool inMarkedCell(const RidgeWorkspace &work, int W, int H, size_t k)
+{
+  const int cw = (W + 15) >> 4, ch = (H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
+  const vpImagePoint &p = work.crossings[k].point;
+  const int ci = std::min(ch - 1, std::max(0, static_cast<int>(p.get_v()) >> RegionSpans::bandShift));
+  const int cj = std::min(cw - 1, std::max(0, static_cast<int>(p.get_u()) >> 4));
+  return work.cells[static_cast<size_t>(ci) * cw + cj] != 0;
+}
+
+// The marked cells (see markCellsAroundKept()) rasterised into \e region (spans on multiples of 16 columns).
+void markedCellsToSpans(const RidgeWorkspace &work, int W, int H, RegionSpans &region)
+{
+  const int cw = (W + 15) >> 4, ch = (H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
   region.spans.clear();
   region.bandStart.assign(1, 0);
   for (int a = 0; a < ch; ++a) {
-    const unsigned char *row = cells.data() + static_cast<size_t>(a) * cw;
+    const unsigned char *row = work.cells.data() + static_cast<size_t>(a) * cw;
     for (int b = 0; b < cw; ++b) {
       const int first = b;
       while (b < cw && row[b])
@@ -1109,9 +1125,7 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   // whose crossings are chained as in 3.; the other lines are then searched only near the coarse crossings
   // on chains that may reach the minimum length. A chain of that length crosses four coarse lines at least;
   // its coarse crossings may fall short of its ends by up to a coarse step each way (hence the shorter
-  // coarse length), and a dim stripe misses a crossing here and there: the coarse links span three coarse
-  // steps, a missing crossing even at 45 degrees (two steps were not enough on the shipped hard sequence).
-  // A search region is already small: one pass.
+  // coarse length). A search region is already small: one pass.
   const int step = settings.step, factor = searchRegion == nullptr ? coarseFactor(settings) : 1;
   RidgeScan scan(I, settings, threshold, work, runs);
   if (factor < 2)
@@ -1119,8 +1133,22 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   else {
     const int coarseStep = factor * step;
     scan.streamRows(nullptr, nullptr, coarseStep, coarseStep, ColumnSelection{coarseStep, 0, true});
-    longChains(work, W, H, 3.0 * coarseStep + 0.5, std::max(0.0, settings.minSegment - 3.0 * coarseStep));
-    aroundKeptCrossings(work, W, H, work.fineRegion);
+    // The coarse chains: linked within two coarse steps, as the lines in 3.; then the short ones near the
+    // long ones are linked within three steps: a dim stripe misses a coarse crossing here and there, and
+    // two coarse steps along a stripe at 45 degrees are 2.8 steps apart (the dim frames of the shipped hard
+    // sequence lost pieces of trace). Only near the long chains: linked within three steps everywhere, the
+    // wedges of a mosaic make networks, all to be searched.
+    const double coarseMin = std::max(0.0, settings.minSegment - 3.0 * coarseStep);
+    longChains(work, W, H, 2.0 * coarseStep + 0.5, coarseMin);
+    markCellsAroundKept(work, W, H, 3 * coarseStep + 1);
+    for (size_t k = 0; k < work.crossings.size(); ++k)
+      work.keep[k] = work.keep[k] || inMarkedCell(work, W, H, k);
+    scan.keepMarkedCrossings();
+    longChains(work, W, H, 3.0 * coarseStep + 0.5, coarseMin);
+    // The other lines are searched around the coarse crossings kept, a few pixels beyond half the distance
+    // of two linked ones (16 pixels for coarse lines every 8th).
+    markCellsAroundKept(work, W, H, (3 * coarseStep + 1) / 2 + 4);
+    markedCellsToSpans(work, W, H, work.fineRegion);
     scan.keepMarkedCrossings();
     scan.searchBetween(work.fineRegion, step, coarseStep, ColumnSelection{step, coarseStep, false});
   }
