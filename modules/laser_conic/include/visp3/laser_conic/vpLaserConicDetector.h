@@ -68,8 +68,17 @@ struct vpLaserConicDetectorRun
      (bounding-box diagonal) is below setMinSegmentLength() are dropped: small red clutter and isolated
      texture or noise peaks give short chains, the trace long ones.
 
+  <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
+  measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
+  sampling steps, and none of this below 8), their crossings chained at that scale; the other lines are
+  then searched only around the coarse chains that may reach the minimum length. On a textured floor
+  most candidates are short ridges (a corner of a tile between two dark joints is a thin wedge of its
+  colour), which are measured on the coarse lines only. On every rendered test case and every frame
+  shipped in data/, the points are those of the search of every line (in another order).
+
   A search region (setSearchRegion(), e.g. the previous frame's trace or conic with a margin) restricts
   every pass to a band around the predicted curve: faster, and distractors outside the band are ignored.
+  Every line of the band is searched.
 
   <b>HSV method (DETECTION_HSV, the historical detector).</b> The image is converted to HSV with OpenCV
   and a pixel belongs to the trace when its hue is in the red band (setHueRange()) and its saturation and
@@ -77,7 +86,8 @@ struct vpLaserConicDetectorRun
   Fixed thresholds: it misses dim stripes and splits saturated ones; kept for comparison.
 
   The diagnostic mask getMask() marks the accepted stripe runs 255 and the rejected candidate runs 100
-  (ridge method), or the thresholded pixels 255 (HSV method). An empty image gives no point and an empty mask.
+  (ridge method; over the whole image, away from the trace, only those of the coarse lines), or the
+  thresholded pixels 255 (HSV method). An empty image gives no point and an empty mask.
 
   \code
   vpLaserConicDetector detector;                       // ridge method, settings for real images by default
