@@ -4,7 +4,8 @@
  */
 // The ridge detector of vpLaserConicDetector (DETECTION_RIDGE): red-dominance score in one pass over the
 // RGBA buffer, top-hat candidates along rows and columns against a threshold estimated from the image,
-// profile checks and sub-pixel centre around each candidate only, then a continuity filter.
+// profile checks and sub-pixel centre around each candidate only, then a continuity filter; over the whole
+// image coarse to fine (every 8th line first, the others near the long coarse chains; see detectRidge()).
 #include "laser_detector.h"
 
 #include <algorithm>

@@ -660,6 +660,7 @@ namespace
 std::vector<std::pair<double, double> > sortedPoints(const std::vector<vpImagePoint> &points)
 {
   std::vector<std::pair<double, double> > sorted;
+  sorted.reserve(points.size());
   for (const vpImagePoint &p : points)
     sorted.push_back(std::make_pair(p.get_v(), p.get_u()));
   std::sort(sorted.begin(), sorted.end());
@@ -743,7 +744,7 @@ TEST(LaserConicDetector, CoarseToFineFindsThePointsOfTheFullSearchOnTheShippedSe
       if (name.size() < 4 || name.substr(name.size() - 4) != ".jpg")
         continue;
       vpImage<vpRGBa> I;
-      vpImageIo::read(I, folder + "/" + name);
+      vpImageIo::read(I, vpIoTools::createFilePath(folder, name));
       vpLaserConicDetector coarseToFine, everyLine;
       everyLine.setSearchRegion({vpImagePoint(0, 0), vpImagePoint(I.getHeight(), I.getWidth())},
                                 2.0 * (I.getHeight() + I.getWidth()));
