@@ -206,10 +206,36 @@ void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int satur
   scoreSpanScalar(rgba, score, 0, n, saturation, threshold, flags);
 }
 
+#if VSP_DETECTOR_AVX2
+// The noise samples of estimateNoise() at columns j, j + 4, j + 8, j + 12 of an RGBA row (AVX2): the
+// absolute differences of the unclipped score r - max(g, b) two pixels apart, in out[0..3]. Reads the
+// pixels j to j + 15.
+// The unclipped score r - max(g, b) of the 8 RGBA pixels from p, in 32-bit lanes (AVX2).
+__attribute__((target("avx2"))) inline __m256i signedDominance8(const unsigned char *p)
+{
+  const __m256i low8 = _mm256_set1_epi32(0xFF);
+  const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i *>(p));
+  const __m256i m = _mm256_max_epi32(_mm256_and_si256(_mm256_srli_epi32(a, 8), low8),
+                                     _mm256_and_si256(_mm256_srli_epi32(a, 16), low8));
+  return _mm256_sub_epi32(_mm256_and_si256(a, low8), m);
+}
+
+__attribute__((target("avx2"))) void noiseSamples4(const unsigned char *row, int j, int *out)
+{
+  // Lanes 0 and 4 (pixels j and j + 4 of each load) minus lanes 2 and 6 (two pixels further).
+  const __m256i d0 = signedDominance8(row + 4 * j), d1 = signedDominance8(row + 4 * (j + 8));
+  const __m256i a0 = _mm256_abs_epi32(_mm256_sub_epi32(d0, _mm256_srli_si256(d0, 8)));
+  const __m256i a1 = _mm256_abs_epi32(_mm256_sub_epi32(d1, _mm256_srli_si256(d1, 8)));
+  // Lanes 0, 4 of a0 then of a1 into the low 128 bits.
+  const __m256i picked = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(a0, a1), _mm256_setr_epi32(0, 1, 4, 5, 0, 0, 0, 0));
+  _mm_storeu_si128(reinterpret_cast<__m128i *>(out), _mm256_castsi256_si128(picked));
+}
+#endif
+
 // Robust noise of the unclipped score r - max(g, b): 1.4826 MAD / sqrt(2) of its differences two pixels
 // apart (two apart: the optical blur correlates neighbours), every 4th pixel of every 8th row of the scored
 // region (about 60 000 samples in a 1600 x 1200 image: the median is known to a few percent).
-double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region)
+double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region, vpLaserConicDetector::vpInstructionSet instructions)
 {
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
   // Four histograms filled in turn, added at the end: most samples fall in a few bins, and consecutive
@@ -222,6 +248,19 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region)
       return std::abs(p[0] - std::max(p[1], p[2]) - (q[0] - std::max(q[1], q[2])));
     };
     int j = j0;
+#if VSP_DETECTOR_AVX2
+    if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2)
+      for (; j + 15 <= j1; j += 16) { // the same samples as below, computed 4 at a time
+        int bins[4];
+        noiseSamples4(row, j, bins);
+        ++histograms[bins[0]];
+        ++histograms[511 + bins[1]];
+        ++histograms[2 * 511 + bins[2]];
+        ++histograms[3 * 511 + bins[3]];
+        count += 4;
+      }
+#endif
+    (void)instructions;
     for (; j + 14 <= j1; j += 16) {
       ++histograms[bin(j)];
       ++histograms[511 + bin(j + 4)];
@@ -1115,7 +1154,7 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     return points;
 
   // 1. Threshold from the image's own noise (a sparse sample of rows).
-  report.noise = estimateNoise(I, scoreRegion);
+  report.noise = estimateNoise(I, scoreRegion, settings.instructions);
   report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
   const int threshold = std::min(255, static_cast<int>(std::ceil(report.threshold)));
 

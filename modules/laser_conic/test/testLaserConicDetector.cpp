@@ -624,7 +624,7 @@ TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
     for (const vpImage<vpRGBa> *I : {&rendered, &odd})
       for (bool region : {false, true}) {
         std::vector<vpImagePoint> reference;
-        double referenceThreshold = 0.0;
+        double referenceThreshold = 0.0, referenceNoise = 0.0;
         for (vpLaserConicDetector::vpInstructionSet set : sets) {
           vpLaserConicDetector detector;
           detector.setInstructionSet(set);
@@ -635,10 +635,13 @@ TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
           if (set == vpLaserConicDetector::INSTRUCTIONS_SCALAR) {
             reference = points;
             referenceThreshold = detector.getThreshold();
+            referenceNoise = detector.getNoiseLevel();
+            EXPECT_GT(referenceNoise, 0.0) << c.name; // the noise estimate is compared below
             EXPECT_GT(points.size(), 1000u) << c.name; // a trace was found: the comparison means something
             continue;
           }
           EXPECT_EQ(detector.getThreshold(), referenceThreshold) << c.name;
+          EXPECT_EQ(detector.getNoiseLevel(), referenceNoise) << c.name;
           ASSERT_EQ(points.size(), reference.size()) << c.name << " instruction set " << set;
           for (size_t k = 0; k < points.size(); ++k)
             ASSERT_TRUE(points[k].get_u() == reference[k].get_u() && points[k].get_v() == reference[k].get_v())
