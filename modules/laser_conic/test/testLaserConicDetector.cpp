@@ -736,7 +736,7 @@ TEST(LaserConicDetector, CoarseToFineFindsThePointsOfTheFullSearchOnTheShippedSe
 {
   // The same on the JPEG frames shipped in data/ (960 x 720): the hard sequence and the clean one. On the
   // dim stripes of the hard sequence the coarse columns miss a crossing here and there (frames 15, 20 and 34
-  // lost up to 59 points when the coarse chains were linked within two coarse steps only).
+  // lost points when the coarse chains were linked within two coarse steps only).
   size_t frames = 0, compared = 0;
   for (const std::string sequence : {"laser_hard", "laser_sequence"}) {
     const std::string folder = std::string(VSP_DATA_DIR) + "/" + sequence + "/images";
