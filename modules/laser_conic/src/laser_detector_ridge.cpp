@@ -207,9 +207,6 @@ void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int satur
 }
 
 #if VSP_DETECTOR_AVX2
-// The noise samples of estimateNoise() at columns j, j + 4, j + 8, j + 12 of an RGBA row (AVX2): the
-// absolute differences of the unclipped score r - max(g, b) two pixels apart, in out[0..3]. Reads the
-// pixels j to j + 15.
 // The unclipped score r - max(g, b) of the 8 RGBA pixels from p, in 32-bit lanes (AVX2).
 __attribute__((target("avx2"))) inline __m256i signedDominance8(const unsigned char *p)
 {
@@ -220,6 +217,9 @@ __attribute__((target("avx2"))) inline __m256i signedDominance8(const unsigned c
   return _mm256_sub_epi32(_mm256_and_si256(a, low8), m);
 }
 
+// The noise samples of estimateNoise() at columns j, j + 4, j + 8, j + 12 of an RGBA row (AVX2): the
+// absolute differences of the unclipped score r - max(g, b) two pixels apart, in out[0..3] (in some order).
+// Reads the pixels j to j + 15.
 __attribute__((target("avx2"))) void noiseSamples4(const unsigned char *row, int j, int *out)
 {
   // Lanes 0 and 4 (pixels j and j + 4 of each load) minus lanes 2 and 6 (two pixels further).
@@ -247,26 +247,24 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region, vpLase
       const unsigned char *p = row + 4 * j, *q = p + 8;
       return std::abs(p[0] - std::max(p[1], p[2]) - (q[0] - std::max(q[1], q[2])));
     };
+    auto add4 = [&](const int *bins) {
+      for (int h = 0; h < 4; ++h)
+        ++histograms[h * 511 + bins[h]];
+      count += 4;
+    };
     int j = j0;
 #if VSP_DETECTOR_AVX2
     if (instructions == vpLaserConicDetector::INSTRUCTIONS_AVX2)
       for (; j + 15 <= j1; j += 16) { // the same samples as below, computed 4 at a time
         int bins[4];
         noiseSamples4(row, j, bins);
-        ++histograms[bins[0]];
-        ++histograms[511 + bins[1]];
-        ++histograms[2 * 511 + bins[2]];
-        ++histograms[3 * 511 + bins[3]];
-        count += 4;
+        add4(bins);
       }
 #endif
     (void)instructions;
     for (; j + 14 <= j1; j += 16) {
-      ++histograms[bin(j)];
-      ++histograms[511 + bin(j + 4)];
-      ++histograms[2 * 511 + bin(j + 8)];
-      ++histograms[3 * 511 + bin(j + 12)];
-      count += 4;
+      const int bins[4] = {bin(j), bin(j + 4), bin(j + 8), bin(j + 12)};
+      add4(bins);
     }
     for (; j + 2 <= j1; j += 4) {
       ++histograms[bin(j)];
@@ -513,13 +511,12 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
 #endif
 }
 
-// The columns whose candidates a column pass keeps: the multiples of \e step and, when \e coarse is not 0,
-// those that are (coarseOnes) or are not multiples of \e coarse (see detectRidge(): coarse lines, then the others).
+// The columns whose candidates a column pass keeps: the multiples of \e step, except those of \e skip when
+// it is not 0 (see detectRidge(): the coarse columns are searched first, the others after).
 struct ColumnSelection
 {
-  int step, coarse;
-  bool coarseOnes;
-  bool operator()(int j) const { return j % step == 0 && (coarse == 0 || (j % coarse == 0) == coarseOnes); }
+  int step, skip;
+  bool operator()(int j) const { return j % step == 0 && (skip == 0 || j % skip != 0); }
 };
 
 #if VSP_DETECTOR_AVX2
@@ -876,47 +873,56 @@ int coarseFactor(const RidgeSettings &settings)
   return std::min(8, static_cast<int>(settings.minSegment / (4.0 * settings.step)));
 }
 
-// Cells of 16 columns x RegionSpans::bandHeight rows over the image (work.cells): 1 on those within
-// \e reach pixels (at least, in whole cells) of a crossing that work.keep marks, else 0.
+// Cells of 16 columns x RegionSpans::bandHeight rows over an image of W x H pixels.
+struct CellGrid
+{
+  int columns, rows;
+  CellGrid(int W, int H) : columns((W + 15) >> 4), rows((H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift) {}
+  int rowOf(const vpImagePoint &p) const
+  {
+    return std::min(rows - 1, std::max(0, static_cast<int>(p.get_v()) >> RegionSpans::bandShift));
+  }
+  int columnOf(const vpImagePoint &p) const { return std::min(columns - 1, std::max(0, static_cast<int>(p.get_u()) >> 4)); }
+  size_t index(int row, int column) const { return static_cast<size_t>(row) * columns + column; }
+};
+
+// The cells (work.cells, see CellGrid) within \e reach pixels (at least, in whole cells) of a crossing that
+// work.keep marks: 1, the others 0.
 void markCellsAroundKept(RidgeWorkspace &work, int W, int H, int reach)
 {
-  const int cw = (W + 15) >> 4, ch = (H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
+  const CellGrid grid(W, H);
   const int cellsAround = (reach + 15) >> 4, bandsAround = (reach + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
   std::vector<unsigned char> &cells = work.cells;
-  cells.assign(static_cast<size_t>(cw) * ch, 0);
+  cells.assign(static_cast<size_t>(grid.columns) * grid.rows, 0);
   for (size_t k = 0; k < work.crossings.size(); ++k) {
     if (!work.keep[k])
       continue;
-    const vpImagePoint &p = work.crossings[k].point;
-    const int ci = std::min(ch - 1, std::max(0, static_cast<int>(p.get_v()) >> RegionSpans::bandShift));
-    const int cj = std::min(cw - 1, std::max(0, static_cast<int>(p.get_u()) >> 4));
-    for (int a = std::max(0, ci - bandsAround); a <= std::min(ch - 1, ci + bandsAround); ++a)
-      for (int b = std::max(0, cj - cellsAround); b <= std::min(cw - 1, cj + cellsAround); ++b)
-        cells[static_cast<size_t>(a) * cw + b] = 1;
+    const int ci = grid.rowOf(work.crossings[k].point), cj = grid.columnOf(work.crossings[k].point);
+    for (int a = std::max(0, ci - bandsAround); a <= std::min(grid.rows - 1, ci + bandsAround); ++a)
+      for (int b = std::max(0, cj - cellsAround); b <= std::min(grid.columns - 1, cj + cellsAround); ++b)
+        cells[grid.index(a, b)] = 1;
   }
 }
 
 // Whether the crossing k lies in a marked cell (see markCellsAroundKept()).
 bool inMarkedCell(const RidgeWorkspace &work, int W, int H, size_t k)
 {
-  const int cw = (W + 15) >> 4, ch = (H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
+  const CellGrid grid(W, H);
   const vpImagePoint &p = work.crossings[k].point;
-  const int ci = std::min(ch - 1, std::max(0, static_cast<int>(p.get_v()) >> RegionSpans::bandShift));
-  const int cj = std::min(cw - 1, std::max(0, static_cast<int>(p.get_u()) >> 4));
-  return work.cells[static_cast<size_t>(ci) * cw + cj] != 0;
+  return work.cells[grid.index(grid.rowOf(p), grid.columnOf(p))] != 0;
 }
 
 // The marked cells (see markCellsAroundKept()) rasterised into \e region (spans on multiples of 16 columns).
 void markedCellsToSpans(const RidgeWorkspace &work, int W, int H, RegionSpans &region)
 {
-  const int cw = (W + 15) >> 4, ch = (H + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
+  const CellGrid grid(W, H);
   region.spans.clear();
   region.bandStart.assign(1, 0);
-  for (int a = 0; a < ch; ++a) {
-    const unsigned char *row = work.cells.data() + static_cast<size_t>(a) * cw;
-    for (int b = 0; b < cw; ++b) {
+  for (int a = 0; a < grid.rows; ++a) {
+    const unsigned char *row = work.cells.data() + grid.index(a, 0);
+    for (int b = 0; b < grid.columns; ++b) {
       const int first = b;
-      while (b < cw && row[b])
+      while (b < grid.columns && row[b])
         ++b;
       if (b > first)
         region.spans.push_back(Span(16 * first, std::min(W - 1, 16 * b - 1)));
@@ -947,28 +953,27 @@ public:
 
   /*!
     The pass over the rows, while they are in cache: row i is scored (over \e scoreRegion only when not
-    null: nothing outside it is read) and, when a multiple of \e rowStep, searched along its length; the
-    columns are searched at row i - d, the last row whose neighbours up to d rows away are scored (every
-    coarseStep-th column when \e coarseStep is not 0, else those \e columns selects); the candidates of row
-    i - d - 1, the last row whose profiles (up to d + 1 rows away) are scored, are measured.
+    null: nothing outside it is read) and, when a multiple of \e step, searched along its length; the
+    columns multiple of \e step are searched at row i - d, the last row whose neighbours up to d rows away
+    are scored (in the image of the coarse columns when \e coarse); the candidates of row i - d - 1, the
+    last row whose profiles (up to d + 1 rows away) are scored, are measured.
   */
-  void streamRows(const RegionSpans *scoreRegion, const RegionSpans *searchRegion, int rowStep, int coarseStep,
-                  const ColumnSelection &columns)
+  void streamRows(const RegionSpans *scoreRegion, const RegionSpans *searchRegion, int step, bool coarse)
   {
-    if (coarseStep > 0)
-      startCoarseColumns(coarseStep);
+    if (coarse)
+      startCoarseColumns(step);
     auto searchColumnsAt = [&](int r) {
-      if (coarseStep > 0)
-        searchCoarseColumns(r, coarseStep);
+      if (coarse)
+        searchCoarseColumns(r, step);
       else
-        searchColumns(r, searchRegion, columns);
+        searchColumns(r, searchRegion, ColumnSelection{step, 0});
     };
     for (int i = 0; i < m_H; ++i) {
       scoreRow(i, scoreRegion);
-      if (i % rowStep == 0)
+      if (i % step == 0)
         searchRow(i, searchRegion);
-      if (coarseStep > 0)
-        keepCoarseColumns(i, coarseStep);
+      if (coarse)
+        keepCoarseColumns(i, step);
       if (i - m_d >= 0)
         searchColumnsAt(i - m_d);
       measureUpTo(i - m_d - 1);
@@ -979,11 +984,10 @@ public:
   }
 
   /*!
-    Searches the lines of \e region that streamRows() left out (the rows multiple of \e step but not of
-    \e coarseStep, the columns \e columns selects), row by row over the scored image, and measures each
-    row's candidates at once.
+    Searches the lines of \e region that streamRows() left out (the rows and columns multiple of \e step but
+    not of \e coarseStep), row by row over the scored image, and measures each row's candidates at once.
   */
-  void searchBetween(const RegionSpans &region, int step, int coarseStep, const ColumnSelection &columns)
+  void searchBetween(const RegionSpans &region, int step, int coarseStep)
   {
     for (int i = 0; i < m_H; ++i) {
       if (region.begin(i) == region.end(i))
@@ -993,7 +997,7 @@ public:
       m_nextRowPeak = m_nextColumnPeak = 0;
       if (i % step == 0 && i % coarseStep != 0)
         searchRow(i, &region);
-      searchColumns(i, &region, columns);
+      searchColumns(i, &region, ColumnSelection{step, coarseStep});
       measureUpTo(i);
     }
   }
@@ -1093,7 +1097,7 @@ private:
     std::vector<Candidate> &peaks = m_work.columnPeaks;
     const size_t first = peaks.size();
     columnCandidates(m_work.coarseScore.data(), m_work.coarseFlags.data(), m_work.coarseZeros.data(), w, m_H, i, 0,
-                     w - 1, m_d, m_threshold, ColumnSelection{1, 0, true}, m_settings.instructions, peaks);
+                     w - 1, m_d, m_threshold, ColumnSelection{1, 0}, m_settings.instructions, peaks);
     for (size_t k = first; k < peaks.size(); ++k)
       peaks[k].line *= coarseStep;
   }
@@ -1169,10 +1173,10 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   const int step = settings.step, factor = searchRegion == nullptr ? coarseFactor(settings) : 1;
   RidgeScan scan(I, settings, threshold, work, runs);
   if (factor < 2)
-    scan.streamRows(scoreRegion, searchRegion, step, 0, ColumnSelection{step, 0, true});
+    scan.streamRows(scoreRegion, searchRegion, step, false);
   else {
     const int coarseStep = factor * step;
-    scan.streamRows(nullptr, nullptr, coarseStep, coarseStep, ColumnSelection{coarseStep, 0, true});
+    scan.streamRows(nullptr, nullptr, coarseStep, true);
     // The coarse chains: linked within two coarse steps, as the lines in 3.; then the short ones near the
     // long ones are linked within three steps: a dim stripe misses a coarse crossing here and there, and
     // two coarse steps along a stripe at 45 degrees are 2.8 steps apart (the dim frames of the shipped hard
@@ -1190,7 +1194,7 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
     markCellsAroundKept(work, W, H, (3 * coarseStep + 1) / 2 + 4);
     markedCellsToSpans(work, W, H, work.fineRegion);
     scan.keepMarkedCrossings();
-    scan.searchBetween(work.fineRegion, step, coarseStep, ColumnSelection{step, coarseStep, false});
+    scan.searchBetween(work.fineRegion, step, coarseStep);
   }
 
   // 3. Continuity: drop the short chains.
