@@ -23,9 +23,10 @@ endfunction()
 function(vsp_add_module name)
   cmake_parse_arguments(M "" "" "VISP_DEPENDS;PUBLIC_LIBS;PRIVATE_LIBS;TEST_LIBS" ${ARGN})
   set(target visp_${name})
-  file(GLOB srcs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
+  # Recursive, as ViSP's vp_glob_module_sources: a module may group its private files in src/ subfolders.
+  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
   file(GLOB hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/include/visp3/${name}/*.h")
-  file(GLOB private_hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.h")
+  file(GLOB_RECURSE private_hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.h")
   add_library(${target} ${srcs} ${hdrs} ${private_hdrs})
   add_library(VispSensorPose::${target} ALIAS ${target})
   target_include_directories(${target} PUBLIC
