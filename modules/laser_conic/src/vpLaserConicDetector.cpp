@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Core>
+
+#include "detector/guided_pass.h"
 #include "detector/laser_detector.h"
 #include "detector/search_region.h"
 
@@ -24,7 +27,8 @@ vpLaserConicDetector::vpLaserConicDetector()
   : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
     m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_instructions(INSTRUCTIONS_BEST), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
     m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(), m_maskDirty(false), m_height(0), m_width(0),
-    m_threshold(0.0), m_noise(0.0), m_work(), m_runs()
+    m_threshold(0.0), m_noise(0.0), m_guided(true), m_guidedMargin(12.0), m_guidedFactor(3.5), m_guidedStep(1),
+    m_guidedCount(0), m_stripeWidth(0), m_regionIsConic(false), m_regionConic(), m_work(), m_runs()
 {
 }
 
@@ -43,6 +47,7 @@ vpLaserConicDetector::vpWorkspace &vpLaserConicDetector::vpWorkspace::operator=(
     m_work->regionValid = false;
     m_work->crossings = other.m_work->crossings;
     m_work->keep = other.m_work->keep;
+    m_work->guided = other.m_work->guided;
   }
   return *this;
 }
@@ -78,6 +83,24 @@ void vpLaserConicDetector::setMinSegmentLength(double pixels)
 {
   check(std::isfinite(pixels) && pixels >= 0.0, "the minimum segment length must be finite and >= 0");
   m_minSegmentLength = pixels;
+}
+
+void vpLaserConicDetector::setGuidedMargin(double pixels)
+{
+  check(std::isfinite(pixels) && pixels > 0.0, "the guided search margin must be positive and finite");
+  m_guidedMargin = pixels;
+}
+
+void vpLaserConicDetector::setGuidedStep(unsigned int lines)
+{
+  check(lines > 0, "the guided search step must be positive");
+  m_guidedStep = lines;
+}
+
+void vpLaserConicDetector::setGuidedThresholdFactor(double factor)
+{
+  check(std::isfinite(factor) && factor > 0.0, "the guided search threshold factor must be positive and finite");
+  m_guidedFactor = factor;
 }
 
 void vpLaserConicDetector::setSamplingStep(unsigned int step)
@@ -129,6 +152,7 @@ void vpLaserConicDetector::setSearchRegion(const std::vector<vpImagePoint> &trac
   for (const vpImagePoint &p : trace)
     check(std::isfinite(p.get_u()) && std::isfinite(p.get_v()), "a point of the search region is not finite");
   m_region = trace;
+  m_regionIsConic = false;
   m_regionMargin = margin;
   ++m_regionGeneration;
 }
@@ -152,6 +176,8 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
   const std::vector<vpImagePoint> points = vpLaserDetector::sampleConicOnLines(a, b, c, d, e, f, margin);
   check(!points.empty(), "the conic has no real point near the image");
   m_region = points;
+  m_regionIsConic = true;
+  m_regionConic = C;
   m_regionMargin = margin;
   ++m_regionGeneration;
 }
@@ -179,6 +205,74 @@ const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
   return m_mask.image;
 }
 
+namespace
+{
+// Points of a guided pass that tell the track is kept (fewer: the first pass searches).
+const int kMinGuidedPoints = 30;
+// Stripe width assumed before any detection has measured one (the rendered and photographed stripes).
+const int kDefaultStripeWidth = 3;
+
+Eigen::Matrix3d toEigen(const vpMatrix &C)
+{
+  Eigen::Matrix3d c;
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      c(i, j) = C[i][j];
+  return c;
+}
+} // namespace
+
+std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion)
+{
+  const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
+                                                    static_cast<int>(m_saturationLevel), m_minSegmentLength,
+                                                    static_cast<int>(m_step), getInstructionSetUsed()};
+  vpLaserDetector::RidgeReport report;
+  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  if (inRegion)
+    rasteriseRegion(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
+  std::vector<vpImagePoint> points =
+      inRegion ? vpLaserDetector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report)
+               : vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
+  m_threshold = report.threshold;
+  m_noise = report.noise;
+  m_stripeWidth = vpLaserDetector::observedStripeWidth(work, m_stripeWidth);
+  Eigen::Matrix3d C;
+  std::vector<int> inliers;
+  if (!m_guided || !vpLaserDetector::fitTraceEllipse(points, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()),
+                                                     kMinGuidedPoints, C, inliers))
+    return points;
+  std::vector<vpImagePoint> anchors;
+  anchors.reserve(inliers.size());
+  for (int k : inliers)
+    anchors.push_back(points[static_cast<size_t>(k)]);
+  const vpLaserDetector::GuidedSettings guided = {m_guidedMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
+                                                  static_cast<int>(m_maxStripeWidth), static_cast<int>(m_saturationLevel),
+                                                  m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
+  vpLaserDetector::GuidedReport guidedReport;
+  const size_t before = points.size();
+  vpLaserDetector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work, guidedReport);
+  m_guidedCount = static_cast<unsigned int>(points.size() - before);
+  return points;
+}
+
+bool vpLaserConicDetector::trackConic(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points)
+{
+  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  work.crossings.clear();
+  work.keep.clear();
+  const vpLaserDetector::GuidedSettings guided = {m_regionMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
+                                                  static_cast<int>(m_maxStripeWidth), static_cast<int>(m_saturationLevel),
+                                                  m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
+  vpLaserDetector::GuidedReport report;
+  points.clear();
+  vpLaserDetector::guidedPass(I, guided, toEigen(m_regionConic), std::vector<vpImagePoint>(), nullptr, points, work, report);
+  m_guidedCount = static_cast<unsigned int>(points.size());
+  m_noise = report.noise;
+  m_threshold = report.threshold;
+  return static_cast<int>(points.size()) >= kMinGuidedPoints;
+}
+
 std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
 {
   m_threshold = 0.0;
@@ -192,19 +286,14 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
                                                     static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
     return vpLaserDetector::detectHsv(I, settings, m_mask.image);
   }
-  const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
-                                                    static_cast<int>(m_saturationLevel), m_minSegmentLength,
-                                                    static_cast<int>(m_step), getInstructionSetUsed()};
-  vpLaserDetector::RidgeReport report;
+  m_guidedCount = 0;
+  m_work.get().guided.clear();
+  if (I.getSize() == 0)
+    return detectInTwoPasses(I, false);
   std::vector<vpImagePoint> points;
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
-  if (m_region.empty() || I.getSize() == 0)
-    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
-  else {
-    rasteriseRegion(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
-    points = vpLaserDetector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report);
-  }
-  m_threshold = report.threshold;
-  m_noise = report.noise;
-  return points;
+  if (!m_region.empty() && m_regionIsConic && trackConic(I, points))
+    return points;
+  m_work.get().guided.clear();
+  m_guidedCount = 0;
+  return detectInTwoPasses(I, !m_region.empty());
 }

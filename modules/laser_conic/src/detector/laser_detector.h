@@ -100,13 +100,16 @@ struct RidgeWorkspace
   std::vector<unsigned char> cells;          //!< coarse to fine: the cells near the coarse crossings kept
   RegionSpans fineRegion;                    //!< coarse to fine: those cells rasterised
   std::vector<unsigned char> coarseScore, coarseFlags, coarseZeros; //!< coarse to fine: the coarse columns
+  std::vector<Crossing> guided;              //!< the crossings the guided pass added (see guided_pass.h)
+  std::vector<unsigned char> guidedCells;    //!< guided pass: the cells holding a point found
   unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
   bool regionValid = false;
 };
 
 /*!
   Fills \e mask (resized to H x W) with the runs of the last ridge detection: the rejected candidate runs
-  \e runs and the measured crossings of \e work, 255 on the crossings kept (on long chains), 100 on the others.
+  \e runs and the measured crossings of \e work, 255 on the crossings kept (on long chains), 100 on the others,
+  170 on those of the guided pass (work.guided).
 */
 void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
               vpImage<unsigned char> &mask);

@@ -26,5 +26,7 @@ void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, un
     const Crossing &c = work.crossings[k];
     draw(c.alongRow, c.line, c.first, c.last, work.keep[k] ? 255 : 100);
   }
+  for (const Crossing &c : work.guided)
+    draw(c.alongRow, c.line, c.first, c.last, 170);
 }
 } // namespace vpLaserDetector

@@ -12,26 +12,6 @@ namespace vpLaserDetector
 {
 namespace
 {
-// Real roots of a t^2 + b t + c = 0 (a may be zero) appended to roots.
-void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
-{
-  const double scale = std::max(std::fabs(a), std::max(std::fabs(b), std::fabs(c)));
-  if (scale == 0.0)
-    return;
-  if (std::fabs(a) <= 1e-14 * scale) {
-    if (std::fabs(b) > 1e-14 * scale)
-      roots.push_back(-c / b);
-    return;
-  }
-  const double disc = b * b - 4.0 * a * c;
-  if (disc < 0.0)
-    return;
-  // Numerically stable form: no cancellation between b and the square root.
-  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-  roots.push_back(q / a);
-  if (q != 0.0)
-    roots.push_back(c / q);
-}
 // Marks the blocks of 16 columns by bands of 8 rows (the width the scans and the block flags process at once,
 // the height of the bands of spans) that meet the points' squares of half side m: \e marked, nbY x nbX.
 void markBlocks(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W, int nbX,
@@ -99,6 +79,25 @@ void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, Reg
 }
 } // namespace
 
+void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
+{
+  const double scale = std::max(std::fabs(a), std::max(std::fabs(b), std::fabs(c)));
+  if (scale == 0.0)
+    return;
+  if (std::fabs(a) <= 1e-14 * scale) {
+    if (std::fabs(b) > 1e-14 * scale)
+      roots.push_back(-c / b);
+    return;
+  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0)
+    return;
+  // Numerically stable form: no cancellation between b and the square root.
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  roots.push_back(q / a);
+  if (q != 0.0)
+    roots.push_back(c / q);
+}
 std::vector<vpImagePoint> sampleConicOnLines(double a, double b, double c, double d, double e, double f, double margin)
 {
   std::vector<vpImagePoint> points;

@@ -18,6 +18,9 @@
 
 namespace vpLaserDetector
 {
+//! Real roots of a t^2 + b t + c = 0 (a may be zero) appended to \e roots.
+void solveQuadratic(double a, double b, double c, std::vector<double> &roots);
+
 /*!
   The points of the conic a u^2 + 2 b uv + c v^2 + 2 d u + 2 e v + f = 0 on every row and every column of
   a large image (16384 pixels, from -margin - 1): the points outside an image are ignored when the region

@@ -76,18 +76,40 @@ struct vpLaserConicDetectorRun
   colour), which are measured on the coarse lines only. On every rendered test case and every frame
   shipped in data/, the points are those of the search of every line (in another order).
 
-  A search region (setSearchRegion(), e.g. the previous frame's trace or conic with a margin) restricts
-  every pass to a band around the predicted curve: faster, and distractors outside the band are ignored.
-  Every line of the band is searched.
+  <em>Second pass, guided by the conic (default, setGuidedSearch()).</em> The first pass keeps the bright
+  parts of a ring whose brightness falls along it (distance to the laser, incidence angle, dark or black
+  floor patches). After it, an ellipse is fitted robustly to the points kept (RANSAC on five-point conics,
+  2 px), provided at least 30 of them agree over an arc of 60 degrees or more, and the image is searched
+  along that predicted curve: on every setGuidedStep()-th row (where the curve is closer to vertical) and
+  column (elsewhere) it crosses, where no point is known yet, a profile of the red dominance across the
+  curve within setGuidedMargin() pixels of it, averaged over three neighbouring lines shifted along the
+  curve, goes through a matched filter for a stripe of the observed width (the median half-maximum width
+  of the first pass's crossings) whose response must exceed setGuidedThresholdFactor() times its own noise,
+  measured along that profile (robust spread, as above): a threshold local to the profile instead of the
+  global contrast. Around the best response, the first pass's shape tests (width, white light) and
+  sub-pixel centre apply. Only pieces of curve that continue it are kept: runs of found profiles whose
+  offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
+  The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
+  times). The points of this pass follow those of the first pass in the list returned
+  (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
+  and have a stripe's profile.
+
+  A search region (setSearchRegion()) restricts the search to a band around the predicted curve: faster,
+  and distractors outside the band are ignored. Given as points (e.g. the previous frame's trace), every
+  line of the band is searched by the first pass, and the guided pass stays within the band. Given as a
+  conic (e.g. the image conic of the previous frame's estimate, vpLaserConicPose::getImageConic()), it is
+  the prediction of the guided pass itself (tracking): only the profiles along that conic are read, within
+  the region's margin; when they find fewer than 30 points (track lost), the first pass searches the band
+  and the guided pass follows as for points.
 
   <b>HSV method (DETECTION_HSV, the historical detector).</b> The image is converted to HSV with OpenCV
   and a pixel belongs to the trace when its hue is in the red band (setHueRange()) and its saturation and
   value reach setMinSaturationValue(); each run along a row or column gives its brightness-weighted centre.
   Fixed thresholds: it misses dim stripes and splits saturated ones; kept for comparison.
 
-  The diagnostic mask getMask() marks the accepted stripe runs 255 and the rejected candidate runs 100
-  (ridge method; over the whole image, away from the trace, only those of the coarse lines), or the
-  thresholded pixels 255 (HSV method). An empty image gives no point and an empty mask.
+  The diagnostic mask getMask() marks the accepted stripe runs of the first pass 255, those of the guided
+  pass 170 and the rejected candidate runs 100 (ridge method; over the whole image, away from the trace,
+  only those of the coarse lines), or the thresholded pixels 255 (HSV method). An empty image gives no point and an empty mask.
 
   \code
   vpLaserConicDetector detector;                       // ridge method, settings for real images by default
@@ -202,15 +224,59 @@ public:
   /*!
     Ridge method: searches only within about \e margin pixels of the conic \e C (3x3 symmetric, pixel
     coordinates: \f$ (u, v, 1) C (u, v, 1)^T = 0 \f$), e.g. the image conic predicted from the previous
-    frame's plane. The conic is sampled at each image row and column.
+    frame's plane (vpLaserConicPose::getImageConic()): the guided pass searches along it (see the class
+    description), or, when the track is lost, the first pass searches the band it defines (sampled at each
+    image row and column) and the guided pass follows.
     \exception vpLaserConicException::badValueError when \e C is not a finite 3x3 matrix, is zero, or the
     margin is not positive and finite.
   */
   void setSearchRegion(const vpMatrix &C, double margin);
   //! Removes the search region: the whole image is searched.
-  void clearSearchRegion() { m_region.clear(); }
+  void clearSearchRegion()
+  {
+    m_region.clear();
+    m_regionIsConic = false;
+  }
   //! True when a search region is set.
   bool hasSearchRegion() const { return !m_region.empty(); }
+
+  /*!
+    Ridge method: runs the second pass guided by the conic of the first pass's points (see the class
+    description); default true. With a conic search region the guided pass is the search itself, whatever
+    this setting.
+  */
+  void setGuidedSearch(bool enable) { m_guided = enable; }
+  //! Whether the guided pass runs after the first one.
+  bool getGuidedSearch() const { return m_guided; }
+  /*!
+    Ridge method: the guided pass searches within this many pixels (across the curve) of the conic fitted
+    to the first pass's points; default 12 (the fit's extrapolation over a missing part of the ring is off
+    by a few pixels; a wider band lets more distractors in). A conic search region uses its own margin.
+    \exception vpLaserConicException::badValueError when not positive and finite.
+  */
+  void setGuidedMargin(double pixels);
+  //! Margin of the guided pass, pixels.
+  double getGuidedMargin() const { return m_guidedMargin; }
+  /*!
+    Ridge method: the guided pass measures a profile on every \e lines-th image row or column crossed by
+    the curve; default 1 (one point per pixel of curve, as the first pass). Larger steps read less of the
+    image and give fewer points (faster tracking, faster estimation).
+    \exception vpLaserConicException::badValueError on 0.
+  */
+  void setGuidedStep(unsigned int lines);
+  //! Step of the guided pass, image lines.
+  unsigned int getGuidedStep() const { return m_guidedStep; }
+  /*!
+    Ridge method: a profile of the guided pass holds a stripe when its matched-filter response exceeds
+    this many times the response's noise, measured along that profile; default 3.5 (the continuity rule
+    removes the rare noise peak that passes).
+    \exception vpLaserConicException::badValueError when not positive and finite.
+  */
+  void setGuidedThresholdFactor(double factor);
+  //! Threshold factor of the guided pass.
+  double getGuidedThresholdFactor() const { return m_guidedFactor; }
+  //! Points of the last detection found by the guided pass: the last ones of the list detect() returned.
+  unsigned int getGuidedPointCount() const { return m_guidedCount; }
 
   /*!
     HSV method: hue band, a pixel is red when hue <= \e maxHueLow or hue >= \e minHueHigh (OpenCV scale
@@ -258,6 +324,10 @@ private:
 
   //! Rasterises the search region for an image of \e H x \e W pixels into the workspace (once per region and size).
   void rasteriseRegion(int H, int W);
+  //! The first pass (over the search region of points, if any), then the guided pass if enabled.
+  std::vector<vpImagePoint> detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion);
+  //! The guided pass along the conic search region; false when it found too few points (track lost).
+  bool trackConic(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points);
 
   vpDetectionMethod m_method;
   double m_minContrast, m_noiseFactor, m_minSegmentLength;
@@ -271,6 +341,13 @@ private:
   mutable bool m_maskDirty;
   unsigned int m_height, m_width;        //!< size of the last image
   double m_threshold, m_noise;
+  bool m_guided;                //!< the guided pass runs after the first
+  double m_guidedMargin, m_guidedFactor;
+  unsigned int m_guidedStep;
+  unsigned int m_guidedCount;   //!< points of the last detection from the guided pass
+  int m_stripeWidth;            //!< observed stripe width of the last detection (0: none yet)
+  bool m_regionIsConic;         //!< the search region is m_regionConic (else the points m_region)
+  vpMatrix m_regionConic;
   vpWorkspace m_work; //!< score, block flags, candidates, crossings, chaining and rasterised region of the ridge method
   std::vector<vpLaserConicDetectorRun> m_runs; //!< rejected candidate runs of the last ridge detection (its crossings are in m_work)
 };

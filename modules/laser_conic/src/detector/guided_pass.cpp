@@ -1,0 +1,212 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// The conic-guided pass of the ridge detector: walks the predicted conic, measures a profile where no point
+// is known yet, keeps the pieces of curve that continue it, refits and walks again until no point is added.
+#include "guided_detail.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <visp3/laser_conic/vpLaserConicSolvers.h>
+
+namespace vpLaserDetector
+{
+namespace
+{
+// Cells of 2^cellShift pixels that hold a point found (by either pass).
+class FoundCells
+{
+public:
+  FoundCells(int W, int H, std::vector<unsigned char> &cells)
+    : m_columns((W >> GuidedTuning::cellShift) + 1), m_rows((H >> GuidedTuning::cellShift) + 1), m_cells(cells)
+  {
+    m_cells.assign(static_cast<size_t>(m_columns) * m_rows, 0);
+  }
+  void mark(const vpImagePoint &p)
+  {
+    int a = 0, b = 0;
+    if (cellOf(p.get_u(), p.get_v(), a, b))
+      m_cells[static_cast<size_t>(b) * m_columns + a] = 1;
+  }
+  // Whether a point lies in the cell of (u, v) or a neighbouring one.
+  bool near(double u, double v) const
+  {
+    int a = 0, b = 0;
+    if (!cellOf(u, v, a, b))
+      return false;
+    for (int y = std::max(0, b - 1); y <= std::min(m_rows - 1, b + 1); ++y)
+      for (int x = std::max(0, a - 1); x <= std::min(m_columns - 1, a + 1); ++x)
+        if (m_cells[static_cast<size_t>(y) * m_columns + x])
+          return true;
+    return false;
+  }
+
+private:
+  bool cellOf(double u, double v, int &a, int &b) const
+  {
+    if (!(u >= 0.0 && v >= 0.0))
+      return false;
+    a = static_cast<int>(u) >> GuidedTuning::cellShift;
+    b = static_cast<int>(v) >> GuidedTuning::cellShift;
+    return a < m_columns && b < m_rows;
+  }
+  int m_columns, m_rows;
+  std::vector<unsigned char> &m_cells;
+};
+
+// Whether (u, v) lies in the spans of \e limit (everywhere when null).
+bool inLimit(const RegionSpans *limit, int H, double u, double v)
+{
+  if (limit == nullptr)
+    return true;
+  const int i = static_cast<int>(std::lround(v)), j = static_cast<int>(std::lround(u));
+  if (i < 0 || i >= H)
+    return false;
+  for (const Span *s = limit->begin(i); s != limit->end(i); ++s)
+    if (j >= s->first && j <= s->second)
+      return true;
+  return false;
+}
+
+enum SampleState { MISSED, FOUND, KNOWN };
+
+// The pieces of curve along the samples (in their order): runs of found samples, broken by more than
+// GuidedTuning::maxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
+// kept when it touches a known point (a sample near a point already found) or has GuidedTuning::minRun
+// points; \e keep marks the found samples of the kept pieces.
+void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
+                          std::vector<unsigned char> &keep)
+{
+  keep.assign(state.size(), 0);
+  std::vector<size_t> piece;
+  bool anchored = false;
+  int misses = 0;
+  double lastOffset = 0.0;
+  size_t lastIndex = 0;
+  bool afterKnown = false;
+  auto close = [&]() {
+    if (anchored || static_cast<int>(piece.size()) >= GuidedTuning::minRun)
+      for (size_t k : piece)
+        keep[k] = 1;
+    piece.clear();
+    anchored = false;
+  };
+  for (size_t i = 0; i < state.size(); ++i) {
+    if (state[i] == KNOWN) {
+      anchored = true;
+      afterKnown = true;
+      misses = 0;
+      lastOffset = 0.0;
+      lastIndex = i;
+    } else if (state[i] == FOUND) {
+      // Next to a known point the offset is that point's, within the fit's inlier threshold of the curve.
+      const double allowed = (afterKnown ? 2.0 : GuidedTuning::maxJump) + GuidedTuning::perSampleJump * (i - lastIndex);
+      if ((anchored || !piece.empty()) && std::fabs(results[i].offset - lastOffset) > allowed)
+        close();
+      piece.push_back(i);
+      afterKnown = false;
+      misses = 0;
+      lastOffset = results[i].offset;
+      lastIndex = i;
+    } else if (++misses > GuidedTuning::maxMisses) {
+      close();
+      afterKnown = false;
+    }
+  }
+  close();
+}
+
+// Least-squares ellipse through the points (an even subsample of a few hundred).
+bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
+{
+  std::vector<Eigen::Vector2d> sample;
+  const size_t stride = std::max<size_t>(1, points.size() / 600);
+  for (size_t k = 0; k < points.size(); k += stride)
+    sample.push_back(Eigen::Vector2d(points[k].get_u(), points[k].get_v()));
+  Eigen::Matrix3d c;
+  if (sample.size() < 5 || !vpLaserSolvers::fitConic(sample.data(), static_cast<int>(sample.size()), c) ||
+      !vpLaserSolvers::isEllipse(c))
+    return false;
+  C = c;
+  return true;
+}
+
+double median(std::vector<double> &values)
+{
+  if (values.empty())
+    return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+} // namespace
+
+void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &prediction,
+                const std::vector<vpImagePoint> &anchors, const RegionSpans *limit, std::vector<vpImagePoint> &points,
+                RidgeWorkspace &work, GuidedReport &report)
+{
+  report = GuidedReport();
+  work.guided.clear();
+  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
+  FoundCells found(W, H, work.guidedCells);
+  for (const vpImagePoint &p : anchors)
+    found.mark(p);
+  std::vector<vpImagePoint> fitPoints = anchors;
+  std::vector<GuidedSample> samples;
+  std::vector<SampleState> state;
+  std::vector<ProfileResult> results;
+  std::vector<unsigned char> keep;
+  std::vector<double> noises, thresholds;
+  ProfileBuffers buffers;
+  Eigen::Matrix3d C = prediction;
+  report.ran = true;
+  for (int iteration = 0; iteration < GuidedTuning::maxIterations; ++iteration) {
+    if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
+      break;
+    ++report.iterations;
+    state.assign(samples.size(), MISSED);
+    results.assign(samples.size(), ProfileResult());
+    for (size_t i = 0; i < samples.size(); ++i) {
+      const GuidedSample &s = samples[i];
+      const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
+      if (found.near(u, v))
+        state[i] = KNOWN;
+      else if (inLimit(limit, H, u, v)) {
+        results[i] = measureProfile(I, s, settings, buffers);
+        state[i] = results[i].found ? FOUND : MISSED;
+        noises.push_back(results[i].noise);
+        thresholds.push_back(results[i].threshold);
+      }
+    }
+    keepContinuingPieces(state, results, keep);
+    int added = 0;
+    for (size_t i = 0; i < samples.size(); ++i)
+      if (keep[i]) {
+        points.push_back(results[i].crossing.point);
+        fitPoints.push_back(results[i].crossing.point);
+        work.guided.push_back(results[i].crossing);
+        found.mark(results[i].crossing.point);
+        ++added;
+      }
+    report.added += added;
+    // The coverage stops growing, or no better prediction.
+    if (added == 0 || !refit(fitPoints, C))
+      break;
+  }
+  report.noise = median(noises) / std::sqrt(static_cast<double>(GuidedTuning::lines));
+  report.threshold = median(thresholds) / GuidedTuning::lines;
+}
+
+int observedStripeWidth(const RidgeWorkspace &work, int fallback)
+{
+  std::vector<int> widths;
+  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
+    if (work.keep[k])
+      widths.push_back(work.crossings[k].last - work.crossings[k].first + 1);
+  if (widths.empty())
+    return fallback;
+  std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
+  return widths[widths.size() / 2];
+}
+} // namespace vpLaserDetector

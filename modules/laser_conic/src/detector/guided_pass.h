@@ -1,0 +1,66 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file guided_pass.h
+  \brief The conic-guided pass of the ridge detector (internal header): profiles across a predicted conic,
+  a matched filter for a stripe of the observed width against the noise measured along each profile, the
+  points that continue the curve, refits until the coverage stops growing.
+*/
+#ifndef VP_LASER_GUIDED_PASS_H
+#define VP_LASER_GUIDED_PASS_H
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "laser_detector.h"
+
+namespace vpLaserDetector
+{
+//! Settings of the guided pass (see vpLaserConicDetector::setGuidedSearch()).
+struct GuidedSettings
+{
+  double margin;   //!< half width (pixels, across the curve) of the band searched around the prediction
+  int step;        //!< one profile every step-th image row or column crossed by the curve
+  double factor;   //!< matched-filter response >= factor x its noise measured along the profile
+  int maxWidth;    //!< widest stripe (pixels, half-maximum run along the profile)
+  int saturation;  //!< saturated red level
+  int stripeWidth; //!< width of the matched filter (pixels): the stripe's observed half-maximum width
+};
+
+//! What the guided pass measured.
+struct GuidedReport
+{
+  int added = 0;          //!< points added
+  int iterations = 0;     //!< refits
+  double noise = 0.0;     //!< median of the noise measured along the profiles (grey levels)
+  double threshold = 0.0; //!< median response threshold of the profiles (grey levels)
+  bool ran = false;       //!< false when there was no usable prediction
+};
+
+/*!
+  Robust ellipse through \e points (pixel coordinates): RANSAC over five-point conics (seeded, Sampson
+  distance within 2 px), refitted on its inliers (returned in \e inliers). False when fewer than
+  \e minInliers points agree, their arc around the ellipse is under 60 degrees or the conic is no plausible
+  image of the ring (not an ellipse, or far larger than the image).
+*/
+bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, Eigen::Matrix3d &C,
+                     std::vector<int> &inliers);
+
+/*!
+  The guided pass. \e prediction: the conic to search along (pixel coordinates); \e anchors: the points
+  already found that lie on it (the first pass's inliers; they count as found and are not measured again).
+  \e limit: when not null, only its spans are searched. Appends the points found to \e points and their
+  runs to work.guided (for the mask).
+*/
+void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &prediction,
+                const std::vector<vpImagePoint> &anchors, const RegionSpans *limit, std::vector<vpImagePoint> &points,
+                RidgeWorkspace &work, GuidedReport &report);
+
+//! Median half-maximum width (pixels) of the crossings work.keep marks; \e fallback when there is none.
+int observedStripeWidth(const RidgeWorkspace &work, int fallback);
+} // namespace vpLaserDetector
+
+#endif

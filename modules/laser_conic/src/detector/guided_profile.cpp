@@ -1,0 +1,168 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// One profile of the guided pass: the signed red dominance along an image line across the predicted
+// curve, a matched filter for a stripe of the observed width against a threshold from the noise measured
+// along that profile, then the first pass's shape tests and sub-pixel centre around the best response.
+#include "guided_detail.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ridge_profile.h"
+#include "ridge_score.h"
+
+namespace vpLaserDetector
+{
+namespace
+{
+// The profile as the first pass's shape tests read a scan line (see ridge_profile.h).
+struct ProfileView
+{
+  const ProfileBuffers &b;
+  int n;
+  int length() const { return n; }
+  int at(int k) const { return b.value[static_cast<size_t>(k)]; }
+  int red(int k) const { return b.red[static_cast<size_t>(k)]; }
+  int dominance(int k) const { return b.dominance[static_cast<size_t>(k)]; }
+};
+
+// Reads pixels [start, start + n) of the sample's line into the buffers: the score where the red channel is
+// in the saturation ramp (a saturated core is a plateau of 255, as in the first pass), the unclipped red
+// dominance elsewhere (the matched filter and the noise estimate are then linear in the sensor's noise: a
+// clipped dark floor would hide both), summed over GuidedTuning::lines lines shifted along the predicted
+// curve; the red channel and dominance of the sample's own line; the prefix sums. Returns the lines summed.
+int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, ProfileBuffers &b)
+{
+  b.value.assign(n, 0);
+  b.dominance.resize(n);
+  b.red.resize(n);
+  b.prefix.resize(static_cast<size_t>(n) + 1);
+  const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
+  const ptrdiff_t W = static_cast<ptrdiff_t>(I.getWidth());
+  const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
+  const int lineCount = static_cast<int>(s.alongRow ? I.getHeight() : I.getWidth());
+  const ptrdiff_t stride = s.alongRow ? 4 : 4 * W;
+  const int rampStart = saturation - RidgeTuning::saturationRamp, half = GuidedTuning::lines / 2;
+  int used = 0;
+  for (int j = -half; j <= half; ++j) {
+    const int line = s.line + j, first = start + static_cast<int>(std::lround(j * s.slope));
+    if (line < 0 || line >= lineCount || first < 0 || first + n > lineLength)
+      continue;
+    ++used;
+    const unsigned char *p = rgba + (s.alongRow ? 4 * (line * W + first) : 4 * (static_cast<ptrdiff_t>(first) * W + line));
+    for (int k = 0; k < n; ++k, p += stride) {
+      const int dominance = p[0] - std::max(p[1], p[2]);
+      b.value[k] += p[0] >= rampStart ? scorePixel(p, saturation) : dominance;
+      if (j == 0) {
+        b.red[k] = p[0];
+        b.dominance[k] = dominance;
+      }
+    }
+  }
+  b.prefix[0] = 0;
+  for (int k = 0; k < n; ++k)
+    b.prefix[k + 1] = b.prefix[k] + b.value[k];
+  return used;
+}
+
+// Robust noise of the profile: 1.4826 MAD / sqrt(2) of the differences two pixels apart (as the first
+// pass's global estimate, see ridge_noise.h), at least GuidedTuning::noiseFloor per line summed.
+double profileNoise(ProfileBuffers &b, int n, int lines)
+{
+  const double floor = GuidedTuning::noiseFloor * std::sqrt(static_cast<double>(lines));
+  b.diffs.clear();
+  for (int k = 0; k + 2 < n; ++k)
+    b.diffs.push_back(std::abs(b.value[k + 2] - b.value[k]));
+  if (b.diffs.empty())
+    return floor;
+  std::nth_element(b.diffs.begin(), b.diffs.begin() + b.diffs.size() / 2, b.diffs.end());
+  const double mad = b.diffs[b.diffs.size() / 2];
+  return std::max(floor, 1.4826 * mad / std::sqrt(2.0));
+}
+
+// The matched filter: mean over the stripe box [k - h, k + h] minus the larger mean of the background boxes
+// of f pixels beyond a gap on each side (a step edge has one bright side and fails, as in the first pass).
+struct MatchedFilter
+{
+  const std::vector<int> &prefix;
+  int h, f;
+  double mean(int first, int last) const { return static_cast<double>(prefix[last + 1] - prefix[first]) / (last - first + 1); }
+  double background(int k) const
+  {
+    const int g = GuidedTuning::gap;
+    return std::max(mean(k - h - g - f, k - h - g - 1), mean(k + h + g + 1, k + h + g + f));
+  }
+  double response(int k) const { return mean(k - h, k + h) - background(k); }
+};
+
+// The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile.
+bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k, const GuidedSettings &settings,
+                    int &first, int &last, double &centre)
+{
+  int p = std::max(0, k - filter.h - 1);
+  for (int j = p; j <= std::min(view.n - 1, k + filter.h + 1); ++j)
+    if (view.at(j) > view.at(p))
+      p = j;
+  const int bg = static_cast<int>(std::lround(filter.background(k))), contrast = view.at(p) - bg;
+  if (contrast <= 0)
+    return false;
+  const int aboveHalf = bg + contrast / 2, d = settings.maxWidth;
+  int a = p, b = p;
+  while (a - 1 >= 0 && view.at(a - 1) > aboveHalf && p - a <= d)
+    --a;
+  while (b + 1 < view.n && view.at(b + 1) > aboveHalf && b - p <= d)
+    ++b;
+  if (b - a + 1 > settings.maxWidth || whiteWithoutRedFlanks(view, a, b, settings.saturation, std::max(1, contrast / 2)))
+    return false;
+  first = a;
+  last = b;
+  centre = stripeCentroid(view, p, a, b, bg, contrast, d);
+  return true;
+}
+} // namespace
+
+ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
+                             ProfileBuffers &buffers)
+{
+  ProfileResult result;
+  const int h = std::max(1, settings.stripeWidth / 2), f = std::max(GuidedTuning::minFlank, h + 1);
+  const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
+  const int lo = static_cast<int>(std::floor(s.pos - s.halfWindow)), hi = static_cast<int>(std::ceil(s.pos + s.halfWindow));
+  const int reach = h + GuidedTuning::gap + f;
+  const int start = std::max(0, lo - reach), end = std::min(lineLength - 1, hi + reach), n = end - start + 1;
+  if (n < 2 * reach + 1)
+    return result;
+  const int lines = readLines(I, s, start, n, settings.saturation, buffers);
+  if (lines == 0)
+    return result;
+  const MatchedFilter filter{buffers.prefix, h, f};
+  int best = -1;
+  double bestResponse = -1e30;
+  for (int k = std::max(reach, lo - start); k <= std::min(n - 1 - reach, hi - start); ++k) {
+    const double r = filter.response(k);
+    if (r > bestResponse) {
+      bestResponse = r;
+      best = k;
+    }
+  }
+  result.noise = profileNoise(buffers, n, lines);
+  result.threshold = std::max(GuidedTuning::minResponse * lines,
+                              settings.factor * result.noise * std::sqrt(1.0 / (2 * h + 1) + 1.0 / f));
+  double centre = 0.0;
+  int first = 0, last = 0;
+  if (best < 0 || bestResponse < result.threshold ||
+      !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, first, last, centre))
+    return result;
+  const double along = start + centre;
+  result.found = true;
+  result.offset = (along - s.pos) * s.toNormal;
+  result.crossing.alongRow = s.alongRow;
+  result.crossing.line = s.line;
+  result.crossing.first = start + first;
+  result.crossing.last = start + last;
+  result.crossing.point = s.alongRow ? vpImagePoint(s.line, along) : vpImagePoint(along, s.line);
+  return result;
+}
+} // namespace vpLaserDetector
