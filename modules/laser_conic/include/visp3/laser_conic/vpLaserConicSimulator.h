@@ -9,6 +9,7 @@
 #ifndef VP_LASER_CONIC_SIMULATOR_H
 #define VP_LASER_CONIC_SIMULATOR_H
 
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -278,8 +279,16 @@ private:
   void checkCamera() const;
   //! Normalized undistorted coordinates of every pixel centre (inverse of the projection model), cached.
   void updateRayMap();
+  //! Throws vpLaserConicException::badValueError when a render setting is out of its range.
+  static void checkSettings(const vpRenderSettings &settings);
   //! Renders the ground (floor, texture, chessboard, distractors, lamp) into a float RGB image.
   void renderGround(float *rgb, const vpRenderSettings &settings, const vpImage<vpRGBa> *stretchedTexture);
+  //! Albedo and glossiness of the ground point (X, Y) seen by pixel (i, j): floor, texture, chessboard, objects.
+  void surfaceAlbedo(const vpRenderSettings &settings, uint32_t sceneSeed, const std::vector<vpDistractor> &objects,
+                     double X, double Y, int i, int j, const double R[3][3], const double C[3], float albedo[3],
+                     float &gloss) const;
+  //! Anti-aliased chessboard grey of pixel (i, j) (4 sub-pixel rays; R, C: camera orientation and centre in g).
+  float chessboardAlbedo(int i, int j, const double R[3][3], const double C[3]) const;
   //! Adds the laser stripe, its white core and bloom.
   void renderLaser(float *rgb, const vpRenderSettings &settings) const;
   //! render() with, when not null, a texture stretched over the footprint (historical render(I, texture)).
