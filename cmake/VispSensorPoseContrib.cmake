@@ -17,7 +17,7 @@ if(NOT VISP_INITIAL_PASS)
   # the directory that finds them, so every module looks for them itself.
   find_package(Eigen3 3.3 REQUIRED NO_MODULE)
   find_package(Ceres 2.0 REQUIRED)
-  find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc calib3d)
+  find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d)
   find_package(GTest QUIET)
 endif()
 

@@ -92,6 +92,9 @@ std::vector<vpLaserConicSimulator::vpDistractor> sceneObjects(const vpLaserConic
   return objects;
 }
 
+// Reflectance of a surface at the laser's wavelength: its red albedo (grey levels under ambient 1) over white.
+inline float redReflectance(float redAlbedo) { return std::min(1.f, std::max(0.f, redAlbedo / 255.f)); }
+
 // Phong reflection of the lamp at ground point (X, Y) seen from the camera centre C (ground frame): half vector
 // of the directions to the camera and to the lamp, ground normal +Z.
 float lampSpecular(const double C[3], const double lamp[3], double X, double Y, float specular, float gloss,
@@ -139,7 +142,8 @@ void vpLaserConicSimulator::surfaceAlbedo(const vpRenderSettings &settings, uint
       sampleTexture(m_texture.image, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
     gloss = 0.2f;
   if (m_boardX != 0 && chessboardGrey(X, Y, m_boardX, m_boardY, m_boardSquare) >= 0.f) {
-    albedo[0] = albedo[1] = albedo[2] = chessboardAlbedo(i, j, R, C);
+    albedo[0] = albedo[1] = albedo[2] =
+        i >= 0 ? chessboardAlbedo(i, j, R, C) : chessboardGrey(X, Y, m_boardX, m_boardY, m_boardSquare);
     gloss = 0.15f;
   }
   for (const vpDistractor &o : objects)
@@ -151,8 +155,16 @@ void vpLaserConicSimulator::surfaceAlbedo(const vpRenderSettings &settings, uint
     }
 }
 
+float vpLaserConicSimulator::groundReflectance(const vpRenderSettings &settings, double X, double Y) const
+{
+  const uint32_t sceneSeed = settings.sceneSeed >= 0 ? static_cast<uint32_t>(settings.sceneSeed) : m_seed;
+  float albedo[3], gloss = 0.f;
+  surfaceAlbedo(settings, sceneSeed, sceneObjects(settings, sceneSeed), X, Y, -1, -1, nullptr, nullptr, albedo, gloss);
+  return redReflectance(albedo[0]);
+}
+
 void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &settings,
-                                         const vpImage<vpRGBa> *stretchedTexture)
+                                         const vpImage<vpRGBa> *stretchedTexture, float *reflectance)
 {
   const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
   const vpHomogeneousMatrix gMc = m_cMg.inverse();
@@ -181,6 +193,8 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
       const size_t k = static_cast<size_t>(i) * W + j;
       float *out = rgb + 3 * k;
       out[0] = out[1] = out[2] = kFarGroundGrey;
+      if (reflectance != nullptr)
+        reflectance[k] = redReflectance(kFarGroundGrey);
       if (!m_rayValid[k])
         continue;
       // Ray of the pixel in the ground frame and its hit on Z = 0.
@@ -201,6 +215,8 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
         out[0] = albedo[0];
         out[1] = albedo[1];
         out[2] = albedo[2];
+        if (reflectance != nullptr)
+          reflectance[k] = redReflectance(albedo[0]);
         continue; // historical path: the texture as is, no lighting
       }
       surfaceAlbedo(settings, sceneSeed, objects, X, Y, i, j, R, C, albedo, gloss);
@@ -209,6 +225,8 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
                              : 0.f;
       for (int c = 0; c < 3; ++c)
         out[c] = ambient * albedo[c] + spec;
+      if (reflectance != nullptr)
+        reflectance[k] = redReflectance(albedo[0]);
     }
   }
 }

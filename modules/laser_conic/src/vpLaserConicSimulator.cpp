@@ -352,6 +352,13 @@ void vpLaserConicSimulator::checkSettings(const vpRenderSettings &s)
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicSimulator: a render setting is negative or not finite (sensor noise, "
                                 "ambient, specular, laser power, white core, bloom, blur, clutter radius, lamp)");
+  if (!nonNegative(s.distanceFalloff) || !nonNegative(s.stripeFarFraction) || !(s.stripeFarFraction < 1.0))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSimulator: the distance fall-off must be finite and >= 0, the stripe's far "
+                                "fraction in [0, 1)");
+  if (s.jpegQuality < 0 || s.jpegQuality > 100)
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSimulator: the JPEG quality must be in [1, 100] (0: no compression)");
 }
 
 namespace
@@ -383,11 +390,15 @@ void vpLaserConicSimulator::renderImpl(vpImage<vpRGBa> &I, const vpRenderSetting
   // 1. Ground, 2. laser, in floating point (linear light before the sensor clips it).
   cv::Mat image(H, W, CV_32FC3);
   float *rgb = image.ptr<float>(0);
-  renderGround(rgb, s, stretchedTexture);
+  std::vector<float> reflectance(s.reflectanceScaled ? static_cast<size_t>(W) * H : 0);
+  renderGround(rgb, s, stretchedTexture, s.reflectanceScaled ? reflectance.data() : nullptr);
   if (s.laserOn)
-    renderLaser(rgb, s);
+    renderLaser(rgb, s, s.reflectanceScaled ? reflectance.data() : nullptr);
   // 3. Objects in front of the ground, 4. optics and motion, 5. sensor noise, rounding and saturation.
   drawOccluders(image, s.occluders, s.occluderColour);
   vpLaserSimSensor::applyOptics(image, s.blur, s.motionBlurLength, s.motionBlurAngle);
   vpLaserSimSensor::expose(image, s.noise, (static_cast<uint64_t>(m_rng()) << 32) | m_rng(), I);
+  // 6. What the camera streams.
+  if (s.jpegQuality > 0)
+    vpLaserSimSensor::compressJpeg(I, s.jpegQuality);
 }
