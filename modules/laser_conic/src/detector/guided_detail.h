@@ -37,6 +37,9 @@ struct GuidedTuning
   static constexpr double maxJump = 1.0;
   //! See maxJump.
   static constexpr double perSampleJump = 0.5;
+  //! Largest distance (pixels) of a second-pass point to the conic refitted on all the points: the first
+  //! pass's inlier threshold (its centres are within a few tenths of a pixel of a conic trace).
+  static constexpr double finalDistance = 2.0;
   //! Refits at most: the coverage stops growing after two or three on every case seen.
   static constexpr int maxIterations = 4;
   //! Side (2^cellShift pixels) of the cells that record where points were found (a sample near one is not

@@ -133,6 +133,18 @@ bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
   return true;
 }
 
+// Drops the crossings farther than GuidedTuning::finalDistance pixels (Sampson distance) from the conic C
+// refitted on all the points: a piece that continued the prediction of an early, extrapolated fit but not
+// the curve that all the points make (a stripe-like texture near the curve).
+void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
+{
+  size_t kept = 0;
+  for (const Crossing &c : crossings)
+    if (vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(c.point.get_u(), c.point.get_v())) <= GuidedTuning::finalDistance)
+      crossings[kept++] = c;
+  crossings.resize(kept);
+}
+
 double median(std::vector<double> &values)
 {
   if (values.empty())
@@ -183,17 +195,19 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     int added = 0;
     for (size_t i = 0; i < samples.size(); ++i)
       if (keep[i]) {
-        points.push_back(results[i].crossing.point);
         fitPoints.push_back(results[i].crossing.point);
         work.guided.push_back(results[i].crossing);
         found.mark(results[i].crossing.point);
         ++added;
       }
-    report.added += added;
     // The coverage stops growing, or no better prediction.
     if (added == 0 || !refit(fitPoints, C))
       break;
   }
+  keepOnTheFinalCurve(C, work.guided);
+  for (const Crossing &c : work.guided)
+    points.push_back(c.point);
+  report.added = static_cast<int>(work.guided.size());
   report.noise = median(noises) / std::sqrt(static_cast<double>(GuidedTuning::lines));
   report.threshold = median(thresholds) / GuidedTuning::lines;
 }

@@ -155,6 +155,14 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (best < 0 || bestResponse < result.threshold ||
       !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, first, last, centre))
     return result;
+  // The centre: the vertex of the parabola through the matched filter's responses around its best (the
+  // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here).
+  if (best > 0 && best + 1 < n) {
+    const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
+    const double curvature = r0 - 2.0 * bestResponse + r2;
+    if (curvature < 0.0)
+      centre = best + std::max(-0.5, std::min(0.5, 0.5 * (r0 - r2) / curvature));
+  }
   const double along = start + centre;
   result.found = true;
   result.offset = (along - s.pos) * s.toNormal;
