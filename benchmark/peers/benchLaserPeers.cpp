@@ -378,7 +378,9 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
   frame.note = "Colour frames rendered by vpLaserConicSimulator (3 px stripe, noise 2, altitude 1-2.5 m) on three "
                "floors; ratio to one cv::cvtColor BGR->HSV pass over the same frame (already a cv::Mat), one "
                "thread; success = GP-3 altitude error < 1 cm and attitude error < 1 deg. ROI: search region of "
-               "20 px around the trace detected in the same frame (as from the previous frame of a sequence).";
+               "20 px around the trace detected in the same frame (as from the previous frame of a sequence). "
+               "Previous conic: the image conic of the frame's GP-3 estimate as the search region, searched by "
+               "the guided pass alone (tracking). Detection includes the conic-guided second pass (default).";
   frame.ratioHeader = "Ratio to cvtColor";
 #ifdef VSP_HAVE_LASER_CONIC
   double worstWhole = 0.0, cvtDark = -1.0;
@@ -431,11 +433,30 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
       if (!traces[i].empty())
         roi[i].setSearchRegion(traces[i], 20.0);
     const double roiNs = vspBench::medianNsPerCall([&](int i) { whole(roi[i], i); }, nImages, 9, 0.5);
+    // Tracking: the image conic of the frame's GP-3 estimate (as the previous frame's) is the prediction of
+    // the guided pass, every line or every 3rd.
+    std::vector<vpLaserConicDetector> tracked(images.size()), trackedSparse(images.size());
+    for (int i = 0; i < nImages; ++i) {
+      vpPlane plane;
+      try {
+        if (!traces[i].empty() && estimator.computePlane(traces[i], vpLaserConicPose::GP3, plane)) {
+          tracked[i].setSearchRegion(estimator.getImageConic(), 20.0);
+          trackedSparse[i].setSearchRegion(estimator.getImageConic(), 20.0);
+          trackedSparse[i].setGuidedStep(3);
+        }
+      } catch (const vpException &) {
+      }
+    }
+    const double trackNs = vspBench::medianNsPerCall([&](int i) { whole(tracked[i], i); }, nImages, 9, 0.5);
+    const double trackSparseNs = vspBench::medianNsPerCall([&](int i) { whole(trackedSparse[i], i); }, nImages, 9, 0.5);
     const std::string problem = "1600x1200, " + floor.first;
     frame.rows.push_back(row(problem, "OpenCV cvtColor BGR->HSV", cvtNs, cvtNs, false, -1.0));
     frame.rows.push_back(row(problem, "ours vpLaserConicDetector::detect", detectNs, cvtNs, true, -1.0));
     frame.rows.push_back(row(problem, "ours detect + GP-3", wholeNs, cvtNs, true, static_cast<double>(good) / nImages));
     frame.rows.push_back(row(problem, "ours detect (ROI 20 px) + GP-3", roiNs, cvtNs, true, -1.0));
+    frame.rows.push_back(row(problem, "ours detect (previous conic, 20 px) + GP-3", trackNs, cvtNs, true, -1.0));
+    frame.rows.push_back(row(problem, "ours detect (previous conic, 20 px, every 3rd line) + GP-3", trackSparseNs, cvtNs,
+                             true, -1.0));
     worstWhole = std::max(worstWhole, wholeNs / cvtNs);
   }
   // The target is a ratio: the worst floor's ratio, on the dark floor's cvtColor scale.

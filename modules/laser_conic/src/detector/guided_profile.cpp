@@ -35,7 +35,7 @@ struct ProfileView
 // curve; the red channel and dominance of the sample's own line; the prefix sums. Returns the lines summed.
 int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, ProfileBuffers &b)
 {
-  b.value.assign(n, 0);
+  b.value.resize(n);
   b.dominance.resize(n);
   b.red.resize(n);
   b.prefix.resize(static_cast<size_t>(n) + 1);
@@ -45,21 +45,31 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
   const int lineCount = static_cast<int>(s.alongRow ? I.getHeight() : I.getWidth());
   const ptrdiff_t stride = s.alongRow ? 4 : 4 * W;
   const int rampStart = saturation - RidgeTuning::saturationRamp, half = GuidedTuning::lines / 2;
-  int used = 0;
+  // The lines summed and where they start (pixel 0 of the profile on each); a line is summed pixel by pixel
+  // with the others, so that a column profile reads each image row once (the columns side by side share
+  // their cache lines).
+  const unsigned char *first[2 * GuidedTuning::lines + 1];
+  int used = 0, centre = -1;
   for (int j = -half; j <= half; ++j) {
-    const int line = s.line + j, first = start + static_cast<int>(std::lround(j * s.slope));
-    if (line < 0 || line >= lineCount || first < 0 || first + n > lineLength)
+    const int line = s.line + j, from = start + static_cast<int>(std::lround(j * s.slope));
+    if (line < 0 || line >= lineCount || from < 0 || from + n > lineLength)
       continue;
-    ++used;
-    const unsigned char *p = rgba + (s.alongRow ? 4 * (line * W + first) : 4 * (static_cast<ptrdiff_t>(first) * W + line));
-    for (int k = 0; k < n; ++k, p += stride) {
+    if (j == 0)
+      centre = used;
+    first[used++] = rgba + (s.alongRow ? 4 * (line * W + from) : 4 * (static_cast<ptrdiff_t>(from) * W + line));
+  }
+  for (int k = 0; k < n; ++k) {
+    int sum = 0;
+    for (int m = 0; m < used; ++m) {
+      const unsigned char *p = first[m] + k * stride;
       const int dominance = p[0] - std::max(p[1], p[2]);
-      b.value[k] += p[0] >= rampStart ? scorePixel(p, saturation) : dominance;
-      if (j == 0) {
+      sum += p[0] >= rampStart ? scorePixel(p, saturation) : dominance;
+      if (m == centre) {
         b.red[k] = p[0];
         b.dominance[k] = dominance;
       }
     }
+    b.value[k] = sum;
   }
   b.prefix[0] = 0;
   for (int k = 0; k < n; ++k)
