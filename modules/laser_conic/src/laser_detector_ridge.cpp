@@ -27,7 +27,7 @@
 #define VSP_DETECTOR_AVX2 0
 #endif
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -1206,9 +1206,9 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
       points.push_back(work.crossings[k].point);
   return points;
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
               vpImage<unsigned char> &mask)
@@ -1228,4 +1228,4 @@ void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, un
     draw(c.alongRow, c.line, c.first, c.last, work.keep[k] ? 255 : 100);
   }
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

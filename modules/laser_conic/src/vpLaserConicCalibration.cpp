@@ -109,28 +109,18 @@ vpHomogeneousMatrix laserPose(double alpha, double beta, const double apex[3])
   return vpHomogeneousMatrix(vpTranslationVector(apex[0], apex[1], apex[2]), R);
 }
 
-ceres::LossFunction *makeLoss(vpLaserConicCalibration::vpLaserConicLoss loss, double scale)
+ceres::LossFunction *makeLoss(vpRobustLoss loss, double scale)
 {
   switch (loss) {
-  case vpLaserConicCalibration::LOSS_HUBER:
+  case vpRobustLoss::HUBER:
     return new ceres::HuberLoss(scale);
-  case vpLaserConicCalibration::LOSS_CAUCHY:
+  case vpRobustLoss::CAUCHY:
     return new ceres::CauchyLoss(scale);
   default:
     return nullptr;
   }
 }
 
-// Median of |values| (values copied: nth_element reorders).
-double medianAbs(std::vector<double> values)
-{
-  if (values.empty())
-    return 0.0;
-  for (double &v : values)
-    v = std::fabs(v);
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
 } // namespace
 
 vpLaserConicCalibration::vpLaserConicCalibration()
@@ -199,7 +189,7 @@ void vpLaserConicCalibration::setMaxConditionNumber(double maxCondition)
 
 void vpLaserConicCalibration::setInitialGuess(const vpHomogeneousMatrix &cMl)
 {
-  if (!vpLaserPoseCheck::isFinitePose(cMl))
+  if (!vsp::laser_pose_check::isFinitePose(cMl))
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicCalibration: the initial guess is not a finite rigid transformation");
   m_guess = cMl;
@@ -208,7 +198,7 @@ void vpLaserConicCalibration::setInitialGuess(const vpHomogeneousMatrix &cMl)
 
 void vpLaserConicCalibration::addView(const vpHomogeneousMatrix &cMg, const std::vector<vpImagePoint> &laserPoints)
 {
-  if (!vpLaserPoseCheck::isFinitePose(cMg))
+  if (!vsp::laser_pose_check::isFinitePose(cMg))
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicCalibration: the grid pose is not a finite rigid transformation");
   if (laserPoints.size() < 5) {
@@ -296,7 +286,7 @@ void vpLaserConicCalibration::checkReady(const vpHomogeneousMatrix &guess) const
   if (m_views.empty())
     throw vpLaserConicException(vpLaserConicException::notEnoughPointError,
                                 "vpLaserConicCalibration: no view added, call addView() before compute()");
-  if (!vpLaserPoseCheck::isFinitePose(guess))
+  if (!vsp::laser_pose_check::isFinitePose(guess))
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicCalibration: the initial guess is not a finite rigid transformation");
 }
@@ -573,21 +563,22 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   m_initialPredicted = predictedGridPoints(blocks, s, m_measured);
 
   // Stage 2: everything under a robust loss whose scale shrinks from the initial residuals to the noise
-  // level (1.5 sigma, sigma = 1.4826 x the median residual norm), by at most a factor of 4 per run.
+  // level (1.5 sigma, sigma = vpRobustMadScale(): 1.4826 x the median residual norm), by at most a factor
+  // of 4 per run.
   problem.SetParameterBlockVariable(s.angles);
   problem.SetParameterBlockVariable(s.apex);
   if (m_estimateAngle)
     problem.SetParameterBlockVariable(&s.opening);
   if (m_loss != LOSS_NONE) {
     const double minScale = 1e-6; // pixels: exact data
-    double scale = std::max(std::max(m_userLossScale, minScale), medianAbs(norms));
+    double scale = std::max(std::max(m_userLossScale, minScale), vpRobustMadScale(norms) / 1.4826);
     for (int round = 0; round < 10; ++round) {
       loss.Reset(makeLoss(m_loss, scale), ceres::TAKE_OWNERSHIP);
       if (!runSolver(options, problem, summary))
         return fail(STATUS_SOLVER_FAILURE, "robust stage: " + summary.message);
       evaluateResiduals();
       const double target = m_userLossScale > 0.0 ? m_userLossScale
-                                                  : std::max(minScale, 1.5 * 1.4826 * medianAbs(norms));
+                                                  : std::max(minScale, 1.5 * vpRobustMadScale(norms));
       const double next = std::max(target, 0.25 * scale);
       if (next >= 0.8 * scale)
         break;

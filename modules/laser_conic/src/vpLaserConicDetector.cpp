@@ -47,7 +47,7 @@ vpLaserConicDetector::vpLaserConicDetector()
 {
 }
 
-vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vpLaserDetector::RidgeWorkspace) {}
+vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vsp::laser_detector::RidgeWorkspace) {}
 
 vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &other) : vpWorkspace()
 {
@@ -196,7 +196,7 @@ namespace
 void markBlocks(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W, int nbX,
                 std::vector<unsigned char> &marked)
 {
-  const int blockW = 16, blockH = vpLaserDetector::RegionSpans::bandHeight, nbY = (H + blockH - 1) / blockH;
+  const int blockW = 16, blockH = vsp::laser_detector::RegionSpans::bandHeight, nbY = (H + blockH - 1) / blockH;
   marked.assign(static_cast<size_t>(nbX) * nbY, 0);
   // One point per cell of a quarter of the margin marks its square: more points in the cell add little
   // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
@@ -238,7 +238,7 @@ std::vector<unsigned char> dilateBlocks(const std::vector<unsigned char> &marked
 }
 
 // The column spans of each band of the marked blocks.
-void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, vpLaserDetector::RegionSpans &out)
+void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, vsp::laser_detector::RegionSpans &out)
 {
   const int blockW = 16, nbY = static_cast<int>(marked.size()) / nbX;
   out.spans.clear();
@@ -251,7 +251,7 @@ void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, vpL
       const int start = b;
       while (b + 1 < nbX && row[b + 1])
         ++b;
-      out.spans.push_back(vpLaserDetector::Span(start * blockW, std::min(W - 1, (b + 1) * blockW - 1)));
+      out.spans.push_back(vsp::laser_detector::Span(start * blockW, std::min(W - 1, (b + 1) * blockW - 1)));
     }
     out.bandStart.push_back(static_cast<int>(out.spans.size()));
   }
@@ -260,7 +260,7 @@ void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, vpL
 
 void vpLaserConicDetector::rasteriseRegion(int H, int W)
 {
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   if (work.regionValid && work.regionGeneration == m_regionGeneration && work.regionHeight == static_cast<unsigned int>(H) &&
       work.regionWidth == static_cast<unsigned int>(W))
     return;
@@ -273,7 +273,7 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
   markBlocks(m_region, m_regionMargin, m_regionMargin, H, W, nbX, searched);
   blocksToSpans(searched, nbX, W, work.searchRegion);
   blocksToSpans(dilateBlocks(searched, nbX, (reach + 15) / 16,
-                             (reach + vpLaserDetector::RegionSpans::bandHeight - 1) / vpLaserDetector::RegionSpans::bandHeight),
+                             (reach + vsp::laser_detector::RegionSpans::bandHeight - 1) / vsp::laser_detector::RegionSpans::bandHeight),
                 nbX, W, work.scoreRegion);
   work.regionValid = true;
   work.regionGeneration = m_regionGeneration;
@@ -284,7 +284,7 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
 const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
 {
   if (m_maskDirty) {
-    vpLaserDetector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask.image);
+    vsp::laser_detector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask.image);
     m_maskDirty = false;
   }
   return m_mask.image;
@@ -299,21 +299,21 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   m_width = I.getWidth();
   m_maskDirty = m_method == DETECTION_RIDGE;
   if (m_method == DETECTION_HSV) {
-    const vpLaserDetector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
+    const vsp::laser_detector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
                                                     static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
-    return vpLaserDetector::detectHsv(I, settings, m_mask.image);
+    return vsp::laser_detector::detectHsv(I, settings, m_mask.image);
   }
-  const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
+  const vsp::laser_detector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
                                                     static_cast<int>(m_saturationLevel), m_minSegmentLength,
                                                     static_cast<int>(m_step), getInstructionSetUsed()};
-  vpLaserDetector::RidgeReport report;
+  vsp::laser_detector::RidgeReport report;
   std::vector<vpImagePoint> points;
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   if (m_region.empty() || I.getSize() == 0)
-    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
+    points = vsp::laser_detector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
   else {
     rasteriseRegion(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
-    points = vpLaserDetector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report);
+    points = vsp::laser_detector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report);
   }
   m_threshold = report.threshold;
   m_noise = report.noise;

@@ -21,7 +21,7 @@
 
 namespace
 {
-using vpLaserEstimators::PointList;
+using vsp::laser_estimators::PointList;
 
 //! Minimal number of points each method needs.
 int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
@@ -338,16 +338,16 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
       inliers.push_back(i);
     found = true;
   } else if (method == PP5) {
-    found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, !m_scaleAdaptive, conic,
+    found = ransacWithFinalRefit(vsp::laser_estimators::Pp5Estimator(normalized), options, !m_scaleAdaptive, conic,
                                  report);
   } else if (method == PP3) {
     vpLaserSolvers::EpipolarTangents tangents;
     if (!vpLaserSolvers::epipolarTangents(cone, tangents))
       return fail(STATUS_CAMERA_INSIDE_CONE);
-    found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, !m_scaleAdaptive,
+    found = ransacWithFinalRefit(vsp::laser_estimators::Pp3Estimator(normalized, tangents), options, !m_scaleAdaptive,
                                  conic, report);
   } else {
-    vpLaserEstimators::PlaneModel model;
+    vsp::laser_estimators::PlaneModel model;
     // The plane refinement is cheap and a refined plane often gathers inliers its start missed.
     options.localRounds = 3;
     // Most GP-3 hypotheses of a contaminated trace (one outlier among the three points) predict a
@@ -355,7 +355,7 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     options.pretestSize = 64;
     // Later best models a few inliers better than the refitted consensus are not refitted again.
     options.localOptimisationGain = 0.02;
-    found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, !m_scaleAdaptive, model,
+    found = ransacWithFinalRefit(vsp::laser_estimators::Gp3Estimator(normalized, cone), options, !m_scaleAdaptive, model,
                                  report);
     startPlane = model.plane;
   }
@@ -371,7 +371,7 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   }
 
   // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
-  vpLaserRobustFit::Settings settings;
+  vsp::laser_robust_fit::Settings settings;
   settings.focal = focal;
   settings.threshold = m_threshold;
   settings.adaptive = m_scaleAdaptive && method != PLANE_PAIR;
@@ -380,19 +380,19 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   vpLaserConicFinalFit fit = m_finalFit;
   if (fit == FINAL_FIT_DEFAULT)
     fit = (method == PP3 || method == GP3) ? FINAL_FIT_SELECT : FINAL_FIT_FREE;
-  settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vpLaserRobustFit::FinalFit::CONSTRAINED
-                      : fit == FINAL_FIT_SELECT    ? vpLaserRobustFit::FinalFit::SELECT
-                                                   : vpLaserRobustFit::FinalFit::FREE;
-  vpLaserRobustFit::Result result;
-  switch (vpLaserRobustFit::fit(normalized, inliers, cone, startPlane, settings, result)) {
-  case vpLaserRobustFit::Outcome::OK: break;
-  case vpLaserRobustFit::Outcome::SHORT_ARC: {
+  settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vsp::laser_robust_fit::FinalFit::CONSTRAINED
+                      : fit == FINAL_FIT_SELECT    ? vsp::laser_robust_fit::FinalFit::SELECT
+                                                   : vsp::laser_robust_fit::FinalFit::FREE;
+  vsp::laser_robust_fit::Result result;
+  switch (vsp::laser_robust_fit::fit(normalized, inliers, cone, startPlane, settings, result)) {
+  case vsp::laser_robust_fit::Outcome::OK: break;
+  case vsp::laser_robust_fit::Outcome::SHORT_ARC: {
     std::ostringstream msg;
     msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
     return fail(STATUS_SHORT_ARC, msg.str());
   }
-  case vpLaserRobustFit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
-  case vpLaserRobustFit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
+  case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
+  case vsp::laser_robust_fit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
   }
   const Eigen::Vector4d plane = result.plane;
   conic = result.conic;

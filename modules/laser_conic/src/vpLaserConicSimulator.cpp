@@ -17,7 +17,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/core/vpPixelMeterConversion.h>
-#include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicException.h>
 
 #include "laser_lens.h"
 #include "laser_pose_check.h"
@@ -108,7 +108,7 @@ void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMat
   if (!std::isfinite(openingAngle) || openingAngle <= 0.0 || openingAngle >= M_PI)
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicSimulator: the laser opening angle must be in (0, pi) radians");
-  if (!vpLaserPoseCheck::isFinitePose(cMl))
+  if (!vsp::laser_pose_check::isFinitePose(cMl))
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicSimulator: the laser pose is not a finite rigid transformation");
   m_openingAngle = openingAngle;
@@ -117,7 +117,7 @@ void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMat
 
 void vpLaserConicSimulator::setGroundPose(const vpHomogeneousMatrix &cMg)
 {
-  if (!vpLaserPoseCheck::isFinitePose(cMg))
+  if (!vsp::laser_pose_check::isFinitePose(cMg))
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicSimulator: the ground pose is not a finite rigid transformation");
   // Signed distance of the camera centre to the plane Z = 0 of g.
@@ -182,7 +182,7 @@ bool vpLaserConicSimulator::project(const double P[3], double &u, double &v) con
   if (!(P[2] > 1e-9))
     return false;
   // The pixel the estimators will read back onto this ray (vpPixelMeterConversion's model, inverted).
-  return vpLaserLens::pixelOfNormalized(m_cam, P[0] / P[2], P[1] / P[2], u, v);
+  return vsp::laser_lens::pixelOfNormalized(m_cam, P[0] / P[2], P[1] / P[2], u, v);
 }
 
 std::vector<vpImagePoint> vpLaserConicSimulator::tracePoints(unsigned int n, double roughness)
@@ -447,18 +447,18 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
   // Clutter: small red patches at ground positions drawn from the seed only (the same scene every frame).
   std::vector<vpDistractor> objects = settings.distractors;
   for (unsigned int k = 0; k < settings.clutter; ++k) {
-    const uint32_t h1 = vpLaserSimFloor::hash(static_cast<int>(k), 11, sceneSeed),
-                   h2 = vpLaserSimFloor::hash(static_cast<int>(k), 12, sceneSeed);
+    const uint32_t h1 = vsp::laser_sim_floor::hash(static_cast<int>(k), 11, sceneSeed),
+                   h2 = vsp::laser_sim_floor::hash(static_cast<int>(k), 12, sceneSeed);
     vpDistractor d;
     d.shape = (h1 & 1) ? DISTRACTOR_DISC : DISTRACTOR_RECTANGLE;
-    const double radius = settings.clutterRadius * std::sqrt(vpLaserSimFloor::unit(h1));
-    const double angle = 2.0 * M_PI * vpLaserSimFloor::unit(h2);
+    const double radius = settings.clutterRadius * std::sqrt(vsp::laser_sim_floor::unit(h1));
+    const double angle = 2.0 * M_PI * vsp::laser_sim_floor::unit(h2);
     d.x = radius * std::cos(angle);
     d.y = radius * std::sin(angle);
-    d.size = 0.01 + 0.03 * vpLaserSimFloor::unit(h1 >> 5);
+    d.size = 0.01 + 0.03 * vsp::laser_sim_floor::unit(h1 >> 5);
     float c[3];
-    vpLaserSimFloor::hsvToRgb(vpLaserSimFloor::unit(h2 >> 3) < 0.5f ? 355.f : 5.f, 0.75f + 0.25f * vpLaserSimFloor::unit(h2 >> 9),
-                              0.45f + 0.4f * vpLaserSimFloor::unit(h2 >> 13), c);
+    vsp::laser_sim_floor::hsvToRgb(vsp::laser_sim_floor::unit(h2 >> 3) < 0.5f ? 355.f : 5.f, 0.75f + 0.25f * vsp::laser_sim_floor::unit(h2 >> 9),
+                              0.45f + 0.4f * vsp::laser_sim_floor::unit(h2 >> 13), c);
     d.colour = vpRGBa(static_cast<unsigned char>(c[0]), static_cast<unsigned char>(c[1]),
                       static_cast<unsigned char>(c[2]), 255);
     objects.push_back(d);
@@ -496,7 +496,7 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
         out[2] = albedo[2];
         continue; // historical path: the texture as is, no lighting
       }
-      vpLaserSimFloor::albedo(settings.floor, X, Y, sceneSeed, albedo, gloss);
+      vsp::laser_sim_floor::albedo(settings.floor, X, Y, sceneSeed, albedo, gloss);
       if (m_texture.image.getSize() != 0 &&
           sampleTexture(m_texture.image, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
         gloss = 0.2f;

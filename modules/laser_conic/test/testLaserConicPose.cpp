@@ -183,7 +183,7 @@ struct NoiseRatios
 };
 } // namespace
 
-// Exact data: only rounding remains (see testLaserSolvers.cpp for the tolerances). 2000 random
+// Exact data: only rounding remains (see testLaserConicSolvers.cpp for the tolerances). 2000 random
 // scenes per method: tilts up to 60 deg, baselines 5-30 cm in any direction, laser axis tilted up to 15 deg.
 TEST(LaserConicPose, ExactDataEveryMethod)
 {

@@ -116,7 +116,7 @@ private:
   std::mt19937 m_rng;
 };
 
-namespace vpRansacDetail
+namespace vsp::detail
 {
 //! Detects the optional `scoreRange()` member of an estimator (see vpRansacLoop()).
 template <class E, class = void> struct HasScoreRange : std::false_type
@@ -216,7 +216,7 @@ inline bool better(const std::pair<int, double> &a, const std::pair<int, double>
 {
   return a.first > b.first || (a.first == b.first && a.second < b.second);
 }
-} // namespace vpRansacDetail
+} // namespace vsp::detail
 
 /*!
   \ingroup group_robust
@@ -237,7 +237,7 @@ std::pair<int, double> vpRansacScore(const Estimator &estimator, const typename 
   double cost = 0.0;
   for (int begin = 0; begin < n; begin += kBlock) {
     const int end = std::min(n, begin + kBlock);
-    count += vpRansacDetail::scoreRange(estimator, m, begin, end, thr2, cost, inliers ? inliers + count : nullptr);
+    count += vsp::detail::scoreRange(estimator, m, begin, end, thr2, cost, inliers ? inliers + count : nullptr);
     if (count + (n - end) < mustReach)
       break; // even if every remaining datum were an inlier, the count would stay below mustReach
   }
@@ -255,11 +255,11 @@ void vpRansacInliers(const Estimator &estimator, const typename Estimator::Model
 {
   inliers.resize(static_cast<size_t>(estimator.size()));
   double cost = 0.0;
-  const int count = vpRansacDetail::scoreRange(estimator, m, 0, estimator.size(), thr2, cost, inliers.data());
+  const int count = vsp::detail::scoreRange(estimator, m, 0, estimator.size(), thr2, cost, inliers.data());
   inliers.resize(static_cast<size_t>(count));
 }
 
-namespace vpRansacDetail
+namespace vsp::detail
 {
 /*!
   Scores a hypothesis against the best model so far (with its consensus set \e bestInliers) and
@@ -300,7 +300,7 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, type
       return;
   }
 }
-} // namespace vpRansacDetail
+} // namespace vsp::detail
 
 /*!
   \ingroup group_robust
@@ -378,7 +378,7 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
       return true;
     if (minimumFor != bestScore.first) {
       for (int l = 0; l < looks; ++l)
-        minimum[static_cast<size_t>(l)] = vpRansacDetail::pretestMinimum((l + 1) * vpRansacPretestBlock,
+        minimum[static_cast<size_t>(l)] = vsp::detail::pretestMinimum((l + 1) * vpRansacPretestBlock,
                                                                          double(bestScore.first) / n, options.pretestRisk);
       minimumFor = bestScore.first;
     }
@@ -386,7 +386,7 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
       return true; // the best model has too few inliers for the subset to reject anything
     int count = 0;
     for (int l = 0; l < looks; ++l) {
-      count += vpRansacDetail::countInliers(estimator, m, subset.data() + l * vpRansacPretestBlock,
+      count += vsp::detail::countInliers(estimator, m, subset.data() + l * vpRansacPretestBlock,
                                             vpRansacPretestBlock, thr2);
       if (count < minimum[static_cast<size_t>(l)])
         return false;
@@ -405,12 +405,12 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
       ++report.models;
       if (!passesPretest(hypotheses[k]))
         continue;
-      if (!vpRansacDetail::challenge(estimator, hypotheses[k], thr2, best, bestScore, report.inliers, scratch))
+      if (!vsp::detail::challenge(estimator, hypotheses[k], thr2, best, bestScore, report.inliers, scratch))
         continue;
       if (options.localOptimisation && bestScore.first > s &&
           bestScore.first > (1.0 + options.localOptimisationGain) * optimisedCount) {
-        vpRansacDetail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
-                                          scratch);
+        vsp::detail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
+                                       scratch);
         optimisedCount = bestScore.first;
       }
       needed = vpRansacTrialCount(options.probability, 1.0 - double(bestScore.first) / n, s, options.maxTrials);
