@@ -20,6 +20,11 @@
 #include <visp3/laser_conic/vpLaserConicException.h>
 #include <visp3/robust/vpRobustScale.h>
 
+namespace vsp::laser_calibration
+{
+class ConeProblem;
+}
+
 /*!
   \ingroup group_laser_conic
   \brief Estimates the pose of the laser cone relative to the camera (and optionally its opening angle)
@@ -272,8 +277,15 @@ private:
     std::vector<vpImagePoint> points;
   };
   void checkReady(const vpHomogeneousMatrix &guess) const;
-  void computeJackknife(const vpHomogeneousMatrix &cMl);
+  void resetResults();
   void backProject();
+  //! STATUS_NOT_ENOUGH_VIEWS or STATUS_DEGENERATE_VIEWS (one grid plane) as a failure, else true.
+  bool checkViewSet(const std::vector<vpHomogeneousMatrix> &cMg);
+  //! The three stages of compute() (see the class description) and their failures.
+  bool fitCone(vsp::laser_calibration::ConeProblem &cone);
+  //! Condition number (STATUS_DEGENERATE_VIEWS beyond the limit), RMS and covariance of the fitted cone.
+  bool computeCovariance(vsp::laser_calibration::ConeProblem &cone);
+  void computeJackknife(const vpHomogeneousMatrix &cMl);
   bool fail(vpLaserConicCalibrationStatus status, const std::string &details);
 
   vpCameraParameters m_cam;
