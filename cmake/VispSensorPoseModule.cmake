@@ -3,12 +3,13 @@
 #
 #   vsp_add_module(<name> [VISP_DEPENDS visp_core ...] [PUBLIC_LIBS ...] [PRIVATE_LIBS ...] [TEST_LIBS ...])
 #
-# - Library visp_<name> from modules/<name>/src/*.cpp; public headers modules/<name>/include/visp3/<name>/*.h.
+# - Library visp_<name> from modules/<name>/src/**.cpp; public headers modules/<name>/include/visp3/<name>/*.h.
 #   VISP_DEPENDS lists the ViSP modules and this repository's modules whose headers the module's code
 #   includes (and nothing else); PUBLIC_LIBS / PRIVATE_LIBS other libraries (Ceres, OpenCV); TEST_LIBS
 #   what the tests include beyond that (ViSP modules or targets).
-# - Private headers are the .h files of modules/<name>/src/ (never installed, seen only by the
-#   module's sources); their files are named in snake_case, the public ones vpClassName.h.
+# - Private headers are the .h files of modules/<name>/src/ and its subfolders (never installed, seen
+#   only by the module's sources); private files are named in snake_case, public ones vpClassName.h
+#   (doc/structure.md).
 # - Every modules/<name>/test/*.cpp is a GoogleTest executable <name>-<file> whose cases ctest runs
 #   (as <name>-<file>.<Suite>.<Case>), with the same names in both builds.
 # - Symbols are hidden unless tagged VISP_EXPORT, as in ViSP's own build: a public class or free
@@ -72,9 +73,10 @@ endmacro()
 function(_vsp_add_standalone_module name)
   cmake_parse_arguments(M "" "" "VISP_DEPENDS;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
   set(target visp_${name})
-  file(GLOB srcs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
+  # Recursive, as ViSP's vp_glob_module_sources: a module may group its private files in src/ subfolders.
+  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
   file(GLOB hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/include/visp3/${name}/*.h")
-  file(GLOB private_hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.h")
+  file(GLOB_RECURSE private_hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.h")
   add_library(${target} ${srcs} ${hdrs} ${private_hdrs})
   add_library(VispSensorPose::${target} ALIAS ${target})
   target_include_directories(${target} PUBLIC
