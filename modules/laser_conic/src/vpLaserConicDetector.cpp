@@ -32,7 +32,7 @@ vpLaserConicDetector::vpLaserConicDetector()
 {
 }
 
-vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vpLaserDetector::RidgeWorkspace) {}
+vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vsp::laser_detector::RidgeWorkspace) {}
 
 vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &other) : vpWorkspace()
 {
@@ -173,7 +173,7 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
                e = 0.5 * (C[1][2] + C[2][1]), f = C[2][2];
   // Sampled at every row and every column of a large image (16384 px): points outside the image are ignored
   // when the region is rasterised.
-  const std::vector<vpImagePoint> points = vpLaserDetector::sampleConicOnLines(a, b, c, d, e, f, margin);
+  const std::vector<vpImagePoint> points = vsp::laser_detector::sampleConicOnLines(a, b, c, d, e, f, margin);
   check(!points.empty(), "the conic has no real point near the image");
   m_region = points;
   m_regionIsConic = true;
@@ -184,11 +184,11 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 
 void vpLaserConicDetector::rasteriseRegion(int H, int W)
 {
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   if (work.regionValid && work.regionGeneration == m_regionGeneration && work.regionHeight == static_cast<unsigned int>(H) &&
       work.regionWidth == static_cast<unsigned int>(W))
     return;
-  vpLaserDetector::rasteriseBand(m_region, m_regionMargin, static_cast<int>(m_maxStripeWidth), H, W, work.searchRegion,
+  vsp::laser_detector::rasteriseBand(m_region, m_regionMargin, static_cast<int>(m_maxStripeWidth), H, W, work.searchRegion,
                                  work.scoreRegion);
   work.regionValid = true;
   work.regionGeneration = m_regionGeneration;
@@ -199,7 +199,7 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
 const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
 {
   if (m_maskDirty) {
-    vpLaserDetector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask.image);
+    vsp::laser_detector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask.image);
     m_maskDirty = false;
   }
   return m_mask.image;
@@ -224,49 +224,49 @@ Eigen::Matrix3d toEigen(const vpMatrix &C)
 
 std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion)
 {
-  const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
+  const vsp::laser_detector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
                                                     static_cast<int>(m_saturationLevel), m_minSegmentLength,
                                                     static_cast<int>(m_step), getInstructionSetUsed()};
-  vpLaserDetector::RidgeReport report;
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  vsp::laser_detector::RidgeReport report;
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   if (inRegion)
     rasteriseRegion(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
   std::vector<vpImagePoint> points =
-      inRegion ? vpLaserDetector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report)
-               : vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
+      inRegion ? vsp::laser_detector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report)
+               : vsp::laser_detector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
   m_threshold = report.threshold;
   m_noise = report.noise;
-  m_stripeWidth = vpLaserDetector::observedStripeWidth(work, m_stripeWidth);
+  m_stripeWidth = vsp::laser_detector::observedStripeWidth(work, m_stripeWidth);
   Eigen::Matrix3d C;
   std::vector<int> inliers;
-  if (!m_guided || !vpLaserDetector::fitTraceEllipse(points, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()),
+  if (!m_guided || !vsp::laser_detector::fitTraceEllipse(points, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()),
                                                      kMinGuidedPoints, C, inliers))
     return points;
   std::vector<vpImagePoint> anchors;
   anchors.reserve(inliers.size());
   for (int k : inliers)
     anchors.push_back(points[static_cast<size_t>(k)]);
-  const vpLaserDetector::GuidedSettings guided = {m_guidedMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
+  const vsp::laser_detector::GuidedSettings guided = {m_guidedMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
                                                   static_cast<int>(m_maxStripeWidth), static_cast<int>(m_saturationLevel),
                                                   m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
-  vpLaserDetector::GuidedReport guidedReport;
+  vsp::laser_detector::GuidedReport guidedReport;
   const size_t before = points.size();
-  vpLaserDetector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work, guidedReport);
+  vsp::laser_detector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work, guidedReport);
   m_guidedCount = static_cast<unsigned int>(points.size() - before);
   return points;
 }
 
 bool vpLaserConicDetector::trackConic(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points)
 {
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   work.crossings.clear();
   work.keep.clear();
-  const vpLaserDetector::GuidedSettings guided = {m_regionMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
+  const vsp::laser_detector::GuidedSettings guided = {m_regionMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
                                                   static_cast<int>(m_maxStripeWidth), static_cast<int>(m_saturationLevel),
                                                   m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
-  vpLaserDetector::GuidedReport report;
+  vsp::laser_detector::GuidedReport report;
   points.clear();
-  vpLaserDetector::guidedPass(I, guided, toEigen(m_regionConic), std::vector<vpImagePoint>(), nullptr, points, work, report);
+  vsp::laser_detector::guidedPass(I, guided, toEigen(m_regionConic), std::vector<vpImagePoint>(), nullptr, points, work, report);
   m_guidedCount = static_cast<unsigned int>(points.size());
   m_noise = report.noise;
   m_threshold = report.threshold;
@@ -282,9 +282,9 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   m_width = I.getWidth();
   m_maskDirty = m_method == DETECTION_RIDGE;
   if (m_method == DETECTION_HSV) {
-    const vpLaserDetector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
+    const vsp::laser_detector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
                                                     static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
-    return vpLaserDetector::detectHsv(I, settings, m_mask.image);
+    return vsp::laser_detector::detectHsv(I, settings, m_mask.image);
   }
   m_guidedCount = 0;
   m_work.get().guided.clear();

@@ -21,7 +21,7 @@
 
 namespace
 {
-using vpLaserEstimators::PointList;
+using vsp::laser_estimators::PointList;
 
 //! Minimal number of points each method needs.
 int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
@@ -328,7 +328,7 @@ Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserCo
     consensus.found = true;
     return consensus;
   case vpLaserConicPose::PP5:
-    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, finalRefit, conic,
+    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Pp5Estimator(normalized), options, finalRefit, conic,
                                            consensus.report);
     break;
   case vpLaserConicPose::PP3: {
@@ -337,14 +337,14 @@ Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserCo
       consensus.cameraInsideCone = true;
       return consensus;
     }
-    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options,
+    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Pp3Estimator(normalized, tangents), options,
                                            finalRefit, conic, consensus.report);
     break;
   }
   case vpLaserConicPose::GP3: {
-    vpLaserEstimators::PlaneModel model;
-    vpLaserEstimators::Gp3Estimator::tuneRansac(options);
-    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, finalRefit,
+    vsp::laser_estimators::PlaneModel model;
+    vsp::laser_estimators::Gp3Estimator::tuneRansac(options);
+    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Gp3Estimator(normalized, cone), options, finalRefit,
                                            model, consensus.report);
     consensus.startPlane = model.plane;
     break;
@@ -398,9 +398,9 @@ vpRansacOptions vpLaserConicPose::ransacOptions(double focal) const
   return options;
 }
 
-vpLaserRobustFit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicMethod method, double focal) const
+vsp::laser_robust_fit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicMethod method, double focal) const
 {
-  vpLaserRobustFit::Settings settings;
+  vsp::laser_robust_fit::Settings settings;
   settings.focal = focal;
   settings.threshold = m_threshold;
   settings.adaptive = m_scaleAdaptive && method != PLANE_PAIR;
@@ -409,13 +409,13 @@ vpLaserRobustFit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicMethod
   vpLaserConicFinalFit fit = m_finalFit;
   if (fit == FINAL_FIT_DEFAULT)
     fit = (method == PP3 || method == GP3) ? FINAL_FIT_SELECT : FINAL_FIT_FREE;
-  settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vpLaserRobustFit::FinalFit::CONSTRAINED
-                      : fit == FINAL_FIT_SELECT    ? vpLaserRobustFit::FinalFit::SELECT
-                                                   : vpLaserRobustFit::FinalFit::FREE;
+  settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vsp::laser_robust_fit::FinalFit::CONSTRAINED
+                      : fit == FINAL_FIT_SELECT    ? vsp::laser_robust_fit::FinalFit::SELECT
+                                                   : vsp::laser_robust_fit::FinalFit::FREE;
   return settings;
 }
 
-void vpLaserConicPose::storeEstimate(const vpLaserRobustFit::Result &result, vpPlane &cPlane)
+void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result, vpPlane &cPlane)
 {
   const Eigen::Vector4d &plane = result.plane;
   cPlane.setABCD(plane(0), plane(1), plane(2), plane(3));
@@ -471,17 +471,17 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   }
 
   // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
-  vpLaserRobustFit::Result result;
-  switch (vpLaserRobustFit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
+  vsp::laser_robust_fit::Result result;
+  switch (vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
                                 finalFitSettings(method, focal), result)) {
-  case vpLaserRobustFit::Outcome::OK: break;
-  case vpLaserRobustFit::Outcome::SHORT_ARC: {
+  case vsp::laser_robust_fit::Outcome::OK: break;
+  case vsp::laser_robust_fit::Outcome::SHORT_ARC: {
     std::ostringstream msg;
     msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
     return fail(STATUS_SHORT_ARC, msg.str());
   }
-  case vpLaserRobustFit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
-  case vpLaserRobustFit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
+  case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
+  case vsp::laser_robust_fit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
   }
   if (!result.plane.allFinite())
     return fail(STATUS_PLANE_NOT_FINITE);

@@ -14,7 +14,7 @@
 #include "../laser_estimators.h"
 #include "search_region.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -42,7 +42,7 @@ struct ConicCoefficients
 };
 
 // Arc (radians) around (uc, vc) covered by the points: 36 sectors of 10 degrees, the occupied ones.
-double sectorCoverage(const vpLaserEstimators::PointList &points, const std::vector<int> &indices, double uc, double vc)
+double sectorCoverage(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices, double uc, double vc)
 {
   const double pi = 3.14159265358979323846;
   bool occupied[36] = {false};
@@ -64,7 +64,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   // the refit on every point. The subsample is chosen by position and sorted: the same points in any order
   // give the same ellipse (the first pass's order depends on how it searched).
   const unsigned int stride = static_cast<unsigned int>(std::max<size_t>(1, points.size() / 300));
-  vpLaserEstimators::PointList all, sample;
+  vsp::laser_estimators::PointList all, sample;
   all.reserve(points.size());
   for (const vpImagePoint &p : points) {
     all.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
@@ -82,7 +82,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   std::vector<int> everyone(sample.size());
   for (size_t k = 0; k < sample.size(); ++k)
     everyone[k] = static_cast<int>(k);
-  bool fitted = vpLaserEstimators::fitEllipseOn(sample, everyone, C);
+  bool fitted = vsp::laser_estimators::fitEllipseOn(sample, everyone, C);
   if (fitted) {
     size_t close = 0;
     for (const Eigen::Vector2d &p : sample)
@@ -90,7 +90,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
     fitted = close >= sample.size() * 9 / 10;
   }
   if (!fitted) {
-    const vpLaserEstimators::Pp5Estimator estimator(sample);
+    const vsp::laser_estimators::Pp5Estimator estimator(sample);
     vpRansacOptions options;
     options.threshold = threshold;
     options.seed = 1;
@@ -108,7 +108,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
     for (int k = 0; k < static_cast<int>(all.size()); ++k)
       if (vpLaserSolvers::sampsonDistance(C, all[k]) <= threshold)
         inliers.push_back(k);
-    if (static_cast<int>(inliers.size()) < minInliers || !vpLaserEstimators::fitEllipseOn(all, inliers, C))
+    if (static_cast<int>(inliers.size()) < minInliers || !vsp::laser_estimators::fitEllipseOn(all, inliers, C))
       return false;
   }
   const ConicCoefficients k(C);
@@ -160,4 +160,4 @@ bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step
             [](const GuidedSample &p, const GuidedSample &q) { return p.angle < q.angle; });
   return true;
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

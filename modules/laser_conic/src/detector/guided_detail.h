@@ -16,7 +16,7 @@
 
 #include "guided_pass.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 //! The fixed rules of the guided pass.
 struct GuidedTuning
@@ -90,6 +90,6 @@ struct ProfileBuffers
 //! Measures the profile of sample s in the RGBA image I.
 ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
                              ProfileBuffers &buffers);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -11,7 +11,7 @@
 
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -223,4 +223,4 @@ int observedStripeWidth(const RidgeWorkspace &work, int fallback)
   std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
   return widths[widths.size() / 2];
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

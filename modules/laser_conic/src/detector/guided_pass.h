@@ -17,7 +17,7 @@
 
 #include "laser_detector.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 //! Settings of the guided pass (see vpLaserConicDetector::setGuidedSearch()).
 struct GuidedSettings
@@ -61,6 +61,6 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
 
 //! Median half-maximum width (pixels) of the crossings work.keep marks; \e fallback when there is none.
 int observedStripeWidth(const RidgeWorkspace &work, int fallback);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -13,7 +13,7 @@
 #include "ridge_profile.h"
 #include "ridge_score.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -183,4 +183,4 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   result.crossing.point = s.alongRow ? vpImagePoint(s.line, along) : vpImagePoint(along, s.line);
   return result;
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
               vpImage<unsigned char> &mask)
@@ -29,4 +29,4 @@ void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, un
   for (const Crossing &c : work.guided)
     draw(c.alongRow, c.line, c.first, c.last, 170);
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

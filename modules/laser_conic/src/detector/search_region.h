@@ -16,7 +16,7 @@
 
 #include "laser_detector.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 //! Real roots of a t^2 + b t + c = 0 (a may be zero) appended to \e roots.
 void solveQuadratic(double a, double b, double c, std::vector<double> &roots);
@@ -36,6 +36,6 @@ std::vector<vpImagePoint> sampleConicOnLines(double a, double b, double c, doubl
 */
 void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int stripeWidth, int H, int W,
                    RegionSpans &searched, RegionSpans &scored);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -23,11 +23,11 @@
 #include <visp3/laser_conic/vpLaserConicException.h>
 
 struct vpRansacOptions;
-namespace vpLaserRobustFit
+namespace vsp::laser_robust_fit
 {
 struct Settings;
 struct Result;
-} // namespace vpLaserRobustFit
+} // namespace vsp::laser_robust_fit
 
 /*!
   \ingroup group_laser_conic
@@ -330,9 +330,9 @@ private:
   //! RANSAC settings of the estimator, the threshold converted to normalized units with \e focal (pixels).
   vpRansacOptions ransacOptions(double focal) const;
   //! Settings of the final fit (laser_robust_fit.h) of \e method.
-  vpLaserRobustFit::Settings finalFitSettings(vpLaserConicMethod method, double focal) const;
+  vsp::laser_robust_fit::Settings finalFitSettings(vpLaserConicMethod method, double focal) const;
   //! Keeps a successful final fit: plane, attitude, inliers, fit statistics, covariances, pixel conic.
-  void storeEstimate(const vpLaserRobustFit::Result &result, vpPlane &cPlane);
+  void storeEstimate(const vsp::laser_robust_fit::Result &result, vpPlane &cPlane);
 };
 
 #endif
