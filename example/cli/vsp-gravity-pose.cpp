@@ -291,8 +291,6 @@ void printSequenceDiagnosis(const std::vector<vpPoseRow> &poses,
              "give the transpose if the file holds imu_R_sensor)";
   else
     advice = "check that the gravity columns are down directions in the camera and object frames";
-  if (options.methodName == "RANSAC" && options.focal <= 0.0)
-    advice += "; or the threshold: give --focal so that --threshold is in pixels";
   std::cerr << program << ": " << gravityFailures << "/" << estimated
             << " frames fail the gravity checks (the gravity does not fit the points): " << advice
             << "; the poses of the other frames use the same gravity: do not trust them" << std::endl;

@@ -9,8 +9,11 @@
   calibration and noise sigma, n (rms_c^2 - rms_f^2) / sigma^2 follows a chi-square law of 2 degrees
   of freedom, so the misfit the calibration adds, sqrt(rms_c^2 - rms_f^2), is a small fraction of
   sigma for the hundreds of points of a trace (about 0.07 sigma at 1e-6 for 1000 points); detector
-  bias adds a little (at most 0.3 sigma on the 144 shipped frames). The check refuses a misfit above
-  three times the noise scale and above one pixel. The usual mistakes leave tens of pixels.
+  bias adds a little (at most 0.3 sigma on the 144 shipped frames). An imperfect calibration adds
+  more, and the estimators tolerate it: intrinsics off by 5 px (the paper's Fig. 9 protocol, 0.5 px
+  noise) leave a misfit of 4.7 sigma at the median, 21 sigma at the 99th percentile, 24 at most
+  (300 scenes). The check refuses a misfit above 30 times the noise scale and above 3 px. The usual
+  mistakes leave tens of pixels, 45 to 300 times the noise on the shipped frames.
 */
 #ifndef VP_LASER_CALIBRATION_CHECK_H
 #define VP_LASER_CALIBRATION_CHECK_H
@@ -25,10 +28,10 @@
 
 namespace vpLaserCalibrationCheck
 {
-//! Misfit allowed, in multiples of the noise scale of the trace.
-constexpr double kNoiseFactor = 3.0;
-//! Misfit always allowed (pixels): sub-pixel calibration errors on near-exact points.
-constexpr double kFloorPixels = 1.0;
+//! Misfit allowed, in multiples of the noise scale of the trace (above the 24 of intrinsics off by 5 px).
+constexpr double kNoiseFactor = 30.0;
+//! Misfit always allowed (pixels): small calibration errors on near-exact points.
+constexpr double kFloorPixels = 3.0;
 
 //! Misfit (pixels) the calibration adds to the free fit, sqrt(max(0, rms_c^2 - rms_f^2)); NaN without constrained fit.
 double misfit(const vpLaserRobustFit::Result &result);

@@ -123,8 +123,8 @@ TEST(LaserConicCalibrationCheck, NoMistakeGivesAPlane)
 }
 
 // Right calibration, 0.5 px noise: the check refuses at most 0.5 % of the estimates (measured: none
-// of 600 per method). The misfit it allows is 3 times the noise; the misfit a right calibration leaves
-// is a small fraction of it.
+// of 600 per method). The misfit it allows is 30 times the noise; the misfit a right calibration
+// leaves is a small fraction of the noise. (Intrinsics off by 5 px: LaserConicPose.ToleratesIntrinsicErrors.)
 TEST(LaserConicCalibrationCheck, RightCalibrationIsNotRefused)
 {
   const int kScenes = 600;

@@ -172,11 +172,12 @@ public:
     predicts through the rig's calibration, 3 DOF) and the free conic fit (5 DOF) run on the same
     trace; with a right calibration the misfit the constraint adds, sqrt(rms_c^2 - rms_f^2) (pixels),
     is a small fraction of the noise (about 0.07 sigma for 1000 points at a 1e-6 false-alarm rate; at
-    most 0.3 sigma on the shipped image sequences, where the detector adds its bias). A misfit above
-    three times the noise scale (max(getResidualScale(), getFreeRms())) and above 1 px is refused with
-    STATUS_CALIBRATION_MISMATCH: the usual mistakes (half opening angle, lMc for cMl, u and v swapped,
-    intrinsics of another camera or resolution) leave tens of pixels, and the free fit would then give
-    a confidently wrong plane. The standard mistakes are tried (getSuspectedMistake()). false: no check,
+    most 0.3 sigma on the shipped image sequences, where the detector adds its bias); an imperfect
+    calibration, which the estimators tolerate, adds more (intrinsics off by 5 px: 24 sigma at most
+    at 0.5 px noise). A misfit above 30 times the noise scale (max(getResidualScale(), getFreeRms()))
+    and above 3 px is refused with STATUS_CALIBRATION_MISMATCH: the usual mistakes (half opening angle,
+    lMc for cMl, u and v swapped, intrinsics of another camera or resolution) leave tens of pixels, and
+    the free fit would then give a confidently wrong plane. The standard mistakes are tried (getSuspectedMistake()). false: no check,
     the behaviour of FINAL_FIT_SELECT alone (the free fit is used when the constrained one is rejected).
   */
   void setCalibrationCheck(bool enable) { m_calibrationCheck = enable; }
