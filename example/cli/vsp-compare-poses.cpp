@@ -119,7 +119,8 @@ int main(int argc, char **argv)
   for (const auto &t : truthByFrame)
     if (rowsOfFrame.find(t.first) == rowsOfFrame.end())
       absent.push_back(t.first);
-  std::cout << translationErrors.size() << "/" << truthByFrame.size() << " ground-truth frames with a pose" << std::endl;
+  std::cout << translationErrors.size() << "/" << truthByFrame.size() << " ground-truth frames with a pose"
+            << std::endl;
   summarize("translation error", translationErrors, 1000.0, "mm");
   summarize("rotation error", rotationErrors, 180.0 / M_PI, "deg");
 

@@ -66,9 +66,9 @@ vpPoseGravity::vpPoseGravityMethod methodId(const std::string &name)
 vpCommandLine commandLine(Options &options)
 {
   vpCommandLine cli("--input points.csv --output poses.csv [--method P3P|LEAST_SQUARES|RANSAC] [--refine]\n"
-                    "          [--threshold PX --focal PX] [--seed N] [--camera-imu FILE] [--object-imu FILE] [--frame-times FILE]\n"
-                    "          [--camera-R-imu FILE] [--object-R-imu FILE] [--time-scale S] [--time-offset DT]\n"
-                    "          [--norm-tolerance A] [--keep-moving]",
+                    "          [--threshold PX --focal PX] [--seed N] [--camera-imu FILE] [--object-imu FILE]\n"
+                    "          [--frame-times FILE] [--camera-R-imu FILE] [--object-R-imu FILE] [--time-scale S]\n"
+                    "          [--time-offset DT] [--norm-tolerance A] [--keep-moving]",
                     "Gravity-aided pose of each frame from its 2D/3D points and the two gravity vectors.");
   cli.addString("--input", options.input, "FILE",
                 "per-frame gravity and 2D/3D points (rows 'frame,gravity,gcx,gcy,gcz,gox,goy,goz'\n"
@@ -287,8 +287,8 @@ void printSequenceDiagnosis(const std::vector<vpPoseRow> &poses,
              (!options.objectImu.empty() && options.objectRImu.empty() ? "--object-R-imu " : "") +
              "(the IMU-to-sensor rotation)";
   else if (!options.cameraRImu.empty() || !options.objectRImu.empty())
-    advice = "check --camera-R-imu / --object-R-imu: the rotation maps IMU vectors into the sensor frame (sensor_R_imu; "
-             "give the transpose if the file holds imu_R_sensor)";
+    advice = "check --camera-R-imu / --object-R-imu: the rotation maps IMU vectors into the sensor frame "
+             "(sensor_R_imu; give the transpose if the file holds imu_R_sensor)";
   else
     advice = "check that the gravity columns are down directions in the camera and object frames";
   std::cerr << program << ": " << gravityFailures << "/" << estimated

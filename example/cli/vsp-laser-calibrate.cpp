@@ -229,7 +229,8 @@ int run(int argc, char **argv)
   if (!o.listFile.empty())
     inputs.push_back(o.listFile);
   // Every output is checked before the images are read and the calibration solved.
-  if (!vpOutputFile::checkWritable(o.output, error) || (!o.report.empty() && !vpOutputFile::checkWritable(o.report, error)) ||
+  if (!vpOutputFile::checkWritable(o.output, error) ||
+      (!o.report.empty() && !vpOutputFile::checkWritable(o.report, error)) ||
       (!o.figure.empty() && !vpOutputFile::checkWritable(o.figure, error)) ||
       !vpLaserRigIo::readCamera(o.camera, o.cameraName, cam, width, height, error) ||
       !vpLaserRigIo::listImages(o.imagesDir.empty() ? o.listFile : o.imagesDir, o.imagesDir.empty(), images, error) ||
