@@ -47,7 +47,7 @@ struct vpLaserConicFilter::Impl
   Eigen::Matrix3d cRimu = Eigen::Matrix3d::Identity();
   double gravity = 9.80665, maxLatency = 0.1, maxGap = 0.05, predictionTimeout = 0.1, minStepHeight = 0.03;
   double gateProbability = 0.99, gate = chi2Quantile3(0.99), attitudeGate = -2.0 * std::log(1.0 - 0.99);
-  unsigned int stepFrames = 2, maxRejections = 15, initFrames = 3;
+  unsigned int stepFrames = 2, maxRejections = 30, initFrames = 3;
 
   std::vector<Entry> ring = std::vector<Entry>(64);
   size_t newest = 0, count = 0;
@@ -225,6 +225,9 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::addFrame(double t, c
   State x = before.x;
   Covariance P = before.P;
   vpFrameStatus status = FRAME_INITIALISED;
+  // Until setInitialisationFrames() frames agree, a frame that disagrees starts the state again: the
+  // first frame may be the wrong one.
+  const bool confirmed = accepted >= initFrames;
   if (!initialised || diverged || !before.valid) {
     initialise(x, P, z, R);
     lastAcceptTime = t;
@@ -235,6 +238,13 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::addFrame(double t, c
       propagate(x, P, 0.5 * (before.w + after.w), 0.5 * (before.f + after.f), t - before.t, gravity, noise);
     }
     status = gateAndUpdate(t, x, P, z, R);
+    if (status == FRAME_REJECTED && !confirmed) {
+      x = before.x;
+      P = before.P;
+      initialise(x, P, z, R);
+      lastAcceptTime = t;
+      status = FRAME_INITIALISED;
+    }
   }
   lastFrameTime = t;
   if (status != FRAME_REJECTED)

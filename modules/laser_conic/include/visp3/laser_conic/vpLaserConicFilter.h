@@ -140,7 +140,12 @@ public:
     \exception vpLaserConicException::badValueError unless finite and >= 0.
   */
   void setMinStepHeight(double metres);
-  //! Frames rejected in a row after which the filter is declared diverged and re-initialised (default 15).
+  /*!
+    Frames rejected in a row after which the filter is declared diverged and re-initialised by the next
+    frame (default 30: one second at 30 Hz). Biased frames in a row are not a divergence: a box edge
+    across the ring shifts part of the trace by a pixel or two, which GP-3 keeps as inliers, and a
+    fraction of a second of such planes is rejected while the prediction stays right.
+  */
   void setMaxRejections(unsigned int frames);
   //! Frames accepted before the status leaves STATUS_INITIALISING (default 3).
   void setInitialisationFrames(unsigned int frames);
