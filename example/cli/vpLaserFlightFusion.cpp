@@ -57,11 +57,15 @@ bool readRotation(const std::string &file, vpRotationMatrix &R, std::string &err
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j)
       M[i][j] = v[i * stride + j];
-  if ((M * M.t() - vpMatrix::eye(3)).frobeniusNorm() > 1e-3 || M.det() < 0.0) {
+  vpMatrix I3(3, 3);
+  I3.eye();
+  if ((M * M.t() - I3).frobeniusNorm() > 1e-3 || M.det() < 0.0) {
     error = file + ": not a rotation matrix";
     return false;
   }
-  R.buildFrom(M[0][0], M[0][1], M[0][2], M[1][0], M[1][1], M[1][2], M[2][0], M[2][1], M[2][2]);
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      R[i][j] = M[i][j];
   return true;
 }
 } // namespace
