@@ -155,7 +155,7 @@ void runFilterBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets,
 
   BenchTable table;
   table.title = "Circular laser in flight: IMU-rate filter beside the per-frame estimator";
-  table.note = "vpLaserConicFilter (8 states) at 200 Hz; a frame update is the update at the exposure time 30 ms "
+  table.note = "vpLaserConicFilter (10 states) at 200 Hz; a frame update is the update at the exposure time 30 ms "
                "back plus the re-propagation of the 6 newer IMU samples (timed as 7 samples + 1 frame minus 7 "
                "samples). Heap allocations per filter call: " + std::to_string(perSample) +
                " (counted by the program's operator new over " + std::to_string(8 * cycles) + " calls); " + std::to_string(accepted) + " of " + std::to_string(cycles) + " frames accepted.";

@@ -64,13 +64,6 @@ struct vpLaserConicFilter::Impl
   Entry &at(size_t k) { return ring[(newest + ring.size() + 1 - count + k) % ring.size()]; }
   const Entry &last() const { return ring[newest]; }
 
-  void push(const Entry &e)
-  {
-    newest = (count == 0) ? 0 : (newest + 1) % ring.size();
-    ring[newest] = e;
-    count = std::min(count + 1, ring.size());
-  }
-
   void clearState()
   {
     initialised = diverged = stepPending = false;
@@ -95,29 +88,33 @@ vpLaserConicFilter::vpImuStatus vpLaserConicFilter::Impl::addImu(double t, const
 {
   if (!std::isfinite(t) || !w.allFinite() || !f.allFinite())
     return IMU_NOT_FINITE;
-  Entry e;
+  bool restart = false;
+  if (count > 0) {
+    if (!(t > last().t))
+      return IMU_NOT_INCREASING;
+    restart = t - last().t > maxGap; // nothing can bridge the gap: start again from this sample
+  }
+  if (restart) {
+    count = 0;
+    clearState();
+  }
+  // The new sample is written in place (the slot of the oldest one): no copy of the state on the way.
+  const size_t previous = newest;
+  const bool hasPrevious = count > 0;
+  newest = hasPrevious ? (newest + 1) % ring.size() : 0;
+  count = std::min(count + 1, ring.size());
+  Entry &e = ring[newest];
+  const Entry &prev = ring[previous];
   e.t = t;
   e.w = cRimu * w;
   e.f = cRimu * f;
-  if (count > 0) {
-    const Entry &prev = last();
-    if (!(t > prev.t))
-      return IMU_NOT_INCREASING;
-    if (t - prev.t > maxGap) { // nothing can bridge the gap: start again from this sample
-      count = 0;
-      clearState();
-      push(e);
-      return IMU_GAP;
-    }
-    if (prev.valid) {
-      e.x = prev.x;
-      e.P = prev.P;
-      propagate(e.x, e.P, 0.5 * (prev.w + e.w), 0.5 * (prev.f + e.f), t - prev.t, gravity, noise);
-      e.valid = true;
-    }
+  e.valid = hasPrevious && prev.valid;
+  if (e.valid) {
+    e.x = prev.x;
+    e.P = prev.P;
+    propagate(e.x, e.P, 0.5 * (prev.w + e.w), 0.5 * (prev.f + e.f), t - prev.t, gravity, noise);
   }
-  push(e);
-  return IMU_OK;
+  return restart ? IMU_GAP : IMU_OK;
 }
 
 // --- frames ------------------------------------------------------------------------------------
