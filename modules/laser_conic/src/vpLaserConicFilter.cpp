@@ -71,6 +71,14 @@ struct vpLaserConicFilter::Impl
     lastFrameTime = lastAcceptTime = -std::numeric_limits<double>::infinity();
   }
 
+  //! A frame at \e t updated the state (\e step: by a ground step): the rejection counts start again.
+  void frameUsed(double t, bool step)
+  {
+    rejectedInRow = stepCandidates = 0;
+    stepPending = step;
+    lastAcceptTime = t;
+  }
+
   vpImuStatus addImu(double t, const Eigen::Vector3d &w, const Eigen::Vector3d &f);
   vpFrameStatus checkFrameTime(double t) const;
   vpFrameStatus addFrame(double t, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
@@ -184,9 +192,7 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::gateAndUpdate(double
   if (lastMahalanobis <= gate) {
     update(x, P, y, S, R);
     ++accepted;
-    rejectedInRow = stepCandidates = 0;
-    stepPending = false;
-    lastAcceptTime = t;
+    frameUsed(t, false);
     return FRAME_ACCEPTED;
   }
   if (stepCandidate(y, S)) {
@@ -199,9 +205,7 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::gateAndUpdate(double
     lastMahalanobis = innovation(x, P, z, R, y, S);
     update(x, P, y, S, R);
     ++stepCount;
-    rejectedInRow = stepCandidates = 0;
-    stepPending = true;
-    lastAcceptTime = t;
+    frameUsed(t, true);
     return FRAME_GROUND_STEP;
   }
   if (++rejectedInRow >= maxRejections)
