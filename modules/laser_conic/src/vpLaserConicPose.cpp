@@ -576,10 +576,18 @@ const vpMatrix &computedCovariance(const vpMatrix &covariance, const char *gette
 
 vpMatrix vpLaserConicPose::getCovarianceMatrix() const
 {
-  return computedCovariance(m_covariance, "getCovarianceMatrix");
+  return m_covarianceInflation * computedCovariance(m_covariance, "getCovarianceMatrix");
 }
 
 vpMatrix vpLaserConicPose::getPlaneCovarianceMatrix() const
 {
-  return computedCovariance(m_planeCovariance, "getPlaneCovarianceMatrix");
+  return m_covarianceInflation * computedCovariance(m_planeCovariance, "getPlaneCovarianceMatrix");
+}
+
+void vpLaserConicPose::setCovarianceInflation(double varianceScale)
+{
+  if (!(varianceScale > 0.0) || !std::isfinite(varianceScale))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "setCovarianceInflation: the variance scale must be finite and > 0");
+  m_covarianceInflation = varianceScale;
 }
