@@ -116,7 +116,9 @@ void Steps::applyScale(const std::vector<InputFrame> &inputs, const StepsSetting
 {
   // The planes were found with the guess's apex distance: one factor brings the whole scene to the given length.
   double ratio = 1.0;
-  if (settings.apexDistance > 0.0) {
+  if (settings.holdApex) {
+    ratio = 1.0;
+  } else if (settings.apexDistance > 0.0) {
     ratio = settings.apexDistance / m_L(kScale);
   } else {
     std::vector<double> ratios;
@@ -136,7 +138,8 @@ void Steps::applyScale(const std::vector<InputFrame> &inputs, const StepsSetting
       m_all[k].fixedAltitude = true;
     }
   }
-  m_solve.free[kScale] = !(settings.apexDistance > 0.0);
+  m_solve.free[kScale] = !(settings.apexDistance > 0.0) && !settings.holdApex;
+  m_solve.free[2] = m_solve.free[3] = !settings.holdApex;
   m_solve.free[kAngle] = settings.estimateAngle;
 }
 

@@ -38,6 +38,7 @@ struct StepsSettings
 {
   double apexDistance = 0.0; //!< 0: the scale comes from known altitudes
   bool estimateAngle = false;
+  bool holdApex = false;      //!< the apex held at the initial laser's
   unsigned int maxFrames = 40;
   double maxStd = 0.0; //!< observability limit (rad) on the axis; twice it on the apex direction
 };

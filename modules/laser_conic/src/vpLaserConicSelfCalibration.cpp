@@ -41,7 +41,7 @@ void checkPoints(const std::vector<vpImagePoint> &points)
 } // namespace
 
 vpLaserConicSelfCalibration::vpLaserConicSelfCalibration()
-  : m_cam(), m_hasCam(false), m_hasLaser(false), m_estimateAngle(false), m_openingAngle(0.0), m_apexDistance(0.0),
+  : m_cam(), m_hasCam(false), m_hasLaser(false), m_estimateAngle(false), m_holdApex(false), m_openingAngle(0.0), m_apexDistance(0.0),
     m_maxStd(vpMath::rad(0.1)), m_maxRms(3.0), m_maxFrames(40), m_cMl(), m_frames(), m_status(STATUS_NOT_COMPUTED),
     m_details(), m_covariance(6, 6, 0.0), m_axisStd(0.0), m_apexDirStd(0.0), m_spreadWeak(0.0), m_spreadStrong(0.0),
     m_rms(0.0), m_sigma(0.0), m_condition(0.0), m_nbPoints(0), m_nbInliers(0), m_used(), m_planes()
@@ -198,7 +198,7 @@ void vpLaserConicSelfCalibration::checkReady() const
   bool known = false;
   for (const FrameData &f : m_frames)
     known = known || f.knownAltitude > 0.0;
-  if (!(m_apexDistance > 0.0) && !known)
+  if (!(m_apexDistance > 0.0) && !known && !m_holdApex)
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicSelfCalibration: no scale constraint: images do not determine the apex "
                                 "distance; give setApexDistance() (ruler, previous baseline) or setKnownAltitude()");
@@ -229,6 +229,7 @@ bool vpLaserConicSelfCalibration::solve(vpHomogeneousMatrix &cMl, double &openin
   StepsSettings settings;
   settings.apexDistance = m_apexDistance;
   settings.estimateAngle = m_estimateAngle;
+  settings.holdApex = m_holdApex;
   settings.maxFrames = m_maxFrames;
   settings.maxStd = m_maxStd;
   const StepsOutcome out = steps.run(inputs, settings);

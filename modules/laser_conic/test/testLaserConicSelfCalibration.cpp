@@ -149,6 +149,37 @@ TEST(LaserConicSelfCalibration, Gp3ErrorsAfterSelfCalibrationMatchTheTrueCalibra
   EXPECT_GT(altGuess, 20.0 * altTrue); // the guess is bad enough for the test to mean something
 }
 
+// A knock that turned the mount about the apex: with the previous apex held, only the axis is estimated,
+// and far better than with the apex free.
+TEST(LaserConicSelfCalibration, HeldApexDeterminesTheAxis)
+{
+  FlightSettings s;
+  s.points = 300;
+  s.frames = 40;
+  s.cMl = laserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(1.0), 0, 0); // knocked
+  const std::vector<Frame> frames = flight(s, 111);
+  FlightSettings t = s;
+  t.frames = 60;
+  const std::vector<Frame> test = flight(t, 112);
+  vpLaserConicSelfCalibration selfcal;
+  selfcal.setCameraParameters(camera());
+  selfcal.setLaser(kOpening, laserPose()); // the calibration before the knock
+  selfcal.setApexHeld(true);
+  for (const Frame &f : frames)
+    selfcal.addFrame(f.points);
+  vpHomogeneousMatrix cMl;
+  double A = 0.0;
+  ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
+  double altTrue, attTrue, altSelf, attSelf;
+  gp3Errors(test, kOpening, s.cMl, altTrue, attTrue);
+  gp3Errors(test, A, cMl, altSelf, attSelf);
+  std::cout << "apex held: axis error " << vpMath::deg(axisAngle(cMl, s.cMl)) << " deg (std "
+            << vpMath::deg(selfcal.getAxisStdDeviation()) << "); GP3 RMS errors: true laser " << 1000 * altTrue << " mm, "
+            << vpMath::deg(attTrue) << " deg; self-calibrated " << 1000 * altSelf << " mm, " << vpMath::deg(attSelf)
+            << " deg" << std::endl;
+  EXPECT_LT(vpMath::deg(axisAngle(cMl, s.cMl)), 4.0 * vpMath::deg(selfcal.getAxisStdDeviation()) + 1e-3);
+}
+
 // A ruler off by 10 %: the whole scene scales, altitudes are 10 % larger than with the right ruler, the
 // attitude and the axis are unchanged.
 TEST(LaserConicSelfCalibration, WrongRulerScalesTheAltitudes)

@@ -136,6 +136,13 @@ public:
   */
   void setKnownAltitude(unsigned int frame, double altitude);
   /*!
+    Hold the apex at the initial laser's (setLaser()) and estimate the axis only (default false): for a
+    mount that turned about the apex (a knock on a rigid bracket), when the previous calibration's apex
+    is trusted. The apex position is then the scale constraint (no other is needed), and the axis is
+    determined far better than with the apex free (see the class description).
+  */
+  void setApexHeld(bool hold) { m_holdApex = hold; }
+  /*!
     Estimate the opening angle too (default false: held at setLaser()'s value). Only altitudes of
     frames at different attitudes determine it (see the class description).
   */
@@ -247,7 +254,7 @@ private:
   bool solve(vpHomogeneousMatrix &cMl, double &openingAngle);
 
   vpCameraParameters m_cam;
-  bool m_hasCam, m_hasLaser, m_estimateAngle;
+  bool m_hasCam, m_hasLaser, m_estimateAngle, m_holdApex;
   double m_openingAngle, m_apexDistance, m_maxStd, m_maxRms;
   unsigned int m_maxFrames;
   vpHomogeneousMatrix m_cMl;
