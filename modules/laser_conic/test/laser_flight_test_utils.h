@@ -50,6 +50,7 @@ struct Frame
 {
   std::vector<vpImagePoint> points;
   vpPlane truth;
+  vpHomogeneousMatrix cMg; //!< the ground frame (plane Z = 0): a chessboard's pose, for the grid calibration
   double altitude = 0.0, roll = 0.0, pitch = 0.0;
 };
 
@@ -81,7 +82,8 @@ inline std::vector<Frame> flight(const FlightSettings &s, unsigned int seed)
     f.altitude = alt(rng);
     f.roll = s.roll0 + s.maxTilt * tilt(rng);
     f.pitch = s.pitch0 + s.maxTilt * tilt(rng);
-    sim.setGroundPose(groundPose(f.altitude, f.roll, f.pitch));
+    f.cMg = groundPose(f.altitude, f.roll, f.pitch);
+    sim.setGroundPose(f.cMg);
     f.points = sim.addNoise(sim.tracePoints(s.points), s.noise);
     if (s.outliers > 0.0)
       f.points = sim.addOutliers(f.points, s.outliers);

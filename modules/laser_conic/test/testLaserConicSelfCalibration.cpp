@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <visp3/core/vpMath.h>
+#include <visp3/laser_conic/vpLaserConicCalibration.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 #include <visp3/laser_conic/vpLaserConicSelfCalibration.h>
 
@@ -147,6 +148,39 @@ TEST(LaserConicSelfCalibration, Gp3ErrorsAfterSelfCalibrationMatchTheTrueCalibra
   EXPECT_LT(altSelf, 0.06 * altGuess);
   EXPECT_LT(altRuler, 0.25 * altGuess);
   EXPECT_GT(altGuess, 20.0 * altTrue); // the guess is bad enough for the test to mean something
+}
+
+// The same frames calibrated as chessboard views (the ground poses known, vpLaserConicCalibration) and by
+// self-calibration (the planes unknown): the figures of the tutorial's comparison.
+TEST(LaserConicSelfCalibration, ComparisonWithTheChessboardCalibration)
+{
+  FlightSettings s;
+  s.points = 300; // the grid calibration's bundle adjustment has one unknown per point: kept fast
+  const std::vector<Frame> frames = flight(s, 1);
+  vpLaserConicCalibration grid;
+  grid.setCameraParameters(camera());
+  grid.setOpeningAngle(kOpening);
+  grid.setOpeningAngleEstimation(true);
+  for (const Frame &f : frames)
+    grid.addView(f.cMg, f.points);
+  vpHomogeneousMatrix cMlGrid = roughGuess();
+  ASSERT_TRUE(grid.compute(cMlGrid)) << grid.getStatusDetails();
+  vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, 0.0);
+  selfcal.setKnownAltitude(0, frames[0].truth.getD());
+  vpHomogeneousMatrix cMl;
+  double A = 0.0;
+  selfcal.setMaxAngularStdDeviation(vpMath::rad(0.3));
+  ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
+  const double gridAxis = vpMath::deg(axisAngle(cMlGrid, laserPose())), selfAxis = vpMath::deg(axisAngle(cMl, laserPose()));
+  const double gridApex = 1000 * (cMlGrid.getTranslationVector() - laserPose().getTranslationVector()).frobeniusNorm();
+  const double selfApex = 1000 * (cMl.getTranslationVector() - laserPose().getTranslationVector()).frobeniusNorm();
+  std::cout << "chessboard views: axis " << gridAxis << " deg, apex " << gridApex << " mm, opening angle "
+            << vpMath::deg(grid.getOpeningAngle() - kOpening) << " deg (estimated); self-calibration: axis " << selfAxis
+            << " deg (std " << vpMath::deg(selfcal.getAxisStdDeviation()) << "), apex " << selfApex
+            << " mm, opening angle held" << std::endl;
+  EXPECT_LT(gridAxis, 0.01);
+  EXPECT_LT(gridAxis, selfAxis);
+  EXPECT_LT(gridApex, selfApex);
 }
 
 // A knock that turned the mount about the apex: with the previous apex held, only the axis is estimated,
