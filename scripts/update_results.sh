@@ -46,14 +46,20 @@ blocks="$work/blocks"
 mkdir -p "$blocks"
 log() { echo "[update_results] $*" >&2; }
 
-program() { # program NAME: path of a built program, or a clear error
-  local p
-  p="$(find "$build" -type f -name "$1" -perm -u+x 2>/dev/null | head -n 1)"
-  if [ -z "$p" ]; then
-    echo "update_results.sh: program $1 not found under $build (cmake --build $build --target $1)" >&2
+program() { # program NAME: path of a built program (its folder in the build tree), or a clear error
+  local dir
+  case "$1" in
+    table1-gravity-p3p|gravity-robustness) dir=example/pose_gravity ;;
+    laser-sequence-eval|laser-synthetic-eval) dir=example/laser_conic ;;
+    vsp-demo) dir=example/demo ;;
+    stress-gravity|stress-laser) dir=benchmark/stress ;;
+    bench-peers) dir=benchmark/peers ;;
+  esac
+  if [ ! -x "$build/$dir/$1" ]; then
+    echo "update_results.sh: program $build/$dir/$1 not found (cmake --build $build --target $1)" >&2
     exit 1
   fi
-  echo "$p"
+  echo "$build/$dir/$1"
 }
 
 # The first markdown table (a run of lines starting with '|') of standard input.
