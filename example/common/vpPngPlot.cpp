@@ -318,8 +318,7 @@ void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, const vpImage
                             sample + vpImagePoint(0, kLegendSampleWidth / 2), s.color, 3);
     if (s.name.empty())
       continue;
-    const std::string name =
-        clipped[k] > 0 ? s.name + ", " + std::to_string(clipped[k]) + " off the chart" : s.name;
+    const std::string name = clipped[k] > 0 ? s.name + ", " + std::to_string(clipped[k]) + " off the chart" : s.name;
     font.drawText(I, name, vpImagePoint(row, corner.get_j() + kLegendSampleWidth + 12), vpColor::black);
     row += kLegendRowHeight;
   }
