@@ -1,17 +1,36 @@
-# Helpers that declare a module of this project in its standalone build.
+# vsp_add_module(): declares a module of this repository, in both builds of it, from one call in
+# modules/<name>/CMakeLists.txt (which includes this file first):
 #
-#   vsp_add_module(<name> [VISP_DEPENDS visp_core ...] [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
-#     Library target visp_<name> from modules/<name>/src/*.cpp, public headers from
-#     modules/<name>/include/visp3/<name>/*.h, exported as VispSensorPose::visp_<name>.
-#     Every modules/<name>/test/*.cpp becomes a GoogleTest executable <name>-<file> run by ctest.
+#   vsp_add_module(<name> [VISP_DEPENDS visp_core ...] [PUBLIC_LIBS ...] [PRIVATE_LIBS ...] [TEST_LIBS ...])
 #
-# The same modules/<name>/CMakeLists.txt also works inside ViSP's own build as a contrib module:
-# there `vp_add_module` exists and the module uses ViSP's macros instead of these.
+# - Library visp_<name> from modules/<name>/src/*.cpp; public headers modules/<name>/include/visp3/<name>/*.h.
+#   VISP_DEPENDS lists the ViSP modules and this repository's modules whose headers the module's code
+#   includes (and nothing else); PUBLIC_LIBS / PRIVATE_LIBS other libraries (Ceres, OpenCV); TEST_LIBS
+#   what the tests include beyond that (ViSP modules or targets).
+# - Private headers are the .h files of modules/<name>/src/ (never installed, seen only by the
+#   module's sources); their files are named in snake_case, the public ones vpClassName.h.
+# - Every modules/<name>/test/*.cpp is a GoogleTest executable <name>-<file> whose cases ctest runs
+#   (as <name>-<file>.<Suite>.<Case>), with the same names in both builds.
+# - Symbols are hidden unless tagged VISP_EXPORT, as in ViSP's own build: a public class or free
+#   function without it fails to link in the standalone build already.
+#
+# Standalone build (the top-level CMakeLists.txt, against the installed ViSP): an ordinary library,
+# exported as VispSensorPose::visp_<name>. Inside ViSP's own build (a contrib module,
+# -DVISP_CONTRIB_MODULES_PATH=<repo>/modules, see doc/contrib_build.md) the same call maps onto ViSP's
+# vp_add_module, vp_glob_module_sources, vp_module_include_directories and vp_create_module. ViSP reads a
+# module's CMakeLists.txt twice; in the first pass vp_add_module() records the dependencies and
+# return()s from that file, which is why vsp_add_module is a macro (a function would only return from
+# itself) and why the third-party packages are looked for in the second pass only.
 
+get_filename_component(VSP_REPO_DIR "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 find_package(GTest QUIET)
-
-# Directory of the shared test helpers (simulated camera, random poses) usable by every module's tests.
-set(VSP_TEST_COMMON_DIR "${CMAKE_CURRENT_LIST_DIR}/../test/common" CACHE INTERNAL "")
+if(COMMAND vp_add_module AND NOT VISP_INITIAL_PASS)
+  # Inside ViSP's build, the packages of the standalone top-level CMakeLists.txt. Imported targets are
+  # local to the directory that finds them: every module includes this file and looks for them itself.
+  find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+  find_package(Ceres 2.0 REQUIRED)
+  find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc calib3d)
+endif()
 
 function(vsp_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wno-deprecated-copy)
@@ -20,12 +39,43 @@ function(vsp_set_warnings target)
   endif()
 endfunction()
 
-function(vsp_add_module name)
-  cmake_parse_arguments(M "" "" "VISP_DEPENDS;PUBLIC_LIBS;PRIVATE_LIBS;TEST_LIBS" ${ARGN})
+macro(vsp_add_module vsp_name)
+  cmake_parse_arguments(VSP_MOD "" "" "VISP_DEPENDS;PUBLIC_LIBS;PRIVATE_LIBS;TEST_LIBS" ${ARGN})
+  if(COMMAND vp_add_module)
+    vp_add_module(${vsp_name} ${VSP_MOD_VISP_DEPENDS}) # first pass: leaves the module's CMakeLists here
+    vp_glob_module_sources()
+    vp_module_include_directories()
+    vp_create_module(Eigen3::Eigen ${VSP_MOD_PUBLIC_LIBS})
+    # ViSP links its modules with the plain target_link_libraries signature: keep to it.
+    if(VSP_MOD_PRIVATE_LIBS)
+      target_link_libraries(${the_module} LINK_PRIVATE ${VSP_MOD_PRIVATE_LIBS})
+    endif()
+    target_compile_features(${the_module} PUBLIC cxx_std_17)
+    set(vsp_module_test_libs ${the_module} ${VISP_MODULE_${the_module}_DEPS} ${VSP_MOD_TEST_LIBS})
+  else()
+    _vsp_add_standalone_module(${vsp_name} VISP_DEPENDS ${VSP_MOD_VISP_DEPENDS}
+                               PUBLIC_LIBS ${VSP_MOD_PUBLIC_LIBS} PRIVATE_LIBS ${VSP_MOD_PRIVATE_LIBS})
+    set(vsp_module_test_libs visp_${vsp_name} ${VSP_MOD_TEST_LIBS})
+  endif()
+  if(BUILD_TESTING OR BUILD_TESTS)
+    file(GLOB vsp_module_tests CONFIGURE_DEPENDS "${CMAKE_CURRENT_LIST_DIR}/test/*.cpp")
+    foreach(vsp_test_src ${vsp_module_tests})
+      get_filename_component(vsp_test_name ${vsp_test_src} NAME_WE)
+      vsp_add_gtest(${vsp_name}-${vsp_test_name} ${vsp_test_src} LIBS ${vsp_module_test_libs})
+      if(COMMAND vp_target_include_modules)
+        vp_target_include_modules(${vsp_name}-${vsp_test_name} ${vsp_module_test_libs})
+      endif()
+    endforeach()
+  endif()
+endmacro()
+
+function(_vsp_add_standalone_module name)
+  cmake_parse_arguments(M "" "" "VISP_DEPENDS;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
   set(target visp_${name})
-  file(GLOB srcs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
+  # Recursive, as ViSP's vp_glob_module_sources: a module may group its private files in src/ subfolders.
+  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
   file(GLOB hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/include/visp3/${name}/*.h")
-  file(GLOB private_hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.h")
+  file(GLOB_RECURSE private_hdrs CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.h")
   add_library(${target} ${srcs} ${hdrs} ${private_hdrs})
   add_library(VispSensorPose::${target} ALIAS ${target})
   target_include_directories(${target} PUBLIC
@@ -38,6 +88,7 @@ function(vsp_add_module name)
   set_target_properties(${target} PROPERTIES
     VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}
     EXPORT_NAME ${target}
+    CXX_VISIBILITY_PRESET hidden
     # Installed modules find each other (e.g. visp_robust) next to themselves: a RUNPATH on the
     # consumer's executable does not apply to indirect dependencies.
     INSTALL_RPATH "\$ORIGIN")
@@ -49,81 +100,19 @@ function(vsp_add_module name)
           RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
   install(FILES ${hdrs} DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/visp3/${name}")
   set_property(GLOBAL APPEND PROPERTY VSP_MODULE_TARGETS ${target})
-
-  if(BUILD_TESTING)
-    file(GLOB tests CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/test/*.cpp")
-    foreach(test_src ${tests})
-      get_filename_component(test_name ${test_src} NAME_WE)
-      vsp_add_gtest(${name}-${test_name} ${test_src} LIBS ${target} ${M_TEST_LIBS})
-    endforeach()
-  endif()
 endfunction()
 
 # vsp_add_gtest(<exe> <sources...> [LIBS ...]): a GoogleTest executable whose cases ctest runs.
 function(vsp_add_gtest exe)
   cmake_parse_arguments(T "" "" "LIBS" ${ARGN})
-  if(NOT GTest_FOUND)
+  if(NOT TARGET GTest::gtest)
     message(FATAL_ERROR "GoogleTest (libgtest-dev) is required to build the tests")
   endif()
   add_executable(${exe} ${T_UNPARSED_ARGUMENTS})
-  target_include_directories(${exe} PRIVATE "${VSP_TEST_COMMON_DIR}")
   target_link_libraries(${exe} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
-  target_compile_definitions(${exe} PRIVATE VSP_DATA_DIR="${PROJECT_SOURCE_DIR}/data")
+  target_compile_definitions(${exe} PRIVATE VSP_DATA_DIR="${VSP_REPO_DIR}/data")
+  target_compile_features(${exe} PRIVATE cxx_std_17)
   vsp_set_warnings(${exe})
   include(GoogleTest)
   gtest_discover_tests(${exe} TEST_PREFIX "${exe}." DISCOVERY_TIMEOUT 120 PROPERTIES TIMEOUT 600)
-endfunction()
-
-# vsp_add_program(<exe> <sources...> [LIBS ...]): an example / tutorial / benchmark program.
-function(vsp_add_program exe)
-  cmake_parse_arguments(P "" "" "LIBS" ${ARGN})
-  add_executable(${exe} ${P_UNPARSED_ARGUMENTS})
-  target_link_libraries(${exe} PRIVATE ${P_LIBS})
-  target_compile_definitions(${exe} PRIVATE VSP_DATA_DIR="${PROJECT_SOURCE_DIR}/data")
-  vsp_set_warnings(${exe})
-endfunction()
-
-# Install layout of the programs and of their data, relative to the install prefix. The installed
-# programs find their libraries and data from their own location ($ORIGIN), so an installed tree can
-# be moved elsewhere; nothing of the build machine is compiled into them.
-set(VSP_INSTALL_DATADIR "${CMAKE_INSTALL_DATADIR}/VispSensorPose/data")
-file(RELATIVE_PATH VSP_DATA_RELATIVE_TO_PROGRAM "${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}"
-     "${CMAKE_INSTALL_PREFIX}/${VSP_INSTALL_DATADIR}")
-file(RELATIVE_PATH VSP_LIB_RELATIVE_TO_PROGRAM "${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}"
-     "${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}")
-
-# vsp_install_programs(<target>...): installs each program into <prefix>/bin. Their names start with
-# "vsp-" (they share bin/ with everything else installed). They are compiled without VSP_DATA_DIR (the
-# absolute path of the repository's data) and with VSP_DATA_RELATIVE_TO_PROGRAM, the path from bin/ to
-# the installed data (for example "../share/VispSensorPose/data").
-function(vsp_install_programs)
-  foreach(program ${ARGN})
-    if(NOT program MATCHES "^vsp-")
-      message(FATAL_ERROR "vsp_install_programs: '${program}' does not start with vsp-")
-    endif()
-    get_target_property(defs ${program} COMPILE_DEFINITIONS)
-    if(defs)
-      list(FILTER defs EXCLUDE REGEX "^VSP_DATA_DIR=")
-      set_property(TARGET ${program} PROPERTY COMPILE_DEFINITIONS ${defs})
-    endif()
-    target_compile_definitions(${program} PRIVATE VSP_DATA_RELATIVE_TO_PROGRAM="${VSP_DATA_RELATIVE_TO_PROGRAM}")
-    set_target_properties(${program} PROPERTIES INSTALL_RPATH "\$ORIGIN/${VSP_LIB_RELATIVE_TO_PROGRAM}")
-    install(TARGETS ${program} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  endforeach()
-endfunction()
-
-# vsp_link_build_data(<target>): in the build tree, a link to the repository's data/ at the place where
-# <target> looks for its installed data (VSP_DATA_RELATIVE_TO_PROGRAM below its folder), so that the
-# program runs the same way from the build tree and from an install.
-function(vsp_link_build_data target)
-  get_target_property(dir ${target} RUNTIME_OUTPUT_DIRECTORY)
-  if(NOT dir)
-    get_target_property(dir ${target} BINARY_DIR)
-  endif()
-  get_filename_component(link "${dir}/${VSP_DATA_RELATIVE_TO_PROGRAM}" ABSOLUTE)
-  get_filename_component(link_parent "${link}" DIRECTORY)
-  file(MAKE_DIRECTORY "${link_parent}")
-  if(NOT EXISTS "${link}")
-    file(CREATE_LINK "${PROJECT_SOURCE_DIR}/data" "${link}" SYMBOLIC COPY_ON_ERROR)
-  endif()
 endfunction()

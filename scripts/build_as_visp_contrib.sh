@@ -123,7 +123,7 @@ test_names=()
 for m in robust pose_gravity laser_conic; do
   for t in "$repo/modules/$m"/test/*.cpp; do
     [ -e "$t" ] || continue
-    test_names+=("$(basename "$t" .cpp)")
+    test_names+=("$m-$(basename "$t" .cpp)") # the executable <module>-<file>, as in the standalone build
   done
 done
 if [ "$run_tests" -eq 1 ]; then targets+=("${test_names[@]}"); fi
@@ -143,8 +143,8 @@ log "our modules and tests built in $((t_built - t_visp)) s (configure $((t_buil
 # --- 5. Run our tests with ctest inside ViSP's build ----------------------------------------------
 status=0
 if [ "$run_tests" -eq 1 ] && [ ${#test_names[@]} -gt 0 ]; then
-  regex="^($(IFS='|'; echo "${test_names[*]}"))\$"
-  log "ctest -R '$regex'"
+  # ctest names each GoogleTest case <module>-<file>.<Suite>.<Case>, as the standalone build does.
+  regex="^($(IFS='|'; echo "${test_names[*]}"))\\."
   (cd "$build" && nice -n 19 ctest -R "$regex" --output-on-failure -j "$jobs") || status=$?
 fi
 log "total $(( $(date +%s) - t_start )) s; ViSP build folder: $build"

@@ -7,7 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "laser_detector.h"
+#include "detector/laser_detector.h"
+#include "detector/search_region.h"
 
 namespace
 {
@@ -17,26 +18,6 @@ void check(bool ok, const char *message)
     throw vpLaserConicException(vpLaserConicException::badValueError, std::string("vpLaserConicDetector: ") + message);
 }
 
-// Real roots of a t^2 + b t + c = 0 (a may be zero) appended to roots.
-void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
-{
-  const double scale = std::max(std::fabs(a), std::max(std::fabs(b), std::fabs(c)));
-  if (scale == 0.0)
-    return;
-  if (std::fabs(a) <= 1e-14 * scale) {
-    if (std::fabs(b) > 1e-14 * scale)
-      roots.push_back(-c / b);
-    return;
-  }
-  const double disc = b * b - 4.0 * a * c;
-  if (disc < 0.0)
-    return;
-  // Numerically stable form: no cancellation between b and the square root.
-  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-  roots.push_back(q / a);
-  if (q != 0.0)
-    roots.push_back(c / q);
-}
 } // namespace
 
 vpLaserConicDetector::vpLaserConicDetector()
@@ -168,95 +149,12 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
                e = 0.5 * (C[1][2] + C[2][1]), f = C[2][2];
   // Sampled at every row and every column of a large image (16384 px): points outside the image are ignored
   // when the region is rasterised.
-  std::vector<vpImagePoint> points;
-  std::vector<double> roots;
-  const int extent = 16384;
-  for (int t = -static_cast<int>(margin) - 1; t < extent; ++t) {
-    roots.clear();
-    solveQuadratic(a, 2.0 * (b * t + d), c * t * t + 2.0 * e * t + f, roots); // row v = t: roots in u
-    for (double u : roots)
-      if (u > -margin - 1.0 && u < extent)
-        points.push_back(vpImagePoint(t, u));
-    roots.clear();
-    solveQuadratic(c, 2.0 * (b * t + e), a * t * t + 2.0 * d * t + f, roots); // column u = t: roots in v
-    for (double v : roots)
-      if (v > -margin - 1.0 && v < extent)
-        points.push_back(vpImagePoint(v, t));
-  }
+  const std::vector<vpImagePoint> points = vpLaserDetector::sampleConicOnLines(a, b, c, d, e, f, margin);
   check(!points.empty(), "the conic has no real point near the image");
   m_region = points;
   m_regionMargin = margin;
   ++m_regionGeneration;
 }
-
-namespace
-{
-// Marks the blocks of 16 columns by bands of 8 rows (the width the scans and the block flags process at once,
-// the height of the bands of spans) that meet the points' squares of half side m: \e marked, nbY x nbX.
-void markBlocks(const std::vector<vpImagePoint> &region, double margin, double m, int H, int W, int nbX,
-                std::vector<unsigned char> &marked)
-{
-  const int blockW = 16, blockH = vpLaserDetector::RegionSpans::bandHeight, nbY = (H + blockH - 1) / blockH;
-  marked.assign(static_cast<size_t>(nbX) * nbY, 0);
-  // One point per cell of a quarter of the margin marks its square: more points in the cell add little
-  // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
-  // reaches at least m - 0.36 margin around every point).
-  const double cellSize = std::max(1.0, 0.25 * margin);
-  const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2, cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
-  std::vector<unsigned char> used(static_cast<size_t>(cellColumns) * cellRows, 0);
-  for (const vpImagePoint &p : region) {
-    const double u = p.get_u(), v = p.get_v();
-    if (u < -m || v < -m || u > W - 1 + m || v > H - 1 + m)
-      continue; // the square does not meet the image
-    unsigned char &cell = used[static_cast<size_t>((v + m) / cellSize) * cellColumns + static_cast<size_t>((u + m) / cellSize)];
-    if (cell)
-      continue;
-    cell = 1;
-    const int i0 = std::max(0, static_cast<int>(std::floor(v - m))), i1 = std::min(H - 1, static_cast<int>(std::ceil(v + m)));
-    const int j0 = std::max(0, static_cast<int>(std::floor(u - m))), j1 = std::min(W - 1, static_cast<int>(std::ceil(u + m)));
-    for (int bi = i0 / blockH; bi <= i1 / blockH; ++bi)
-      std::fill(&marked[static_cast<size_t>(bi) * nbX + j0 / blockW], &marked[static_cast<size_t>(bi) * nbX + j1 / blockW] + 1, 1);
-  }
-}
-
-// The marked blocks dilated by rx blocks along the rows and ry bands along the columns.
-std::vector<unsigned char> dilateBlocks(const std::vector<unsigned char> &marked, int nbX, int rx, int ry)
-{
-  const int nbY = static_cast<int>(marked.size()) / nbX;
-  std::vector<unsigned char> wide(marked.size(), 0), out(marked.size(), 0);
-  for (int bi = 0; bi < nbY; ++bi)
-    for (int b = 0; b < nbX; ++b)
-      if (marked[static_cast<size_t>(bi) * nbX + b])
-        std::fill(&wide[static_cast<size_t>(bi) * nbX + std::max(0, b - rx)],
-                  &wide[static_cast<size_t>(bi) * nbX + std::min(nbX - 1, b + rx)] + 1, 1);
-  for (int bi = 0; bi < nbY; ++bi)
-    for (int di = -ry; di <= ry; ++di)
-      if (bi + di >= 0 && bi + di < nbY)
-        for (int b = 0; b < nbX; ++b)
-          out[static_cast<size_t>(bi) * nbX + b] |= wide[static_cast<size_t>(bi + di) * nbX + b];
-  return out;
-}
-
-// The column spans of each band of the marked blocks.
-void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, vpLaserDetector::RegionSpans &out)
-{
-  const int blockW = 16, nbY = static_cast<int>(marked.size()) / nbX;
-  out.spans.clear();
-  out.bandStart.assign(1, 0);
-  for (int bi = 0; bi < nbY; ++bi) {
-    const unsigned char *row = &marked[static_cast<size_t>(bi) * nbX];
-    for (int b = 0; b < nbX; ++b) {
-      if (!row[b])
-        continue;
-      const int start = b;
-      while (b + 1 < nbX && row[b + 1])
-        ++b;
-      out.spans.push_back(vpLaserDetector::Span(start * blockW, std::min(W - 1, (b + 1) * blockW - 1)));
-    }
-    out.bandStart.push_back(static_cast<int>(out.spans.size()));
-  }
-}
-} // namespace
 
 void vpLaserConicDetector::rasteriseRegion(int H, int W)
 {
@@ -264,17 +162,8 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
   if (work.regionValid && work.regionGeneration == m_regionGeneration && work.regionHeight == static_cast<unsigned int>(H) &&
       work.regionWidth == static_cast<unsigned int>(W))
     return;
-  // The ridge tests of a searched pixel read the score up to the stripe width + 1 pixels away along its row
-  // and its column. The searched blocks are thus dilated by that reach rounded up to whole blocks and bands:
-  // every score read is of this frame (the score buffer is kept from frame to frame), whatever part of its
-  // block a searched pixel lies in.
-  const int nbX = (W + 15) / 16, reach = static_cast<int>(m_maxStripeWidth) + 1;
-  std::vector<unsigned char> searched;
-  markBlocks(m_region, m_regionMargin, m_regionMargin, H, W, nbX, searched);
-  blocksToSpans(searched, nbX, W, work.searchRegion);
-  blocksToSpans(dilateBlocks(searched, nbX, (reach + 15) / 16,
-                             (reach + vpLaserDetector::RegionSpans::bandHeight - 1) / vpLaserDetector::RegionSpans::bandHeight),
-                nbX, W, work.scoreRegion);
+  vpLaserDetector::rasteriseBand(m_region, m_regionMargin, static_cast<int>(m_maxStripeWidth), H, W, work.searchRegion,
+                                 work.scoreRegion);
   work.regionValid = true;
   work.regionGeneration = m_regionGeneration;
   work.regionHeight = static_cast<unsigned int>(H);

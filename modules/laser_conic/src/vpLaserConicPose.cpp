@@ -258,8 +258,104 @@ void vpLaserConicPose::computeAltitudeRollPitch(const vpPlane &cPlane, double &a
   vpLaserSolvers::altitudeRollPitch(plane, altitude, roll, pitch);
 }
 
-bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
-                                    vpPlane &cPlane)
+namespace
+{
+/*!
+  Normalized (undistorted) image coordinates of \e points, with ViSP's pixel-to-metre model (kdu when
+  the camera has distortion), as vpLaserConicCalibration converts its points.
+  \exception vpLaserConicException::badPointError on a point that is not finite or out of range.
+*/
+PointList normalizedPoints(const std::vector<vpImagePoint> &points, const vpCameraParameters &cam)
+{
+  PointList normalized;
+  normalized.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double u = points[i].get_u(), v = points[i].get_v();
+    if (!std::isfinite(u) || !std::isfinite(v)) {
+      std::ostringstream msg;
+      msg << "vpLaserConicPose: point " << i << " is not finite";
+      throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
+    }
+    double x = 0.0, y = 0.0;
+    vpPixelMeterConversion::convertPoint(cam, u, v, x, y);
+    normalized.emplace_back(x, y);
+    // Squares of the coordinates must stay finite for the conic fits.
+    if (!(normalized.back().cwiseAbs().maxCoeff() < 1e100)) {
+      std::ostringstream msg;
+      msg << "vpLaserConicPose: point " << i << " is out of range (" << u << ", " << v << ")";
+      throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
+    }
+  }
+  return normalized;
+}
+
+//! The laser cone of a laser of full opening angle \e openingAngle at pose \e cMl in the camera frame.
+vpLaserSolvers::LaserCone laserCone(const vpHomogeneousMatrix &cMl, double openingAngle)
+{
+  vpLaserSolvers::LaserCone cone;
+  for (unsigned int i = 0; i < 3; ++i) {
+    for (unsigned int j = 0; j < 3; ++j)
+      cone.cRl(i, j) = cMl[i][j];
+    cone.apex(i) = cMl[i][3];
+  }
+  cone.halfAngle = 0.5 * openingAngle;
+  return cone;
+}
+
+//! What the robust stage of computePlane() found: the consensus set and, for GP-3, its plane.
+struct Consensus
+{
+  bool found = false;
+  bool cameraInsideCone = false; //!< PP3 only: no epipolar tangent, no sample was drawn
+  std::vector<int> inliers;
+  Eigen::Vector4d startPlane = Eigen::Vector4d::Zero();
+  vpRansacReport report;
+};
+
+/*!
+  The consensus set of \e method on the normalized points: every point for PLANE_PAIR, the RANSAC
+  loop of the method's estimator otherwise (ransacWithFinalRefit(), the final refit when \e finalRefit).
+*/
+Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserConicMethod method,
+                        const vpLaserSolvers::LaserCone &cone, vpRansacOptions options, bool finalRefit)
+{
+  Consensus consensus;
+  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
+  switch (method) {
+  case vpLaserConicPose::PLANE_PAIR:
+    for (int i = 0; i < static_cast<int>(normalized.size()); ++i)
+      consensus.inliers.push_back(i);
+    consensus.found = true;
+    return consensus;
+  case vpLaserConicPose::PP5:
+    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, finalRefit, conic,
+                                           consensus.report);
+    break;
+  case vpLaserConicPose::PP3: {
+    vpLaserSolvers::EpipolarTangents tangents;
+    if (!vpLaserSolvers::epipolarTangents(cone, tangents)) {
+      consensus.cameraInsideCone = true;
+      return consensus;
+    }
+    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options,
+                                           finalRefit, conic, consensus.report);
+    break;
+  }
+  case vpLaserConicPose::GP3: {
+    vpLaserEstimators::PlaneModel model;
+    vpLaserEstimators::Gp3Estimator::tuneRansac(options);
+    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, finalRefit,
+                                           model, consensus.report);
+    consensus.startPlane = model.plane;
+    break;
+  }
+  }
+  consensus.inliers = consensus.report.inliers;
+  return consensus;
+}
+} // namespace
+
+void vpLaserConicPose::checkInput(const std::vector<vpImagePoint> &points, vpLaserConicMethod method) const
 {
   if (!m_hasCam)
     throw vpLaserConicException(vpLaserConicException::badCameraError,
@@ -276,29 +372,10 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
         << points.size();
     throw vpLaserConicException(vpLaserConicException::notEnoughPointError, msg.str());
   }
+}
 
-  // Normalized (undistorted) image coordinates, with ViSP's pixel-to-metre model (kdu when the camera
-  // has distortion), as vpLaserConicCalibration converts its points.
-  PointList normalized;
-  normalized.reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    const double u = points[i].get_u(), v = points[i].get_v();
-    if (!std::isfinite(u) || !std::isfinite(v)) {
-      std::ostringstream msg;
-      msg << "vpLaserConicPose: point " << i << " is not finite";
-      throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
-    }
-    double x = 0.0, y = 0.0;
-    vpPixelMeterConversion::convertPoint(m_cam, u, v, x, y);
-    normalized.emplace_back(x, y);
-    // Squares of the coordinates must stay finite for the conic fits.
-    if (!(normalized.back().cwiseAbs().maxCoeff() < 1e100)) {
-      std::ostringstream msg;
-      msg << "vpLaserConicPose: point " << i << " is out of range (" << u << ", " << v << ")";
-      throw vpLaserConicException(vpLaserConicException::badPointError, msg.str());
-    }
-  }
-
+void vpLaserConicPose::resetEstimate(const std::vector<vpImagePoint> &points)
+{
   m_failure.clear();
   m_inliers.clear();
   m_trials = 0;
@@ -308,69 +385,21 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
   m_constrainedChosen = false;
   m_points = points;
-  if (allCollinear(normalized))
-    return fail(STATUS_COLLINEAR_POINTS);
+}
 
-  vpLaserSolvers::LaserCone cone;
-  for (unsigned int i = 0; i < 3; ++i) {
-    for (unsigned int j = 0; j < 3; ++j)
-      cone.cRl(i, j) = m_cMl[i][j];
-    cone.apex(i) = m_cMl[i][3];
-  }
-  cone.halfAngle = 0.5 * m_openingAngle;
-
-  const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
+vpRansacOptions vpLaserConicPose::ransacOptions(double focal) const
+{
   vpRansacOptions options;
   options.threshold = m_threshold / focal;
   options.probability = m_probability;
   options.maxTrials = m_maxTrials;
   options.seed = m_seed;
   options.localOptimisation = m_localOptimisation;
+  return options;
+}
 
-  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
-  Eigen::Vector4d startPlane = Eigen::Vector4d::Zero();
-  std::vector<int> inliers;
-  bool found = false;
-  vpRansacReport report;
-
-  if (method == PLANE_PAIR) {
-    for (int i = 0; i < static_cast<int>(normalized.size()); ++i)
-      inliers.push_back(i);
-    found = true;
-  } else if (method == PP5) {
-    found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, !m_scaleAdaptive, conic,
-                                 report);
-  } else if (method == PP3) {
-    vpLaserSolvers::EpipolarTangents tangents;
-    if (!vpLaserSolvers::epipolarTangents(cone, tangents))
-      return fail(STATUS_CAMERA_INSIDE_CONE);
-    found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options, !m_scaleAdaptive,
-                                 conic, report);
-  } else {
-    vpLaserEstimators::PlaneModel model;
-    // The plane refinement is cheap and a refined plane often gathers inliers its start missed.
-    options.localRounds = 3;
-    // Most GP-3 hypotheses of a contaminated trace (one outlier among the three points) predict a
-    // conic far from the trace: a few data of a random subset suffice to drop them.
-    options.pretestSize = 64;
-    // Later best models a few inliers better than the refitted consensus are not refitted again.
-    options.localOptimisationGain = 0.02;
-    found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, !m_scaleAdaptive, model,
-                                 report);
-    startPlane = model.plane;
-  }
-  if (method != PLANE_PAIR)
-    inliers = report.inliers;
-  m_trials = report.trials;
-  const size_t consensus = std::max<size_t>(static_cast<size_t>(needed), m_nbInliersToReachConsensus);
-  if (!found || inliers.size() < consensus) {
-    std::ostringstream msg;
-    msg << " (" << methodName(method) << ", " << inliers.size() << " inliers at best, " << consensus
-        << " needed, after " << report.trials << " samples)";
-    return fail(STATUS_NO_CONSENSUS, msg.str());
-  }
-
-  // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
+vpLaserRobustFit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicMethod method, double focal) const
+{
   vpLaserRobustFit::Settings settings;
   settings.focal = focal;
   settings.threshold = m_threshold;
@@ -383,28 +412,15 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vpLaserRobustFit::FinalFit::CONSTRAINED
                       : fit == FINAL_FIT_SELECT    ? vpLaserRobustFit::FinalFit::SELECT
                                                    : vpLaserRobustFit::FinalFit::FREE;
-  vpLaserRobustFit::Result result;
-  switch (vpLaserRobustFit::fit(normalized, inliers, cone, startPlane, settings, result)) {
-  case vpLaserRobustFit::Outcome::OK: break;
-  case vpLaserRobustFit::Outcome::SHORT_ARC: {
-    std::ostringstream msg;
-    msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
-    return fail(STATUS_SHORT_ARC, msg.str());
-  }
-  case vpLaserRobustFit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
-  case vpLaserRobustFit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
-  }
-  const Eigen::Vector4d plane = result.plane;
-  conic = result.conic;
-  inliers = result.inliers;
-  if (!plane.allFinite())
-    return fail(STATUS_PLANE_NOT_FINITE);
-  if (fractionInFront(normalized, inliers, plane, cone) < 0.5)
-    return fail(STATUS_PLANE_BEHIND);
+  return settings;
+}
 
+void vpLaserConicPose::storeEstimate(const vpLaserRobustFit::Result &result, vpPlane &cPlane)
+{
+  const Eigen::Vector4d &plane = result.plane;
   cPlane.setABCD(plane(0), plane(1), plane(2), plane(3));
   vpLaserSolvers::altitudeRollPitch(plane, m_altitude, m_roll, m_pitch);
-  m_inliers.assign(inliers.begin(), inliers.end());
+  m_inliers.assign(result.inliers.begin(), result.inliers.end());
   m_rmsConstrained = result.rmsConstrained;
   m_rmsFree = result.rmsFree;
   m_sigma = result.sigma;
@@ -424,11 +440,55 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   Eigen::Matrix3d Kinv;
   Kinv << 1.0 / m_cam.get_px(), 0.0, -m_cam.get_u0() / m_cam.get_px(), 0.0, 1.0 / m_cam.get_py(),
       -m_cam.get_v0() / m_cam.get_py(), 0.0, 0.0, 1.0;
-  const Eigen::Matrix3d pixelConic = Kinv.transpose() * conic * Kinv;
+  const Eigen::Matrix3d pixelConic = Kinv.transpose() * result.conic * Kinv;
   m_conic.resize(3, 3);
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j)
       m_conic[i][j] = pixelConic(i, j);
+}
+
+bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
+                                    vpPlane &cPlane)
+{
+  checkInput(points, method);
+  const PointList normalized = normalizedPoints(points, m_cam);
+  resetEstimate(points);
+  if (allCollinear(normalized))
+    return fail(STATUS_COLLINEAR_POINTS);
+
+  const vpLaserSolvers::LaserCone cone = laserCone(m_cMl, m_openingAngle);
+  const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
+  const Consensus consensus = findConsensus(normalized, method, cone, ransacOptions(focal), !m_scaleAdaptive);
+  if (consensus.cameraInsideCone)
+    return fail(STATUS_CAMERA_INSIDE_CONE);
+  m_trials = consensus.report.trials;
+  const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
+  if (!consensus.found || consensus.inliers.size() < needed) {
+    std::ostringstream msg;
+    msg << " (" << methodName(method) << ", " << consensus.inliers.size() << " inliers at best, " << needed
+        << " needed, after " << consensus.report.trials << " samples)";
+    return fail(STATUS_NO_CONSENSUS, msg.str());
+  }
+
+  // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
+  vpLaserRobustFit::Result result;
+  switch (vpLaserRobustFit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
+                                finalFitSettings(method, focal), result)) {
+  case vpLaserRobustFit::Outcome::OK: break;
+  case vpLaserRobustFit::Outcome::SHORT_ARC: {
+    std::ostringstream msg;
+    msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
+    return fail(STATUS_SHORT_ARC, msg.str());
+  }
+  case vpLaserRobustFit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
+  case vpLaserRobustFit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
+  }
+  if (!result.plane.allFinite())
+    return fail(STATUS_PLANE_NOT_FINITE);
+  if (fractionInFront(normalized, result.inliers, result.plane, cone) < 0.5)
+    return fail(STATUS_PLANE_BEHIND);
+
+  storeEstimate(result, cPlane);
   m_status = STATUS_OK;
   return true;
 }

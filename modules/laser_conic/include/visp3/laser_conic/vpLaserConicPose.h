@@ -22,6 +22,13 @@
 #include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
+struct vpRansacOptions;
+namespace vpLaserRobustFit
+{
+struct Settings;
+struct Result;
+} // namespace vpLaserRobustFit
+
 /*!
   \ingroup group_laser_conic
   \brief Ground plane, altitude, roll and pitch from the image of a circular laser trace, modelled on vpPose.
@@ -316,6 +323,16 @@ private:
 
   //! Records a failure (status and message with \e details) and returns false.
   bool fail(vpLaserConicStatus status, const std::string &details = std::string());
+  //! The exceptions of computePlane(): estimator not configured, unknown method, too few points.
+  void checkInput(const std::vector<vpImagePoint> &points, vpLaserConicMethod method) const;
+  //! Clears the previous estimate; \e points become those of the new one.
+  void resetEstimate(const std::vector<vpImagePoint> &points);
+  //! RANSAC settings of the estimator, the threshold converted to normalized units with \e focal (pixels).
+  vpRansacOptions ransacOptions(double focal) const;
+  //! Settings of the final fit (laser_robust_fit.h) of \e method.
+  vpLaserRobustFit::Settings finalFitSettings(vpLaserConicMethod method, double focal) const;
+  //! Keeps a successful final fit: plane, attitude, inliers, fit statistics, covariances, pixel conic.
+  void storeEstimate(const vpLaserRobustFit::Result &result, vpPlane &cPlane);
 };
 
 #endif

@@ -9,6 +9,7 @@
 #ifndef VP_LASER_CONIC_SIMULATOR_H
 #define VP_LASER_CONIC_SIMULATOR_H
 
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -45,9 +46,11 @@
   The ground is rendered at fixed ground coordinates (X, Y of the frame g), so that a sequence sees the
   same floor from frame to frame and a chessboard or texture placed with setGroundChessboard() or
   setGroundTexture() has known corner coordinates. render(I, settings) adds what real images of a laser
-  ring show (vpLaserConicSimulator::vpRenderSettings): a dim or saturating stripe with bloom, floors of
-  several kinds with ambient light and a specular lamp reflection, red distractors and clutter, occluders,
-  frames without laser, motion blur and sensor noise.
+  ring show (vpLaserConicSimulator::vpRenderSettings): a dim or saturating stripe with bloom, a stripe that
+  fades along the ring (distance and incidence fall-off) and whose light is scaled by the surface's
+  reflectance, floors of several kinds with ambient light and a specular lamp reflection, red distractors
+  and clutter, occluders, frames without laser, motion blur, sensor noise and JPEG compression. traceTruth()
+  gives the ground truth of the rendered stripe: its centre line and its peak brightness over the noise.
 
   Errors are reported with vpLaserConicException (vpLaserConicException.h), a vpException.
 
@@ -146,11 +149,39 @@ public:
     double whiteCore = 0.0;     //!< gain of the white light added where the red exceeds 255 (saturated core), >= 0
     double bloom = 0.0;         //!< amplitude of a wide halo around the stripe, relative to laserPower, >= 0
     double bloomWidth = 8.0;    //!< full width at half maximum of the halo, pixels, > 0
+    /*!
+      Exponent p of the stripe's fall-off with the distance d from the laser apex to the lit ground point:
+      the light varies as \f$ d^{-p} \f$ (2: inverse square; 0, the default: no fall-off), >= 0.
+    */
+    double distanceFalloff = 0.0;
+    //! true: the stripe is also weighted by the Lambert cosine of the incidence angle of the laser ray on the
+    //! ground (grazing rays light less); false (default): no incidence weighting.
+    bool lambertIncidence = false;
+    /*!
+      Fraction of the peak left on the dimmest part of the visible ring, in [0, 1). With 0 (the default) the
+      stripe brightness along the ring is the fall-off of distanceFalloff and lambertIncidence, normalised so that
+      the brightest visible part of the ring receives laserPower. Otherwise that normalised fall-off g, in (0, 1],
+      is raised to the power k with \f$ g_{min}^k \f$ = stripeFarFraction over the visible ring (the image of the
+      trace): the near side keeps laserPower, the far side gets this fraction of it, as a ring generator whose
+      emission is not uniform and a dark room show (real photographs: 60-150 grey levels of red dominance near,
+      14-30 far). It needs a fall-off to shape (distanceFalloff > 0 or lambertIncidence).
+    */
+    double stripeFarFraction = 0.0;
+    /*!
+      true: the laser light is scaled by the red reflectance of the surface it falls on (red albedo / 255: the
+      floor, texture, chessboard squares, objects), as a camera sees it, laserPower being the light on a white
+      (reflectance 1) surface: a near-white saturating core on white paper, a dark red stripe on black squares.
+      false (default): the light is added whatever the surface.
+    */
+    bool reflectanceScaled = false;
 
     double blur = 0.7;             //!< optical blur, Gaussian standard deviation in pixels, >= 0
     double motionBlurLength = 0.0; //!< length of a linear motion blur, pixels (0: none), >= 0
     double motionBlurAngle = 0.0;  //!< direction of the motion blur in the image, radians from the u axis
     double noise = 2.0;            //!< sensor noise standard deviation, grey levels per channel, >= 0
+    //! JPEG quality (1-100) of a compression and decompression of the rendered image (OpenCV's codec, as a
+    //! camera that streams JPEG); 0 (default): none. Outside [0, 100]: badValueError.
+    int jpegQuality = 0;
 
     std::vector<vpDistractor> distractors; //!< objects on the ground (drawn over the floor, under the laser)
     unsigned int clutter = 0;   //!< number of small red patches (1-4 cm), fixed on the ground (seed), see clutterRadius
@@ -158,6 +189,28 @@ public:
     //! Image polygons (pixels) of dark objects in front of the ground: they hide the floor and the laser.
     std::vector<std::vector<vpImagePoint> > occluders;
     vpRGBa occluderColour = vpRGBa(35, 32, 30, 255); //!< colour of the occluders
+  };
+
+  /*!
+    Ground truth of a rendered stripe at one cone ray (traceTruth()): where its centre line is and how bright
+    the stripe is there, so that a test knows which part of the ring a detector can be asked to find.
+  */
+  struct vpTraceTruth
+  {
+    vpImagePoint point; //!< image point of the exact (distorted) centre line of the stripe, pixels
+    double gamma = 0.0; //!< cone angle of the ray, radians
+    double falloff = 1.0; //!< brightness factor along the ring in (0, 1] (1 on the brightest visible part)
+    double reflectance = 1.0; //!< red reflectance of the surface there (1 without reflectanceScaled)
+    /*!
+      Peak red dominance R - max(G, B) that the stripe adds to the background across the curve, grey levels:
+      laserPower x falloff x reflectance x (1 - the laser's green leak) for the stripe and its bloom, times the
+      peak loss of the optical blur (\f$ \sigma_s / \sqrt{\sigma_s^2 + \sigma_b^2} \f$ across a straight line),
+      before the sensor's noise and clipping (a saturated stripe reads less; motion blur is not counted).
+      0 when the laser is off.
+    */
+    double peakDominance = 0.0;
+    //! peakDominance over the sensor noise standard deviation (+inf without noise, 0 when the laser is off).
+    double peakOverNoise = 0.0;
   };
 
   //! Simulator with no camera, a 34 degree laser at the camera centre, ground 1 m in front, seed 0.
@@ -242,6 +295,16 @@ public:
                                         std::vector<bool> *isOutlier = nullptr);
 
   /*!
+    The ground truth of the stripe that render(I, \e settings) draws, at \e n cone rays sampled as in
+    tracePoints() (k 2 pi / n, kept when lit, in front of the camera and inside the image): the centre line
+    and the peak brightness over the noise there. With \e settings.noise = sigma, the part of the ring a
+    detector should find when it finds a stripe at least 3 sigma strong is the points with peakOverNoise >= 3.
+    \exception vpLaserConicException on an unset camera (badCameraError) or a setting out of its range
+    (badValueError).
+  */
+  std::vector<vpTraceTruth> traceTruth(unsigned int n, const vpRenderSettings &settings);
+
+  /*!
     Renders a colour image of the camera's view with the default vpRenderSettings but for the stripe
     width and the noise (the image of the earlier versions of the simulator).
 
@@ -278,18 +341,47 @@ private:
   void checkCamera() const;
   //! Normalized undistorted coordinates of every pixel centre (inverse of the projection model), cached.
   void updateRayMap();
-  //! Renders the ground (floor, texture, chessboard, distractors, lamp) into a float RGB image.
-  void renderGround(float *rgb, const vpRenderSettings &settings, const vpImage<vpRGBa> *stretchedTexture);
-  //! Adds the laser stripe, its white core and bloom.
-  void renderLaser(float *rgb, const vpRenderSettings &settings) const;
+  //! Throws vpLaserConicException::badValueError when a render setting is out of its range.
+  static void checkSettings(const vpRenderSettings &settings);
+  //! Renders the ground (floor, texture, chessboard, distractors, lamp) into a float RGB image; with
+  //! \e reflectance not null, the red reflectance of each pixel's surface too.
+  void renderGround(float *rgb, const vpRenderSettings &settings, const vpImage<vpRGBa> *stretchedTexture,
+                    float *reflectance = nullptr);
+  //! Albedo and glossiness of the ground point (X, Y) seen by pixel (i, j): floor, texture, chessboard, objects
+  //! (i < 0: the chessboard sampled at the point, not anti-aliased over the pixel).
+  void surfaceAlbedo(const vpRenderSettings &settings, uint32_t sceneSeed, const std::vector<vpDistractor> &objects,
+                     double X, double Y, int i, int j, const double R[3][3], const double C[3], float albedo[3],
+                     float &gloss) const;
+  //! Anti-aliased chessboard grey of pixel (i, j) (4 sub-pixel rays; R, C: camera orientation and centre in g).
+  float chessboardAlbedo(int i, int j, const double R[3][3], const double C[3]) const;
+  //! Normalisation of the stripe's fall-off along the ring over its visible part (stripeFalloff()).
+  struct vpFalloffModel
+  {
+    double maxRaw = 1.0;   //!< largest raw fall-off over the visible ring
+    double exponent = 1.0; //!< power applied to the normalised fall-off (stripeFarFraction)
+  };
+  //! The fall-off normalisation of \e settings over the visible ring (identity without fall-off).
+  vpFalloffModel falloffModel(const vpRenderSettings &settings) const;
+  //! Brightness factor in (0, 1] of the stripe at cone angle gamma (1 without fall-off or when unlit).
+  double stripeFalloff(const vpRenderSettings &settings, const vpFalloffModel &model, double gamma) const;
+  //! Unnormalised fall-off at cone angle gamma (distance and incidence), 0 when the ray does not light the ground.
+  double rawFalloff(const vpRenderSettings &settings, double gamma) const;
+  //! Red reflectance in [0, 1] of the ground point (X, Y) of the ground frame (floor, texture, board, objects).
+  float groundReflectance(const vpRenderSettings &settings, double X, double Y) const;
+  //! Adds the laser stripe, its white core and bloom (light scaled by \e reflectance when not null).
+  void renderLaser(float *rgb, const vpRenderSettings &settings, const float *reflectance) const;
   //! render() with, when not null, a texture stretched over the footprint (historical render(I, texture)).
   void renderImpl(vpImage<vpRGBa> &I, const vpRenderSettings &settings, const vpImage<vpRGBa> *stretchedTexture);
   //! Ground point (camera frame) hit by the cone ray of angle gamma; false when the forward ray misses the ground.
   bool groundPoint(double gamma, double P[3]) const;
   //! Projects a camera-frame point; false when it is not in front of the camera.
   bool project(const double P[3], double &u, double &v) const;
-  //! Squared distance of each pixel within \e radius of the exact image trace to that trace (+inf elsewhere).
-  void traceDistanceMap(float radius, std::vector<float> &dist2) const;
+  /*!
+    Squared distance of each pixel within \e radius of the exact image trace to that trace (+inf elsewhere);
+    with \e falloff not null, the stripe's fall-off at the nearest point of the trace, per pixel.
+  */
+  void traceDistanceMap(float radius, std::vector<float> &dist2, const vpRenderSettings *settings = nullptr,
+                        std::vector<float> *falloff = nullptr) const;
   //! Square of the ground (centre cx, cy and half side in ground coordinates) covering the camera's view.
   void groundFootprint(double &cx, double &cy, double &half) const;
 

@@ -37,24 +37,24 @@ struct LaserCone
 };
 
 //! Cone quadric D (4x4, paper eq. 8-9) of the laser in the camera frame.
-Eigen::Matrix4d laserConeQuadric(const LaserCone &cone);
+VISP_EXPORT Eigen::Matrix4d laserConeQuadric(const LaserCone &cone);
 
 //! Cone quadric C = P^T c P (eq. 10) spanned by the camera centre and an image conic (normalized coordinates).
-Eigen::Matrix4d cameraConeQuadric(const Eigen::Matrix3d &c);
+VISP_EXPORT Eigen::Matrix4d cameraConeQuadric(const Eigen::Matrix3d &c);
 
 /*!
   Plane-pair solution (Sec. 4): finds the double root of det(C + x D), splits the rank-2 member
   into its two planes and keeps the one with both optical centres on the same side.
   \return true and the ground plane (unit normal towards the camera, d > 0) on success.
 */
-bool planePair(const Eigen::Matrix3d &c, const LaserCone &cone, Eigen::Vector4d &plane);
+VISP_EXPORT bool planePair(const Eigen::Matrix3d &c, const LaserCone &cone, Eigen::Vector4d &plane);
 
 /*!
   Conic through n >= 5 points (least squares, DLT on Hartley-normalised coordinates, eq. 29-31).
   With exactly 5 points it is the minimal interpolating conic. \return false when degenerate (with 5
   points also when two of them are closer than 1e-6 of the sample's extent).
 */
-bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c);
+VISP_EXPORT bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c);
 
 //! The camera-image epipole and the two epipolar lines tangent to every image of the laser trace (Sec. 5.2).
 struct EpipolarTangents
@@ -65,7 +65,7 @@ struct EpipolarTangents
 };
 
 //! Computes the epipolar tangents of the laser cone. \return false if the camera centre lies inside the cone or on its apex.
-bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents);
+VISP_EXPORT bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents);
 
 /*!
   PP-3 minimal solver (Sec. 5.2): conics through 3 points tangent to the two epipolar lines, via
@@ -73,7 +73,7 @@ bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents);
   points closer than 1e-4 of its extent gives none (the conic would be decided by rounding).
   \return number of conics written (0 to 4).
 */
-int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents, Eigen::Matrix3d conics[4]);
+VISP_EXPORT int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents, Eigen::Matrix3d conics[4]);
 
 /*!
   GP-3 minimal solver (Sec. 5.3): intersects the three rays with the laser cone (eq. 57) and forms
@@ -81,7 +81,7 @@ int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents,
   side. \return number of planes written (0 to 8), each normalised as a ground plane; 0 when two of
   the points are closer than 1e-6 of the sample's extent.
 */
-int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vector4d planes[8]);
+VISP_EXPORT int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vector4d planes[8]);
 
 /*!
   Geometric refinement of a ground plane (d > 0) on image points (normalized coordinates) believed
@@ -90,30 +90,30 @@ int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vec
   Unlike a free conic fit, every iterate satisfies the epipolar constraints of the rig.
   \return false (plane untouched) on invalid input; otherwise the plane is the refined one (never worse).
 */
-bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane,
+VISP_EXPORT bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane,
                  int iterations = 20);
 
 /*!
   refinePlane() minimising the weighted sum of squared Sampson distances (weights >= 0, one per point;
   nullptr for unit weights): the step of an iteratively reweighted least-squares (IRLS) refit.
 */
-bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
+VISP_EXPORT bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
                          Eigen::Vector4d &plane, int iterations = 20);
 
 /*!
   Plane of a ground attitude: altitude h (d), roll and pitch as in altitudeRollPitch() (its inverse):
   n = -R_x(roll) R_y(pitch) e_z.
 */
-Eigen::Vector4d planeFromAltitudeRollPitch(double altitude, double roll, double pitch);
+VISP_EXPORT Eigen::Vector4d planeFromAltitudeRollPitch(double altitude, double roll, double pitch);
 
 //! Image conic (normalized coordinates) of the trace of the laser cone on a ground plane.
-Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone);
+VISP_EXPORT Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone);
 
 //! First-order geometric (Sampson) distance of an image point to a conic, in the units of the point.
-double sampsonDistance(const Eigen::Matrix3d &c, const Eigen::Vector2d &p);
+VISP_EXPORT double sampsonDistance(const Eigen::Matrix3d &c, const Eigen::Vector2d &p);
 
 //! True when the conic is a real ellipse (upper-left 2x2 block definite, and real points).
-bool isEllipse(const Eigen::Matrix3d &c);
+VISP_EXPORT bool isEllipse(const Eigen::Matrix3d &c);
 
 /*!
   Altitude, roll and pitch of the camera from a ground plane (unit normal towards the camera).
@@ -122,7 +122,7 @@ bool isEllipse(const Eigen::Matrix3d &c);
   x axis, pitch about the camera y axis, both zero when the optical axis is perpendicular to the
   ground. roll = atan2(-g_y, g_z), pitch = asin(g_x).
 */
-void altitudeRollPitch(const Eigen::Vector4d &plane, double &altitude, double &roll, double &pitch);
+VISP_EXPORT void altitudeRollPitch(const Eigen::Vector4d &plane, double &altitude, double &roll, double &pitch);
 } // namespace vpLaserSolvers
 
 #endif

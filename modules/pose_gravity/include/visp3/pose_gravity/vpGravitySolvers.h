@@ -63,7 +63,7 @@ enum class P2PCase
   branch with the sign of \f$ g_z \f$; that choice is arbitrary and absorbed by the yaw.
   \param g : unit vector (not normalised here).
 */
-Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
+VISP_EXPORT Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
 
 /*!
   Minimal P2P with known vertical: rotation \f$ \mathbf{R} = {}^w\mathbf{R}_c^T \mathbf{R}_z(\alpha)\, {}^w\mathbf{R}_o \f$
@@ -92,7 +92,7 @@ Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
   from the vertical components of the segment and the ray; for a horizontal ray it is not observable
   and point 0 is taken as the nearer one. A ray parallel to gravity gives Undetermined.
 */
-int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[2],
+VISP_EXPORT int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[2],
         const Eigen::Vector3d X[2], std::array<Pose, 2> &poses, P2PCase *p2pCase = nullptr);
 
 //! Which point pair P3P solves (see p3p()).
@@ -125,7 +125,7 @@ enum class P3PPairRule
   \param rule : pair choice.
   \return true when a pose was found.
 */
-bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[3],
+VISP_EXPORT bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[3],
          const Eigen::Vector3d X[3], Pose &pose, P3PPairRule rule = P3PPairRule::BestThirdPoint);
 
 /*!
@@ -158,7 +158,7 @@ bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::
   \return false when all rays are parallel, when the yaw is not observable (all points on one
   vertical line) or data are not finite.
 */
-bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
+VISP_EXPORT bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
                   const Eigen::Vector3d *X, int n, Pose &pose, int reweightingPasses = 2);
 
 /*!
@@ -169,7 +169,7 @@ bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, cons
   \param t : receives cto.
   \return false when the rays are all parallel (translation unobservable along them).
 */
-bool translationFromRotation(const Eigen::Matrix3d &R, const Eigen::Vector3d *x, const Eigen::Vector3d *X,
+VISP_EXPORT bool translationFromRotation(const Eigen::Matrix3d &R, const Eigen::Vector3d *x, const Eigen::Vector3d *X,
                              int n, Eigen::Vector3d &t);
 } // namespace vpGravitySolvers
 

@@ -85,7 +85,7 @@ struct vpRansacReport
   \f$ N = \log(1-p) / \log(1-(1-\epsilon)^s) \f$ (Boutteau et al., JMIV 2018, eq. 28).
   Saturates at \e maxTrials; returns 0 when there are no outliers and 1 for p <= 0.
 */
-int vpRansacTrialCount(double probability, double outlierRatio, int sampleSize, int maxTrials);
+VISP_EXPORT int vpRansacTrialCount(double probability, double outlierRatio, int sampleSize, int maxTrials);
 
 /*!
   \ingroup group_robust

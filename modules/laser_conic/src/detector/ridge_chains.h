@@ -1,0 +1,26 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file ridge_chains.h
+  \brief The continuity filter of the ridge detector (internal header): the crossings chained with their
+  neighbours, the short chains dropped.
+*/
+#ifndef VP_LASER_RIDGE_CHAINS_H
+#define VP_LASER_RIDGE_CHAINS_H
+
+#include "laser_detector.h"
+
+namespace vpLaserDetector
+{
+/*!
+  Marks in work.keep the crossings of work.crossings (in an image of W x H pixels) that belong to chains
+  (neighbours within \e link pixels) whose extent, the bounding-box diagonal, is at least \e minLength
+  pixels; all when minLength <= 0. Leaves in work.parent, for the crossings in work.order, the root of
+  their chain.
+*/
+void longChains(RidgeWorkspace &work, int W, int H, double link, double minLength);
+} // namespace vpLaserDetector
+
+#endif

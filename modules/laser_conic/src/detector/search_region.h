@@ -1,0 +1,38 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file search_region.h
+  \brief The search region of vpLaserConicDetector (internal header): a conic sampled along the image
+  rows and columns, and a band around sampled points rasterised into the spans the ridge passes read.
+*/
+#ifndef VP_LASER_SEARCH_REGION_H
+#define VP_LASER_SEARCH_REGION_H
+
+#include <vector>
+
+#include <visp3/core/vpImagePoint.h>
+
+#include "laser_detector.h"
+
+namespace vpLaserDetector
+{
+/*!
+  The points of the conic a u^2 + 2 b uv + c v^2 + 2 d u + 2 e v + f = 0 on every row and every column of
+  a large image (16384 pixels, from -margin - 1): the points outside an image are ignored when the region
+  is rasterised.
+*/
+std::vector<vpImagePoint> sampleConicOnLines(double a, double b, double c, double d, double e, double f, double margin);
+
+/*!
+  Rasterises the band within \e margin pixels of the points \e region, for an image of H x W pixels and
+  stripes up to \e stripeWidth pixels wide: \e searched receives the blocks of 16 columns by bands of
+  RegionSpans::bandHeight rows that meet the band, \e scored the same dilated by the reach of the ridge tests
+  (the stripe width + 1 pixels along the rows and the columns, rounded up to whole blocks and bands).
+*/
+void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int stripeWidth, int H, int W,
+                   RegionSpans &searched, RegionSpans &scored);
+} // namespace vpLaserDetector
+
+#endif
