@@ -604,9 +604,16 @@ int main(int argc, char **argv)
         const double coverage = coverageOnShippedFrame(sim, settings, opt.output + "/" + f.image);
         conditions << k << "," << f.image << "," << conditionName(frameCondition(k, opt.frames)) << "," << qualityLine
                    << "," << std::setprecision(4) << coverage << "\n";
-        if (frameCondition(k, opt.frames) >= FADING_RING)
-          fadingCoverage << "\n  " << f.image << " (" << conditionName(frameCondition(k, opt.frames)) << "): "
-                         << std::setprecision(3) << 100.0 * coverage << " %";
+        if (frameCondition(k, opt.frames) >= FADING_RING) {
+          double nearPeak = 0.0, farPeak = 1e9;
+          for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(2000, settings)) {
+            nearPeak = std::max(nearPeak, t.peakDominance);
+            farPeak = std::min(farPeak, t.peakDominance);
+          }
+          fadingCoverage << "\n  " << f.image << " (" << conditionName(frameCondition(k, opt.frames)) << ", stripe "
+                         << std::setprecision(3) << nearPeak << " to " << farPeak << " grey levels of red dominance): "
+                         << 100.0 * coverage << " %";
+        }
       }
       std::cout << f.image << ": altitude " << std::setprecision(4) << f.altitude << " m, roll "
                 << vpMath::deg(f.roll) << " deg, pitch " << vpMath::deg(f.pitch) << " deg"

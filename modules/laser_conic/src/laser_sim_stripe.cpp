@@ -116,11 +116,9 @@ void vpLaserConicSimulator::traceDistanceMap(float radius, std::vector<float> &d
   const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
   dist2.assign(static_cast<size_t>(W) * H, std::numeric_limits<float>::infinity());
   const bool withFalloff = settings != nullptr && falloff != nullptr;
-  vpFalloffModel model;
-  if (withFalloff) {
+  const vpFalloffModel model = withFalloff ? falloffModel(*settings) : vpFalloffModel();
+  if (withFalloff)
     falloff->assign(dist2.size(), 1.f);
-    model = falloffModel(*settings);
-  }
 
   // Image point of the cone ray gamma, if that ray lights a ground point in front of the camera.
   struct Sample
