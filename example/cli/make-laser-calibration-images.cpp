@@ -9,8 +9,9 @@
   laser trace over it, by a 1280x960 camera with barrel distortion. With --laser-light reflectance the laser
   light is scaled by the paper's reflectance as a camera sees it (a near-white saturated core on the white
   squares, a dark red stripe on the black ones); with additive (the default) it is added whatever the surface
-  (saturating to white on the white squares and bright red on the black ones). Writes camera.xml (ViSP model with distortion), laser_true.yaml (the rendering's laser:
-  pose and opening angle) and images/view_XX.png into the output folder: the input of vsp-laser-calibrate.
+  (saturating to white on the white squares and bright red on the black ones). Writes camera.xml (ViSP
+  model with distortion), laser_true.yaml (the rendering's laser: pose and opening angle) and
+  images/view_XX.png into the output folder: the input of vsp-laser-calibrate.
 
   With --check FILE, compares the laser calibration FILE with laser_true.yaml of --output instead and
   exits with 1 when the apex, axis or opening angle error exceeds its bound (the end-to-end test).

@@ -482,7 +482,8 @@ vpCommandLine commandLine(Options &opt)
   cli.addString("--output", opt.output, "DIR", "default " VSP_DATA_DIR "/laser_sequence (laser_hard with --hard)");
   cli.addString("--diagnostics", opt.diagnostics, "DIR",
                 "with --hard: also write each frame with the default detector's mask over it (PNG) to DIR");
-  cli.addUnsigned("--frames", opt.frames, "N", "number of frames (default 100; with --hard 48 of the cycle, then 9 fading rings)", 1);
+  cli.addUnsigned("--frames", opt.frames, "N",
+                  "number of frames (default 100; with --hard 48 of the cycle, then 9 fading rings)", 1);
   cli.addUnsigned("--seed", opt.seed, "S", "trajectory and rendering seed (default 2018)");
   cli.addInt("--quality", opt.quality, "Q", "JPEG quality (default 60)", 1, 100);
   cli.addDouble("--sensor-noise", opt.sensorNoise, "GREY", "sensor noise standard deviation, grey levels (default 1)",
@@ -535,7 +536,8 @@ int main(int argc, char **argv)
     std::ofstream conditions;
     if (opt.hard) {
       conditions.open(opt.output + "/conditions.csv");
-      conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px,detector_coverage_3sigma\n";
+      conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px,"
+                    "detector_coverage_3sigma\n";
     }
     std::mt19937 settingsRng(opt.seed + 7);
     vpLaserConicDetector detector;
@@ -628,8 +630,8 @@ int main(int argc, char **argv)
     if (opt.hard)
       std::cout << "Default detector on the frames with laser: coverage >= " << 100.0 * worstCoverage
                 << " %, RMS distance to the trace <= " << worstRms << " px (conditions.csv)\n"
-                << "Default detector on the fading rings as shipped (JPEG): share of the ring where the stripe is >= 3x "
-                << "the noise with a point within 1.5 px of the true centre line" << fadingCoverage.str() << std::endl;
+                << "Default detector on the fading rings as shipped (JPEG): share of the ring where the stripe "
+                << "is >= 3x the noise with a point within 1.5 px of the true centre line" << fadingCoverage.str() << std::endl;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getMessage() << std::endl;
     return EXIT_FAILURE;

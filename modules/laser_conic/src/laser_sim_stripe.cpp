@@ -50,7 +50,8 @@ bool occluded(const std::vector<std::vector<vpImagePoint> > &occluders, double u
       continue;
     std::vector<cv::Point2f> contour;
     for (const vpImagePoint &p : polygon)
-      contour.push_back(cv::Point2f(static_cast<float>(std::lround(p.get_u())), static_cast<float>(std::lround(p.get_v()))));
+      contour.push_back(
+          cv::Point2f(static_cast<float>(std::lround(p.get_u())), static_cast<float>(std::lround(p.get_v()))));
     if (cv::pointPolygonTest(contour, cv::Point2f(static_cast<float>(u), static_cast<float>(v)), false) >= 0)
       return true;
   }
