@@ -17,9 +17,9 @@
   exits with 1 when the apex, axis or opening angle error exceeds its bound (the end-to-end test).
 
   \verbatim
-  make-laser-calibration-images --output DIR [--seed N] [--laser-light additive|reflectance]
-  make-laser-calibration-images --output DIR --check laser.yaml [--max-apex-mm 1] [--max-axis-deg 0.1]
-                                [--max-angle-deg 0.05]
+  vsp-make-laser-calibration-images --output DIR [--seed N] [--laser-light additive|reflectance]
+  vsp-make-laser-calibration-images --output DIR --check laser.yaml [--max-apex-mm 1] [--max-axis-deg 0.1]
+                                    [--max-angle-deg 0.05]
   \endverbatim
 */
 #include <cmath>
@@ -115,7 +115,12 @@ int check(const Options &options)
 int render(const Options &options)
 {
   std::string error;
-  vpIoTools::makeDirectory(options.output + "/images");
+  try {
+    vpIoTools::makeDirectory(options.output + "/images");
+  } catch (const vpException &e) {
+    std::cerr << options.output << "/images: cannot be created (" << e.getStringMessage() << ")" << std::endl;
+    return EXIT_FAILURE;
+  }
   const vpCameraParameters cam = camera();
   vpLaserCalibrationData truth;
   truth.openingAngle = kOpening;
