@@ -9,8 +9,9 @@
   laser trace over it, by a 1280x960 camera with barrel distortion. With --laser-light reflectance the laser
   light is scaled by the paper's reflectance as a camera sees it (a near-white saturated core on the white
   squares, a dark red stripe on the black ones); with additive (the default) it is added whatever the surface
-  (saturating to white on the white squares and bright red on the black ones). Writes camera.xml (ViSP model with distortion), laser_true.yaml (the rendering's laser:
-  pose and opening angle) and images/view_XX.png into the output folder: the input of vsp-laser-calibrate.
+  (saturating to white on the white squares and bright red on the black ones). Writes camera.xml (ViSP
+  model with distortion), laser_true.yaml (the rendering's laser: pose and opening angle) and
+  images/view_XX.png into the output folder: the input of vsp-laser-calibrate.
 
   With --check FILE, compares the laser calibration FILE with laser_true.yaml of --output instead and
   exits with 1 when the apex, axis or opening angle error exceeds its bound (the end-to-end test).
@@ -58,7 +59,10 @@ vpCameraParameters camera()
 }
 
 //! The laser: 34 degrees, 10 cm beside the camera, axis tilted by 3 and -5 degrees.
-vpHomogeneousMatrix trueLaserPose() { return vpHomogeneousMatrix(0.10, 0.02, -0.01, vpMath::rad(3.0), vpMath::rad(-5.0), 0.0); }
+vpHomogeneousMatrix trueLaserPose()
+{
+  return vpHomogeneousMatrix(0.10, 0.02, -0.01, vpMath::rad(3.0), vpMath::rad(-5.0), 0.0);
+}
 const double kOpening = vpMath::rad(34.0);
 
 /*!
@@ -100,7 +104,8 @@ int check(const Options &options)
     std::cerr << error << std::endl;
     return EXIT_FAILURE;
   }
-  const double apexMm = 1000.0 * (truth.cMl.getTranslationVector() - estimate.cMl.getTranslationVector()).frobeniusNorm();
+  const double apexMm =
+      1000.0 * (truth.cMl.getTranslationVector() - estimate.cMl.getTranslationVector()).frobeniusNorm();
   const double axisDeg = axisAngleDeg(truth.cMl, estimate.cMl);
   const double angleDeg = vpMath::deg(std::fabs(truth.openingAngle - estimate.openingAngle));
   std::cout << "apex error " << apexMm << " mm (max " << options.maxApexMm << "), axis error " << axisDeg
@@ -136,7 +141,7 @@ int render(const Options &options)
   sim.setSeed(options.seed);
   vpLaserConicSimulator::vpRenderSettings settings;
   settings.floor = vpLaserConicSimulator::FLOOR_DARK_TILES; // the table around the paper
-  settings.whiteCore = 0.6; // the stripe saturates to white on the white squares
+  settings.whiteCore = 0.6;                                 // the stripe saturates to white on the white squares
   settings.reflectanceScaled = options.laserLight == "reflectance";
   // The same light on the white squares (albedo 215) in both modes.
   settings.laserPower = settings.reflectanceScaled ? 400.0 * 255.0 / 215.0 : 400.0;
@@ -167,7 +172,8 @@ int run(int argc, char **argv)
                 "laser light added whatever the surface (default) or scaled by its reflectance");
   cli.addString("--check", options.check, "FILE", "laser calibration to compare with DIR/laser_true.yaml");
   cli.addDouble("--max-apex-mm", options.maxApexMm, "MM", "largest apex error (default 1)", vpCommandLine::POSITIVE);
-  cli.addDouble("--max-axis-deg", options.maxAxisDeg, "DEG", "largest axis error (default 0.1)", vpCommandLine::POSITIVE);
+  cli.addDouble("--max-axis-deg", options.maxAxisDeg, "DEG", "largest axis error (default 0.1)",
+                vpCommandLine::POSITIVE);
   cli.addDouble("--max-angle-deg", options.maxAngleDeg, "DEG", "largest opening angle error (default 0.05)",
                 vpCommandLine::POSITIVE);
   cli.require({"--output"});

@@ -57,7 +57,7 @@ struct Options
   std::string output;
   bool hard = false;
   unsigned int frames = 0; // 0: 100 frames, 48 with --hard
-  std::string diagnostics;  // folder for the detector's masks (empty: none)
+  std::string diagnostics; // folder for the detector's masks (empty: none)
   unsigned int seed = 2018;
   int quality = 60;
   double sensorNoise = 1.0;
@@ -74,8 +74,7 @@ vpCameraParameters hardCamera()
 }
 
 //! The conditions of the hard sequence (one per frame, in a fixed cycle).
-enum HardCondition
-{
+enum HardCondition {
   DIM_DARK,
   SATURATED_WHITE_TILES,
   BRIGHT_GREY,
@@ -91,9 +90,11 @@ enum HardCondition
 const unsigned int kFadingFrames = 8;
 const char *conditionName(HardCondition c)
 {
-  static const char *names[] = {"dim_dark_floor", "saturated_white_tiles", "bright_grey_floor", "colourful_floor",
-                                "red_distractors", "occluded", "motion_blur", "no_laser",
-                                "fading_ring", "fading_ring_faint"};
+  static const char *names[] = {"dim_dark_floor",    "saturated_white_tiles",
+                                "bright_grey_floor", "colourful_floor",
+                                "red_distractors",   "occluded",
+                                "motion_blur",       "no_laser",
+                                "fading_ring",       "fading_ring_faint"};
   return names[c];
 }
 
@@ -150,8 +151,8 @@ vpLaserConicSimulator::vpRenderSettings hardSettings(HardCondition c, unsigned i
   case OCCLUDED: {
     // A dark object (a leg, a box) in front of the lower right part of the image.
     const double u0 = 520.0 + 120.0 * unit(rng);
-    s.occluders.push_back({vpImagePoint(330, u0), vpImagePoint(300, u0 + 220), vpImagePoint(719, u0 + 300),
-                           vpImagePoint(719, u0 + 60)});
+    s.occluders.push_back(
+        {vpImagePoint(330, u0), vpImagePoint(300, u0 + 220), vpImagePoint(719, u0 + 300), vpImagePoint(719, u0 + 60)});
     break;
   }
   case MOTION_BLUR:
@@ -166,6 +167,9 @@ vpLaserConicSimulator::vpRenderSettings hardSettings(HardCondition c, unsigned i
     s.clutter = 120;
     s.clutterRadius = 2.5;
     break;
+  case FADING_RING:
+  case FADING_RING_FAINT:
+    break; // fadingSettings()
   }
   return s;
 }
@@ -272,8 +276,8 @@ std::vector<RigState> sampleTrajectory(const std::vector<SmoothSignal> &signals,
   std::vector<RigState> states;
   for (unsigned int k = 0; k < frames; ++k) {
     const double t = frames > 1 ? k / static_cast<double>(frames - 1) : 0.0;
-    states.push_back({std::max(minAltitude, signals[0](t)), signals[1](t), signals[2](t), signals[3](t),
-                      signals[4](t), signals[5](t)});
+    states.push_back({std::max(minAltitude, signals[0](t)), signals[1](t), signals[2](t), signals[3](t), signals[4](t),
+                      signals[5](t)});
   }
   return states;
 }
@@ -333,8 +337,7 @@ vpImage<vpRGBa> darkFloorTexture(unsigned int seed)
       fy = fy * fy * (3.0 - 2.0 * fy);
       fx = fx * fx * (3.0 - 2.0 * fx);
       const double top = grid[gy * (cells + 1) + gx] * (1.0 - fx) + grid[gy * (cells + 1) + gx + 1] * fx;
-      const double bottom =
-          grid[(gy + 1) * (cells + 1) + gx] * (1.0 - fx) + grid[(gy + 1) * (cells + 1) + gx + 1] * fx;
+      const double bottom = grid[(gy + 1) * (cells + 1) + gx] * (1.0 - fx) + grid[(gy + 1) * (cells + 1) + gx + 1] * fx;
       const double grey = 30.0 + 12.0 * (top * (1.0 - fy) + bottom * fy);
       texture[i][j] = vpRGBa(static_cast<unsigned char>(grey + 3.0), static_cast<unsigned char>(grey),
                              static_cast<unsigned char>(grey - 2.0), 255);
@@ -370,9 +373,8 @@ vpHomogeneousMatrix calibrateLaser(const vpCameraParameters &cam, unsigned int w
     const vpHomogeneousMatrix cMg = vspLaserRig::groundPose(distance(rng), tilt(rng), tilt(rng), yaw(rng));
     sim.setGroundPose(cMg);
     const std::vector<vpImagePoint> points = sim.addNoise(sim.tracePoints(180), 0.5);
-    const vpHomogeneousMatrix gridError(gridTranslationError(rng), gridTranslationError(rng),
-                                        gridTranslationError(rng), gridRotationError(rng), gridRotationError(rng),
-                                        gridRotationError(rng));
+    const vpHomogeneousMatrix gridError(gridTranslationError(rng), gridTranslationError(rng), gridTranslationError(rng),
+                                        gridRotationError(rng), gridRotationError(rng), gridRotationError(rng));
     calibration.addView(cMg * gridError, points);
   }
   vpHomogeneousMatrix calibrated;
@@ -386,8 +388,8 @@ vpHomogeneousMatrix calibrateLaser(const vpCameraParameters &cam, unsigned int w
   1 px, and the RMS distance of the points within 2 px of the trace to it.
 */
 void detectorQuality(vpLaserConicSimulator &sim, const vpLaserConicSimulator::vpRenderSettings &settings,
-                     const std::vector<vpImagePoint> &points, unsigned int width, unsigned int height,
-                     double &coverage, double &rms)
+                     const std::vector<vpImagePoint> &points, unsigned int width, unsigned int height, double &coverage,
+                     double &rms)
 {
   const std::vector<vpImagePoint> trace = sim.tracePoints(20000);
   std::vector<vpPolygon> occluders;
@@ -416,8 +418,8 @@ void detectorQuality(vpLaserConicSimulator &sim, const vpLaserConicSimulator::vp
     bool hidden = false;
     for (const vpPolygon &o : occluders)
       hidden = hidden || o.isInside(t) || o.isInside(vpImagePoint(t.get_i() + 4, t.get_j())) ||
-               o.isInside(vpImagePoint(t.get_i() - 4, t.get_j())) || o.isInside(vpImagePoint(t.get_i(), t.get_j() + 4)) ||
-               o.isInside(vpImagePoint(t.get_i(), t.get_j() - 4));
+               o.isInside(vpImagePoint(t.get_i() - 4, t.get_j())) ||
+               o.isInside(vpImagePoint(t.get_i(), t.get_j() + 4)) || o.isInside(vpImagePoint(t.get_i(), t.get_j() - 4));
     if (hidden)
       continue;
     ++visible;
@@ -467,7 +469,8 @@ double coverageOnShippedFrame(vpLaserConicSimulator &sim, const vpLaserConicSimu
 //! Distance between the apexes (m) and angle between the cone axes (rad) of two laser poses.
 void laserPoseError(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b, double &apexError, double &axisError)
 {
-  apexError = std::sqrt(vpMath::sqr(a[0][3] - b[0][3]) + vpMath::sqr(a[1][3] - b[1][3]) + vpMath::sqr(a[2][3] - b[2][3]));
+  apexError =
+      std::sqrt(vpMath::sqr(a[0][3] - b[0][3]) + vpMath::sqr(a[1][3] - b[1][3]) + vpMath::sqr(a[2][3] - b[2][3]));
   const double dot = a[0][2] * b[0][2] + a[1][2] * b[1][2] + a[2][2] * b[2][2];
   axisError = std::acos(std::max(-1.0, std::min(1.0, dot)));
 }
@@ -482,7 +485,8 @@ vpCommandLine commandLine(Options &opt)
   cli.addString("--output", opt.output, "DIR", "default " VSP_DATA_DIR "/laser_sequence (laser_hard with --hard)");
   cli.addString("--diagnostics", opt.diagnostics, "DIR",
                 "with --hard: also write each frame with the default detector's mask over it (PNG) to DIR");
-  cli.addUnsigned("--frames", opt.frames, "N", "number of frames (default 100; with --hard 48 of the cycle, then 9 fading rings)", 1);
+  cli.addUnsigned("--frames", opt.frames, "N",
+                  "number of frames (default 100; with --hard 48 of the cycle, then 9 fading rings)", 1);
   cli.addUnsigned("--seed", opt.seed, "S", "trajectory and rendering seed (default 2018)");
   cli.addInt("--quality", opt.quality, "Q", "JPEG quality (default 60)", 1, 100);
   cli.addDouble("--sensor-noise", opt.sensorNoise, "GREY", "sensor noise standard deviation, grey levels (default 1)",
@@ -535,7 +539,8 @@ int main(int argc, char **argv)
     std::ofstream conditions;
     if (opt.hard) {
       conditions.open(opt.output + "/conditions.csv");
-      conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px,detector_coverage_3sigma\n";
+      conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px,"
+                    "detector_coverage_3sigma\n";
     }
     std::mt19937 settingsRng(opt.seed + 7);
     vpLaserConicDetector detector;
@@ -593,9 +598,9 @@ int main(int argc, char **argv)
       // The trajectory is defined with the estimator's attitude convention: they must agree.
       if (std::fabs(f.altitude - s.altitude) > 1e-9 || std::fabs(f.roll - s.roll) > 1e-9 ||
           std::fabs(f.pitch - s.pitch) > 1e-9) {
-        std::cerr << "Frame " << k << ": the ground truth convention disagrees with vpLaserConicPose ("
-                  << f.altitude << ", " << f.roll << ", " << f.pitch << " vs " << s.altitude << ", " << s.roll << ", "
-                  << s.pitch << ")" << std::endl;
+        std::cerr << "Frame " << k << ": the ground truth convention disagrees with vpLaserConicPose (" << f.altitude
+                  << ", " << f.roll << ", " << f.pitch << " vs " << s.altitude << ", " << s.roll << ", " << s.pitch
+                  << ")" << std::endl;
         return EXIT_FAILURE;
       }
       vpImageIo::writeJPEG(I, opt.output + "/" + f.image, vpImageIo::IO_DEFAULT_BACKEND, opt.quality);
@@ -611,12 +616,12 @@ int main(int argc, char **argv)
             farPeak = std::min(farPeak, t.peakDominance);
           }
           fadingCoverage << "\n  " << f.image << " (" << conditionName(frameCondition(k, opt.frames)) << ", stripe "
-                         << std::setprecision(3) << nearPeak << " to " << farPeak << " grey levels of red dominance): "
-                         << 100.0 * coverage << " %";
+                         << std::setprecision(3) << nearPeak << " to " << farPeak
+                         << " grey levels of red dominance): " << 100.0 * coverage << " %";
         }
       }
-      std::cout << f.image << ": altitude " << std::setprecision(4) << f.altitude << " m, roll "
-                << vpMath::deg(f.roll) << " deg, pitch " << vpMath::deg(f.pitch) << " deg"
+      std::cout << f.image << ": altitude " << std::setprecision(4) << f.altitude << " m, roll " << vpMath::deg(f.roll)
+                << " deg, pitch " << vpMath::deg(f.pitch) << " deg"
                 << (opt.hard ? std::string(", ") + conditionName(frameCondition(k, opt.frames)) : std::string())
                 << std::endl;
     }
@@ -628,8 +633,9 @@ int main(int argc, char **argv)
     if (opt.hard)
       std::cout << "Default detector on the frames with laser: coverage >= " << 100.0 * worstCoverage
                 << " %, RMS distance to the trace <= " << worstRms << " px (conditions.csv)\n"
-                << "Default detector on the fading rings as shipped (JPEG): share of the ring where the stripe is >= 3x "
-                << "the noise with a point within 1.5 px of the true centre line" << fadingCoverage.str() << std::endl;
+                << "Default detector on the fading rings as shipped (JPEG): share of the ring where the stripe "
+                << "is >= 3x the noise with a point within 1.5 px of the true centre line" << fadingCoverage.str()
+                << std::endl;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getMessage() << std::endl;
     return EXIT_FAILURE;

@@ -50,7 +50,8 @@ bool occluded(const std::vector<std::vector<vpImagePoint> > &occluders, double u
       continue;
     std::vector<cv::Point2f> contour;
     for (const vpImagePoint &p : polygon)
-      contour.push_back(cv::Point2f(static_cast<float>(std::lround(p.get_u())), static_cast<float>(std::lround(p.get_v()))));
+      contour.push_back(
+          cv::Point2f(static_cast<float>(std::lround(p.get_u())), static_cast<float>(std::lround(p.get_v()))));
     if (cv::pointPolygonTest(contour, cv::Point2f(static_cast<float>(u), static_cast<float>(v)), false) >= 0)
       return true;
   }
@@ -226,7 +227,7 @@ void vpLaserConicSimulator::renderLaser(float *rgb, const vpRenderSettings &sett
 }
 
 std::vector<vpLaserConicSimulator::vpTraceTruth> vpLaserConicSimulator::traceTruth(unsigned int n,
-                                                                                     const vpRenderSettings &settings)
+                                                                                   const vpRenderSettings &settings)
 {
   checkCamera();
   checkSettings(settings);
@@ -235,16 +236,16 @@ std::vector<vpLaserConicSimulator::vpTraceTruth> vpLaserConicSimulator::traceTru
   // Peak of the stripe and of its bloom across a straight curve after the optical blur, per unit of laserPower,
   // as red dominance (the laser also leaks into the green channel).
   const double sigma = settings.stripeWidth / kFwhmPerSigma, bloomSigma = settings.bloomWidth / kFwhmPerSigma;
-  const double unitPeak = (blurredPeak(sigma, settings.blur) + settings.bloom * blurredPeak(bloomSigma, settings.blur)) *
-                          (1.0 - static_cast<double>(kLaserRgb[1]) / kLaserRgb[0]);
+  const double unitPeak =
+      (blurredPeak(sigma, settings.blur) + settings.bloom * blurredPeak(bloomSigma, settings.blur)) *
+      (1.0 - static_cast<double>(kLaserRgb[1]) / kLaserRgb[0]);
   std::vector<vpTraceTruth> truth;
   truth.reserve(n);
   for (unsigned int k = 0; k < n; ++k) {
     vpTraceTruth t;
     t.gamma = 2.0 * M_PI * k / n;
     double P[3], u = 0.0, v = 0.0;
-    if (!groundPoint(t.gamma, P) || !project(P, u, v) || u < 0.0 || v < 0.0 || u > m_width - 1.0 ||
-        v > m_height - 1.0)
+    if (!groundPoint(t.gamma, P) || !project(P, u, v) || u < 0.0 || v < 0.0 || u > m_width - 1.0 || v > m_height - 1.0)
       continue;
     t.point.set_uv(u, v);
     t.falloff = stripeFalloff(settings, model, t.gamma);

@@ -206,7 +206,7 @@ std::map<int, int> sequenceStatuses(const std::string &sequence, double angleFac
 }
 } // namespace
 
-// The shipped sequences (148 frames, rendered with detector bias, blur, saturation): no frame refused
+// The shipped sequences (157 frames, rendered with detector bias, blur, saturation): no frame refused
 // with the right calibration; with the half opening angle (17 deg for 34) almost every frame that has a
 // trace is refused, and named.
 TEST(LaserConicCalibrationCheck, ShippedSequences)
