@@ -66,7 +66,8 @@
     frame, 0.5 px noise): axis and apex direction standard deviations about 0.08 and 0.09 degree (errors
     0.05-0.17 and 0.08-0.16 degree over 3 flights); GP3 on new frames afterwards: roll/pitch RMS 1.1-1.4
     times that of the true calibration, altitude RMS 2-7 times (1.6-4.8 mm against 0.7 mm at 1 m) with one
-    known altitude as the scale, 23 times (17 mm) with the apex distance as the scale. With the apex held
+    known altitude as the scale, 23 times (17 mm) with the apex distance as the scale (with 300 points
+    per frame, altitudes biased by up to 6 %: prefer a known altitude, or setApexHeld() after a knock). With the apex held
     at a trusted previous calibration (setApexHeld(), a knocked mount), 40 frames of 300 points give the
     axis to 0.014 degree. The same frames used as chessboard views (planes known, vpLaserConicCalibration)
     give the axis to 0.007 degree: a chessboard calibration stays the reference; the self-calibration
