@@ -46,6 +46,7 @@
 #include "vpCommandLine.h"
 #include "vpCsvTools.h"
 #include "vpImageFileCheck.h"
+#include "vpLaserFlightFusion.h"
 #include "vpLaserOverlay.h"
 #include "vpLaserRigIo.h"
 #include "vpOutputFile.h"
@@ -75,14 +76,16 @@ vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
 }
 
 //! Declares the options of the program; \e options receives their values.
-vpCommandLine commandLine(Options &options)
+vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
 {
   vpCommandLine cli("--camera camera.xml [--camera-name Camera] --laser laser.txt\n"
                     "          (--images DIR | --list images.txt) --output results.csv\n"
                     "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
                     "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
                     "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
-                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]",
+                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
+                    "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
+                    "           [--covariance-inflation K]]",
                     "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
@@ -124,6 +127,7 @@ vpCommandLine commandLine(Options &options)
   cli.addDouble("--max-altitude-error", options.maxAltitudeError, "MM",
                 "with --truth: exit status 1 when an altitude error exceeds MM millimetres (default 0: no check)",
                 vpCommandLine::NON_NEGATIVE);
+  fusion.addOptions(cli); // IMU-rate output, vpLaserFlightFusion.h
   cli.require({"--camera", "--laser", "--output"});
   return cli;
 }
@@ -387,7 +391,8 @@ void printSequenceDiagnosis(const std::vector<FrameResult> &results, const char 
 int run(int argc, char **argv)
 {
   Options options;
-  vpCommandLine cli = commandLine(options);
+  vpLaserFlightFusion fusion;
+  vpCommandLine cli = commandLine(options, fusion);
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
   if (cli.given("--images") == cli.given("--list"))
@@ -439,6 +444,12 @@ int run(int argc, char **argv)
     std::cerr << argv[0] << ": " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;
   }
+  if (fusion.enabled() && !fusion.prepare(images.size(), error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  if (fusion.enabled())
+    fusion.configure(estimator);
   out << "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status\n";
   unsigned int found = 0, compared = 0;
   double worstAltitude = 0.0, worstRoll = 0.0, worstPitch = 0.0;
@@ -454,6 +465,7 @@ int run(int argc, char **argv)
       return EXIT_FAILURE;
     }
     writeRow(out, k, images[k], r);
+    fusion.addFrame(k, r.status == "ok", estimator);
     found += r.status == "ok" ? 1 : 0;
     // Next frame: search near this frame's inliers, or in the whole image after a failure.
     if (options.track > 0.0 && r.status == "ok" && options.detectorName == "ridge")
@@ -476,6 +488,13 @@ int run(int argc, char **argv)
     return EXIT_FAILURE;
   }
   printSequenceDiagnosis(results, argv[0]);
+  std::string summary;
+  if (fusion.enabled() && !fusion.run(summary, error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  if (fusion.enabled())
+    std::cout << summary << std::endl;
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
             << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
   if (!truth.empty()) {

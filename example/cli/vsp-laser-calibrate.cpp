@@ -16,6 +16,15 @@
                       [--report report.txt] [--figure before_after.png] [--robust-scale PX | --no-robust]
                       [--max-reprojection PX] [--corner-clearance PX]
   \endverbatim
+  or, without a chessboard, from ordinary frames of the ground at different attitudes (self-calibration,
+  vpLaserConicSelfCalibration; code in vpLaserSequenceCalibration.cpp):
+  \verbatim
+  vsp-laser-calibrate --from-sequence --camera camera.xml (--points points.csv | --images DIR | --list FILE)
+                      --laser previous.yaml (--apex-distance M | --previous-baseline | --hold-apex | --known-altitude FRAME:H)
+                      [--opening-angle-deg A] [--estimate-opening-angle] [--max-frames N] --output laser.yaml
+  \endverbatim
+  (points.csv: a header, then rows frame,u,v in pixels). Both modes write the same file; a failed
+  calibration writes nothing (the previous file stays).
   Output: the laser calibration in YAML (pose as a vpPoseVector, opening angle, standard deviations: the
   leave-one-view-out jackknife, which includes the grid pose errors, or with fewer than 3 views the formal
   ones from the laser point noise),
@@ -44,6 +53,7 @@
 #include "vpImageFileCheck.h"
 #include "vpLaserRigIo.h"
 #include "vpOutputFile.h"
+#include "vpLaserSequenceCalibration.h"
 #include "vpPngPlot.h"
 #include "vpProgress.h"
 
@@ -335,4 +345,9 @@ int run(int argc, char **argv)
 }
 } // namespace
 
-int main(int argc, char **argv) { return vpCommandLine::runGuarded(run, argc, argv); }
+int main(int argc, char **argv)
+{
+  if (vspLaserSequenceCalibration::requested(argc, argv))
+    return vpCommandLine::runGuarded(vspLaserSequenceCalibration::run, argc, argv);
+  return vpCommandLine::runGuarded(run, argc, argv);
+}

@@ -9,9 +9,9 @@
 #include <limits>
 #include <vector>
 
-namespace vpLaserCalibrationCheck
+namespace vsp::laser_calibration_check
 {
-double misfit(const vpLaserRobustFit::Result &result)
+double misfit(const vsp::laser_robust_fit::Result &result)
 {
   if (!std::isfinite(result.rmsConstrained))
     return std::numeric_limits<double>::quiet_NaN();
@@ -19,12 +19,12 @@ double misfit(const vpLaserRobustFit::Result &result)
   return excess > 0.0 ? std::sqrt(excess) : 0.0;
 }
 
-double tolerance(const vpLaserRobustFit::Result &result)
+double tolerance(const vsp::laser_robust_fit::Result &result)
 {
   return std::max(kNoiseFactor * std::max(result.sigma, result.rmsFree), kFloorPixels);
 }
 
-bool explained(const vpLaserRobustFit::Result &result)
+bool explained(const vsp::laser_robust_fit::Result &result)
 {
   const double m = misfit(result);
   return !(m > tolerance(result)); // NaN: no constrained fit to judge
@@ -69,7 +69,7 @@ vpLaserConicPose::vpLaserConicMistake diagnose(double openingAngle, const vpHomo
   }
   return best;
 }
-} // namespace vpLaserCalibrationCheck
+} // namespace vsp::laser_calibration_check
 
 std::string vpLaserConicPose::getMistakeMessage(vpLaserConicMistake mistake)
 {

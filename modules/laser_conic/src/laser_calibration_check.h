@@ -26,7 +26,7 @@
 
 #include "laser_robust_fit.h"
 
-namespace vpLaserCalibrationCheck
+namespace vsp::laser_calibration_check
 {
 //! Misfit allowed, in multiples of the noise scale of the trace (above the 24 of intrinsics off by 5 px).
 constexpr double kNoiseFactor = 30.0;
@@ -34,11 +34,11 @@ constexpr double kNoiseFactor = 30.0;
 constexpr double kFloorPixels = 3.0;
 
 //! Misfit (pixels) the calibration adds to the free fit, sqrt(max(0, rms_c^2 - rms_f^2)); NaN without constrained fit.
-double misfit(const vpLaserRobustFit::Result &result);
+double misfit(const vsp::laser_robust_fit::Result &result);
 //! Largest misfit the noise explains: max(kNoiseFactor max(sigma, rms_f), kFloorPixels).
-double tolerance(const vpLaserRobustFit::Result &result);
+double tolerance(const vsp::laser_robust_fit::Result &result);
 //! True unless the misfit is beyond the tolerance (a missing constrained fit cannot be judged: true).
-bool explained(const vpLaserRobustFit::Result &result);
+bool explained(const vsp::laser_robust_fit::Result &result);
 
 //! A calibration the user may have meant, one standard mistake away from the one given.
 struct Alternative
@@ -58,6 +58,6 @@ struct Alternative
 vpLaserConicPose::vpLaserConicMistake diagnose(double openingAngle, const vpHomogeneousMatrix &cMl,
                                                const vpCameraParameters &cam,
                                                const std::function<double(const Alternative &)> &fits);
-} // namespace vpLaserCalibrationCheck
+} // namespace vsp::laser_calibration_check
 
 #endif

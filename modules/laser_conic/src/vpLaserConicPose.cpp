@@ -22,7 +22,7 @@
 
 namespace
 {
-using vpLaserEstimators::PointList;
+using vsp::laser_estimators::PointList;
 
 //! Minimal number of points each method needs.
 int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
@@ -334,7 +334,7 @@ Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserCo
     consensus.found = true;
     return consensus;
   case vpLaserConicPose::PP5:
-    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Pp5Estimator(normalized), options, finalRefit, conic,
+    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Pp5Estimator(normalized), options, finalRefit, conic,
                                            consensus.report);
     break;
   case vpLaserConicPose::PP3: {
@@ -343,14 +343,14 @@ Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserCo
       consensus.cameraInsideCone = true;
       return consensus;
     }
-    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Pp3Estimator(normalized, tangents), options,
+    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Pp3Estimator(normalized, tangents), options,
                                            finalRefit, conic, consensus.report);
     break;
   }
   case vpLaserConicPose::GP3: {
-    vpLaserEstimators::PlaneModel model;
-    vpLaserEstimators::Gp3Estimator::tuneRansac(options);
-    consensus.found = ransacWithFinalRefit(vpLaserEstimators::Gp3Estimator(normalized, cone), options, finalRefit,
+    vsp::laser_estimators::PlaneModel model;
+    vsp::laser_estimators::Gp3Estimator::tuneRansac(options);
+    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Gp3Estimator(normalized, cone), options, finalRefit,
                                            model, consensus.report);
     consensus.startPlane = model.plane;
     break;
@@ -414,9 +414,9 @@ vpRansacOptions vpLaserConicPose::ransacOptions(double focal) const
   return options;
 }
 
-vpLaserRobustFit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicMethod method, double focal) const
+vsp::laser_robust_fit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicMethod method, double focal) const
 {
-  vpLaserRobustFit::Settings settings;
+  vsp::laser_robust_fit::Settings settings;
   settings.focal = focal;
   settings.threshold = m_threshold;
   settings.adaptive = m_scaleAdaptive && method != PLANE_PAIR;
@@ -425,9 +425,9 @@ vpLaserRobustFit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicMethod
   vpLaserConicFinalFit fit = m_finalFit;
   if (fit == FINAL_FIT_DEFAULT)
     fit = (method == PP3 || method == GP3) ? FINAL_FIT_SELECT : FINAL_FIT_FREE;
-  settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vpLaserRobustFit::FinalFit::CONSTRAINED
-                      : fit == FINAL_FIT_SELECT    ? vpLaserRobustFit::FinalFit::SELECT
-                                                   : vpLaserRobustFit::FinalFit::FREE;
+  settings.finalFit = fit == FINAL_FIT_CONSTRAINED ? vsp::laser_robust_fit::FinalFit::CONSTRAINED
+                      : fit == FINAL_FIT_SELECT    ? vsp::laser_robust_fit::FinalFit::SELECT
+                                                   : vsp::laser_robust_fit::FinalFit::FREE;
   return settings;
 }
 
@@ -436,25 +436,25 @@ vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const s
 {
   const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
   // The estimate again under each alternative calibration: its misfit when it explains the trace, else -1.
-  const auto fits = [&](const vpLaserCalibrationCheck::Alternative &alternative) {
+  const auto fits = [&](const vsp::laser_calibration_check::Alternative &alternative) {
     const PointList normalized = normalizedPoints(alternative.swapUV ? swappedUV(points) : points, alternative.cam);
     const vpLaserSolvers::LaserCone cone = laserCone(alternative.cMl, alternative.openingAngle);
     const double focal = 0.5 * (alternative.cam.get_px() + alternative.cam.get_py());
     const Consensus consensus = findConsensus(normalized, method, cone, ransacOptions(focal), !m_scaleAdaptive);
-    vpLaserRobustFit::Result fit;
+    vsp::laser_robust_fit::Result fit;
     if (!consensus.found || consensus.inliers.size() < needed ||
-        vpLaserRobustFit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
-                              finalFitSettings(method, focal), fit) != vpLaserRobustFit::Outcome::OK ||
+        vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
+                              finalFitSettings(method, focal), fit) != vsp::laser_robust_fit::Outcome::OK ||
         !fit.plane.allFinite() || fractionInFront(normalized, fit.inliers, fit.plane, cone) < 0.5 ||
-        !vpLaserCalibrationCheck::explained(fit))
+        !vsp::laser_calibration_check::explained(fit))
       return -1.0;
-    return vpLaserCalibrationCheck::misfit(fit);
+    return vsp::laser_calibration_check::misfit(fit);
   };
-  return vpLaserCalibrationCheck::diagnose(m_openingAngle, m_cMl, m_cam, fits);
+  return vsp::laser_calibration_check::diagnose(m_openingAngle, m_cMl, m_cam, fits);
 }
 
 bool vpLaserConicPose::failCalibration(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
-                                       const vpLaserRobustFit::Result &result)
+                                       const vsp::laser_robust_fit::Result &result)
 {
   m_rmsConstrained = result.rmsConstrained;
   m_rmsFree = result.rmsFree;
@@ -462,8 +462,8 @@ bool vpLaserConicPose::failCalibration(const std::vector<vpImagePoint> &points, 
   m_coverage = result.coverage;
   m_mistake = suspectedMistake(points, method);
   std::ostringstream msg;
-  msg << " (the constrained fit misses the trace by " << vpLaserCalibrationCheck::misfit(result)
-      << " px beyond the free fit, " << vpLaserCalibrationCheck::tolerance(result) << " px allowed; "
+  msg << " (the constrained fit misses the trace by " << vsp::laser_calibration_check::misfit(result)
+      << " px beyond the free fit, " << vsp::laser_calibration_check::tolerance(result) << " px allowed; "
       << getMistakeMessage(m_mistake) << ")";
   return fail(STATUS_CALIBRATION_MISMATCH, msg.str());
 }
@@ -480,7 +480,7 @@ bool vpLaserConicPose::failOrMismatch(vpLaserConicStatus status, const std::stri
                   details + ")");
 }
 
-void vpLaserConicPose::storeEstimate(const vpLaserRobustFit::Result &result, vpPlane &cPlane)
+void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result, vpPlane &cPlane)
 {
   const Eigen::Vector4d &plane = result.plane;
   cPlane.setABCD(plane(0), plane(1), plane(2), plane(3));
@@ -536,23 +536,23 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   }
 
   // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
-  vpLaserRobustFit::Result result;
-  switch (vpLaserRobustFit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
+  vsp::laser_robust_fit::Result result;
+  switch (vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
                                 finalFitSettings(method, focal), result)) {
-  case vpLaserRobustFit::Outcome::OK: break;
-  case vpLaserRobustFit::Outcome::SHORT_ARC: {
+  case vsp::laser_robust_fit::Outcome::OK: break;
+  case vsp::laser_robust_fit::Outcome::SHORT_ARC: {
     std::ostringstream msg;
     msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
     return failOrMismatch(STATUS_SHORT_ARC, msg.str(), points, method);
   }
-  case vpLaserRobustFit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
-  case vpLaserRobustFit::Outcome::NO_PLANE: return failOrMismatch(STATUS_NO_PLANE_PAIR, "", points, method);
+  case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
+  case vsp::laser_robust_fit::Outcome::NO_PLANE: return failOrMismatch(STATUS_NO_PLANE_PAIR, "", points, method);
   }
   if (!result.plane.allFinite())
     return fail(STATUS_PLANE_NOT_FINITE);
   if (fractionInFront(normalized, result.inliers, result.plane, cone) < 0.5)
     return failOrMismatch(STATUS_PLANE_BEHIND, "", points, method);
-  if (m_calibrationCheck && !vpLaserCalibrationCheck::explained(result))
+  if (m_calibrationCheck && !vsp::laser_calibration_check::explained(result))
     return failCalibration(points, method, result);
 
   storeEstimate(result, cPlane);
@@ -576,10 +576,18 @@ const vpMatrix &computedCovariance(const vpMatrix &covariance, const char *gette
 
 vpMatrix vpLaserConicPose::getCovarianceMatrix() const
 {
-  return computedCovariance(m_covariance, "getCovarianceMatrix");
+  return m_covarianceInflation * computedCovariance(m_covariance, "getCovarianceMatrix");
 }
 
 vpMatrix vpLaserConicPose::getPlaneCovarianceMatrix() const
 {
-  return computedCovariance(m_planeCovariance, "getPlaneCovarianceMatrix");
+  return m_covarianceInflation * computedCovariance(m_planeCovariance, "getPlaneCovarianceMatrix");
+}
+
+void vpLaserConicPose::setCovarianceInflation(double varianceScale)
+{
+  if (!(varianceScale > 0.0) || !std::isfinite(varianceScale))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "setCovarianceInflation: the variance scale must be finite and > 0");
+  m_covarianceInflation = varianceScale;
 }

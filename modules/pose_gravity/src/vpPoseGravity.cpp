@@ -15,13 +15,13 @@
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
-#include "gravityGeometry.h"
-#include "poseGravityFacade.h"
+#include "gravity_geometry.h"
+#include "pose_gravity_facade.h"
 
 namespace
 {
 using vpGravitySolvers::Pose;
-using namespace vpPoseGravityFacade;
+using namespace vsp::pose_gravity_facade;
 
 // Sine of the angle under which three object points are collinear (P3P).
 const double kCollinearTolerance = 1e-10;
@@ -110,9 +110,7 @@ vpGravitySolvers::detail::RefineOptions refineOptions(double imageSigma, double 
   options.imageSigma = imageSigma;
   options.cameraGravitySigma = cameraSigma;
   options.objectGravitySigma = objectSigma;
-  options.loss = (loss == vpPoseGravity::LOSS_HUBER)    ? vpGravitySolvers::detail::RefineLoss::Huber
-                 : (loss == vpPoseGravity::LOSS_CAUCHY) ? vpGravitySolvers::detail::RefineLoss::Cauchy
-                                                        : vpGravitySolvers::detail::RefineLoss::None;
+  options.loss = loss;
   options.lossScale = lossScale;
   return options;
 }

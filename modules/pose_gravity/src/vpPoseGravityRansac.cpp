@@ -20,14 +20,14 @@
 #include <visp3/pose_gravity/vpPoseGravity.h>
 #include <visp3/robust/vpRansac.h>
 
-#include "gravityGeometry.h"
-#include "gravityPairSolver.h"
-#include "poseGravityFacade.h"
+#include "gravity_geometry.h"
+#include "gravity_pair_solver.h"
+#include "pose_gravity_facade.h"
 
 namespace
 {
 using vpGravitySolvers::Pose;
-using namespace vpPoseGravityFacade;
+using namespace vsp::pose_gravity_facade;
 
 // The RANSAC estimator over 2-point minimal samples (see vpRansacLoop()).
 class GravityRansacEstimator

@@ -21,6 +21,7 @@
 #include <visp3/core/vpPoint.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/pose_gravity/vpPoseGravityException.h>
+#include <visp3/robust/vpRobustScale.h>
 
 /*!
   \ingroup group_pose_gravity
@@ -116,12 +117,17 @@ public:
     P3P_WIDEST_PAIR       //!< the paper's rule: the pair farthest apart in the image.
   } vpP3PPairRule;
 
-  //! Robust loss of refinePose() on each point's reprojection error (see setRefineLoss()).
-  typedef enum {
-    LOSS_NONE,   //!< squared error: maximum likelihood under Gaussian noise (default).
-    LOSS_HUBER,  //!< quadratic below the scale, linear beyond.
-    LOSS_CAUCHY  //!< \f$ \log(1 + (r/s)^2) \f$: the influence of large errors vanishes.
-  } vpRobustLoss;
+  /*!
+    Robust loss of refinePose() on each point's reprojection error (see setRefineLoss()): the
+    project's one loss enum (::vpRobustLoss, visp3/robust/vpRobustScale.h) under its former name.
+  */
+  typedef ::vpRobustLoss vpRobustLoss;
+  //! Squared error: maximum likelihood under Gaussian noise (default); vpRobustLoss::NONE.
+  static constexpr vpRobustLoss LOSS_NONE = vpRobustLoss::NONE;
+  //! Quadratic below the scale, linear beyond; vpRobustLoss::HUBER.
+  static constexpr vpRobustLoss LOSS_HUBER = vpRobustLoss::HUBER;
+  //! \f$ \log(1 + (r/s)^2) \f$: the influence of large errors vanishes; vpRobustLoss::CAUCHY.
+  static constexpr vpRobustLoss LOSS_CAUCHY = vpRobustLoss::CAUCHY;
 
   //! Filtering of degenerate points before RANSAC, as vpPose::RANSAC_FILTER_FLAGS.
   typedef enum {
