@@ -15,7 +15,7 @@
 
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
