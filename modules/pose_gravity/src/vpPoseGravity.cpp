@@ -90,6 +90,18 @@ vpPoseGravity::vpPoseGravityStatus checkPose(const Pose &pose, const std::vector
   return (error <= tol) ? vpPoseGravity::STATUS_OK : vpPoseGravity::STATUS_INCONSISTENT_GRAVITY;
 }
 
+//! True when every object point lies on one line along the object gravity (the yaw is then free).
+bool onOneVerticalLine(const std::vector<Eigen::Vector3d> &X, const Eigen::Vector3d &gObj)
+{
+  const Eigen::Vector3d g = gObj.normalized();
+  double scale = 0.0, offLine = 0.0;
+  for (const Eigen::Vector3d &P : X) {
+    scale = std::max(scale, (P - X.front()).norm());
+    offLine = std::max(offLine, (P - X.front()).cross(g).norm());
+  }
+  return offLine <= 1e-9 * std::max(scale, 1e-300);
+}
+
 // The settings of the refinement and of the covariance.
 vpGravitySolvers::detail::RefineOptions refineOptions(double imageSigma, double cameraSigma, double objectSigma,
                                                       vpPoseGravity::vpRobustLoss loss, double lossScale)
@@ -321,13 +333,16 @@ bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMa
                         {gObj, gCam, GRAVITY_MISTAKE_SWAPPED, STATUS_GRAVITY_SWAPPED}};
     double bestError = std::numeric_limits<double>::infinity();
     const bool fitted = m_status == STATUS_OK;
+    const bool vertical = m_status == STATUS_NO_SOLUTION && onOneVerticalLine(X, gObj);
     for (const auto &alternative : alternatives) {
       const vpPoseGravityStatus status = solveClosedForm(method == P3P, m_pairRule, alternative.gCam, alternative.gObj,
                                                          x, X, m_consistencyThreshold, reversed, reversedError);
-      // The exchange must also fit within twice the noise: a wrong IMU rotation often leaves some tilt
-      // that the exchanged vectors absorb a little better, which is no evidence of an exchange.
-      const bool withinNoise = alternative.mistake != GRAVITY_MISTAKE_SWAPPED || reversedError <= 2.0 * noise;
-      if (status == STATUS_OK && withinNoise && (!fitted || 2.0 * reversedError < error) && reversedError < bestError) {
+      // The exchange must also fit within twice the noise (a wrong IMU rotation leaves some tilt that
+      // the exchanged vectors may absorb a little better), and the points must not lie on one vertical
+      // line (no solution with the given vectors, but a pose with any other).
+      if (alternative.mistake == GRAVITY_MISTAKE_SWAPPED && (reversedError > 2.0 * noise || vertical))
+        continue;
+      if (status == STATUS_OK && (!fitted || 2.0 * reversedError < error) && reversedError < bestError) {
         bestError = reversedError;
         m_mistake = alternative.mistake;
         m_status = alternative.status;
