@@ -256,7 +256,7 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   font.drawText(I, m_yLabel, vpImagePoint(top - 20, 8), vpColor::black);
   // The legend goes into the corner of the chart that hides the fewest samples (top right on a tie), off
   // the bands along the top and bottom edges where markers beyond a fixed y range are drawn.
-  const vpImagePoint size = legendSize(font);
+  const vpImagePoint size = legendSize(font, clipped);
   const double band = m_fixedY ? 28.0 : 6.0;
   const vpImagePoint corners[] = {vpImagePoint(top + band, right - size.get_j() - 6),
                                   vpImagePoint(top + band, left + 6),
@@ -280,15 +280,19 @@ namespace
 const double kLegendRowHeight = 20.0, kLegendSampleWidth = 30.0;
 }
 
-vpImagePoint vpPngPlot::legendSize(const vpFont &font) const
+std::string vpPngPlot::legendName(size_t k, const std::vector<unsigned int> &clipped) const
 {
-  // Room for the longest name and the count of markers beyond the range that may follow it.
+  const std::string &name = m_series[k].name;
+  return clipped[k] > 0 ? name + ", " + std::to_string(clipped[k]) + " off the chart" : name;
+}
+
+vpImagePoint vpPngPlot::legendSize(const vpFont &font, const std::vector<unsigned int> &clipped) const
+{
   double nameWidth = 0.0;
   unsigned int rows = 0;
-  for (const Series &s : m_series)
-    if (!s.name.empty()) {
-      const std::string longest = s.name + (s.markers && m_fixedY ? ", 000 off the chart" : "");
-      nameWidth = std::max(nameWidth, font.getMeasure(longest).get_j());
+  for (size_t k = 0; k < m_series.size(); ++k)
+    if (!m_series[k].name.empty()) {
+      nameWidth = std::max(nameWidth, font.getMeasure(legendName(k, clipped)).get_j());
       ++rows;
     }
   if (rows == 0)
@@ -300,7 +304,7 @@ void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, const vpImage
                            const std::vector<unsigned int> &clipped) const
 {
   // One column of samples and one of names, on a white box that hides the data behind it.
-  const vpImagePoint size = legendSize(font);
+  const vpImagePoint size = legendSize(font, clipped);
   if (size.get_i() <= 0.0)
     return;
   const vpRect box(corner, corner + size);
@@ -318,8 +322,8 @@ void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, const vpImage
                             sample + vpImagePoint(0, kLegendSampleWidth / 2), s.color, 3);
     if (s.name.empty())
       continue;
-    const std::string name = clipped[k] > 0 ? s.name + ", " + std::to_string(clipped[k]) + " off the chart" : s.name;
-    font.drawText(I, name, vpImagePoint(row, corner.get_j() + kLegendSampleWidth + 12), vpColor::black);
+    font.drawText(I, legendName(k, clipped), vpImagePoint(row, corner.get_j() + kLegendSampleWidth + 12),
+                  vpColor::black);
     row += kLegendRowHeight;
   }
 }
