@@ -3,12 +3,13 @@
 #
 #   vsp_add_module(<name> [VISP_DEPENDS visp_core ...] [PUBLIC_LIBS ...] [PRIVATE_LIBS ...] [TEST_LIBS ...])
 #
-# - Library visp_<name> from modules/<name>/src/*.cpp; public headers modules/<name>/include/visp3/<name>/*.h.
+# - Library visp_<name> from modules/<name>/src/**.cpp; public headers modules/<name>/include/visp3/<name>/*.h.
 #   VISP_DEPENDS lists the ViSP modules and this repository's modules whose headers the module's code
 #   includes (and nothing else); PUBLIC_LIBS / PRIVATE_LIBS other libraries (Ceres, OpenCV); TEST_LIBS
 #   what the tests include beyond that (ViSP modules or targets).
-# - Private headers are the .h files of modules/<name>/src/ (never installed, seen only by the
-#   module's sources); their files are named in snake_case, the public ones vpClassName.h.
+# - Private headers are the .h files of modules/<name>/src/ and its subfolders (never installed, seen
+#   only by the module's sources); private files are named in snake_case, public ones vpClassName.h
+#   (doc/structure.md).
 # - Every modules/<name>/test/*.cpp is a GoogleTest executable <name>-<file> whose cases ctest runs
 #   (as <name>-<file>.<Suite>.<Case>), with the same names in both builds.
 # - Symbols are hidden unless tagged VISP_EXPORT, as in ViSP's own build: a public class or free

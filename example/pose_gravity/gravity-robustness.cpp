@@ -14,7 +14,7 @@
     of runs returning success with a pose more than 10 degrees off, P3P and LEAST_SQUARES (8 points),
     exact and 1 px image noise.
   (That LEAST_SQUARES returns the best minimum of its cost is checked against a dense scan of the yaw
-  by the test pose_gravity_Checks.LeastSquaresIsTheBestMinimum.)
+  by the test PoseGravityChecks.LeastSquaresIsTheBestMinimum.)
   - lsq_near_points: 3D error of the near points (1 to 2 m) of scenes that mix them with far points
     (8 m, 40 m), LEAST_SQUARES (0 and 2 reweighting passes) over the maximum-likelihood pose.
   - p3p_noisy_gravity: P3P median rotation error over the median relative tilt error of the two

@@ -11,7 +11,7 @@
 
 namespace vpLaserSolvers
 {
-namespace internal
+namespace detail
 {
 Eigen::Matrix3d laserConeForm(const LaserCone &cone)
 {
@@ -20,11 +20,11 @@ Eigen::Matrix3d laserConeForm(const LaserCone &cone)
   // R_las = cRl^T, hence R_las^T d R_las = cRl d cRl^T.
   return cone.cRl * d.asDiagonal() * cone.cRl.transpose();
 }
-} // namespace internal
+} // namespace detail
 
 Eigen::Matrix4d laserConeQuadric(const LaserCone &cone)
 {
-  const Eigen::Matrix3d M = internal::laserConeForm(cone);
+  const Eigen::Matrix3d M = detail::laserConeForm(cone);
   const Eigen::Vector3d Mt = M * cone.apex;
   Eigen::Matrix4d D;
   D.topLeftCorner<3, 3>() = M;

@@ -25,7 +25,7 @@ typedef Eigen::Matrix<double, 6, 6> Matrix6d;
 bool hartleyNormalisation(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &T)
 {
   double cx = 0.0, cy = 0.0, meanDistance = 0.0;
-  internal::centroidAndSpread(points, n, cx, cy, meanDistance);
+  detail::centroidAndSpread(points, n, cx, cy, meanDistance);
   const Eigen::Vector2d centroid(cx, cy);
   if (!(meanDistance > 0.0) || !std::isfinite(meanDistance))
     return false;
@@ -127,7 +127,7 @@ bool fitConic(const Eigen::Vector2d *points, int n, Eigen::Matrix3d &c)
   if (n < 5 || points == nullptr)
     return false;
   // A minimal sample with two nearly coincident points determines its conic by rounding only.
-  if (n == 5 && internal::nearDuplicate(points, 5, 1e-6))
+  if (n == 5 && detail::nearDuplicate(points, 5, 1e-6))
     return false;
   Eigen::Matrix3d T;
   if (!hartleyNormalisation(points, n, T))

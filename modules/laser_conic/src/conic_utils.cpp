@@ -17,7 +17,7 @@ namespace vpLaserSolvers
 {
 Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const LaserCone &cone)
 {
-  const Eigen::Matrix3d c = internal::traceConic(plane, cone.apex, internal::laserConeForm(cone));
+  const Eigen::Matrix3d c = detail::traceConic(plane, cone.apex, detail::laserConeForm(cone));
   const double norm = c.norm();
   return norm > 0.0 ? Eigen::Matrix3d(c / norm) : c;
 }

@@ -58,7 +58,7 @@ int rayConeIntersections(const Eigen::Vector2d &p, const LaserCone &cone, const 
 int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone, Eigen::Vector4d planes[8])
 {
   // Two nearly coincident rays leave the plane turning about the line through them, fixed by rounding.
-  if (internal::nearDuplicate(points, 3, 1e-6))
+  if (detail::nearDuplicate(points, 3, 1e-6))
     return 0;
   const Eigen::Matrix3d M = laserConeQuadric(cone).topLeftCorner<3, 3>();
   Eigen::Vector3d X[3][2];

@@ -23,7 +23,7 @@
 #include "laser_geometry.h"
 #include "laser_kernels.h"
 
-namespace vpLaserEstimators
+namespace vsp::laser_estimators
 {
 typedef std::vector<Eigen::Vector2d, Eigen::aligned_allocator<Eigen::Vector2d> > PointList;
 
@@ -136,7 +136,7 @@ public:
   //! Estimator over normalized image points (kept by reference) for the given laser cone.
   Gp3Estimator(const PointList &points, const vpLaserSolvers::LaserCone &cone)
     : m_points(points), m_x(points.size()), m_y(points.size()), m_cone(cone),
-      m_form(vpLaserSolvers::internal::laserConeForm(cone)), m_subset()
+      m_form(vpLaserSolvers::detail::laserConeForm(cone)), m_subset()
   {
     for (size_t i = 0; i < points.size(); ++i) {
       m_x[i] = points[i](0);
@@ -159,7 +159,7 @@ public:
   //! Distance of the point to the image of the trace the plane predicts.
   double residual(const Model &m, int i) const
   {
-    return std::sqrt(vpLaserSolvers::internal::ConicCoefficients(m.conic).squaredSampson(m_x[i], m_y[i]));
+    return std::sqrt(vpLaserSolvers::detail::ConicCoefficients(m.conic).squaredSampson(m_x[i], m_y[i]));
   }
   /*!
     Inliers among [begin, end), their truncated squared distances added to \e cost and their indices
@@ -169,13 +169,13 @@ public:
   */
   int scoreRange(const Model &m, int begin, int end, double thr2, double &cost, int *inliers) const
   {
-    const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
+    const vpLaserSolvers::detail::ConicCoefficients c(m.conic);
     constexpr int kChunk = 64;
     int local[kChunk];
     int count = 0;
     for (int first = begin; first < end; first += kChunk) {
       const int size = std::min(end - first, kChunk);
-      count += vpLaserSolvers::internal::scoreConicChunk(c, m_x.data() + first, m_y.data() + first, first, size, thr2,
+      count += vpLaserSolvers::detail::scoreConicChunk(c, m_x.data() + first, m_y.data() + first, first, size, thr2,
                                                          cost, inliers ? inliers + count : local);
     }
     return count;
@@ -183,7 +183,7 @@ public:
   //! Inliers among the listed points (the preemptive test of vpRansacLoop()): the test of scoreRange().
   int countInliers(const Model &m, const int *indices, int count, double thr2) const
   {
-    const vpLaserSolvers::internal::ConicCoefficients c(m.conic);
+    const vpLaserSolvers::detail::ConicCoefficients c(m.conic);
     const double thr2Times4 = 4.0 * thr2;
     int inliers = 0;
     for (int k = 0; k < count; ++k) {
@@ -210,7 +210,7 @@ private:
   {
     Model m;
     m.plane = plane;
-    const Eigen::Matrix3d c = vpLaserSolvers::internal::traceConic(plane, m_cone.apex, m_form);
+    const Eigen::Matrix3d c = vpLaserSolvers::detail::traceConic(plane, m_cone.apex, m_form);
     const double norm = c.norm();
     m.conic = norm > 0.0 ? Eigen::Matrix3d(c / norm) : c;
     return m;
@@ -238,6 +238,6 @@ private:
   Eigen::Matrix3d m_form;     //!< 3x3 form of the laser cone
   mutable PointList m_subset; //!< points handed to the refinement (capacity reserved once)
 };
-} // namespace vpLaserEstimators
+} // namespace vsp::laser_estimators
 
 #endif

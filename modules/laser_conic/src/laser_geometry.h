@@ -20,7 +20,7 @@
 
 namespace vpLaserSolvers
 {
-namespace internal
+namespace detail
 {
 //! 3x3 form M of the laser cone: (X - apex)^T M (X - apex) = 0 in the camera frame (defined in cones.cpp).
 Eigen::Matrix3d laserConeForm(const LaserCone &cone);
@@ -101,7 +101,7 @@ template <class Point> inline bool nearDuplicate(const Point *p, int n, double r
     }
   return !(smallest > relative * relative * largest);
 }
-} // namespace internal
+} // namespace detail
 } // namespace vpLaserSolvers
 
 #endif

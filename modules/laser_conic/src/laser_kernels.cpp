@@ -12,7 +12,7 @@
 
 namespace vpLaserSolvers
 {
-namespace internal
+namespace detail
 {
 namespace
 {
@@ -385,5 +385,5 @@ VSP_LASER_KERNEL void ellipseBins(const Eigen::Vector2d *points, const int *indi
     out[i] = binOf(v0, v1, atan2Polynomial(v1, v0), bins);
   }
 }
-} // namespace internal
+} // namespace detail
 } // namespace vpLaserSolvers

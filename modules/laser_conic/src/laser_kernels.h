@@ -43,7 +43,7 @@
 
 namespace vpLaserSolvers
 {
-namespace internal
+namespace detail
 {
 /*!
   RANSAC scoring of a conic on the points (x[j], y[j]), j < size (normalized coordinates, size <=
@@ -108,7 +108,7 @@ void centroidAndSpread(const Eigen::Vector2d *points, int n, double &cx, double 
 */
 void ellipseBins(const Eigen::Vector2d *points, const int *indices, int n, const Eigen::Vector2d &centre,
                  const Eigen::Matrix2d &U, int bins, int *out);
-} // namespace internal
+} // namespace detail
 } // namespace vpLaserSolvers
 
 #endif

@@ -19,7 +19,7 @@
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpMeterPixelConversion.h>
 
-namespace vpLaserLens
+namespace vsp::laser_lens
 {
 /*!
   The pixel (u, v) that vpPixelMeterConversion maps onto the normalized point (x, y): with distortion,
@@ -51,6 +51,6 @@ inline bool pixelOfNormalized(const vpCameraParameters &cam, double x, double y,
   v = cam.get_v0() + cam.get_py() * y * scale;
   return std::isfinite(u) && std::isfinite(v);
 }
-} // namespace vpLaserLens
+} // namespace vsp::laser_lens
 
 #endif

@@ -13,7 +13,7 @@
 
 #include <visp3/core/vpHomogeneousMatrix.h>
 
-namespace vpLaserPoseCheck
+namespace vsp::laser_pose_check
 {
 /*!
   True when every entry of \e M is finite and \e M is a rigid transformation up to 1e-6 (a pose read
@@ -27,6 +27,6 @@ inline bool isFinitePose(const vpHomogeneousMatrix &M)
         return false;
   return M.isAnHomogeneousMatrix(1e-6);
 }
-} // namespace vpLaserPoseCheck
+} // namespace vsp::laser_pose_check
 
 #endif

@@ -22,7 +22,7 @@
 #include "laser_geometry.h"
 #include "laser_kernels.h"
 
-namespace vpLaserRobustFit
+namespace vsp::laser_robust_fit
 {
 namespace
 {
@@ -54,7 +54,7 @@ double signedSampson(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
 std::vector<double> residualsOf(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &c,
                                 double focal)
 {
-  const vpLaserSolvers::internal::ConicCoefficients k(c);
+  const vpLaserSolvers::detail::ConicCoefficients k(c);
   std::vector<double> r;
   r.reserve(indices.size());
   for (int i : indices) {
@@ -68,7 +68,7 @@ std::vector<double> residualsOf(const PointList &points, const std::vector<int> 
 //! Residuals (pixels) of every point to the conic.
 std::vector<double> allResiduals(const PointList &points, const Eigen::Matrix3d &c, double focal)
 {
-  const vpLaserSolvers::internal::ConicCoefficients k(c);
+  const vpLaserSolvers::detail::ConicCoefficients k(c);
   std::vector<double> r(points.size());
   // Two points per SIMD register (the square root and the division dominate), the same operations
   // per point as the scalar tail.
@@ -120,7 +120,7 @@ Eigen::Matrix3d normalised(const Eigen::Matrix3d &c)
 bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &inliers, Eigen::Matrix3d &c,
                   double &sigma, std::vector<double> &traceResiduals)
 {
-  if (!vpLaserEstimators::fitEllipseOn(points, inliers, c))
+  if (!vsp::laser_estimators::fitEllipseOn(points, inliers, c))
     return false;
   std::vector<int> next;
   bool current = false; // traceResiduals and sigma are those of the final inliers to the final conic
@@ -134,7 +134,7 @@ bool collectTrace(const PointList &points, const Settings &s, std::vector<int> &
     current = true;
     vpRobustCollect(r, std::max(s.threshold, s.scaleFactor * sigma), next);
     Eigen::Matrix3d refit;
-    if (next.size() < 5 || next == inliers || !vpLaserEstimators::fitEllipseOn(points, next, refit))
+    if (next.size() < 5 || next == inliers || !vsp::laser_estimators::fitEllipseOn(points, next, refit))
       break;
     inliers.swap(next);
     c = refit;
@@ -159,7 +159,7 @@ bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal,
   const int n = static_cast<int>(trace.size());
   if (robust) {
     // The residuals of the final plane come from the refinement's own last pass.
-    if (!vpLaserSolvers::internal::refinePlaneHuber(trace.data(), n, cone, plane, kIrlsRounds, kIrlsIterations,
+    if (!vpLaserSolvers::detail::refinePlaneHuber(trace.data(), n, cone, plane, kIrlsRounds, kIrlsIterations,
                                                     residuals))
       return false;
     for (double &r : residuals)
@@ -301,7 +301,7 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
   // Occupied bins of 0.5 deg around the ellipse; the coverage is the circle minus its largest empty run.
   constexpr int kBins = 720;
   std::vector<int> bins(indices.size());
-  vpLaserSolvers::internal::ellipseBins(points.data(), indices.data(), static_cast<int>(indices.size()), centre, U,
+  vpLaserSolvers::detail::ellipseBins(points.data(), indices.data(), static_cast<int>(indices.size()), centre, U,
                                         kBins, bins.data());
   char occupied[kBins] = {};
   for (int bin : bins)
@@ -332,7 +332,7 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
     if (!collectTrace(points, s, res.inliers, freeConic, res.sigma, rf))
       return Outcome::NOT_AN_ELLIPSE;
   } else {
-    if (!vpLaserEstimators::fitEllipseOn(points, res.inliers, freeConic))
+    if (!vsp::laser_estimators::fitEllipseOn(points, res.inliers, freeConic))
       return Outcome::NOT_AN_ELLIPSE;
     rf = residualsOf(points, res.inliers, freeConic, s.focal);
     res.sigma = vpRobustMadScale(rf);
@@ -392,4 +392,4 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   }
   return Outcome::OK;
 }
-} // namespace vpLaserRobustFit
+} // namespace vsp::laser_robust_fit

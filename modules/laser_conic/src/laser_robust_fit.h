@@ -20,9 +20,9 @@
 
 #include "laser_estimators.h"
 
-namespace vpLaserRobustFit
+namespace vsp::laser_robust_fit
 {
-using vpLaserEstimators::PointList;
+using vsp::laser_estimators::PointList;
 
 //! Which fit gives the final plane.
 enum class FinalFit {
@@ -70,6 +70,6 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const vpLa
 
 //! Angular coverage (rad, in [0, 2 pi]) of the points around the centre of the ellipse \e c.
 double arcCoverage(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &c);
-} // namespace vpLaserRobustFit
+} // namespace vsp::laser_robust_fit
 
 #endif

@@ -9,7 +9,7 @@
 
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
-namespace vpLaserSimFloor
+namespace vsp::laser_sim_floor
 {
 namespace
 {
@@ -130,4 +130,4 @@ void albedo(int type, double X, double Y, uint32_t seed, float rgb[3], float &gl
     darkTiles(X, Y, seed, rgb, gloss);
   }
 }
-} // namespace vpLaserSimFloor
+} // namespace vsp::laser_sim_floor

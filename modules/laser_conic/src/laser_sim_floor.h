@@ -12,7 +12,7 @@
 
 #include <cstdint>
 
-namespace vpLaserSimFloor
+namespace vsp::laser_sim_floor
 {
 //! Integer hash of a lattice cell and a seed, well mixed (one multiply-xorshift chain).
 inline uint32_t hash(int32_t a, int32_t b, uint32_t seed)
@@ -37,6 +37,6 @@ void albedo(int type, double X, double Y, uint32_t seed, float rgb[3], float &gl
 
 //! R, G, B (0-255) of a colour given by hue (degrees), saturation and value (0-1).
 void hsvToRgb(float hue, float saturation, float value, float rgb[3]);
-} // namespace vpLaserSimFloor
+} // namespace vsp::laser_sim_floor
 
 #endif

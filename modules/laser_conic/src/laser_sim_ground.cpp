@@ -72,19 +72,19 @@ std::vector<vpLaserConicSimulator::vpDistractor> sceneObjects(const vpLaserConic
 {
   std::vector<vpLaserConicSimulator::vpDistractor> objects = settings.distractors;
   for (unsigned int k = 0; k < settings.clutter; ++k) {
-    const uint32_t h1 = vpLaserSimFloor::hash(static_cast<int>(k), 11, sceneSeed),
-                   h2 = vpLaserSimFloor::hash(static_cast<int>(k), 12, sceneSeed);
+    const uint32_t h1 = vsp::laser_sim_floor::hash(static_cast<int>(k), 11, sceneSeed),
+                   h2 = vsp::laser_sim_floor::hash(static_cast<int>(k), 12, sceneSeed);
     vpLaserConicSimulator::vpDistractor d;
     d.shape = (h1 & 1) ? vpLaserConicSimulator::DISTRACTOR_DISC : vpLaserConicSimulator::DISTRACTOR_RECTANGLE;
-    const double radius = settings.clutterRadius * std::sqrt(vpLaserSimFloor::unit(h1));
-    const double angle = 2.0 * M_PI * vpLaserSimFloor::unit(h2);
+    const double radius = settings.clutterRadius * std::sqrt(vsp::laser_sim_floor::unit(h1));
+    const double angle = 2.0 * M_PI * vsp::laser_sim_floor::unit(h2);
     d.x = radius * std::cos(angle);
     d.y = radius * std::sin(angle);
-    d.size = 0.01 + 0.03 * vpLaserSimFloor::unit(h1 >> 5);
+    d.size = 0.01 + 0.03 * vsp::laser_sim_floor::unit(h1 >> 5);
     float c[3];
-    vpLaserSimFloor::hsvToRgb(vpLaserSimFloor::unit(h2 >> 3) < 0.5f ? 355.f : 5.f,
-                              0.75f + 0.25f * vpLaserSimFloor::unit(h2 >> 9),
-                              0.45f + 0.4f * vpLaserSimFloor::unit(h2 >> 13), c);
+    vsp::laser_sim_floor::hsvToRgb(vsp::laser_sim_floor::unit(h2 >> 3) < 0.5f ? 355.f : 5.f,
+                              0.75f + 0.25f * vsp::laser_sim_floor::unit(h2 >> 9),
+                              0.45f + 0.4f * vsp::laser_sim_floor::unit(h2 >> 13), c);
     d.colour = vpRGBa(static_cast<unsigned char>(c[0]), static_cast<unsigned char>(c[1]),
                       static_cast<unsigned char>(c[2]), 255);
     objects.push_back(d);
@@ -137,7 +137,7 @@ void vpLaserConicSimulator::surfaceAlbedo(const vpRenderSettings &settings, uint
                                           const std::vector<vpDistractor> &objects, double X, double Y, int i, int j,
                                           const double R[3][3], const double C[3], float albedo[3], float &gloss) const
 {
-  vpLaserSimFloor::albedo(settings.floor, X, Y, sceneSeed, albedo, gloss);
+  vsp::laser_sim_floor::albedo(settings.floor, X, Y, sceneSeed, albedo, gloss);
   if (m_texture.image.getSize() != 0 &&
       sampleTexture(m_texture.image, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
     gloss = 0.2f;

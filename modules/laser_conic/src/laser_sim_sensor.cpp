@@ -77,7 +77,7 @@ cv::Mat motionBlurKernel(double length, double angle)
 }
 } // namespace
 
-void vpLaserSimSensor::applyOptics(cv::Mat &image, double blur, double motionLength, double motionAngle)
+void vsp::laser_sim_sensor::applyOptics(cv::Mat &image, double blur, double motionLength, double motionAngle)
 {
   if (blur > 0.0)
     cv::GaussianBlur(image, image, cv::Size(0, 0), blur);
@@ -86,7 +86,7 @@ void vpLaserSimSensor::applyOptics(cv::Mat &image, double blur, double motionLen
                  cv::BORDER_REPLICATE);
 }
 
-void vpLaserSimSensor::expose(const cv::Mat &image, double noise, uint64_t seed, vpImage<vpRGBa> &I)
+void vsp::laser_sim_sensor::expose(const cv::Mat &image, double noise, uint64_t seed, vpImage<vpRGBa> &I)
 {
   const int W = image.cols, H = image.rows;
   I.resize(static_cast<unsigned int>(H), static_cast<unsigned int>(W));
@@ -111,7 +111,7 @@ void vpLaserSimSensor::expose(const cv::Mat &image, double noise, uint64_t seed,
   }
 }
 
-void vpLaserSimSensor::compressJpeg(vpImage<vpRGBa> &I, int quality)
+void vsp::laser_sim_sensor::compressJpeg(vpImage<vpRGBa> &I, int quality)
 {
   const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
   cv::Mat bgr(H, W, CV_8UC3);

@@ -17,7 +17,7 @@
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpRGBa.h>
 
-namespace vpLaserSimSensor
+namespace vsp::laser_sim_sensor
 {
 /*!
   Optics and motion on a float RGB image (in place): a Gaussian blur of standard deviation \e blur pixels
@@ -37,6 +37,6 @@ void expose(const cv::Mat &image, double noise, uint64_t seed, vpImage<vpRGBa> &
   as a camera's encoder).
 */
 void compressJpeg(vpImage<vpRGBa> &I, int quality);
-} // namespace vpLaserSimSensor
+} // namespace vsp::laser_sim_sensor
 
 #endif

@@ -26,7 +26,7 @@ namespace vpLaserSolvers
 {
 namespace
 {
-using internal::ConicCoefficients;
+using detail::ConicCoefficients;
 
 /*!
   The image conic of a plane and its derivatives along the three local coordinates of the plane:
@@ -95,7 +95,7 @@ struct PointTerms
   double *j2() const { return values.get() + 3 * static_cast<size_t>(capacity); }
 };
 
-NormalEquations equationsOf(const internal::PlaneTermsSums &s)
+NormalEquations equationsOf(const detail::PlaneTermsSums &s)
 {
   NormalEquations ne;
   ne.JtJ << s.h[0], s.h[1], s.h[2], s.h[1], s.h[3], s.h[4], s.h[2], s.h[4], s.h[5];
@@ -107,28 +107,28 @@ NormalEquations equationsOf(const internal::PlaneTermsSums &s)
 //! Weighted normal equations of stored terms (a reweighting: no evaluation of the conic).
 NormalEquations assemble(const PointTerms &t, const double *weights, int n)
 {
-  internal::PlaneTermsSums sums;
-  internal::planeTermsSums(t.r(), t.j0(), t.j1(), t.j2(), weights, n, sums);
+  detail::PlaneTermsSums sums;
+  detail::planeTermsSums(t.r(), t.j0(), t.j1(), t.j2(), weights, n, sums);
   return equationsOf(sums);
 }
 
 /*!
   One pass over the points: their terms stored and the normal equations (unit weights when
-  \e weights is null), by internal::planeTermsKernel(). Points where the conic has no gradient
+  \e weights is null), by detail::planeTermsKernel(). Points where the conic has no gradient
   are skipped.
 */
 NormalEquations evaluateTerms(const Eigen::Vector2d *points, const double *weights, int n, const PlaneConics &pc,
                               PointTerms &t)
 {
-  internal::PlaneTermsCoefficients k{ConicCoefficients(pc.c), ConicCoefficients(pc.dc[2]), {}, {}, {}};
+  detail::PlaneTermsCoefficients k{ConicCoefficients(pc.c), ConicCoefficients(pc.dc[2]), {}, {}, {}};
   for (int i = 0; i < 3; ++i) {
     k.w[i] = pc.w(i);
     k.t0[i] = pc.t[0](i);
     k.t1[i] = pc.t[1](i);
   }
   t.resize(n);
-  internal::PlaneTermsSums sums;
-  internal::planeTermsKernel(k, points, weights, n, t.r(), t.j0(), t.j1(), t.j2(), sums);
+  detail::PlaneTermsSums sums;
+  detail::planeTermsKernel(k, points, weights, n, t.r(), t.j0(), t.j1(), t.j2(), sums);
   return equationsOf(sums);
 }
 
@@ -223,7 +223,7 @@ bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, i
 {
   if (!validStart(points, n, plane))
     return false;
-  const Eigen::Matrix3d M = internal::laserConeForm(cone);
+  const Eigen::Matrix3d M = detail::laserConeForm(cone);
   Iterate current, next;
   evaluate(plane / plane.head<3>().norm(), points, weights, n, cone.apex, M, current);
   if (!std::isfinite(current.ne.cost))
@@ -233,14 +233,14 @@ bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, i
   return true;
 }
 
-namespace internal
+namespace detail
 {
 bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane, int rounds,
                       int iterations, std::vector<double> &residuals)
 {
   if (!validStart(points, n, plane))
     return false;
-  const Eigen::Matrix3d M = internal::laserConeForm(cone);
+  const Eigen::Matrix3d M = detail::laserConeForm(cone);
   Iterate current, next;
   evaluate(plane / plane.head<3>().norm(), points, nullptr, n, cone.apex, M, current);
   std::vector<double> w(static_cast<size_t>(n)), scratch;
@@ -251,7 +251,7 @@ bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &con
     const double sigma = vpRobustMadScale(std::move(scratch));
     // vpRobustWeight(vpRobustLoss::HUBER, r, sigma) for every residual (NaN, no gradient: zero weight).
     if (sigma > 0.0)
-      internal::huberWeights(r, n, 1.345 * sigma, w.data());
+      detail::huberWeights(r, n, 1.345 * sigma, w.data());
     else
       for (int i = 0; i < n; ++i)
         w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, r[i], sigma);
@@ -267,5 +267,5 @@ bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &con
   residuals.assign(current.terms.r(), current.terms.r() + n);
   return true;
 }
-} // namespace internal
+} // namespace detail
 } // namespace vpLaserSolvers

@@ -278,7 +278,7 @@ bool epipolarTangents(const LaserCone &cone, EpipolarTangents &tangents)
 
 int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents, Eigen::Matrix3d conics[4])
 {
-  if (internal::nearDuplicate(points, 3, kMinimalSampleSpread))
+  if (detail::nearDuplicate(points, 3, kMinimalSampleSpread))
     return 0;
   const Eigen::Vector3d x[3] = {Eigen::Vector3d(points[0](0), points[0](1), 1.0),
                                 Eigen::Vector3d(points[1](0), points[1](1), 1.0),

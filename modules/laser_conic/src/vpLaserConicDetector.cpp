@@ -28,7 +28,7 @@ vpLaserConicDetector::vpLaserConicDetector()
 {
 }
 
-vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vpLaserDetector::RidgeWorkspace) {}
+vpLaserConicDetector::vpWorkspace::vpWorkspace() : m_work(new vsp::laser_detector::RidgeWorkspace) {}
 
 vpLaserConicDetector::vpWorkspace::vpWorkspace(const vpWorkspace &other) : vpWorkspace()
 {
@@ -149,7 +149,7 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
                e = 0.5 * (C[1][2] + C[2][1]), f = C[2][2];
   // Sampled at every row and every column of a large image (16384 px): points outside the image are ignored
   // when the region is rasterised.
-  const std::vector<vpImagePoint> points = vpLaserDetector::sampleConicOnLines(a, b, c, d, e, f, margin);
+  const std::vector<vpImagePoint> points = vsp::laser_detector::sampleConicOnLines(a, b, c, d, e, f, margin);
   check(!points.empty(), "the conic has no real point near the image");
   m_region = points;
   m_regionMargin = margin;
@@ -158,11 +158,11 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 
 void vpLaserConicDetector::rasteriseRegion(int H, int W)
 {
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   if (work.regionValid && work.regionGeneration == m_regionGeneration && work.regionHeight == static_cast<unsigned int>(H) &&
       work.regionWidth == static_cast<unsigned int>(W))
     return;
-  vpLaserDetector::rasteriseBand(m_region, m_regionMargin, static_cast<int>(m_maxStripeWidth), H, W, work.searchRegion,
+  vsp::laser_detector::rasteriseBand(m_region, m_regionMargin, static_cast<int>(m_maxStripeWidth), H, W, work.searchRegion,
                                  work.scoreRegion);
   work.regionValid = true;
   work.regionGeneration = m_regionGeneration;
@@ -173,7 +173,7 @@ void vpLaserConicDetector::rasteriseRegion(int H, int W)
 const vpImage<unsigned char> &vpLaserConicDetector::getMask() const
 {
   if (m_maskDirty) {
-    vpLaserDetector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask.image);
+    vsp::laser_detector::drawRuns(m_runs, m_work.get(), m_height, m_width, m_mask.image);
     m_maskDirty = false;
   }
   return m_mask.image;
@@ -188,21 +188,21 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   m_width = I.getWidth();
   m_maskDirty = m_method == DETECTION_RIDGE;
   if (m_method == DETECTION_HSV) {
-    const vpLaserDetector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
+    const vsp::laser_detector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
                                                     static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
-    return vpLaserDetector::detectHsv(I, settings, m_mask.image);
+    return vsp::laser_detector::detectHsv(I, settings, m_mask.image);
   }
-  const vpLaserDetector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
+  const vsp::laser_detector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
                                                     static_cast<int>(m_saturationLevel), m_minSegmentLength,
                                                     static_cast<int>(m_step), getInstructionSetUsed()};
-  vpLaserDetector::RidgeReport report;
+  vsp::laser_detector::RidgeReport report;
   std::vector<vpImagePoint> points;
-  vpLaserDetector::RidgeWorkspace &work = m_work.get();
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   if (m_region.empty() || I.getSize() == 0)
-    points = vpLaserDetector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
+    points = vsp::laser_detector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
   else {
     rasteriseRegion(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
-    points = vpLaserDetector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report);
+    points = vsp::laser_detector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report);
   }
   m_threshold = report.threshold;
   m_noise = report.noise;

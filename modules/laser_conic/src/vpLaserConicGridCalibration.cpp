@@ -14,6 +14,8 @@
 #include <visp3/core/vpRotationVector.h>
 #include <visp3/core/vpThetaUVector.h>
 
+#include "laser_value_check.h"
+
 vpLaserConicGridCalibration::vpLaserConicGridCalibration()
   : m_cam(), m_hasCam(false), m_squaresX(0), m_squaresY(0), m_squareSize(0.0), m_margin(0.5), m_maxReprojection(1.0), m_cornerClearance(8.0),
     m_laserClearancePoints(nullptr),
@@ -42,25 +44,22 @@ void vpLaserConicGridCalibration::setChessboard(unsigned int squaresX, unsigned 
 
 void vpLaserConicGridCalibration::setGridMargin(double squares)
 {
-  if (!std::isfinite(squares) || squares < 0.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicGridCalibration: the grid margin must be finite and >= 0");
+  vsp::laser_value_check::requireNonNegative(squares,
+                                             "vpLaserConicGridCalibration: the grid margin must be finite and >= 0");
   m_margin = squares;
 }
 
 void vpLaserConicGridCalibration::setCornerClearance(double pixels)
 {
-  if (!std::isfinite(pixels) || pixels < 0.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicGridCalibration: the corner clearance must be finite and >= 0");
+  vsp::laser_value_check::requireNonNegative(
+      pixels, "vpLaserConicGridCalibration: the corner clearance must be finite and >= 0");
   m_cornerClearance = pixels;
 }
 
 void vpLaserConicGridCalibration::setMaxReprojectionError(double pixels)
 {
-  if (!std::isfinite(pixels) || !(pixels > 0.0))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicGridCalibration: the largest reprojection error must be positive");
+  vsp::laser_value_check::requirePositive(pixels,
+                                          "vpLaserConicGridCalibration: the largest reprojection error must be positive");
   m_maxReprojection = pixels;
 }
 

@@ -71,7 +71,7 @@ vpSegments conicSegments(const vpMatrix &C, const vpCameraParameters &cam, doubl
   // pixel-to-metre model the estimators used; NaN, hence never near the image, where none exists).
   auto toImage = [&cam](double u, double v) {
     double ud = 0.0, vd = 0.0;
-    if (!vpLaserLens::pixelOfNormalized(cam, (u - cam.get_u0()) / cam.get_px(), (v - cam.get_v0()) / cam.get_py(), ud,
+    if (!vsp::laser_lens::pixelOfNormalized(cam, (u - cam.get_u0()) / cam.get_px(), (v - cam.get_v0()) / cam.get_py(), ud,
                                         vd))
       ud = vd = std::numeric_limits<double>::quiet_NaN();
     return vpImagePoint(vd, ud);

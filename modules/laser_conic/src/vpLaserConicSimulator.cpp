@@ -21,7 +21,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/core/vpPixelMeterConversion.h>
-#include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicException.h>
 
 #include "laser_lens.h"
 #include "laser_pose_check.h"
@@ -52,7 +52,7 @@ void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMat
   if (!std::isfinite(openingAngle) || openingAngle <= 0.0 || openingAngle >= M_PI)
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicSimulator: the laser opening angle must be in (0, pi) radians");
-  if (!vpLaserPoseCheck::isFinitePose(cMl))
+  if (!vsp::laser_pose_check::isFinitePose(cMl))
     throw vpLaserConicException(vpLaserConicException::badLaserError,
                                 "vpLaserConicSimulator: the laser pose is not a finite rigid transformation");
   m_openingAngle = openingAngle;
@@ -61,7 +61,7 @@ void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMat
 
 void vpLaserConicSimulator::setGroundPose(const vpHomogeneousMatrix &cMg)
 {
-  if (!vpLaserPoseCheck::isFinitePose(cMg))
+  if (!vsp::laser_pose_check::isFinitePose(cMg))
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicSimulator: the ground pose is not a finite rigid transformation");
   // Signed distance of the camera centre to the plane Z = 0 of g.
@@ -126,7 +126,7 @@ bool vpLaserConicSimulator::project(const double P[3], double &u, double &v) con
   if (!(P[2] > 1e-9))
     return false;
   // The pixel the estimators will read back onto this ray (vpPixelMeterConversion's model, inverted).
-  return vpLaserLens::pixelOfNormalized(m_cam, P[0] / P[2], P[1] / P[2], u, v);
+  return vsp::laser_lens::pixelOfNormalized(m_cam, P[0] / P[2], P[1] / P[2], u, v);
 }
 
 std::vector<vpImagePoint> vpLaserConicSimulator::tracePoints(unsigned int n, double roughness)
@@ -396,9 +396,9 @@ void vpLaserConicSimulator::renderImpl(vpImage<vpRGBa> &I, const vpRenderSetting
     renderLaser(rgb, s, s.reflectanceScaled ? reflectance.data() : nullptr);
   // 3. Objects in front of the ground, 4. optics and motion, 5. sensor noise, rounding and saturation.
   drawOccluders(image, s.occluders, s.occluderColour);
-  vpLaserSimSensor::applyOptics(image, s.blur, s.motionBlurLength, s.motionBlurAngle);
-  vpLaserSimSensor::expose(image, s.noise, (static_cast<uint64_t>(m_rng()) << 32) | m_rng(), I);
+  vsp::laser_sim_sensor::applyOptics(image, s.blur, s.motionBlurLength, s.motionBlurAngle);
+  vsp::laser_sim_sensor::expose(image, s.noise, (static_cast<uint64_t>(m_rng()) << 32) | m_rng(), I);
   // 6. What the camera streams.
   if (s.jpegQuality > 0)
-    vpLaserSimSensor::compressJpeg(I, s.jpegQuality);
+    vsp::laser_sim_sensor::compressJpeg(I, s.jpegQuality);
 }

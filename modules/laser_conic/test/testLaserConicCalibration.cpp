@@ -31,6 +31,14 @@ vpHomogeneousMatrix trueLaserPose()
   return vpHomogeneousMatrix(0.10, 0.02, -0.01, vpMath::rad(3.0), vpMath::rad(-5.0), vpMath::rad(10.0));
 }
 
+// A rough initial guess: 20 degrees (16 and 12 about X and Y) and 6 cm off the true laser pose.
+vpHomogeneousMatrix roughGuess()
+{
+  vpHomogeneousMatrix guess = trueLaserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(16.0), vpMath::rad(12.0), 0);
+  guess[0][3] -= 0.06;
+  return guess;
+}
+
 // Grid poses seen from 0.5 to 1.1 m with tilts up to 25 degrees (seeded), as in a calibration session.
 std::vector<vpHomogeneousMatrix> gridPoses(unsigned int nbViews, unsigned int seed)
 {
@@ -166,9 +174,7 @@ TEST(LaserConicCalibration, ConvergesFromARoughGuess)
   // where Levenberg-Marquardt still reaches the truth (exact points: same bounds as above).
   const std::vector<vpHomogeneousMatrix> poses = gridPoses(8, 5);
   vpLaserConicCalibration calib = makeCalibration(poses, laserPoints(poses, 0.0));
-  vpHomogeneousMatrix guess = trueLaserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(16.0), vpMath::rad(12.0), 0);
-  guess[0][3] -= 0.06;
-  calib.setInitialGuess(guess);
+  calib.setInitialGuess(roughGuess());
   vpHomogeneousMatrix cMl;
   calib.calibrate(cMl);
   EXPECT_LT(axisErrorDeg(cMl, trueLaserPose()), 0.05);
@@ -414,9 +420,7 @@ TEST(LaserConicCalibration, NoConvergenceIsAFailure)
 {
   const std::vector<vpHomogeneousMatrix> poses = gridPoses(8, 5);
   vpLaserConicCalibration calib = makeCalibration(poses, laserPoints(poses, 0.5));
-  vpHomogeneousMatrix guess = trueLaserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(16.0), vpMath::rad(12.0), 0);
-  guess[0][3] -= 0.06;
-  calib.setInitialGuess(guess);
+  calib.setInitialGuess(roughGuess());
   calib.setMaxIterations(2);
   vpHomogeneousMatrix cMl;
   EXPECT_FALSE(calib.compute(cMl));

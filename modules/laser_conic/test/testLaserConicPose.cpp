@@ -64,6 +64,18 @@ struct Errors
     normal.push_back(laser_test::normalError(toEigen(plane), truth));
     altitude.push_back(laser_test::altitudeError(toEigen(plane), truth));
   }
+  //! Runs \e method with \e estimator (set up by the caller) on \e points of scene \e s: adds the
+  //! errors of the plane, or counts a failure. \return true when a plane was found.
+  bool solve(vpLaserConicPose &estimator, const Scene &s, const std::vector<vpImagePoint> &points,
+             vpLaserConicPose::vpLaserConicMethod method, vpPlane &plane)
+  {
+    if (!estimator.computePlane(points, method, plane)) {
+      ++failures;
+      return false;
+    }
+    add(plane, s.plane);
+    return true;
+  }
   void print(const std::string &what) const
   {
     std::printf("%-34s normal rad median %.2e max %.2e | altitude m median %.2e max %.2e | failures %d\n",
@@ -103,11 +115,8 @@ Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigne
     estimator.setRansacSeed(seed + k);
     estimator.setRansacThreshold(threshold);
     vpPlane plane;
-    if (!estimator.computePlane(points, method, plane)) {
-      ++errors.failures;
+    if (!errors.solve(estimator, s, points, method, plane))
       continue;
-    }
-    errors.add(plane, s.plane);
     double a, r, pi;
     vpLaserConicPose::computeAltitudeRollPitch(plane, a, r, pi);
     EXPECT_EQ(a, estimator.getAltitude());
@@ -183,7 +192,7 @@ struct NoiseRatios
 };
 } // namespace
 
-// Exact data: only rounding remains (see testLaserSolvers.cpp for the tolerances). 2000 random
+// Exact data: only rounding remains (see testLaserConicSolvers.cpp for the tolerances). 2000 random
 // scenes per method: tilts up to 60 deg, baselines 5-30 cm in any direction, laser axis tilted up to 15 deg.
 TEST(LaserConicPose, ExactDataEveryMethod)
 {
@@ -214,11 +223,8 @@ TEST(LaserConicPose, ExactDistortedPixelsEveryMethod)
         vpLaserConicPose estimator = makeEstimator(s.rig);
         estimator.setRansacSeed(k);
         vpPlane plane;
-        if (!estimator.computePlane(points, method, plane)) {
-          ++exact.failures;
+        if (!exact.solve(estimator, s, points, method, plane))
           continue;
-        }
-        exact.add(plane, s.plane);
         if (method == vpLaserConicPose::PLANE_PAIR) {
           vpLaserConicPose pinholeEstimator = makeEstimator(s.rig);
           pinholeEstimator.setCameraParameters(pinhole);
@@ -278,11 +284,8 @@ TEST(LaserConicPose, FiftyPercentOutliers)
       vpLaserConicPose estimator = makeEstimator(s.rig);
       estimator.setRansacSeed(k);
       vpPlane plane;
-      if (!estimator.computePlane(points, method, plane)) {
-        ++e.failures;
+      if (!e.solve(estimator, s, points, method, plane))
         continue;
-      }
-      e.add(plane, s.plane);
       const std::vector<unsigned int> inliers = estimator.getInliers();
       EXPECT_EQ(inliers.size(), 30u);
       for (unsigned int i : inliers)
@@ -843,4 +846,32 @@ TEST(LaserConicPose, DrawOverlay)
     bright += found ? 1 : 0;
   }
   EXPECT_EQ(bright, static_cast<int>(points.size()));
+}
+
+// setCovarianceInflation() scales both covariances by the same factor, nothing else.
+TEST(LaserConicPose, CovarianceInflationScalesBothCovariances)
+{
+  std::mt19937 rng(77);
+  std::vector<vpImagePoint> points;
+  laser_test::SceneRanges ranges;
+  const laser_test::Scene s = laser_test::randomScene(rng, ranges, 200, points);
+  points = laser_test::addNoise(points, 0.5, rng);
+  vpLaserConicPose a = makeEstimator(s.rig), b = makeEstimator(s.rig);
+  a.setCovarianceComputation(true);
+  b.setCovarianceComputation(true);
+  b.setCovarianceInflation(4.0);
+  EXPECT_EQ(b.getCovarianceInflation(), 4.0);
+  vpPlane pa, pb;
+  ASSERT_TRUE(a.computePlane(points, vpLaserConicPose::GP3, pa));
+  ASSERT_TRUE(b.computePlane(points, vpLaserConicPose::GP3, pb));
+  EXPECT_EQ(a.getAltitude(), b.getAltitude());
+  const vpMatrix Ca = a.getCovarianceMatrix(), Cb = b.getCovarianceMatrix();
+  const vpMatrix Pa = a.getPlaneCovarianceMatrix(), Pb = b.getPlaneCovarianceMatrix();
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      EXPECT_NEAR(Cb[i][j], 4.0 * Ca[i][j], 1e-12 * std::abs(Ca[i][j]) + 1e-300);
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      EXPECT_NEAR(Pb[i][j], 4.0 * Pa[i][j], 1e-12 * std::abs(Pa[i][j]) + 1e-300);
+  EXPECT_THROW(a.setCovarianceInflation(-1.0), vpLaserConicException);
 }

@@ -22,7 +22,7 @@
 #include <Eigen/Dense>
 #include <unsupported/Eigen/Polynomials>
 
-#include "gravityGeometry.h"
+#include "gravity_geometry.h"
 
 namespace vpGravitySolvers
 {

@@ -3,7 +3,7 @@
   Section IV of D'Alfonso et al. (P2P with known vertical) and its Lemma 1, in a formulation
   without the paper's singular frames.
 
-  In the upright frames (see gravityGeometry.h) the projection of the two points reads
+  In the upright frames (see gravity_geometry.h) the projection of the two points reads
       Rz(alpha) Y_i + s = lambda_i f_i,   i = A, B,
   with f_i = wRc x_i the bearings, Y_i = wRo X_i the object points and s = wRc t. Subtracting the
   two equations removes s:  Rz(alpha) d = lambda_A f_A - lambda_B f_B,  d = Y_A - Y_B.
@@ -13,12 +13,12 @@
   the paper's eq. 12 with no division by any gravity component. The depths then follow by linear
   least squares and s from either point.
 
-  The common case is inline in gravityPairSolver.h; this file holds the public entry point and the
+  The common case is inline in gravity_pair_solver.h; this file holds the public entry point and the
   rare cases of the yaw equation.
 */
 #include <cmath>
 
-#include "gravityPairSolver.h"
+#include "gravity_pair_solver.h"
 
 namespace vpGravitySolvers
 {

@@ -19,7 +19,7 @@
 #include <limits>
 #include <utility>
 
-#include "gravityPairSolver.h"
+#include "gravity_pair_solver.h"
 
 namespace vpGravitySolvers
 {

@@ -19,7 +19,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "gravityGeometry.h"
+#include "gravity_geometry.h"
 
 namespace vpGravitySolvers
 {
@@ -118,11 +118,11 @@ ceres::LossFunction *makeLoss(const RefineOptions &o)
 {
   const double a = o.lossScale / o.imageSigma;
   switch (o.loss) {
-  case RefineLoss::Huber:
+  case vpRobustLoss::HUBER:
     return new ceres::HuberLoss(a);
-  case RefineLoss::Cauchy:
+  case vpRobustLoss::CAUCHY:
     return new ceres::CauchyLoss(a);
-  case RefineLoss::None:
+  case vpRobustLoss::NONE:
     break;
   }
   return nullptr;

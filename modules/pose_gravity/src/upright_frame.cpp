@@ -7,7 +7,7 @@
   Duff et al., "Building an orthonormal basis, revisited" (JCGT 2017): its only division is by
   1 + |g_z| >= 1, so it is exact and well conditioned for every unit direction.
 */
-#include "gravityPairSolver.h"
+#include "gravity_pair_solver.h"
 
 namespace vpGravitySolvers
 {

@@ -15,7 +15,7 @@
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
@@ -74,7 +74,7 @@ Eigen::Vector3d objectPointAt(const vpHomogeneousMatrix &cMo, const Eigen::Vecto
 }
 } // namespace
 
-TEST(pose_gravity_Degenerate, GravityAlongAxes)
+TEST(PoseGravityDegenerate, GravityAlongAxes)
 {
   // Every pair of signed axes (camera, object), including Y (the paper's singular direction) for
   // both, and a random direction on the other side.
@@ -96,7 +96,7 @@ TEST(pose_gravity_Degenerate, GravityAlongAxes)
       }
 }
 
-TEST(pose_gravity_Degenerate, EqualImageXOrY)
+TEST(PoseGravityDegenerate, EqualImageXOrY)
 {
   // Second point placed in camera coordinates so that x_B == x_A (resp. y_B == y_A) exactly up to
   // rounding: the paper needs dedicated formulas for these cases, the plane formulation does not.
@@ -122,7 +122,7 @@ TEST(pose_gravity_Degenerate, EqualImageXOrY)
     }
 }
 
-TEST(pose_gravity_Degenerate, CoincidentImagePointsGeneralRay)
+TEST(PoseGravityDegenerate, CoincidentImagePointsGeneralRay)
 {
   // Lemma 1, second case: A, B and the optical centre aligned, ray not parallel to gravity. The
   // rotation is unique, the translation known up to the ray; the facade reports the status and no
@@ -160,7 +160,7 @@ TEST(pose_gravity_Degenerate, CoincidentImagePointsGeneralRay)
   EXPECT_EQ(tested, 2000);
 }
 
-TEST(pose_gravity_Degenerate, CoincidentImagePointsHorizontalRay)
+TEST(PoseGravityDegenerate, CoincidentImagePointsHorizontalRay)
 {
   // Horizontal ray: which point is nearer is not observable; the solver takes the first point as
   // the nearer (visible) one, which recovers the truth when that holds.
@@ -189,7 +189,7 @@ TEST(pose_gravity_Degenerate, CoincidentImagePointsHorizontalRay)
   }
 }
 
-TEST(pose_gravity_Degenerate, CoincidentImagePointsVerticalRay)
+TEST(PoseGravityDegenerate, CoincidentImagePointsVerticalRay)
 {
   // Lemma 1, third case: the common ray is parallel to gravity: infinitely many poses.
   SceneGenerator gen(25);
@@ -209,7 +209,7 @@ TEST(pose_gravity_Degenerate, CoincidentImagePointsVerticalRay)
   }
 }
 
-TEST(pose_gravity_Degenerate, P3PWithTwoPointsOnOneRay)
+TEST(PoseGravityDegenerate, P3PWithTwoPointsOnOneRay)
 {
   // Two of the three points share an image point (general ray or vertical ray): P3P works through
   // the pairs that involve the third point.
@@ -229,7 +229,7 @@ TEST(pose_gravity_Degenerate, P3PWithTwoPointsOnOneRay)
   }
 }
 
-TEST(pose_gravity_Degenerate, VerticalLineOfPointsHasNoYaw)
+TEST(PoseGravityDegenerate, VerticalLineOfPointsHasNoYaw)
 {
   // Every object point on one line along gravity: the image only repeats the IMUs, the yaw is free.
   SceneGenerator gen(27);
@@ -254,7 +254,7 @@ TEST(pose_gravity_Degenerate, VerticalLineOfPointsHasNoYaw)
   }
 }
 
-TEST(pose_gravity_Degenerate, ObjectFarFromItsOrigin)
+TEST(PoseGravityDegenerate, ObjectFarFromItsOrigin)
 {
   // A 0.2 m object whose coordinates are around 1 km (e.g. georeferenced): the closed forms must
   // not lose the yaw in the large common offset. Exact data: rounding of 1e3 m coordinates is

@@ -17,7 +17,7 @@
 #include <visp3/pose_gravity/vpImuGravity.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
@@ -46,7 +46,7 @@ std::string tempFile(const std::string &name, const std::string &content)
 }
 } // namespace
 
-TEST(pose_gravity_Imu, SpecificForceBecomesDownGravity)
+TEST(PoseGravityImu, SpecificForceBecomesDownGravity)
 {
   // Level IMU, z up: reads +9.81 on z; gravity points down: -z.
   const vpColVector g = vpImuGravity::gravityFromSpecificForce(vec(0, 0, kG));
@@ -63,7 +63,7 @@ TEST(pose_gravity_Imu, SpecificForceBecomesDownGravity)
   EXPECT_THROW(vpImuGravity::gravityFromSpecificForce(vec(NAN, 0, 1)), vpPoseGravityException);
 }
 
-TEST(pose_gravity_Imu, RawReadingsGiveTheTruePose)
+TEST(PoseGravityImu, RawReadingsGiveTheTruePose)
 {
   // Two IMUs at rest, each rotated with respect to its sensor: the converted readings fed to
   // vpPoseGravity give the true pose, the raw readings (sign mix-up) are refused.
@@ -89,7 +89,7 @@ TEST(pose_gravity_Imu, RawReadingsGiveTheTruePose)
   }
 }
 
-TEST(pose_gravity_Imu, StreamInterpolationAndMotionFlag)
+TEST(PoseGravityImu, StreamInterpolationAndMotionFlag)
 {
   // 200 Hz stream of an IMU tilting slowly about x (0.2 rad/s), with an acceleration burst of
   // 2 m/s^2 between t = 1.0 and 1.1 s. The camera clock runs 5 ms behind the IMU's.
@@ -135,7 +135,7 @@ TEST(pose_gravity_Imu, StreamInterpolationAndMotionFlag)
   EXPECT_THROW(imu.addSample(0.5, vec(0, 0, 0), vec(0, 0, kG)), vpPoseGravityException); // time going back
 }
 
-TEST(pose_gravity_Imu, EurocCsvAndRotationFiles)
+TEST(PoseGravityImu, EurocCsvAndRotationFiles)
 {
   const std::string csv = tempFile("imu_euroc.csv",
                                    "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
@@ -154,7 +154,7 @@ TEST(pose_gravity_Imu, EurocCsvAndRotationFiles)
   EXPECT_FALSE(moving); // both samples read |f| = 9.81
 }
 
-TEST(pose_gravity_Imu, BadFilesAreReported)
+TEST(PoseGravityImu, BadFilesAreReported)
 {
   auto expectFileError = [](const std::string &path, const std::string &where) {
     vpImuGravity imu;

@@ -13,7 +13,7 @@
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
@@ -43,7 +43,7 @@ void expectThrowCode(const std::function<void()> &f, int code, const char *what)
 }
 } // namespace
 
-TEST(pose_gravity_Api, BadGravityThrows)
+TEST(PoseGravityApi, BadGravityThrows)
 {
   vpPoseGravity pose;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -62,7 +62,7 @@ TEST(pose_gravity_Api, BadGravityThrows)
   EXPECT_NEAR(pose.getObjectGravity()[1], -std::sqrt(0.5), 1e-15);
 }
 
-TEST(pose_gravity_Api, UnsetGravityThrows)
+TEST(PoseGravityApi, UnsetGravityThrows)
 {
   SceneGenerator gen(31);
   const Scene s = gen.scene(4);
@@ -76,7 +76,7 @@ TEST(pose_gravity_Api, UnsetGravityThrows)
   expectThrowCode([&] { noObject.refinePose(cMo); }, code, "object gravity unset (refine)");
 }
 
-TEST(pose_gravity_Api, TooFewPointsThrows)
+TEST(PoseGravityApi, TooFewPointsThrows)
 {
   SceneGenerator gen(32);
   const Scene s = gen.scene(3);
@@ -98,7 +98,7 @@ TEST(pose_gravity_Api, TooFewPointsThrows)
   expectThrowCode([&] { pose.computePose(vpPoseGravity::P3P, cMo); }, code, "after clearPoint");
 }
 
-TEST(pose_gravity_Api, NonFiniteCoordinatesThrow)
+TEST(PoseGravityApi, NonFiniteCoordinatesThrow)
 {
   SceneGenerator gen(33);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -130,7 +130,7 @@ TEST(pose_gravity_Api, NonFiniteCoordinatesThrow)
     }
 }
 
-TEST(pose_gravity_Api, DuplicateObjectPointsThrow)
+TEST(PoseGravityApi, DuplicateObjectPointsThrow)
 {
   SceneGenerator gen(34);
   vpHomogeneousMatrix cMo;
@@ -161,7 +161,7 @@ TEST(pose_gravity_Api, DuplicateObjectPointsThrow)
   EXPECT_NO_THROW(pose3.computePose(vpPoseGravity::LEAST_SQUARES, cMo));
 }
 
-TEST(pose_gravity_Api, CollinearPointsThrowForP3P)
+TEST(PoseGravityApi, CollinearPointsThrowForP3P)
 {
   SceneGenerator gen(35);
   Scene s = gen.scene(4);
@@ -177,7 +177,7 @@ TEST(pose_gravity_Api, CollinearPointsThrowForP3P)
   EXPECT_LT(poseError(cMo, s.cMo), 1e-9);
 }
 
-TEST(pose_gravity_Api, BadSettingsThrow)
+TEST(PoseGravityApi, BadSettingsThrow)
 {
   vpPoseGravity pose;
   const int code = vpPoseGravityException::badParameterError;
@@ -191,7 +191,7 @@ TEST(pose_gravity_Api, BadSettingsThrow)
   EXPECT_NO_THROW(pose.setGravityStdDev(0.0));
 }
 
-TEST(pose_gravity_Api, ComputeResidualMatchesHandComputation)
+TEST(PoseGravityApi, ComputeResidualMatchesHandComputation)
 {
   // Identity rotation, camera 2 m behind the object origin: point (X, Y, Z) projects to
   // (X / (Z + 2), Y / (Z + 2)). Image points offset by known amounts.
@@ -211,7 +211,7 @@ TEST(pose_gravity_Api, ComputeResidualMatchesHandComputation)
   EXPECT_NEAR(pose.computeResidual(cMo), 5.25e-4, 1e-15);
 }
 
-TEST(pose_gravity_Api, StatusesAndCandidateOrder)
+TEST(PoseGravityApi, StatusesAndCandidateOrder)
 {
   SceneGenerator gen(36);
   vpPoseGravity pose;
@@ -246,7 +246,7 @@ TEST(pose_gravity_Api, StatusesAndCandidateOrder)
   EXPECT_GT(twoCandidates, 0);
 }
 
-TEST(pose_gravity_Api, RefineKeepsPoseOnFailure)
+TEST(PoseGravityApi, RefineKeepsPoseOnFailure)
 {
   SceneGenerator gen(37);
   const Scene s = gen.scene(5);

@@ -2,7 +2,7 @@
 /*
   Noisy measurements: image noise of 1 px at f = 800 px (1.25e-3 in normalized coordinates) and
   IMU noise of 0.01 on each gravity component (then renormalised), RANSAC with 50 % outliers and the
-  Ceres refinement. Scenes: a 1 m object 2 to 8 m in front of the camera (see gravityTestScene.h).
+  Ceres refinement. Scenes: a 1 m object 2 to 8 m in front of the camera (see gravity_test_scene.h).
 
   Where the bounds come from (measured values are printed by each test):
   - Image noise only: a P2P yaw is fixed by the direction of the plane through the two rays, which
@@ -25,7 +25,7 @@
 
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
@@ -98,7 +98,7 @@ void refinementTrials(unsigned int seed, int n, double sigmaGravity, vpPoseGravi
 }
 } // namespace
 
-TEST(pose_gravity_Noise, P3PAndLeastSquaresImageNoiseOnly)
+TEST(PoseGravityNoise, P3PAndLeastSquaresImageNoiseOnly)
 {
   SceneGenerator gen(41);
   Errors p3p, lsq;
@@ -121,7 +121,7 @@ TEST(pose_gravity_Noise, P3PAndLeastSquaresImageNoiseOnly)
   EXPECT_LT(median(lsq.translation), 0.007); // measured ~0.003
 }
 
-TEST(pose_gravity_Noise, GravityAndImageNoise)
+TEST(PoseGravityNoise, GravityAndImageNoise)
 {
   SceneGenerator gen(42);
   Errors p3p, lsq;
@@ -148,7 +148,7 @@ TEST(pose_gravity_Noise, GravityAndImageNoise)
   EXPECT_LT(median(lsq.translation), 0.01); // measured ~0.005
 }
 
-TEST(pose_gravity_Noise, RefinementImprovesP3P)
+TEST(PoseGravityNoise, RefinementImprovesP3P)
 {
   Errors p3p, refined4;
   refinementTrials(43, 3, 0.0, vpPoseGravity::P3P, p3p, [&](vpPoseGravity &e, vpHomogeneousMatrix cMo, const Scene &s) {
@@ -163,7 +163,7 @@ TEST(pose_gravity_Noise, RefinementImprovesP3P)
   expectImprovement(refined4, p3p, 0.9);
 }
 
-TEST(pose_gravity_Noise, FullRefinementWithNoisyGravity)
+TEST(PoseGravityNoise, FullRefinementWithNoisyGravity)
 {
   Errors p3p, refined4, refined6;
   refinementTrials(44, 6, kSigmaGravity, vpPoseGravity::LEAST_SQUARES, p3p,
@@ -183,7 +183,7 @@ TEST(pose_gravity_Noise, FullRefinementWithNoisyGravity)
   expectImprovement(refined6, refined4, 0.85);
 }
 
-TEST(pose_gravity_Noise, RansacWithHalfOutliers)
+TEST(PoseGravityNoise, RansacWithHalfOutliers)
 {
   SceneGenerator gen(45);
   Errors ransac, refined;
@@ -225,7 +225,7 @@ TEST(pose_gravity_Noise, RansacWithHalfOutliers)
   EXPECT_LT(median(refined.rotation), 0.008);
 }
 
-TEST(pose_gravity_Noise, RansacExactInliers)
+TEST(PoseGravityNoise, RansacExactInliers)
 {
   // Exact inliers: the pose is the truth to rounding and the inlier set is exact.
   SceneGenerator gen(46);
@@ -248,7 +248,7 @@ TEST(pose_gravity_Noise, RansacExactInliers)
   }
 }
 
-TEST(pose_gravity_Noise, RansacWithoutConsensus)
+TEST(PoseGravityNoise, RansacWithoutConsensus)
 {
   // Only outliers: random image points with a threshold far below their spread.
   SceneGenerator gen(47);

@@ -14,7 +14,7 @@
 
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
@@ -51,7 +51,7 @@ template <typename Count, typename Solve> void checkExactPoses(const char *what,
 }
 } // namespace
 
-TEST(pose_gravity_SolversExact, P2PTruthAmongCandidates)
+TEST(PoseGravitySolversExact, P2PTruthAmongCandidates)
 {
   SceneGenerator gen(11);
   std::vector<double> errors;
@@ -75,7 +75,7 @@ TEST(pose_gravity_SolversExact, P2PTruthAmongCandidates)
   reportAndCheck("P2P (best candidate)", errors);
 }
 
-TEST(pose_gravity_SolversExact, P3PGivesTruth)
+TEST(PoseGravitySolversExact, P3PGivesTruth)
 {
   checkExactPoses("P3P", 12, [](int) { return 3; },
                   [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
@@ -84,7 +84,7 @@ TEST(pose_gravity_SolversExact, P3PGivesTruth)
                   });
 }
 
-TEST(pose_gravity_SolversExact, LeastSquaresGivesTruth)
+TEST(PoseGravitySolversExact, LeastSquaresGivesTruth)
 {
   checkExactPoses("LEAST_SQUARES", 13, [](int k) { return 3 + k % 8; }, // 3 to 10 points
                   [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
@@ -94,7 +94,7 @@ TEST(pose_gravity_SolversExact, LeastSquaresGivesTruth)
                   });
 }
 
-TEST(pose_gravity_SolversExact, TranslationFromTrueRotation)
+TEST(PoseGravitySolversExact, TranslationFromTrueRotation)
 {
   SceneGenerator gen(14);
   std::vector<Eigen::Vector3d> x, X;

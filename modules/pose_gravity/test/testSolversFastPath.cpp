@@ -16,7 +16,7 @@
 
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
@@ -112,7 +112,7 @@ bool referenceWidestPair(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gOb
 }
 } // namespace
 
-TEST(pose_gravity_SolversFastPath, P2PCandidatesOrderedAndInFront)
+TEST(PoseGravitySolversFastPath, P2PCandidatesOrderedAndInFront)
 {
   SceneGenerator gen(21);
   std::vector<Eigen::Vector3d> x, X;
@@ -141,7 +141,7 @@ TEST(pose_gravity_SolversFastPath, P2PCandidatesOrderedAndInFront)
   EXPECT_GT(pairsWithTwo, 1000); // the order was checked on many pairs
 }
 
-TEST(pose_gravity_SolversFastPath, P3PIsTheBestReprojectingCandidate)
+TEST(PoseGravitySolversFastPath, P3PIsTheBestReprojectingCandidate)
 {
   SceneGenerator gen(22);
   std::vector<Eigen::Vector3d> x, X;
@@ -174,7 +174,7 @@ TEST(pose_gravity_SolversFastPath, P3PIsTheBestReprojectingCandidate)
   EXPECT_GT(pairsDiffer, 1000); // the two rules were both exercised
 }
 
-TEST(pose_gravity_SolversFastPath, BearingScaleDoesNotMatter)
+TEST(PoseGravitySolversFastPath, BearingScaleDoesNotMatter)
 {
   SceneGenerator gen(23);
   std::vector<Eigen::Vector3d> x, X;

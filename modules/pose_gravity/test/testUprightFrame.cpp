@@ -6,7 +6,7 @@
 
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 namespace
 {
@@ -20,7 +20,7 @@ void expectUpright(const Eigen::Vector3d &g)
 }
 } // namespace
 
-TEST(pose_gravity_UprightFrame, AxesAndTheirNeighbourhoods)
+TEST(PoseGravityUprightFrame, AxesAndTheirNeighbourhoods)
 {
   // The paper's frame is singular for g on the Y axis; the directions where a branch switches
   // (g_z = 0) and the exact axes are the delicate ones.
@@ -45,7 +45,7 @@ TEST(pose_gravity_UprightFrame, AxesAndTheirNeighbourhoods)
     expectUpright(g);
 }
 
-TEST(pose_gravity_UprightFrame, RandomDirections)
+TEST(PoseGravityUprightFrame, RandomDirections)
 {
   gravity_test::SceneGenerator gen(7);
   for (int k = 0; k < 100000; ++k)

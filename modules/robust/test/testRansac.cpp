@@ -11,14 +11,14 @@
 
 #include <visp3/robust/vpRansac.h>
 
-TEST(RansacTrialCount, MatchesThePaperNumbers)
+TEST(RobustRansacTrialCount, MatchesThePaperNumbers)
 {
   // Boutteau et al. Sec. 5: p = 0.99, 50 % outliers: 146 samples of 5 points, 35 of 3 points.
   EXPECT_EQ(vpRansacTrialCount(0.99, 0.5, 5, 100000), 146);
   EXPECT_EQ(vpRansacTrialCount(0.99, 0.5, 3, 100000), 35);
 }
 
-TEST(RansacTrialCount, EdgeCases)
+TEST(RobustRansacTrialCount, EdgeCases)
 {
   EXPECT_EQ(vpRansacTrialCount(0.99, 0.0, 3, 1000), 0);
   EXPECT_EQ(vpRansacTrialCount(0.99, 1.0, 3, 1000), 1000);
@@ -27,7 +27,7 @@ TEST(RansacTrialCount, EdgeCases)
   EXPECT_EQ(vpRansacTrialCount(0.0, 0.5, 3, 1000), 1);
 }
 
-TEST(RansacSampler, DrawsDistinctIndicesReproducibly)
+TEST(RobustRansacSampler, DrawsDistinctIndicesReproducibly)
 {
   vpRansacSampler a(5, 7), b(5, 7);
   for (int t = 0; t < 1000; ++t) {
@@ -101,7 +101,7 @@ LineEstimator makeLineData(int n, int nOut, unsigned int seed)
 }
 } // namespace
 
-TEST(RansacLoop, RecoversALineThroughSixtyPercentOutliers)
+TEST(RobustRansacLoop, RecoversALineThroughSixtyPercentOutliers)
 {
   const int n = 500, nOut = 300;
   const LineEstimator est = makeLineData(n, nOut, 42);
@@ -118,7 +118,7 @@ TEST(RansacLoop, RecoversALineThroughSixtyPercentOutliers)
   EXPECT_LT(report.trials, opt.maxTrials);      // the adaptive count stopped the loop early
 }
 
-TEST(RansacLoop, RefusesTooFewData)
+TEST(RobustRansacLoop, RefusesTooFewData)
 {
   LineEstimator est;
   est.x = {1.0};
@@ -129,7 +129,7 @@ TEST(RansacLoop, RefusesTooFewData)
   EXPECT_EQ(report.trials, 0);
 }
 
-TEST(RansacScore, EarlyStopNeverChangesTheRanking)
+TEST(RobustRansacScore, EarlyStopNeverChangesTheRanking)
 {
   const LineEstimator est = makeLineData(500, 300, 11);
   const double thr2 = 0.05 * 0.05;
@@ -151,7 +151,7 @@ TEST(RansacScore, EarlyStopNeverChangesTheRanking)
   EXPECT_EQ(reached, fullGood);
 }
 
-TEST(RansacScore, InlierListsAgreeWithCounts)
+TEST(RobustRansacScore, InlierListsAgreeWithCounts)
 {
   const LineEstimator est = makeLineData(500, 300, 12);
   const double thr2 = 0.05 * 0.05;
@@ -169,7 +169,7 @@ TEST(RansacScore, InlierListsAgreeWithCounts)
   }
 }
 
-TEST(RansacLoop, ReportedInliersAreTheConsensusOfTheBestModel)
+TEST(RobustRansacLoop, ReportedInliersAreTheConsensusOfTheBestModel)
 {
   const LineEstimator est = makeLineData(500, 300, 13);
   for (int rounds : {1, 3}) {

@@ -88,4 +88,7 @@ TEST(RobustScale, CollectAndWeights)
   EXPECT_DOUBLE_EQ(vpRobustWeight(vpRobustLoss::CAUCHY, 2.3849 * 3.0, 3.0), 0.5);
   EXPECT_EQ(vpRobustWeight(vpRobustLoss::CAUCHY, 5.0, 0.0), 1.0); // no scale: unit weights
   EXPECT_EQ(vpRobustWeight(vpRobustLoss::HUBER, std::numeric_limits<double>::infinity(), 1.0), 0.0);
+  // No loss: plain least squares, unit weights at any residual (zero for a non-finite one).
+  EXPECT_EQ(vpRobustWeight(vpRobustLoss::NONE, 50.0, 1.0), 1.0);
+  EXPECT_EQ(vpRobustWeight(vpRobustLoss::NONE, std::numeric_limits<double>::quiet_NaN(), 1.0), 0.0);
 }

@@ -142,7 +142,7 @@ void scanColumns(const unsigned char *mask, const unsigned char *weight, int H, 
 }
 } // namespace
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 std::vector<vpImagePoint> detectHsv(const vpImage<vpRGBa> &I, const HsvSettings &settings, vpImage<unsigned char> &maskImage)
 {
@@ -186,4 +186,4 @@ std::vector<vpImagePoint> detectHsv(const vpImage<vpRGBa> &I, const HsvSettings 
   scanColumns(mask, weight.ptr<unsigned char>(0), H, W, step, maxWidth, points);
   return points;
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

@@ -18,7 +18,7 @@
 #include <visp3/core/vpRGBa.h>
 #include <visp3/laser_conic/vpLaserConicDetector.h>
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 //! A column span [first, last] of an image row.
 typedef std::pair<int, int> Span;
@@ -130,6 +130,6 @@ struct HsvSettings
 //! HSV thresholding detector (the historical one); \e mask is resized and filled (255 on the trace pixels).
 std::vector<vpImagePoint> detectHsv(const vpImage<vpRGBa> &I, const HsvSettings &settings,
                                     vpImage<unsigned char> &mask);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

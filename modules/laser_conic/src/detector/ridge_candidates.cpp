@@ -12,7 +12,7 @@
 
 #include "ridge_simd.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -309,4 +309,4 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
   (void)zeros, (void)instructions;
   scalar(j, j1);
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

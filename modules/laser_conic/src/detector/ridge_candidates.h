@@ -14,7 +14,7 @@
 
 #include "laser_detector.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   The columns whose candidates a column pass keeps: the multiples of \e step, except those of \e skip when
@@ -44,6 +44,6 @@ void rowCandidates(const unsigned char *c, const unsigned char *flags, int W, in
 void columnCandidates(const unsigned char *c, const unsigned char *flags, const unsigned char *zeros, int W, int H,
                       int i, int j0, int j1, int d, int threshold, const ColumnSelection &keep,
                       vpLaserConicDetector::vpInstructionSet instructions, std::vector<Candidate> &out);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

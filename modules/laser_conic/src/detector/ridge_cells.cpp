@@ -7,7 +7,7 @@
 
 #include "ridge_tuning.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 int coarseFactor(const RidgeSettings &settings)
 {
@@ -55,4 +55,4 @@ void markedCellsToSpans(const RidgeWorkspace &work, int W, int H, RegionSpans &r
     region.bandStart.push_back(static_cast<int>(region.spans.size()));
   }
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

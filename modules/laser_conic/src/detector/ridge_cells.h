@@ -15,7 +15,7 @@
 
 #include "laser_detector.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   Coarse to fine (see detectRidge()): the coarse lines are every coarseFactor() x step-th. The largest
@@ -50,6 +50,6 @@ bool inMarkedCell(const RidgeWorkspace &work, int W, int H, size_t k);
 
 //! The marked cells (see markCellsAroundKept()) rasterised into \e region (spans on multiples of 16 columns).
 void markedCellsToSpans(const RidgeWorkspace &work, int W, int H, RegionSpans &region);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

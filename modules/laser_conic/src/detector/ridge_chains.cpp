@@ -10,7 +10,7 @@
 #include <cmath>
 #include <numeric>
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -141,4 +141,4 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
   joinNeighbours(work, link);
   keepByExtent(work, minLength);
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

@@ -12,7 +12,7 @@
 
 #include "laser_detector.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   Marks in work.keep the crossings of work.crossings (in an image of W x H pixels) that belong to chains
@@ -21,6 +21,6 @@ namespace vpLaserDetector
   their chain.
 */
 void longChains(RidgeWorkspace &work, int W, int H, double link, double minLength);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

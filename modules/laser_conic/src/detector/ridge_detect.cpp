@@ -17,7 +17,7 @@
 #include "ridge_scan.h"
 #include "ridge_tuning.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -90,4 +90,4 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
       points.push_back(work.crossings[k].point);
   return points;
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

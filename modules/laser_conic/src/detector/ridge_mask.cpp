@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, unsigned int H, unsigned int W,
               vpImage<unsigned char> &mask)
@@ -27,4 +27,4 @@ void drawRuns(const std::vector<StripeRun> &runs, const RidgeWorkspace &work, un
     draw(c.alongRow, c.line, c.first, c.last, work.keep[k] ? 255 : 100);
   }
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

@@ -13,7 +13,7 @@
 
 #include "ridge_simd.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 #if VSP_DETECTOR_AVX2
 namespace
@@ -106,4 +106,4 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region, vpLase
   }
   return 0.0;
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

@@ -12,7 +12,7 @@
 
 #include "laser_detector.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   Robust noise of the unclipped score r - max(g, b): 1.4826 MAD / sqrt(2) of its differences two pixels
@@ -23,6 +23,6 @@ namespace vpLaserDetector
 */
 double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region,
                      vpLaserConicDetector::vpInstructionSet instructions);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -6,7 +6,7 @@
 // crosses the stripe more steeply, grazing lines, sub-pixel centre.
 #include "ridge_profile.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -95,4 +95,4 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
   out.point = s.alongRow ? vpImagePoint(s.line, centre) : vpImagePoint(centre, s.line);
   return ACCEPTED;
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

@@ -16,7 +16,7 @@
 #include "laser_detector.h"
 #include "ridge_tuning.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   Access to the score and the pixels along one scan line: pointers to its first pixel and the stride
@@ -118,6 +118,6 @@ template <class Profile> double stripeCentroid(const Profile &s, int p, int a, i
   half-maximum run into \e out (the run also when REJECTED).
 */
 Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, Crossing &out);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -12,7 +12,7 @@
 #include "ridge_score.h"
 #include "ridge_simd.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -208,4 +208,4 @@ void RidgeScan::measureUpTo(int r)
   for (; m_nextColumnPeak < columns.size() && columns[m_nextColumnPeak].pos <= r; ++m_nextColumnPeak)
     measure(columns[m_nextColumnPeak], false);
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

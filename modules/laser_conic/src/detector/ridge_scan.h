@@ -15,7 +15,7 @@
 #include "laser_detector.h"
 #include "ridge_candidates.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   One ridge detection: the score, the candidate searches along rows and columns and their measurement,
@@ -76,6 +76,6 @@ private:
   int m_lastRow = -1, m_lastRowEnd = -1;
   size_t m_nextRowPeak = 0, m_nextColumnPeak = 0;
 };
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -10,7 +10,7 @@
 
 #include "ridge_simd.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -169,4 +169,4 @@ void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int satur
   (void)instructions;
   scoreSpanScalar(rgba, score, 0, n, saturation, threshold, flags);
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

@@ -14,7 +14,7 @@
 
 #include "ridge_tuning.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   Score of the RGBA pixel p: the red dominance R - w max(G, B), clipped to [0, 255], where w = 1 below the
@@ -43,6 +43,6 @@ inline unsigned char scorePixel(const unsigned char *p, int saturation)
 */
 void scoreSpan(const unsigned char *rgba, unsigned char *score, int n, int saturation, int threshold,
                unsigned char *flags, vpLaserConicDetector::vpInstructionSet instructions);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -21,7 +21,7 @@
 #define VSP_DETECTOR_AVX2 0
 #endif
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 #if defined(__SSE2__)
 //! The 16 bytes from p (unaligned).
@@ -35,6 +35,6 @@ __attribute__((target("avx2"))) inline __m256i load32(const unsigned char *p)
   return _mm256_loadu_si256(reinterpret_cast<const __m256i *>(p));
 }
 #endif
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -10,7 +10,7 @@
 #ifndef VP_LASER_RIDGE_TUNING_H
 #define VP_LASER_RIDGE_TUNING_H
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 //! The ridge detector's fixed shape rules (the settings a user may change are in RidgeSettings).
 struct RidgeTuning
@@ -66,6 +66,6 @@ struct RidgeTuning
   //! many pixels: the fine crossings between two linked coarse ones, and the stripe's width about them.
   static constexpr int fineReachExtra = 4;
 };
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 namespace
 {
@@ -133,4 +133,4 @@ void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int s
   blocksToSpans(dilateBlocks(marked, nbX, (reach + 15) / 16, (reach + RegionSpans::bandHeight - 1) / RegionSpans::bandHeight),
                 nbX, W, scored);
 }
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector

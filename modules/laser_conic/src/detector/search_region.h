@@ -16,7 +16,7 @@
 
 #include "laser_detector.h"
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 /*!
   The points of the conic a u^2 + 2 b uv + c v^2 + 2 d u + 2 e v + f = 0 on every row and every column of
@@ -33,6 +33,6 @@ std::vector<vpImagePoint> sampleConicOnLines(double a, double b, double c, doubl
 */
 void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int stripeWidth, int H, int W,
                    RegionSpans &searched, RegionSpans &scored);
-} // namespace vpLaserDetector
+} // namespace vsp::laser_detector
 
 #endif

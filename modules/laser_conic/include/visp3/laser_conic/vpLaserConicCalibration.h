@@ -18,6 +18,12 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
+#include <visp3/robust/vpRobustScale.h>
+
+namespace vsp::laser_calibration
+{
+class ConeProblem;
+}
 
 /*!
   \ingroup group_laser_conic
@@ -93,12 +99,17 @@ public:
     STATUS_LARGE_RESIDUALS    //!< the inliers' RMS exceeds setMaxRmsPixels(): the cone does not fit the points
   } vpLaserConicCalibrationStatus;
 
-  //! Robust loss applied to the grid residuals in the second stage (see the class description).
-  typedef enum {
-    LOSS_NONE,   //!< plain least squares on all the points (no outlier rejection)
-    LOSS_HUBER,  //!< Huber loss
-    LOSS_CAUCHY  //!< Cauchy loss (default): gross outliers get a vanishing weight
-  } vpLaserConicLoss;
+  /*!
+    Robust loss applied to the grid residuals in the second stage (see the class description): the
+    project's one loss enum (::vpRobustLoss, visp3/robust/vpRobustScale.h) under its former name.
+  */
+  typedef vpRobustLoss vpLaserConicLoss;
+  //! Plain least squares on all the points (no outlier rejection); vpRobustLoss::NONE.
+  static constexpr vpRobustLoss LOSS_NONE = vpRobustLoss::NONE;
+  //! Huber loss; vpRobustLoss::HUBER.
+  static constexpr vpRobustLoss LOSS_HUBER = vpRobustLoss::HUBER;
+  //! Cauchy loss (default): gross outliers get a vanishing weight; vpRobustLoss::CAUCHY.
+  static constexpr vpRobustLoss LOSS_CAUCHY = vpRobustLoss::CAUCHY;
 
   //! Calibration with no camera, no opening angle, no initial guess and no view.
   vpLaserConicCalibration();
@@ -266,8 +277,15 @@ private:
     std::vector<vpImagePoint> points;
   };
   void checkReady(const vpHomogeneousMatrix &guess) const;
-  void computeJackknife(const vpHomogeneousMatrix &cMl);
+  void resetResults();
   void backProject();
+  //! STATUS_NOT_ENOUGH_VIEWS or STATUS_DEGENERATE_VIEWS (one grid plane) as a failure, else true.
+  bool checkViewSet(const std::vector<vpHomogeneousMatrix> &cMg);
+  //! The three stages of compute() (see the class description) and their failures.
+  bool fitCone(vsp::laser_calibration::ConeProblem &cone);
+  //! Condition number (STATUS_DEGENERATE_VIEWS beyond the limit), RMS and covariance of the fitted cone.
+  bool computeCovariance(vsp::laser_calibration::ConeProblem &cone);
+  void computeJackknife(const vpHomogeneousMatrix &cMl);
   bool fail(vpLaserConicCalibrationStatus status, const std::string &details);
 
   vpCameraParameters m_cam;

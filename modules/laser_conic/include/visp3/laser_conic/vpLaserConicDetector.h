@@ -21,7 +21,7 @@
 #include <visp3/laser_conic/vpLaserConicException.h>
 #include <visp3/laser_conic/vpLaserConicImageMember.h>
 
-namespace vpLaserDetector
+namespace vsp::laser_detector
 {
 struct RidgeWorkspace;
 }
@@ -249,11 +249,11 @@ private:
     vpWorkspace(const vpWorkspace &other);             //!< empty buffers, the last detection's crossings copied
     vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region, copies the crossings
     ~vpWorkspace();                                    //!< frees the buffers
-    vpLaserDetector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
-    const vpLaserDetector::RidgeWorkspace &get() const { return *m_work; } //!< the buffers (read only)
+    vsp::laser_detector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
+    const vsp::laser_detector::RidgeWorkspace &get() const { return *m_work; } //!< the buffers (read only)
 
   private:
-    std::unique_ptr<vpLaserDetector::RidgeWorkspace> m_work;
+    std::unique_ptr<vsp::laser_detector::RidgeWorkspace> m_work;
   };
 
   //! Rasterises the search region for an image of \e H x \e W pixels into the workspace (once per region and size).

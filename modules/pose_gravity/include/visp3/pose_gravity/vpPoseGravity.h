@@ -21,6 +21,7 @@
 #include <visp3/core/vpPoint.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/pose_gravity/vpPoseGravityException.h>
+#include <visp3/robust/vpRobustScale.h>
 
 /*!
   \ingroup group_pose_gravity
@@ -52,7 +53,8 @@
   - Every method checks its result: every used point in front of the camera and the points not
     needed by the minimal solve reprojected within setConsistencyThreshold(). An inconsistent result
     returns false with STATUS_GRAVITY_SIGN_REVERSED (the data fit with one gravity reversed: a
-    specific force passed as gravity), STATUS_INCONSISTENT_GRAVITY (wrong IMU-to-camera rotation,
+    specific force passed as gravity), STATUS_GRAVITY_SWAPPED (the data fit with the camera and
+    object gravity exchanged), STATUS_INCONSISTENT_GRAVITY (wrong IMU-to-camera rotation,
     IMU in motion, mismatched points) or STATUS_BEHIND_CAMERA.
   - refinePose(): Ceres maximum likelihood, optional robust loss (setRefineLoss()), gravity priors
     (setCameraGravityStdDev(), setObjectGravityStdDev()); setCovarianceComputation() /
@@ -95,8 +97,19 @@ public:
     STATUS_REFINEMENT_FAILED,   //!< refinePose() did not converge or moved a point behind the camera; the input pose was left unchanged.
     STATUS_INCONSISTENT_GRAVITY, //!< the best pose leaves points beyond setConsistencyThreshold(): wrong IMU-to-camera rotation, IMU in motion, wrong matches or outliers (use RANSAC).
     STATUS_GRAVITY_SIGN_REVERSED, //!< the points fit a pose only with one of the two gravity vectors reversed: an accelerometer reading (specific force, pointing up) was passed as gravity (which points down).
-    STATUS_BEHIND_CAMERA        //!< the best pose puts a used point behind the camera.
+    STATUS_BEHIND_CAMERA,       //!< the best pose puts a used point behind the camera.
+    STATUS_GRAVITY_SWAPPED      //!< the points fit a pose only with the camera and object gravity exchanged.
   } vpPoseGravityStatus;
+
+  /*!
+    A standard mistake in the gravity vectors that explains a failure (getSuspectedMistake()): the
+    computation is run again with the alternative vectors and the points fit them.
+  */
+  typedef enum {
+    GRAVITY_MISTAKE_NONE,          //!< no failure, or no alternative explains it
+    GRAVITY_MISTAKE_SIGN_REVERSED, //!< the points fit the camera gravity reversed (a specific force passed as gravity)
+    GRAVITY_MISTAKE_SWAPPED        //!< the points fit the camera and object gravity exchanged
+  } vpGravityMistake;
 
   //! Pair choice of the P3P method (see vpGravitySolvers::p3p()).
   typedef enum {
@@ -104,12 +117,17 @@ public:
     P3P_WIDEST_PAIR       //!< the paper's rule: the pair farthest apart in the image.
   } vpP3PPairRule;
 
-  //! Robust loss of refinePose() on each point's reprojection error (see setRefineLoss()).
-  typedef enum {
-    LOSS_NONE,   //!< squared error: maximum likelihood under Gaussian noise (default).
-    LOSS_HUBER,  //!< quadratic below the scale, linear beyond.
-    LOSS_CAUCHY  //!< \f$ \log(1 + (r/s)^2) \f$: the influence of large errors vanishes.
-  } vpRobustLoss;
+  /*!
+    Robust loss of refinePose() on each point's reprojection error (see setRefineLoss()): the
+    project's one loss enum (::vpRobustLoss, visp3/robust/vpRobustScale.h) under its former name.
+  */
+  typedef ::vpRobustLoss vpRobustLoss;
+  //! Squared error: maximum likelihood under Gaussian noise (default); vpRobustLoss::NONE.
+  static constexpr vpRobustLoss LOSS_NONE = vpRobustLoss::NONE;
+  //! Quadratic below the scale, linear beyond; vpRobustLoss::HUBER.
+  static constexpr vpRobustLoss LOSS_HUBER = vpRobustLoss::HUBER;
+  //! \f$ \log(1 + (r/s)^2) \f$: the influence of large errors vanishes; vpRobustLoss::CAUCHY.
+  static constexpr vpRobustLoss LOSS_CAUCHY = vpRobustLoss::CAUCHY;
 
   //! Filtering of degenerate points before RANSAC, as vpPose::RANSAC_FILTER_FLAGS.
   typedef enum {
@@ -303,6 +321,17 @@ public:
   vpPoseGravityStatus getStatus() const { return m_status; }
   //! A sentence describing a status, naming the likely cause for the failures.
   static std::string getStatusMessage(vpPoseGravityStatus status);
+  /*!
+    The standard mistake that explains the last failure: for P3P and LEAST_SQUARES the one their
+    status names (STATUS_GRAVITY_SIGN_REVERSED, STATUS_GRAVITY_SWAPPED); after STATUS_NO_CONSENSUS of
+    RANSAC, the alternative gravity under which a consensus exists (the same loop, threshold and
+    significance). GRAVITY_MISTAKE_NONE after a success or when no alternative fits. A wrong or
+    missing IMU-to-sensor rotation is not among the alternatives (the class only sees the rotated
+    vectors): STATUS_INCONSISTENT_GRAVITY, or a consensus under no alternative, points to it.
+  */
+  vpGravityMistake getSuspectedMistake() const { return m_mistake; }
+  //! A sentence describing a suspected mistake.
+  static std::string getMistakeMessage(vpGravityMistake mistake);
 
   /*!
     Displays the frame of the pose cMo (axes of length \e size in object units) with vpDisplay, like
@@ -358,6 +387,7 @@ private:
   vpMatrix m_covariance;
   vpPoseGravityStatus m_status;
   bool m_refineOnInliers; // refinePose() uses m_inlierIndex (set by a successful RANSAC)
+  vpGravityMistake m_mistake;
 };
 
 #endif

@@ -116,7 +116,7 @@ private:
   std::mt19937 m_rng;
 };
 
-namespace vpRansacDetail
+namespace vsp::detail
 {
 //! Detects the optional `scoreRange()` member of an estimator (see vpRansacLoop()).
 template <class E, class = void> struct HasScoreRange : std::false_type
@@ -216,7 +216,7 @@ inline bool better(const std::pair<int, double> &a, const std::pair<int, double>
 {
   return a.first > b.first || (a.first == b.first && a.second < b.second);
 }
-} // namespace vpRansacDetail
+} // namespace vsp::detail
 
 /*!
   \ingroup group_robust
@@ -237,7 +237,7 @@ std::pair<int, double> vpRansacScore(const Estimator &estimator, const typename 
   double cost = 0.0;
   for (int begin = 0; begin < n; begin += kBlock) {
     const int end = std::min(n, begin + kBlock);
-    count += vpRansacDetail::scoreRange(estimator, m, begin, end, thr2, cost, inliers ? inliers + count : nullptr);
+    count += vsp::detail::scoreRange(estimator, m, begin, end, thr2, cost, inliers ? inliers + count : nullptr);
     if (count + (n - end) < mustReach)
       break; // even if every remaining datum were an inlier, the count would stay below mustReach
   }
@@ -255,11 +255,11 @@ void vpRansacInliers(const Estimator &estimator, const typename Estimator::Model
 {
   inliers.resize(static_cast<size_t>(estimator.size()));
   double cost = 0.0;
-  const int count = vpRansacDetail::scoreRange(estimator, m, 0, estimator.size(), thr2, cost, inliers.data());
+  const int count = vsp::detail::scoreRange(estimator, m, 0, estimator.size(), thr2, cost, inliers.data());
   inliers.resize(static_cast<size_t>(count));
 }
 
-namespace vpRansacDetail
+namespace vsp::detail
 {
 /*!
   Scores a hypothesis against the best model so far (with its consensus set \e bestInliers) and
@@ -300,7 +300,67 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, type
       return;
   }
 }
-} // namespace vpRansacDetail
+
+/*!
+  The preemptive test of vpRansacLoop() (see vpRansacOptions::pretestSize): a fixed random subset of
+  the data (drawn by its own generator, so that the sample sequence does not depend on it) and, for
+  each look at it, the fewest inliers a hypothesis as good as the best so far would show there.
+*/
+template <class Estimator> class Pretest
+{
+public:
+  Pretest(int n, const vpRansacOptions &options)
+    : m_size(options.pretestSize > 0 && n >= 4 * options.pretestSize
+                 ? (options.pretestSize + vpRansacPretestBlock - 1) / vpRansacPretestBlock * vpRansacPretestBlock
+                 : 0),
+      m_n(n), m_risk(options.pretestRisk), m_subset(static_cast<size_t>(m_size)),
+      m_minimum(static_cast<size_t>(m_size / vpRansacPretestBlock), 0), m_minimumFor(0)
+  {
+    if (m_size == 0)
+      return;
+    std::mt19937 rng(options.seed ^ 0x5bd1e995u);
+    std::vector<int> all(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i)
+      all[static_cast<size_t>(i)] = i;
+    for (int k = 0; k < m_size; ++k) { // partial Fisher-Yates shuffle
+      std::uniform_int_distribution<int> pick(k, n - 1);
+      std::swap(all[static_cast<size_t>(k)], all[static_cast<size_t>(pick(rng))]);
+    }
+    std::copy(all.begin(), all.begin() + m_size, m_subset.begin());
+  }
+
+  //! False when hypothesis \e m shows too few inliers on the subset to beat a best model of \e bestCount inliers.
+  bool passes(const Estimator &estimator, const typename Estimator::Model &m, int bestCount, double thr2)
+  {
+    if (m_size == 0 || bestCount <= 0)
+      return true;
+    const int looks = m_size / vpRansacPretestBlock;
+    if (m_minimumFor != bestCount) {
+      for (int l = 0; l < looks; ++l)
+        m_minimum[static_cast<size_t>(l)] =
+            pretestMinimum((l + 1) * vpRansacPretestBlock, double(bestCount) / m_n, m_risk);
+      m_minimumFor = bestCount;
+    }
+    if (m_minimum[static_cast<size_t>(looks - 1)] == 0)
+      return true; // the best model has too few inliers for the subset to reject anything
+    int count = 0;
+    for (int l = 0; l < looks; ++l) {
+      count += countInliers(estimator, m, m_subset.data() + l * vpRansacPretestBlock, vpRansacPretestBlock, thr2);
+      if (count < m_minimum[static_cast<size_t>(l)])
+        return false;
+    }
+    return true;
+  }
+
+private:
+  int m_size; // data in the subset: a multiple of vpRansacPretestBlock, 0 without the test
+  int m_n;
+  double m_risk;
+  std::vector<int> m_subset;
+  std::vector<int> m_minimum; // per look, for the best inlier count m_minimumFor
+  int m_minimumFor;
+};
+} // namespace vsp::detail
 
 /*!
   \ingroup group_robust
@@ -353,46 +413,7 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
   std::array<Model, Estimator::kMaxModels> hypotheses{};
   std::vector<int> scratch; // consensus set of the hypothesis being scored
   std::pair<int, double> bestScore(0, std::numeric_limits<double>::infinity());
-  // Preemptive test: a fixed random subset (own generator: the sample sequence does not depend on it),
-  // and for each look at it the fewest inliers a hypothesis as good as the best so far would show.
-  const int pretest = options.pretestSize > 0 && n >= 4 * options.pretestSize
-                          ? (options.pretestSize + vpRansacPretestBlock - 1) / vpRansacPretestBlock * vpRansacPretestBlock
-                          : 0;
-  std::vector<int> subset(static_cast<size_t>(pretest));
-  if (pretest > 0) {
-    std::mt19937 rng(options.seed ^ 0x5bd1e995u);
-    std::vector<int> all(static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i)
-      all[static_cast<size_t>(i)] = i;
-    for (int k = 0; k < pretest; ++k) { // partial Fisher-Yates shuffle
-      std::uniform_int_distribution<int> pick(k, n - 1);
-      std::swap(all[static_cast<size_t>(k)], all[static_cast<size_t>(pick(rng))]);
-    }
-    std::copy(all.begin(), all.begin() + pretest, subset.begin());
-  }
-  const int looks = pretest / vpRansacPretestBlock;
-  std::vector<int> minimum(static_cast<size_t>(looks), 0); // per look, for the current best score
-  int minimumFor = 0;                                      // the best inlier count minimum was computed for
-  auto passesPretest = [&](const Model &m) {
-    if (pretest == 0 || bestScore.first <= 0)
-      return true;
-    if (minimumFor != bestScore.first) {
-      for (int l = 0; l < looks; ++l)
-        minimum[static_cast<size_t>(l)] = vpRansacDetail::pretestMinimum((l + 1) * vpRansacPretestBlock,
-                                                                         double(bestScore.first) / n, options.pretestRisk);
-      minimumFor = bestScore.first;
-    }
-    if (minimum[static_cast<size_t>(looks - 1)] == 0)
-      return true; // the best model has too few inliers for the subset to reject anything
-    int count = 0;
-    for (int l = 0; l < looks; ++l) {
-      count += vpRansacDetail::countInliers(estimator, m, subset.data() + l * vpRansacPretestBlock,
-                                            vpRansacPretestBlock, thr2);
-      if (count < minimum[static_cast<size_t>(l)])
-        return false;
-    }
-    return true;
-  };
+  vsp::detail::Pretest<Estimator> pretest(n, options);
   int needed = options.maxTrials;
   int trial = 0;
   int optimisedCount = 0; // inliers of the last locally optimised model
@@ -403,14 +424,14 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
     const int count = estimator.solveMinimal(sample.data(), hypotheses.data());
     for (int k = 0; k < count; ++k) {
       ++report.models;
-      if (!passesPretest(hypotheses[k]))
+      if (!pretest.passes(estimator, hypotheses[k], bestScore.first, thr2))
         continue;
-      if (!vpRansacDetail::challenge(estimator, hypotheses[k], thr2, best, bestScore, report.inliers, scratch))
+      if (!vsp::detail::challenge(estimator, hypotheses[k], thr2, best, bestScore, report.inliers, scratch))
         continue;
       if (options.localOptimisation && bestScore.first > s &&
           bestScore.first > (1.0 + options.localOptimisationGain) * optimisedCount) {
-        vpRansacDetail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
-                                          scratch);
+        vsp::detail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
+                                       scratch);
         optimisedCount = bestScore.first;
       }
       needed = vpRansacTrialCount(options.probability, 1.0 - double(bestScore.first) / n, s, options.maxTrials);

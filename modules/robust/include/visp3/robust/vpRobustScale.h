@@ -24,7 +24,7 @@
 
 #include <visp3/core/vpConfig.h>
 
-namespace vpRobustDetail
+namespace vsp::detail
 {
 //! \e x when \e keep, +0 otherwise, by a bit mask: compilers turn a select of doubles into a branch.
 inline double zeroUnless(bool keep, double x)
@@ -83,7 +83,7 @@ inline void selectPair(double *v, size_t n, size_t k, double &kth, double &previ
   kth = v[k];
   previous = k > 0 ? *std::max_element(v, v + static_cast<std::ptrdiff_t>(k)) : below;
 }
-} // namespace vpRobustDetail
+} // namespace vsp::detail
 
 /*!
   \ingroup group_robust
@@ -105,7 +105,7 @@ inline double vpRobustMadScale(std::vector<double> residuals)
     return 1.4826 * residuals[0];
   const size_t mid = count / 2;
   double median = 0.0, below = 0.0;
-  vpRobustDetail::selectPair(residuals.data(), count, mid, median, below);
+  vsp::detail::selectPair(residuals.data(), count, mid, median, below);
   if (count % 2 == 0)
     median = 0.5 * (median + below);
   return 1.4826 * median;
@@ -128,8 +128,16 @@ inline void vpRobustCollect(const std::vector<double> &residuals, double thresho
   inliers.resize(count);
 }
 
-//! \ingroup group_robust Robust losses of vpRobustWeight().
+/*!
+  \ingroup group_robust
+  The robust losses of the project, one vocabulary for every robust fit: the IRLS weights of
+  vpRobustWeight(), the loss of vpPoseGravity::refinePose() (vpPoseGravity::setRefineLoss()) and of
+  the calibration's second stage (vpLaserConicCalibration::setRobustLoss()). The facades keep their
+  former names as aliases (vpPoseGravity::vpRobustLoss, vpPoseGravity::LOSS_HUBER,
+  vpLaserConicCalibration::vpLaserConicLoss, vpLaserConicCalibration::LOSS_CAUCHY, ...).
+*/
 enum class vpRobustLoss {
+  NONE,  //!< squared error: plain least squares, maximum likelihood under Gaussian noise (unit weights)
   HUBER, //!< quadratic up to k sigma, linear beyond (k = 1.345: 95 % efficiency under Gaussian noise)
   CAUCHY //!< log(1 + (r / (k sigma))^2) (k = 2.3849: 95 % efficiency), redescending-like, strong against outliers
 };
@@ -138,11 +146,11 @@ enum class vpRobustLoss {
   \ingroup group_robust
   IRLS weight w(r) = psi(r) / r of residual \e r for the loss at scale \e sigma (> 0): a weighted
   least-squares step with these weights is a Newton-like step on the robust cost. A zero or invalid
-  scale gives unit weights.
+  scale, or vpRobustLoss::NONE, gives unit weights (zero for a non-finite residual).
 */
 inline double vpRobustWeight(vpRobustLoss loss, double r, double sigma)
 {
-  if (!(sigma > 0.0) || !std::isfinite(r))
+  if (loss == vpRobustLoss::NONE || !(sigma > 0.0) || !std::isfinite(r))
     return std::isfinite(r) ? 1.0 : 0.0;
   if (loss == vpRobustLoss::HUBER) {
     // min(1, k / |r|) is 1 exactly when |r| <= k (k / 0 = inf), and compiles without a branch.

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include <visp3/pose_gravity/vpGravitySolvers.h>
+#include <visp3/robust/vpRobustScale.h>
 
 namespace vpGravitySolvers
 {
@@ -60,21 +61,13 @@ template <typename Derived> inline bool allFinite(const Eigen::MatrixBase<Derive
   return v.allFinite();
 }
 
-//! Robust loss of the refinement (values of vpPoseGravity::vpRobustLoss).
-enum class RefineLoss
-{
-  None,   //!< squared error (maximum likelihood under Gaussian noise)
-  Huber,  //!< quadratic up to the scale, linear beyond
-  Cauchy  //!< log(1 + (r / scale)^2): outliers lose their influence
-};
-
 //! Settings of refinePose().
 struct RefineOptions
 {
   double imageSigma = 1e-3;         //!< image noise, normalized coordinates (whitens the reprojection errors)
   double cameraGravitySigma = 0.0;  //!< noise of each component of the unit camera gravity (0: exact)
   double objectGravitySigma = 0.0;  //!< noise of each component of the unit object gravity (0: exact)
-  RefineLoss loss = RefineLoss::None; //!< robust loss on each point's reprojection error
+  vpRobustLoss loss = vpRobustLoss::NONE; //!< robust loss on each point's reprojection error
   double lossScale = 3e-3;          //!< scale of the loss, normalized coordinates
 };
 

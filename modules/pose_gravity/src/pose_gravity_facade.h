@@ -15,7 +15,7 @@
 #include <visp3/core/vpPoint.h>
 #include <visp3/pose_gravity/vpGravitySolvers.h>
 
-namespace vpPoseGravityFacade
+namespace vsp::pose_gravity_facade
 {
 //! Relative tolerance under which two object (or image) points are the same point.
 constexpr double kDuplicateTolerance = 1e-12;
@@ -46,6 +46,6 @@ void collectFirst(const std::vector<vpPoint> &points, size_t count, std::vector<
 
 //! Largest absolute coordinate of the object points (the scale of kDuplicateTolerance).
 double objectScale(const std::vector<vpPoint> &points, unsigned int count);
-} // namespace vpPoseGravityFacade
+} // namespace vsp::pose_gravity_facade
 
 #endif

@@ -1,8 +1,8 @@
 /* ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE. */
 /*
-  Helpers shared by the vpPoseGravity facade files (see poseGravityFacade.h).
+  Helpers shared by the vpPoseGravity facade files (see pose_gravity_facade.h).
 */
-#include "poseGravityFacade.h"
+#include "pose_gravity_facade.h"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <numeric>
 
-namespace vpPoseGravityFacade
+namespace vsp::pose_gravity_facade
 {
 void storePose(const vpGravitySolvers::Pose &pose, vpHomogeneousMatrix &cMo)
 {
@@ -145,4 +145,4 @@ void findDuplicates(const std::vector<double> &v, int dim, double tolerance, std
     firstEqual[i] = best;
   }
 }
-} // namespace vpPoseGravityFacade
+} // namespace vsp::pose_gravity_facade
