@@ -15,7 +15,7 @@
 
 #include <visp3/pose_gravity/vpPoseGravity.h>
 
-#include "gravityTestScene.h"
+#include "gravity_test_scene.h"
 
 using namespace gravity_test;
 
@@ -32,7 +32,7 @@ double rotationDegrees(const vpHomogeneousMatrix &A, const vpHomogeneousMatrix &
 
 // Camera and object gravity exchanged (the two IMUs' vectors given to the wrong setter), exact data
 // and 1 px: a P3P or least-squares pose that fits is tens of degrees off; it must be refused, named.
-TEST(pose_gravity_Mistakes, SwappedGravityIsRefusedAndNamed)
+TEST(PoseGravityMistakes, SwappedGravityIsRefusedAndNamed)
 {
   SceneGenerator gen(301);
   const int runs = 300;
@@ -65,7 +65,7 @@ TEST(pose_gravity_Mistakes, SwappedGravityIsRefusedAndNamed)
 
 // RANSAC with the camera gravity reversed or the vectors exchanged: no consensus, and the mistake
 // under which one exists is named. Right vectors: a pose, no mistake.
-TEST(pose_gravity_Mistakes, RansacNoConsensusNamesTheMistake)
+TEST(PoseGravityMistakes, RansacNoConsensusNamesTheMistake)
 {
   SceneGenerator gen(302);
   const int runs = 100;
@@ -113,7 +113,7 @@ TEST(pose_gravity_Mistakes, RansacNoConsensusNamesTheMistake)
 }
 
 // Right vectors, 1 px: no closed-form estimate is refused as swapped (at most 0.5 %).
-TEST(pose_gravity_Mistakes, RightGravityIsNotCalledSwapped)
+TEST(PoseGravityMistakes, RightGravityIsNotCalledSwapped)
 {
   SceneGenerator gen(303);
   const int runs = 1000;
