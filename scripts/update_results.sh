@@ -233,7 +233,7 @@ gen_summary() {
     echo "|---|---|---|---|"
     echo "| Gravity P3P, the paper's Table I: trials with ε < 0.02 (8000 trials, 2 px, σ_g = 0.01) | $(cell "$t/table1.md" '^\| P3P_IMU \|' 2) (refined: $(cell "$t/table1.md" '^\| P3P_IMU_REFINED \|' 2)) | 93 % | [Table I](doc/results.md#gravity-aided-pose-the-papers-table-i) |"
     echo "| Gravity RANSAC on pure outliers, success claimed (n = 200) | $(cell "$t/robustness.md" 'n = 200, threshold 0.0040' 3) % | ≤ 1 % | [robustness](doc/results.md#gravity-aided-pose-robustness-of-the-checks) |"
-    echo "| Laser GP-3 on the hard sequence (48 frames, distorted 80° lens): altitude error mean ± std, median (mm) | $(cell "$t/demo_laser.md" '^\| GP3 \|' 3) | — | [demo](doc/results.md#circular-laser-hard-simulated-sequence-the-demo) |"
+    echo "| Laser GP-3 on the hard sequence (rendered, distorted 80° lens): altitude error mean ± std, median (mm) | $(cell "$t/demo_laser.md" '^\| GP3 \|' 3) | — | [demo](doc/results.md#circular-laser-hard-simulated-sequence-the-demo) |"
     echo "| Laser PP-5 / PP-3 / GP-3 on the paper's Table 2 sequence (simulated): altitude error (mm) | $(cell "$t/sequence.md" '^\| Altitude error' 2) / $(cell "$t/sequence.md" '^\| Altitude error' 3) / $(cell "$t/sequence.md" '^\| Altitude error' 4) | real data: 11.3 / 7.9 / 7.5 | [Table 2](doc/results.md#circular-laser-simulated-sequence-the-papers-table-2) |"
     local breakdown="not generated yet (\`--full\`)"
     if grep -q '^| PP5 |' "$t/synthetic_outliers.md"; then

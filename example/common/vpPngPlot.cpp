@@ -51,10 +51,12 @@ void drawMarker(vpImage<vpRGBa> &I, const vpImagePoint &p, unsigned int shape, c
 
 /*!
   A marker beyond the y range: a filled triangle on the edge of the chart at column \e j, pointing out
-  (up on the top edge \e i, down on the bottom one), with the value on the inside.
+  (up on the top edge \e i, down on the bottom one), with the value on the inside. \e labelEnds holds,
+  per row of labels along that edge, where the last label ends: the value goes on the first row where it
+  overlaps no other.
 */
 void drawClipped(vpImage<vpRGBa> &I, const vpFont &font, double i, double j, bool above, double value,
-                 const vpColor &color)
+                 const vpColor &color, std::vector<double> &labelEnds)
 {
   const double height = 9.0, halfWidth = 6.0, inward = above ? 1.0 : -1.0;
   for (double d = 0.0; d <= height; d += 1.0) { // row by row from the tip
@@ -64,8 +66,15 @@ void drawClipped(vpImage<vpRGBa> &I, const vpFont &font, double i, double j, boo
   char text[32];
   std::snprintf(text, sizeof(text), std::abs(value) >= 100.0 ? "%.0f" : "%.3g", value);
   const vpImagePoint size = font.getMeasure(text);
-  const double row = above ? i + height + 2.0 : i - height - 2.0 - size.get_i();
-  font.drawText(I, text, vpImagePoint(row, j - size.get_j() / 2), color);
+  const double start = j - size.get_j() / 2, end = j + size.get_j() / 2;
+  size_t row = 0;
+  while (row < labelEnds.size() && labelEnds[row] > start - 4.0)
+    ++row;
+  if (row == labelEnds.size())
+    labelEnds.push_back(end);
+  labelEnds[row] = end;
+  const double offset = height + 2.0 + row * (size.get_i() + 2.0);
+  font.drawText(I, text, vpImagePoint(above ? i + offset : i - offset - size.get_i(), start), color);
 }
 
 std::string formatTick(double v, double step)
@@ -216,6 +225,7 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   };
   auto insideColumns = [&](const vpImagePoint &p) { return p.get_j() >= left - 0.5 && p.get_j() <= right + 0.5; };
   std::vector<unsigned int> clipped(m_series.size(), 0);
+  std::vector<double> labelEnds[2]; // the value labels of the markers beyond the range, top and bottom edges
   std::vector<vpImagePoint> drawn; // every sample on the chart, where the legend should not go
   unsigned int shape = 0;
   for (size_t k = 0; k < m_series.size(); ++k) {
@@ -236,7 +246,7 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
           drawMarker(I, p, shape, s.color);
         } else if (m_fixedY && insideColumns(p)) {
           const bool above = p.get_i() < top;
-          drawClipped(I, font, above ? top : bottom, p.get_j(), above, s.y[i], s.color);
+          drawClipped(I, font, above ? top : bottom, p.get_j(), above, s.y[i], s.color, labelEnds[above ? 0 : 1]);
           drawn.push_back(vpImagePoint(above ? top + 12 : bottom - 12, p.get_j())); // the triangle and its value
           ++clipped[k];
         }
@@ -256,7 +266,7 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   font.drawText(I, m_yLabel, vpImagePoint(top - 20, 8), vpColor::black);
   // The legend goes into the corner of the chart that hides the fewest samples (top right on a tie), off
   // the bands along the top and bottom edges where markers beyond a fixed y range are drawn.
-  const vpImagePoint size = legendSize(font);
+  const vpImagePoint size = legendSize(font, clipped);
   const double band = m_fixedY ? 28.0 : 6.0;
   const vpImagePoint corners[] = {vpImagePoint(top + band, right - size.get_j() - 6),
                                   vpImagePoint(top + band, left + 6),
@@ -280,15 +290,19 @@ namespace
 const double kLegendRowHeight = 20.0, kLegendSampleWidth = 30.0;
 }
 
-vpImagePoint vpPngPlot::legendSize(const vpFont &font) const
+std::string vpPngPlot::legendName(size_t k, const std::vector<unsigned int> &clipped) const
 {
-  // Room for the longest name and the count of markers beyond the range that may follow it.
+  const std::string &name = m_series[k].name;
+  return clipped[k] > 0 ? name + ", " + std::to_string(clipped[k]) + " off the chart" : name;
+}
+
+vpImagePoint vpPngPlot::legendSize(const vpFont &font, const std::vector<unsigned int> &clipped) const
+{
   double nameWidth = 0.0;
   unsigned int rows = 0;
-  for (const Series &s : m_series)
-    if (!s.name.empty()) {
-      const std::string longest = s.name + (s.markers && m_fixedY ? ", 000 off the chart" : "");
-      nameWidth = std::max(nameWidth, font.getMeasure(longest).get_j());
+  for (size_t k = 0; k < m_series.size(); ++k)
+    if (!m_series[k].name.empty()) {
+      nameWidth = std::max(nameWidth, font.getMeasure(legendName(k, clipped)).get_j());
       ++rows;
     }
   if (rows == 0)
@@ -300,7 +314,7 @@ void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, const vpImage
                            const std::vector<unsigned int> &clipped) const
 {
   // One column of samples and one of names, on a white box that hides the data behind it.
-  const vpImagePoint size = legendSize(font);
+  const vpImagePoint size = legendSize(font, clipped);
   if (size.get_i() <= 0.0)
     return;
   const vpRect box(corner, corner + size);
@@ -318,8 +332,8 @@ void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, const vpImage
                             sample + vpImagePoint(0, kLegendSampleWidth / 2), s.color, 3);
     if (s.name.empty())
       continue;
-    const std::string name = clipped[k] > 0 ? s.name + ", " + std::to_string(clipped[k]) + " off the chart" : s.name;
-    font.drawText(I, name, vpImagePoint(row, corner.get_j() + kLegendSampleWidth + 12), vpColor::black);
+    font.drawText(I, legendName(k, clipped), vpImagePoint(row, corner.get_j() + kLegendSampleWidth + 12),
+                  vpColor::black);
     row += kLegendRowHeight;
   }
 }

@@ -62,8 +62,10 @@ private:
   //! Tick positions (plotted ordinates) between \e y0 and \e y1.
   std::vector<double> yTicks(double y0, double y1) const;
   void dataRange(double &x0, double &x1, double &y0, double &y1) const;
+  //! The legend's name of series \e k, with the count of its \e clipped[k] markers beyond the y range.
+  std::string legendName(size_t k, const std::vector<unsigned int> &clipped) const;
   //! Size (height, width) of the legend box of the series whose names are not empty.
-  vpImagePoint legendSize(const vpFont &font) const;
+  vpImagePoint legendSize(const vpFont &font, const std::vector<unsigned int> &clipped) const;
   /*!
     Legend box at \e corner (top-left pixel of the box); \e clipped[k] markers of series k lie beyond
     the y range.

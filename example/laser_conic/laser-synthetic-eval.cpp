@@ -190,6 +190,17 @@ TrialInput exactInput(vpLaserConicSimulator &sim, unsigned int points, double ro
   return in;
 }
 
+//! The trace of the calibration studies (Fig. 9, 10): \e noise px of image noise on every point.
+TrialInput calibrationStudyInput(vpLaserConicSimulator &sim, unsigned int points, double noise, double threshold)
+{
+  TrialInput in = exactInput(sim, points, 0.0, threshold);
+  in.points = sim.addNoise(in.points, noise);
+  return in;
+}
+
+//! The laser apex moved to \e apex (camera frame, metres), its orientation kept.
+void moveApex(TrialInput &in, const vpTranslationVector &apex) { in.cMl.buildFrom(apex, in.cMl.getRotationMatrix()); }
+
 std::vector<double> range(double first, double last, double step)
 {
   std::vector<double> v;
@@ -208,6 +219,28 @@ CurveStudy makeStudy(const Options &opt, const std::string &name, const std::str
   study.figure = figure;
   study.xLabel = xLabel;
   study.levels = opt.quick ? quickLevels : levels;
+  return study;
+}
+
+//! The apex moved by a study: move(apex, err), err() drawing one error in metres.
+typedef std::function<vpTranslationVector(const vpTranslationVector &, const std::function<double()> &)> ApexMove;
+
+/*!
+  A laser-position study of the Fig. 9 and 10 protocol: the apex moved by \e move, err() drawing a
+  normal error of the level's standard deviation (mm).
+*/
+CurveStudy apexStudy(const Options &opt, const std::string &name, const std::string &figure, const std::string &xLabel,
+                     const ApexMove &move)
+{
+  CurveStudy study = makeStudy(opt, name, figure, xLabel, {0.0, 5.0, 10.0}, range(0.0, 10.0, 1.0));
+  const unsigned int n = opt.points;
+  const double threshold = opt.threshold, noise = opt.calibrationNoise;
+  study.perturb = [n, threshold, noise, move](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &rng) {
+    TrialInput in = calibrationStudyInput(sim, n, noise, threshold);
+    std::normal_distribution<double> err(0.0, sigmaMm * 1e-3);
+    moveApex(in, move(in.cMl.getTranslationVector(), [&err, &rng]() { return err(rng); }));
+    return in;
+  };
   return study;
 }
 
@@ -233,8 +266,7 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
                                     {0.0, 5.0, 20.0}, range(0.0, 20.0, 2.5));
   intrinsics.perturb = [n, minThreshold, calibrationNoise](double sigma, vpLaserConicSimulator &sim,
                                                            std::mt19937 &rng) {
-    TrialInput in = exactInput(sim, n, 0.0, minThreshold);
-    in.points = sim.addNoise(in.points, calibrationNoise);
+    TrialInput in = calibrationStudyInput(sim, n, calibrationNoise, minThreshold);
     std::normal_distribution<double> err(0.0, 1.0);
     in.cam = vpCameraParameters(in.cam.get_px() + sigma * err(rng), in.cam.get_py() + sigma * err(rng),
                                 in.cam.get_u0() + sigma * err(rng), in.cam.get_v0() + sigma * err(rng));
@@ -242,34 +274,17 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
   };
   studies.push_back(intrinsics);
 
-  CurveStudy baseline = makeStudy(opt, "baseline", "Fig. 10 (3 axes)", "sigma of the laser position error (mm)",
-                                  {0.0, 5.0, 10.0}, range(0.0, 10.0, 1.0));
-  baseline.perturb = [n, minThreshold, calibrationNoise](double sigmaMm, vpLaserConicSimulator &sim,
-                                                         std::mt19937 &rng) {
-    TrialInput in = exactInput(sim, n, 0.0, minThreshold);
-    in.points = sim.addNoise(in.points, calibrationNoise);
-    std::normal_distribution<double> err(0.0, sigmaMm * 1e-3);
-    const vpTranslationVector t = in.cMl.getTranslationVector();
-    in.cMl.buildFrom(vpTranslationVector(t[0] + err(rng), t[1] + err(rng), t[2] + err(rng)), in.cMl.getRotationMatrix());
-    return in;
-  };
-  studies.push_back(baseline);
-
+  studies.push_back(apexStudy(opt, "baseline", "Fig. 10 (3 axes)", "sigma of the laser position error (mm)",
+                              [](const vpTranslationVector &t, const std::function<double()> &err) {
+                                return vpTranslationVector(t[0] + err(), t[1] + err(), t[2] + err());
+                              }));
   // The paper's Fig. 10: noise on the extent of the baseline only (the apex moves along the baseline).
-  CurveStudy extent = makeStudy(opt, "extent", "Fig. 10", "sigma of the baseline length error (mm)",
-                                {0.0, 5.0, 10.0}, range(0.0, 10.0, 1.0));
-  extent.perturb = [n, minThreshold, calibrationNoise](double sigmaMm, vpLaserConicSimulator &sim,
-                                                       std::mt19937 &rng) {
-    TrialInput in = exactInput(sim, n, 0.0, minThreshold);
-    in.points = sim.addNoise(in.points, calibrationNoise);
-    std::normal_distribution<double> err(0.0, sigmaMm * 1e-3);
-    const vpTranslationVector t = in.cMl.getTranslationVector();
-    const double length = t.frobeniusNorm();
-    const double scale = (length + err(rng)) / length;
-    in.cMl.buildFrom(vpTranslationVector(t[0] * scale, t[1] * scale, t[2] * scale), in.cMl.getRotationMatrix());
-    return in;
-  };
-  studies.push_back(extent);
+  studies.push_back(apexStudy(opt, "extent", "Fig. 10", "sigma of the baseline length error (mm)",
+                              [](const vpTranslationVector &t, const std::function<double()> &err) {
+                                const double length = t.frobeniusNorm();
+                                const double scale = (length + err()) / length;
+                                return vpTranslationVector(t[0] * scale, t[1] * scale, t[2] * scale);
+                              }));
 
   CurveStudy roughness = makeStudy(opt, "roughness", "Fig. 11", "ground roughness sigma (mm)", {0.0, 5.0, 20.0},
                                    range(0.0, 20.0, 2.5));

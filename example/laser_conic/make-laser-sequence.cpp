@@ -266,13 +266,19 @@ private:
   double m_slowPhase = 0.0, m_wobblePhase = 0.0;
 };
 
+//! Parameters of one SmoothSignal: mean, slow amplitude, slow cycles, wobble amplitude, wobble cycles.
+typedef double SignalParameters[5];
+
 /*!
-  The states at \e frames instants of [0, 1] of the signals altitude, roll, pitch, yaw, x, y (in that
-  order), the altitude kept above \e minAltitude.
+  The states at \e frames instants of [0, 1] of six smooth signals altitude, roll, pitch, yaw, x, y (in
+  that order, their phases drawn from \e rng in that order), the altitude kept above \e minAltitude.
 */
-std::vector<RigState> sampleTrajectory(const std::vector<SmoothSignal> &signals, unsigned int frames,
+std::vector<RigState> sampleTrajectory(std::mt19937 &rng, const SignalParameters (&parameters)[6], unsigned int frames,
                                        double minAltitude)
 {
+  std::vector<SmoothSignal> signals;
+  for (const SignalParameters &p : parameters)
+    signals.push_back(SmoothSignal(rng, p[0], p[1], p[2], p[3], p[4]));
   std::vector<RigState> states;
   for (unsigned int k = 0; k < frames; ++k) {
     const double t = frames > 1 ? k / static_cast<double>(frames - 1) : 0.0;
@@ -286,14 +292,13 @@ std::vector<RigState> trajectory(unsigned int frames, unsigned int seed)
 {
   std::mt19937 rng(seed);
   // Amplitudes keep the altitude in [0.55, 1.45] m and the tilts within +-(15 + 3) deg.
-  std::vector<SmoothSignal> signals;
-  signals.push_back(SmoothSignal(rng, 1.0, 0.38, 1.3, 0.05, 5.0));
-  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(15.0), 1.7, vpMath::rad(3.0), 6.5));
-  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(14.0), 1.1, vpMath::rad(3.0), 7.3));
-  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(40.0), 0.6, vpMath::rad(2.0), 4.0));
-  signals.push_back(SmoothSignal(rng, 0.0, 1.0, 0.5, 0.02, 6.0));
-  signals.push_back(SmoothSignal(rng, 0.0, 0.6, 0.8, 0.02, 5.5));
-  return sampleTrajectory(signals, frames, 0.0);
+  const SignalParameters parameters[6] = {{1.0, 0.38, 1.3, 0.05, 5.0},
+                                          {0.0, vpMath::rad(15.0), 1.7, vpMath::rad(3.0), 6.5},
+                                          {0.0, vpMath::rad(14.0), 1.1, vpMath::rad(3.0), 7.3},
+                                          {0.0, vpMath::rad(40.0), 0.6, vpMath::rad(2.0), 4.0},
+                                          {0.0, 1.0, 0.5, 0.02, 6.0},
+                                          {0.0, 0.6, 0.8, 0.02, 5.5}};
+  return sampleTrajectory(rng, parameters, frames, 0.0);
 }
 
 /*!
@@ -303,14 +308,13 @@ std::vector<RigState> trajectory(unsigned int frames, unsigned int seed)
 std::vector<RigState> hardTrajectory(unsigned int frames, unsigned int seed)
 {
   std::mt19937 rng(seed + 1);
-  std::vector<SmoothSignal> signals;
-  signals.push_back(SmoothSignal(rng, 1.7, 1.15, 1.2, 0.08, 4.0));
-  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(20.0), 1.6, vpMath::rad(4.0), 6.5));
-  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(18.0), 1.3, vpMath::rad(4.0), 7.3));
-  signals.push_back(SmoothSignal(rng, 0.0, vpMath::rad(60.0), 0.7, vpMath::rad(3.0), 4.0));
-  signals.push_back(SmoothSignal(rng, 0.0, 0.6, 0.6, 0.02, 6.0));
-  signals.push_back(SmoothSignal(rng, 0.0, 0.4, 0.9, 0.02, 5.5));
-  return sampleTrajectory(signals, frames, 0.5);
+  const SignalParameters parameters[6] = {{1.7, 1.15, 1.2, 0.08, 4.0},
+                                          {0.0, vpMath::rad(20.0), 1.6, vpMath::rad(4.0), 6.5},
+                                          {0.0, vpMath::rad(18.0), 1.3, vpMath::rad(4.0), 7.3},
+                                          {0.0, vpMath::rad(60.0), 0.7, vpMath::rad(3.0), 4.0},
+                                          {0.0, 0.6, 0.6, 0.02, 6.0},
+                                          {0.0, 0.4, 0.9, 0.02, 5.5}};
+  return sampleTrajectory(rng, parameters, frames, 0.5);
 }
 
 /*!

@@ -105,6 +105,17 @@ public:
     }
   }
 
+  /*!
+    The main of a tutorial with one integer option: declares `name N` (default \e value, at least
+    \e minValue), then runs body(N, outputDir, display()) as run() above does.
+  */
+  int run(int argc, char **argv, const std::string &name, int value, int minValue, const std::string &help,
+          const std::function<bool(int, const std::string &, bool)> &body)
+  {
+    addOption(name, value, minValue, help);
+    return run(argc, argv, [&](const std::string &outputDir) { return body(value, outputDir, m_display); });
+  }
+
 private:
   std::string m_outputDir;
   bool m_display;

@@ -240,12 +240,8 @@ bool runLandingTutorial(int frames, const std::string &outputDir, bool display)
 
 int main(int argc, char **argv)
 {
-  int frames = 40;
   vpTutorialProgram program("[--frames N]",
                             "Simulated landing measured by a camera and a circular laser (GP-3); "
                             "writes laser-landing-*.png.");
-  program.addOption("--frames", frames, 2, "number of frames of the descent");
-  return program.run(argc, argv, [&](const std::string &outputDir) {
-    return runLandingTutorial(frames, outputDir, program.display());
-  });
+  return program.run(argc, argv, "--frames", 40, 2, "number of frames of the descent", runLandingTutorial);
 }

@@ -313,12 +313,8 @@ bool runServoTutorial(int seed, const std::string &outputDir, bool display)
 
 int main(int argc, char **argv)
 {
-  int seed = 1;
   vpTutorialProgram program("[--seed N]",
                             "PBVS loop closed by vpPoseGravity (3 points + IMU) and by vpPose (4 points); "
                             "writes servo-gravity-*.png.");
-  program.addOption("--seed", seed, 0, "seed of the simulated sensor noise");
-  return program.run(argc, argv, [&](const std::string &outputDir) {
-    return runServoTutorial(seed, outputDir, program.display());
-  });
+  return program.run(argc, argv, "--seed", 1, 0, "seed of the simulated sensor noise", runServoTutorial);
 }

@@ -235,12 +235,8 @@ bool runTrackerTutorial(int frames, const std::string &outputDir, bool display)
 
 int main(int argc, char **argv)
 {
-  int frames = 120;
   vpTutorialProgram program("[--frames N]",
                             "Tracks four dots with vpDot2 in rendered images and estimates the pose with "
                             "vpPoseGravity; writes tracker-gravity-*.png.");
-  program.addOption("--frames", frames, 2, "number of frames of the sequence");
-  return program.run(argc, argv, [&](const std::string &outputDir) {
-    return runTrackerTutorial(frames, outputDir, program.display());
-  });
+  return program.run(argc, argv, "--frames", 120, 2, "number of frames of the sequence", runTrackerTutorial);
 }

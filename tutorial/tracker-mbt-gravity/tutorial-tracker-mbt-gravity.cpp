@@ -405,12 +405,8 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
 
 int main(int argc, char **argv)
 {
-  int frames = 100;
   vpTutorialProgram program("[--frames N]",
                             "Tracks a rendered box with vpMbGenericTracker, initialised and re-initialised after a "
                             "loss by vpPoseGravity from three points; writes tracker-mbt-gravity-*.png.");
-  program.addOption("--frames", frames, 10, "number of frames of the sequence");
-  return program.run(argc, argv, [&](const std::string &outputDir) {
-    return runMbtTutorial(frames, outputDir, program.display());
-  });
+  return program.run(argc, argv, "--frames", 100, 10, "number of frames of the sequence", runMbtTutorial);
 }
