@@ -50,6 +50,7 @@ long=$(awk -v max="$max_function" '
   # A line at column 0 that can begin a declaration: remember it as the candidate signature start.
   /^[A-Za-z_~]/ && !inFunction {
     if (!signature || prevEnded) { signature = FNR; text = $0 }
+    else if (text ~ /^template/ && text !~ /\(/) { text = text " " $0 } # name the function after its template line
     prevEnded = ($0 ~ /[;}][ \t]*$/ || $0 ~ /^(public|private|protected):/)
   }
   !/^[A-Za-z_~]/ && !inFunction && /^(#|\/\/|[ \t]*$)/ { signature = 0 }

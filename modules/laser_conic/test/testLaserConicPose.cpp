@@ -95,6 +95,25 @@ struct Errors
 };
 
 /*!
+  Corrupts the exact trace \e points of scene \e s with Gaussian pixel noise \e sigma (none when 0),
+  then a fraction \e outliers of outliers (none when 0). \return the estimator of the scene with
+  RANSAC seed \e seed and threshold \e threshold (pixels).
+*/
+vpLaserConicPose noisyEstimator(const Scene &s, double sigma, double outliers, unsigned int seed, double threshold,
+                                std::mt19937 &rng, std::vector<vpImagePoint> &points)
+{
+  if (sigma > 0.0)
+    points = laser_test::addNoise(points, sigma, rng);
+  std::vector<bool> isOutlier;
+  if (outliers > 0.0)
+    points = laser_test::addOutliers(points, outliers, s, rng, isOutlier);
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  estimator.setRansacSeed(seed);
+  estimator.setRansacThreshold(threshold);
+  return estimator;
+}
+
+/*!
   Runs one method over random scenes of \e n trace points, with pixel noise \e sigma and a fraction
   \e outliers of outliers. Checks the returned plane is consistent with the altitude/roll/pitch getters.
 */
@@ -106,14 +125,7 @@ Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigne
   for (int k = 0; k < scenes; ++k) {
     std::vector<vpImagePoint> points;
     const Scene s = drawScene(rng, method, n, points);
-    if (sigma > 0.0)
-      points = laser_test::addNoise(points, sigma, rng);
-    std::vector<bool> isOutlier;
-    if (outliers > 0.0)
-      points = laser_test::addOutliers(points, outliers, s, rng, isOutlier);
-    vpLaserConicPose estimator = makeEstimator(s.rig);
-    estimator.setRansacSeed(seed + k);
-    estimator.setRansacThreshold(threshold);
+    vpLaserConicPose estimator = noisyEstimator(s, sigma, outliers, seed + k, threshold, rng, points);
     vpPlane plane;
     if (!errors.solve(estimator, s, points, method, plane))
       continue;
@@ -598,13 +610,7 @@ double meanNees(vpLaserConicPose::vpLaserConicMethod method, vpLaserConicPose::v
   for (int k = 0; k < trials; ++k) {
     std::vector<vpImagePoint> points;
     const Scene s = drawScene(rng, method, 360, points, ranges);
-    points = laser_test::addNoise(points, sigma, rng);
-    std::vector<bool> isOutlier;
-    if (outliers > 0.0)
-      points = laser_test::addOutliers(points, outliers, s, rng, isOutlier);
-    vpLaserConicPose estimator = makeEstimator(s.rig);
-    estimator.setRansacSeed(seed + k);
-    estimator.setRansacThreshold(3.0 * sigma);
+    vpLaserConicPose estimator = noisyEstimator(s, sigma, outliers, seed + k, 3.0 * sigma, rng, points);
     estimator.setFinalFit(fit);
     estimator.setCovarianceComputation(true);
     vpPlane plane;
