@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds the demo programs and runs the main demo on the data shipped in data/,
-# then the quick-start program and the reproduction of Table I of the gravity paper.
+# then the quick-start program, the reproduction of Table I of the gravity paper, a laser calibration
+# session, a closed-loop landing on the laser fused with an IMU and a flight whose laser mount is knocked.
 # Results (CSV, PNG) go to ./demo-output unless VSP_DEMO_OUTPUT says otherwise.
 # Only the demo programs and the command-line programs of doc/usage_cli.md are built, and the configuration of the build folder is left as it is (tests
 # included): scripts/test.sh can run before or after this script in the same clone.
@@ -10,7 +11,8 @@ bash "$here/scripts/install_deps.sh"
 build="${VSP_BUILD_DIR:-$here/build}"
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build" -j "$(nproc)" --target vsp-demo quickstart table1-gravity-p3p vsp-laser-altimeter \
-  vsp-gravity-pose vsp-compare-poses vsp-laser-calibrate vsp-make-laser-calibration-images
+  vsp-gravity-pose vsp-compare-poses vsp-laser-calibrate vsp-make-laser-calibration-images \
+  tutorial-laser-servo-landing laser-drift-demo
 # The demo finds data/ from its own location; it creates the output folder itself, after checking
 # that it is not inside data/.
 out="${VSP_DEMO_OUTPUT:-$PWD/demo-output}"
@@ -27,3 +29,12 @@ echo "== Table I of D'Alfonso et al. (example/pose_gravity/table1-gravity-p3p --
 echo
 echo "== Laser calibration images for vsp-laser-calibrate (doc/usage_cli.md) =="
 "$build/example/cli/vsp-make-laser-calibration-images" --output "$out/laser_calibration"
+# In flight: vpServo lands on vpFeatureLaserPlane through rendered frames, the detector, GP-3 and
+# vpLaserConicFilter (IMU at 200 Hz, frames 30 ms late, 10 % dropped, a red cable, a box edge).
+echo
+echo "== Closed-loop landing on the laser + IMU (tutorial/laser-servo-landing) =="
+"$build/tutorial/laser-servo-landing/tutorial-laser-servo-landing" --output "$out/laser_servo_landing"
+# In the field: the laser mount knocked by 1 degree halfway, the drift detected, the laser self-calibrated.
+echo
+echo "== Laser mount knocked in flight: drift detected, self-calibration (example/laser_conic/laser-drift-demo) =="
+"$build/example/laser_conic/laser-drift-demo" --output "$out/laser_drift" --check
