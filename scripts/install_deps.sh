@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages this project builds, tests and benchmarks with.
 # Run as root (or through sudo). Safe to run again: apt skips what is already there.
+# clang-format, clang-tidy: the format and static-analysis stages of scripts/test.sh; ccache: optional,
+# used by scripts/test.sh when present (a second run then recompiles only what changed).
 set -euo pipefail
 
 if [ "$(id -u)" -ne 0 ]; then
@@ -15,5 +17,5 @@ apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config git \
   libvisp-dev libeigen3-dev libceres-dev libopencv-dev libopengv-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  doxygen graphviz clang clang-tidy >/dev/null
+  doxygen graphviz clang clang-tidy clang-format ccache >/dev/null
 echo "install_deps.sh: dependencies installed"

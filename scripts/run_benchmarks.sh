@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds (Release) and runs the peer benchmark and the full stress programs; the markdown tables are
-# printed and written to $BUILD_DIR/benchmark-results.md (the tables of doc/results_benchmarks.md).
+# printed and written to $BUILD_DIR/benchmark-results.md (doc/results.md holds them: scripts/update_results.sh --speed).
 #   scripts/run_benchmarks.sh [--quick]      (--quick: fewer instances and 1e5 stress configurations)
 # Environment: BUILD_DIR (default build-bench), JOBS (default 2), SEED (default 42).
 # Each row of the tables is one Google Benchmark run (median over repetitions of the benchmark thread's

@@ -1,22 +1,99 @@
 #!/usr/bin/env bash
-# Installs the dependencies, builds everything and runs the whole test suite with ctest.
-# Usage: bash scripts/test.sh [extra cmake options]   (as root, or with sudo available)
-# The build folder (build/, or VSP_BUILD_DIR) is always configured with the tests on, whatever an earlier
-# configuration (e.g. of another script) left in its cache, and the run fails when ctest finds no test.
+# Installs the dependencies, then runs every check of the project, each as a stage:
+#   format      scripts/check_format.sh: the sources as .clang-format says
+#   build+ctest everything built in build/ (or VSP_BUILD_DIR) with the tests on, the whole ctest suite
+#   clang-tidy  .clang-tidy on the library sources (modules/*/src), run-clang-tidy -j<cores>; any finding fails
+#   sanitizers  the libraries and their module tests built with ASan + UBSan (VSP_ENABLE_SANITIZERS) in
+#               build-sanitize/ (or VSP_SANITIZE_BUILD_DIR), the module tests run under them (leaks on)
+# Every stage runs even when an earlier one failed; a summary with the time of each stage ends the run,
+# and the exit status is non-zero when any stage failed.
+# Usage: bash scripts/test.sh [extra cmake options of the main build]   (as root, or with sudo available)
+# Skip stages in a quick local run (the default, and CI, runs them all): VSP_SKIP_FORMAT=1,
+# VSP_SKIP_TIDY=1, VSP_SKIP_SANITIZERS=1. Parallel jobs: VSP_JOBS (default: the number of cores).
+# The build folder is always configured with the tests on, whatever an earlier configuration (e.g. of
+# another script) left in its cache, and the run fails when ctest finds no test.
 # VSP_CONTRIB_BUILD=1 also builds a minimal ViSP with the modules as contrib modules and runs their
 # tests there (scripts/build_as_visp_contrib.sh, about 10-25 minutes on 2 cores; off by default).
-set -euo pipefail
+set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$here/scripts/install_deps.sh"
+bash "$here/scripts/install_deps.sh" || exit 1
 build="${VSP_BUILD_DIR:-$here/build}"
-# BUILD_TESTING and the program folders are forced on: the suite tests the examples, the CLIs and the
-# tutorials too. Extra options come last and may still change the rest.
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON \
-  -DVSP_BUILD_EXAMPLES=ON -DVSP_BUILD_TUTORIALS=ON "$@"
-cmake --build "$build" -j "$(nproc)"
-cd "$build"
-# --no-tests=error: a build without tests is a failure, never a silent success.
-ctest --output-on-failure --no-tests=error -j "$(nproc)"
+sanitize_build="${VSP_SANITIZE_BUILD_DIR:-$here/build-sanitize}"
+jobs="${VSP_JOBS:-$(nproc)}"
+# A compiler cache when the machine has one (scripts/install_deps.sh installs it); nothing depends on it.
+launcher=()
+if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+
+summary=()
+failed=0
+# stage NAME COMMAND...: runs the command, records its status and wall time.
+stage() {
+  local name="$1"; shift
+  local start=$SECONDS status=0
+  echo
+  echo "==== $name"
+  "$@" || status=$?
+  local verdict="ok"
+  if [ "$status" -ne 0 ]; then verdict="FAILED (status $status)"; failed=1; fi
+  summary+=("$(printf '%-12s %-22s %4d s' "$name" "$verdict" $((SECONDS - start)))")
+}
+skipped() { summary+=("$(printf '%-12s %-22s' "$1" "skipped ($2=1)")"); }
+
+build_and_ctest() {
+  # BUILD_TESTING and the program folders are forced on: the suite tests the examples, the CLIs and the
+  # tutorials too; compile_commands.json is for clang-tidy. Extra options come last and may change the rest.
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON -DVSP_BUILD_EXAMPLES=ON \
+    -DVSP_BUILD_TUTORIALS=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "${launcher[@]}" "$@" &&
+    cmake --build "$build" -j "$jobs" &&
+    # --no-tests=error: a build without tests is a failure, never a silent success.
+    (cd "$build" && ctest --output-on-failure --no-tests=error -j "$jobs")
+}
+
+clang_tidy() {
+  # The libraries only (the programs and tests were checked when they were written; their full run takes
+  # about ten times longer): every .cpp of modules/*/src, with the headers they include.
+  BUILD_DIR="$build" JOBS="$jobs" bash "$here/scripts/run_clang_tidy.sh" "$here/modules/[a-z_]+/src/.*\.cpp$"
+}
+
+sanitizers() {
+  # The libraries and the module tests only (not the programs, tutorials and installed-package tests:
+  # they run the same library code on the same data and would double the build). -O2: the Ceres-based
+  # tests stay fast; -g1: line numbers in the reports, without the full debug information that makes the
+  # Eigen-heavy sources slow to compile and link.
+  local modules_regex="^(robust|pose_gravity|laser_conic)-"
+  cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DVSP_ENABLE_SANITIZERS=ON \
+    -DBUILD_TESTING=ON -DVSP_BUILD_EXAMPLES=OFF -DVSP_BUILD_TUTORIALS=OFF -DVSP_BUILD_BENCHMARKS=OFF \
+    "${launcher[@]}" >/dev/null || return 1
+  local targets
+  mapfile -t targets < <(for f in "$here"/modules/*/test/*.cpp; do
+    echo "$(basename "$(dirname "$(dirname "$f")")")-$(basename "$f" .cpp)"; done)
+  cmake --build "$sanitize_build" -j "$jobs" --target "${targets[@]}" || return 1
+  # Any sanitizer report fails the test that produced it; leaks are reported too, the suppressions
+  # file lists the third-party ones this project cannot fix.
+  (cd "$sanitize_build" &&
+    ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:check_initialization_order=1" \
+    UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+    LSAN_OPTIONS="suppressions=$here/benchmark/sanitizers/lsan.supp:print_suppressions=0" \
+    ctest --output-on-failure --no-tests=error -j "$jobs" -R "$modules_regex")
+}
+
+if [ "${VSP_SKIP_FORMAT:-0}" = 1 ]; then skipped format VSP_SKIP_FORMAT; else
+  stage format bash "$here/scripts/check_format.sh"; fi
+stage build+ctest build_and_ctest "$@"
+if [ "${VSP_SKIP_TIDY:-0}" = 1 ]; then skipped clang-tidy VSP_SKIP_TIDY; else stage clang-tidy clang_tidy; fi
+if [ "${VSP_SKIP_SANITIZERS:-0}" = 1 ]; then skipped sanitizers VSP_SKIP_SANITIZERS; else
+  stage sanitizers sanitizers; fi
 if [ "${VSP_CONTRIB_BUILD:-0}" = 1 ]; then
-  bash "$here/scripts/build_as_visp_contrib.sh" --work "${VSP_CONTRIB_WORK:-/tmp/visp-contrib}" --jobs "$(nproc)"
+  stage contrib bash "$here/scripts/build_as_visp_contrib.sh" --work "${VSP_CONTRIB_WORK:-/tmp/visp-contrib}" \
+    --jobs "$jobs"
 fi
+
+echo
+echo "==== summary (scripts/test.sh)"
+printf '%s\n' "${summary[@]}"
+if [ "$failed" -ne 0 ]; then
+  echo "scripts/test.sh: FAILED (see the stages above)"
+  exit 1
+fi
+echo "scripts/test.sh: all stages passed"

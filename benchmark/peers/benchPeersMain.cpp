@@ -4,7 +4,7 @@
   \brief Times our gravity-aided and laser-conic estimators against OpenCV, ViSP and OpenGV on
   identical seeded inputs and prints markdown tables of median times and ratios.
 
-  Usage: bench-peers [--seed S] [--quick] [--only gravity|laser|laser-frame] [--out results.md] [--benchmark_... flags]
+  Usage: bench-peers [--seed S] [--quick] [--only gravity|laser|laser-frame|filter] [--out results.md] [--benchmark_... flags]
          bench-peers --profile gp3|pp3|pp5|planepair [--outliers 0.5] [--frames 20] [--points 1000]
          bench-peers --profile detect-dark|detect-grey|detect-mosaic [--frames 20]
          bench-peers --profile p2p|p3p|lsq|facade|compute [--frames 1000]
@@ -89,6 +89,15 @@ void printTargets(std::ostream &os, const BenchTargets &t)
                t.gp3Vs2000FitEllipse, 1.0, false, "x");
   printVerdict(os, "whole frame (detection + GP-3, worst floor) <= 1x one cvtColor BGR->HSV",
                (t.wholeFrame > 0 && t.cvtColor > 0) ? t.wholeFrame / t.cvtColor : -1.0, 1.0, false, "x");
+  printVerdict(os, "filter: one IMU propagation <= 1 us", t.filterPropagate > 0 ? t.filterPropagate * 1e-3 : -1.0, 1.0,
+               false, " us");
+  printVerdict(os, "filter: one frame update (30 ms late) <= 10 us", t.filterUpdate > 0 ? t.filterUpdate * 1e-3 : -1.0,
+               10.0, false, " us");
+  printVerdict(os, "filter: no heap allocation per sample", t.filterAllocationsPerSample, 0.0, false, "");
+  printVerdict(os, "laser self-calibration, 20 frames x 1000 points <= 1 s",
+               t.selfCalibration20 > 0 ? t.selfCalibration20 * 1e-9 : -1.0, 1.0, false, " s");
+  printVerdict(os, "drift test <= 5 us per frame", t.driftPerFrame > 0 ? t.driftPerFrame * 1e-3 : -1.0, 5.0, false,
+               " us");
 }
 } // namespace
 
@@ -103,15 +112,17 @@ int main(int argc, char **argv)
                                                    "detect-grey", "detect-mosaic"};
   std::vector<std::string> profiles = gravityProfiles;
   profiles.insert(profiles.end(), laserProfiles.begin(), laserProfiles.end());
-  vpCommandLine cli("[--seed S] [--quick] [--only gravity|laser|laser-frame] [--out FILE] | --profile METHOD [--frames N] "
+  vpCommandLine cli("[--seed S] [--quick] [--only gravity|laser|laser-frame|filter|selfcal] [--out FILE] | --profile METHOD "
+                    "[--frames N] "
                     "[--outliers R] [--points N]",
                     "Times our gravity-aided and laser-conic estimators against OpenCV, ViSP and OpenGV (Google "
                     "Benchmark) and prints markdown tables of median times and ratios. Google Benchmark's own "
                     "--benchmark_* flags are accepted too.");
   cli.addUnsigned("--seed", seed, "S", "seed of the problem instances (default 42)");
   cli.addFlag("--quick", quick, "fewer instances and repetitions");
-  cli.addChoice("--only", only, {"gravity", "laser", "laser-frame"}, "part",
-                "run only one part (laser-frame: the whole-frame detection tables alone)");
+  cli.addChoice("--only", only, {"gravity", "laser", "laser-frame", "filter", "selfcal"}, "part",
+                "run only one part (laser-frame: the whole-frame detection tables alone; filter: the IMU-rate "
+                "filter; selfcal: the laser self-calibration and drift test)");
   cli.addString("--out", out, "FILE", "also write the tables to FILE");
   cli.addChoice("--profile", profile, profiles, "method",
                 "run one method in a loop for a profiler: p2p, p3p, lsq, facade, compute (gravity) or gp3, pp3, "
@@ -150,6 +161,12 @@ int main(int argc, char **argv)
   }
   if (only.empty() || only == "laser") {
     runLaserBenchmarks(tables, targets, seed, quick);
+  }
+  if (only.empty() || only == "filter") {
+    runFilterBenchmarks(tables, targets, seed, quick);
+  }
+  if (only.empty() || only == "selfcal") {
+    runSelfCalibrationBenchmarks(tables, targets, seed, quick);
   }
   if (only == "laser-frame") {
     runLaserFrameBenchmarks(tables, targets, seed, quick);

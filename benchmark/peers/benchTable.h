@@ -47,12 +47,19 @@ struct BenchTargets
   double gp3At50 = -1.0;
   double gp3Vs2000FitEllipse = -1.0; //!< GP-3 on 1000 trace points + 1000 outliers / cv::fitEllipse on them
   double wholeFrame = -1.0, cvtColor = -1.0;
+  double filterPropagate = -1.0, filterUpdate = -1.0, filterAllocationsPerSample = -1.0; //!< vpLaserConicFilter (ns, ns, count)
+  double selfCalibration20 = -1.0; //!< laser self-calibration on 20 frames of 1000 points, ns
+  double driftPerFrame = -1.0;     //!< drift monitor, one frame, ns
 };
 
 //! Gravity-aided pose benchmarks: appends their tables and fills the P3P targets.
 void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 //! Laser-conic benchmarks (1000-point frames and whole 1600x1200 frames).
 void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
+//! vpLaserConicFilter: IMU propagation, frame update, allocations per sample, beside GP-3 frames.
+void runFilterBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
+//! Laser self-calibration from ground frames and the drift test (benchSelfCalPeers.cpp).
+void runSelfCalibrationBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 //! The whole-frame part of the laser benchmarks alone (detection + GP-3 against cvtColor, three floors, ROI).
 void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 

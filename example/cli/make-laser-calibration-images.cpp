@@ -6,17 +6,19 @@
   \example make-laser-calibration-images.cpp
   Renders a laser calibration session with vpLaserConicSimulator: a printed chessboard (12 x 9 squares
   of 5 cm on white paper) seen at three distances (0.6, 0.8, 1.0 m) and four tilts of 18 degrees, with the
-  laser trace over it (saturating to white on the white squares), by a 1280x960 camera with barrel
-  distortion. Writes camera.xml (ViSP model with distortion), laser_true.yaml (the rendering's laser:
+  laser trace over it, by a 1280x960 camera with barrel distortion. With --laser-light reflectance the laser
+  light is scaled by the paper's reflectance as a camera sees it (a near-white saturated core on the white
+  squares, a dark red stripe on the black ones); with additive (the default) it is added whatever the surface
+  (saturating to white on the white squares and bright red on the black ones). Writes camera.xml (ViSP model with distortion), laser_true.yaml (the rendering's laser:
   pose and opening angle) and images/view_XX.png into the output folder: the input of vsp-laser-calibrate.
 
   With --check FILE, compares the laser calibration FILE with laser_true.yaml of --output instead and
   exits with 1 when the apex, axis or opening angle error exceeds its bound (the end-to-end test).
 
   \verbatim
-  make-laser-calibration-images --output DIR [--seed N]
-  make-laser-calibration-images --output DIR --check laser.yaml [--max-apex-mm 1] [--max-axis-deg 0.1]
-                                [--max-angle-deg 0.05]
+  vsp-make-laser-calibration-images --output DIR [--seed N] [--laser-light additive|reflectance]
+  vsp-make-laser-calibration-images --output DIR --check laser.yaml [--max-apex-mm 1] [--max-axis-deg 0.1]
+                                    [--max-angle-deg 0.05]
   \endverbatim
 */
 #include <cmath>
@@ -40,6 +42,7 @@ struct Options
 {
   std::string output, check;
   unsigned int seed = 3;
+  std::string laserLight = "additive";
   double maxApexMm = 1.0, maxAxisDeg = 0.1, maxAngleDeg = 0.05;
 };
 
@@ -111,7 +114,12 @@ int check(const Options &options)
 int render(const Options &options)
 {
   std::string error;
-  vpIoTools::makeDirectory(options.output + "/images");
+  try {
+    vpIoTools::makeDirectory(options.output + "/images");
+  } catch (const vpException &e) {
+    std::cerr << options.output << "/images: cannot be created (" << e.getStringMessage() << ")" << std::endl;
+    return EXIT_FAILURE;
+  }
   const vpCameraParameters cam = camera();
   vpLaserCalibrationData truth;
   truth.openingAngle = kOpening;
@@ -128,8 +136,10 @@ int render(const Options &options)
   sim.setSeed(options.seed);
   vpLaserConicSimulator::vpRenderSettings settings;
   settings.floor = vpLaserConicSimulator::FLOOR_DARK_TILES; // the table around the paper
-  settings.laserPower = 400.0;
   settings.whiteCore = 0.6; // the stripe saturates to white on the white squares
+  settings.reflectanceScaled = options.laserLight == "reflectance";
+  // The same light on the white squares (albedo 215) in both modes.
+  settings.laserPower = settings.reflectanceScaled ? 400.0 * 255.0 / 215.0 : 400.0;
   settings.noise = 2.0;
   const std::vector<vpHomogeneousMatrix> poses = boardPoses();
   for (size_t k = 0; k < poses.size(); ++k) {
@@ -147,12 +157,14 @@ int render(const Options &options)
 int run(int argc, char **argv)
 {
   Options options;
-  vpCommandLine cli("--output DIR [--seed N] | --output DIR --check laser.yaml [--max-apex-mm MM] "
+  vpCommandLine cli("--output DIR [--seed N] [--laser-light MODE] | --output DIR --check laser.yaml [--max-apex-mm MM] "
                     "[--max-axis-deg DEG] [--max-angle-deg DEG]",
                     "Renders chessboard views of a camera/laser rig for vsp-laser-calibrate, or checks a calibration "
                     "against the rendering's laser.");
   cli.addString("--output", options.output, "DIR", "folder of camera.xml, laser_true.yaml and images/");
   cli.addUnsigned("--seed", options.seed, "N", "sensor noise seed (default 3)");
+  cli.addChoice("--laser-light", options.laserLight, {"additive", "reflectance"}, "MODE",
+                "laser light added whatever the surface (default) or scaled by its reflectance");
   cli.addString("--check", options.check, "FILE", "laser calibration to compare with DIR/laser_true.yaml");
   cli.addDouble("--max-apex-mm", options.maxApexMm, "MM", "largest apex error (default 1)", vpCommandLine::POSITIVE);
   cli.addDouble("--max-axis-deg", options.maxAxisDeg, "DEG", "largest axis error (default 0.1)", vpCommandLine::POSITIVE);

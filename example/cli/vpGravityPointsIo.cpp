@@ -4,6 +4,8 @@
  */
 #include "vpGravityPointsIo.h"
 
+#include "vpOutputFile.h"
+
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -236,11 +238,11 @@ bool vpGravityPointsIo::readPoses(const std::string &file, std::vector<vpPoseRow
 
 bool vpGravityPointsIo::writePoses(const std::string &file, const std::vector<vpPoseRow> &poses, std::string &error)
 {
-  std::ofstream out(file);
-  if (!out) {
-    error = file + ": cannot be written";
+  // Written to a temporary file renamed when complete: a failed write leaves an existing file as it was.
+  vpOutputFile outFile(file);
+  if (!outFile.open(error))
     return false;
-  }
+  std::ostream &out = outFile.stream();
   out << kPoseHeader << "\n";
   for (const vpPoseRow &row : poses) {
     out << row.frame << "," << row.status;
@@ -256,11 +258,7 @@ bool vpGravityPointsIo::writePoses(const std::string &file, const std::vector<vp
     }
     out << "\n";
   }
-  if (!out) {
-    error = file + ": write error";
-    return false;
-  }
-  return true;
+  return outFile.commit(error);
 }
 
 bool vpGravityPointsIo::readFrameTimes(const std::string &file, std::map<unsigned int, double> &times,

@@ -5,8 +5,11 @@
 /*!
   \example vsp-compare-poses.cpp
   Compares a pose file written by vsp-gravity-pose with a ground-truth pose file (same format,
-  matched by frame index): prints the translation and rotation errors (mean, median, maximum) and,
-  with bounds, exits non-zero when a median exceeds its bound or a frame has no pose.
+  matched by frame index): prints the translation and rotation errors (mean, median, maximum),
+  counted against the ground truth. Exit status 1 when the files do not match (a ground-truth frame
+  absent from the estimate, an estimated frame without a ground truth, a frame with two rows), when
+  more frames than --max-missing have a status word instead of a pose, or when a median exceeds its
+  bound.
 
   \verbatim
   vsp-compare-poses --estimate poses.csv --truth groundtruth.csv
@@ -84,26 +87,61 @@ int main(int argc, char **argv)
   }
   std::map<unsigned int, vpHomogeneousMatrix> truthByFrame;
   for (const vpPoseRow &row : truth)
-    truthByFrame[row.frame] = row.cMo;
+    if (!truthByFrame.emplace(row.frame, row.cMo).second) {
+      std::cerr << argv[0] << ": " << truthFile << ": frame " << row.frame << " appears twice in the ground truth"
+                << std::endl;
+      return EXIT_FAILURE;
+    }
 
+  // Counted against the truth: every truth frame once in the estimate, nothing else.
   std::vector<double> translationErrors, rotationErrors;
-  unsigned int missing = 0;
+  std::map<unsigned int, unsigned int> rowsOfFrame;
+  std::vector<unsigned int> extra, duplicated, withoutPose;
   for (const vpPoseRow &row : estimates) {
+    if (++rowsOfFrame[row.frame] == 2)
+      duplicated.push_back(row.frame);
     const auto it = truthByFrame.find(row.frame);
-    if (row.status != "ok" || it == truthByFrame.end()) {
-      ++missing;
+    if (it == truthByFrame.end()) {
+      extra.push_back(row.frame);
+      continue;
+    }
+    if (rowsOfFrame[row.frame] > 1)
+      continue;
+    if (row.status != "ok") {
+      withoutPose.push_back(row.frame);
       continue;
     }
     const vpHomogeneousMatrix delta = it->second.inverse() * row.cMo;
     translationErrors.push_back((row.cMo.getTranslationVector() - it->second.getTranslationVector()).frobeniusNorm());
     rotationErrors.push_back(vpThetaUVector(delta.getRotationMatrix()).getTheta());
   }
-  std::cout << estimates.size() - missing << "/" << estimates.size() << " frames with a pose and a ground truth"
+  std::vector<unsigned int> absent;
+  for (const auto &t : truthByFrame)
+    if (rowsOfFrame.find(t.first) == rowsOfFrame.end())
+      absent.push_back(t.first);
+  std::cout << translationErrors.size() << "/" << truthByFrame.size() << " ground-truth frames with a pose"
             << std::endl;
   summarize("translation error", translationErrors, 1000.0, "mm");
   summarize("rotation error", rotationErrors, 180.0 / M_PI, "deg");
 
-  bool pass = missing <= maxMissing && !translationErrors.empty();
+  // The files match when every truth frame has exactly one row and no row is of another frame.
+  bool pass = absent.empty() && extra.empty() && duplicated.empty() && !translationErrors.empty();
+  const std::pair<const char *, const std::vector<unsigned int> *> problems[] = {
+      {"ground-truth frame(s) absent from the estimate", &absent},
+      {"estimated frame(s) without a ground truth", &extra},
+      {"frame(s) with more than one row in the estimate", &duplicated},
+      {"frame(s) without a pose (a status word instead)", &withoutPose}};
+  for (const auto &problem : problems)
+    if (!problem.second->empty()) {
+      std::cerr << problem.second->size() << " " << problem.first << ":";
+      for (size_t k = 0; k < problem.second->size() && k < 10; ++k)
+        std::cerr << " " << (*problem.second)[k];
+      std::cerr << (problem.second->size() > 10 ? " ..." : "") << std::endl;
+    }
+  if (withoutPose.size() > maxMissing) {
+    std::cerr << "more frames without a pose than --max-missing " << maxMissing << std::endl;
+    pass = false;
+  }
   if (maxTranslation >= 0.0 && !(median(translationErrors) <= maxTranslation)) {
     std::cerr << "median translation error above " << maxTranslation << " m" << std::endl;
     pass = false;
@@ -112,7 +150,5 @@ int main(int argc, char **argv)
     std::cerr << "median rotation error above " << maxRotationDeg << " deg" << std::endl;
     pass = false;
   }
-  if (missing > 0)
-    std::cerr << missing << " frame(s) without a pose" << std::endl;
   return pass ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -9,7 +9,7 @@
 
   \verbatim
   vsp-gravity-pose --input points.csv --output poses.csv [--method P3P|LEAST_SQUARES|RANSAC] [--refine]
-                   [--threshold T] [--seed N]
+                   [--threshold PX --focal PX] [--seed N]
                    [--camera-imu imu.csv] [--object-imu imu.csv] [--frame-times times.csv]
                    [--camera-R-imu R.txt] [--object-R-imu R.txt] [--time-scale S] [--time-offset DT]
                    [--norm-tolerance A] [--keep-moving]
@@ -17,8 +17,13 @@
   With IMU streams (EuRoC / Kalibr CSV layout, see vpImuGravity), the gravity of each frame is
   interpolated at its exposure time, converted from specific force to a down direction and rotated
   into the camera (object) frame; frames taken while the IMU moves get the status imu_in_motion.
+  Thresholds are in pixels, as in the other programs: --threshold PX is converted with the camera's
+  focal length --focal PX (the points are in normalized coordinates).
   Exit status: 0 when every frame was processed (frames without a pose get a status word in the
-  output), 1 on a usage, file or format error (nothing is written then).
+  output), 1 on a usage, file or format error or a failed write (nothing is written then: the output
+  is written to a temporary file renamed when complete). When most frames fail the gravity checks,
+  one line on stderr names the suspected mistake (gravity sign, camera and object gravity exchanged,
+  IMU rotation missing or to be transposed).
 */
 #include <cstdlib>
 #include <iostream>
@@ -32,6 +37,7 @@
 #include "vpCommandLine.h"
 #include "vpCsvTools.h"
 #include "vpGravityPointsIo.h"
+#include "vpOutputFile.h"
 
 namespace
 {
@@ -41,7 +47,7 @@ struct Options
   // RANSAC by default: real matches hold mismatches, which LEAST_SQUARES refuses (or is pulled by).
   std::string methodName = "RANSAC";
   bool refine = false;
-  double threshold = 4e-3;
+  double threshold = 3.0, focal = 0.0; // pixels; the camera's focal length in pixels converts them
   unsigned int seed = 0;
   // Raw IMU input (optional).
   std::string cameraImu, objectImu, frameTimes, cameraRImu, objectRImu;
@@ -60,9 +66,9 @@ vpPoseGravity::vpPoseGravityMethod methodId(const std::string &name)
 vpCommandLine commandLine(Options &options)
 {
   vpCommandLine cli("--input points.csv --output poses.csv [--method P3P|LEAST_SQUARES|RANSAC] [--refine]\n"
-                    "          [--threshold T] [--seed N] [--camera-imu FILE] [--object-imu FILE] [--frame-times FILE]\n"
-                    "          [--camera-R-imu FILE] [--object-R-imu FILE] [--time-scale S] [--time-offset DT]\n"
-                    "          [--norm-tolerance A] [--keep-moving]",
+                    "          [--threshold PX --focal PX] [--seed N] [--camera-imu FILE] [--object-imu FILE]\n"
+                    "          [--frame-times FILE] [--camera-R-imu FILE] [--object-R-imu FILE] [--time-scale S]\n"
+                    "          [--time-offset DT] [--norm-tolerance A] [--keep-moving]",
                     "Gravity-aided pose of each frame from its 2D/3D points and the two gravity vectors.");
   cli.addString("--input", options.input, "FILE",
                 "per-frame gravity and 2D/3D points (rows 'frame,gravity,gcx,gcy,gcz,gox,goy,goz'\n"
@@ -73,8 +79,13 @@ vpCommandLine commandLine(Options &options)
   cli.addChoice("--method", options.methodName, {"P3P", "LEAST_SQUARES", "RANSAC"}, "METHOD",
                 "P3P (first three points), LEAST_SQUARES (all points) or RANSAC (all points, default)");
   cli.addFlag("--refine", options.refine, "maximum-likelihood refinement of each pose on its points (RANSAC: inliers)");
-  cli.addDouble("--threshold", options.threshold, "T",
-                "RANSAC inlier threshold in normalized coordinates, pixels / focal (default 4e-3)", vpCommandLine::POSITIVE);
+  cli.addDouble("--threshold", options.threshold, "PX",
+                "RANSAC inlier threshold in pixels, as in vsp-laser-altimeter (default 3); converted to the\n"
+                "normalized coordinates of the input with --focal", vpCommandLine::POSITIVE);
+  cli.addDouble("--focal", options.focal, "PX",
+                "focal length of the camera in pixels ((px + py) / 2 of its intrinsics); needed by --threshold\n"
+                "(without both, the library's default 4e-3 normalized, 3.2 px at 800 px)",
+                vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
   cli.addString("--camera-imu", options.cameraImu, "FILE",
                 "camera IMU stream, CSV 'timestamp,wx,wy,wz,ax,ay,az' (EuRoC imu0/data.csv or Kalibr\n"
@@ -119,7 +130,8 @@ std::string statusWord(vpPoseGravity::vpPoseGravityStatus status)
                                                      {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"},
                                                      {vpPoseGravity::STATUS_INCONSISTENT_GRAVITY, "inconsistent_gravity"},
                                                      {vpPoseGravity::STATUS_GRAVITY_SIGN_REVERSED, "gravity_sign_reversed"},
-                                                     {vpPoseGravity::STATUS_BEHIND_CAMERA, "behind_camera"}},
+                                                     {vpPoseGravity::STATUS_BEHIND_CAMERA, "behind_camera"},
+                                                     {vpPoseGravity::STATUS_GRAVITY_SWAPPED, "gravity_swapped"}},
                                                     "not_computed");
 }
 
@@ -202,12 +214,15 @@ std::string gravityFromImu(const ImuInput &imu, const Options &options, vpGravit
   return "";
 }
 
-vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, const std::string &where)
+vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, const std::string &where,
+                        vpPoseGravity::vpGravityMistake &mistake)
 {
+  mistake = vpPoseGravity::GRAVITY_MISTAKE_NONE;
   vpPoseRow row;
   row.frame = frame.frame;
   vpPoseGravity pose;
-  pose.setRansacThreshold(options.threshold);
+  if (options.focal > 0.0)
+    pose.setRansacThreshold(options.threshold / options.focal);
   pose.setRansacSeed(options.seed);
   try {
     pose.setCameraGravity(frame.gCam);
@@ -216,6 +231,7 @@ vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, con
     vpHomogeneousMatrix cMo;
     if (!pose.computePose(methodId(options.methodName), cMo)) {
       row.status = statusWord(pose.getStatus());
+      mistake = pose.getSuspectedMistake();
       return row;
     }
     if (options.refine)
@@ -229,6 +245,56 @@ vpPoseRow estimateFrame(const vpGravityFrame &frame, const Options &options, con
   }
   return row;
 }
+/*!
+  One line naming the suspected mistake when most estimated frames fail a gravity check (a per-frame
+  status word alone would leave the user to guess), nothing otherwise.
+*/
+void printSequenceDiagnosis(const std::vector<vpPoseRow> &poses,
+                            const std::map<vpPoseGravity::vpGravityMistake, unsigned int> &mistakes,
+                            const Options &options, const char *program)
+{
+  unsigned int estimated = 0, gravityFailures = 0;
+  for (const vpPoseRow &row : poses) {
+    if (row.status == "imu_in_motion" || row.status == "no_frame_time" || row.status == "no_imu_data")
+      continue;
+    ++estimated;
+    gravityFailures += row.status == "inconsistent_gravity" || row.status == "gravity_sign_reversed" ||
+                               row.status == "gravity_swapped" || row.status == "no_consensus" ||
+                               row.status == "behind_camera" || row.status == "no_solution"
+                           ? 1
+                           : 0;
+  }
+  if (estimated == 0 || 2 * gravityFailures <= estimated)
+    return;
+  vpPoseGravity::vpGravityMistake likely = vpPoseGravity::GRAVITY_MISTAKE_NONE;
+  unsigned int count = 0;
+  for (const auto &m : mistakes)
+    if (m.first != vpPoseGravity::GRAVITY_MISTAKE_NONE && m.second > count) {
+      likely = m.first;
+      count = m.second;
+    }
+  std::string advice;
+  if (likely == vpPoseGravity::GRAVITY_MISTAKE_SIGN_REVERSED)
+    advice = vpPoseGravity::getMistakeMessage(likely) + " (" + std::to_string(count) +
+             " frames): the gravity columns must point down (negate the accelerometer reading)";
+  else if (likely == vpPoseGravity::GRAVITY_MISTAKE_SWAPPED)
+    advice = vpPoseGravity::getMistakeMessage(likely) + " (" + std::to_string(count) +
+             " frames): exchange the camera and object gravity (or --camera-imu and --object-imu)";
+  else if ((!options.cameraImu.empty() && options.cameraRImu.empty()) ||
+           (!options.objectImu.empty() && options.objectRImu.empty()))
+    advice = std::string("an IMU stream is used without its rotation: give ") +
+             (!options.cameraImu.empty() && options.cameraRImu.empty() ? "--camera-R-imu " : "") +
+             (!options.objectImu.empty() && options.objectRImu.empty() ? "--object-R-imu " : "") +
+             "(the IMU-to-sensor rotation)";
+  else if (!options.cameraRImu.empty() || !options.objectRImu.empty())
+    advice = "check --camera-R-imu / --object-R-imu: the rotation maps IMU vectors into the sensor frame "
+             "(sensor_R_imu; give the transpose if the file holds imu_R_sensor)";
+  else
+    advice = "check that the gravity columns are down directions in the camera and object frames";
+  std::cerr << program << ": " << gravityFailures << "/" << estimated
+            << " frames fail the gravity checks (the gravity does not fit the points): " << advice
+            << "; the poses of the other frames use the same gravity: do not trust them" << std::endl;
+}
 } // namespace
 
 int main(int argc, char **argv)
@@ -237,7 +303,13 @@ int main(int argc, char **argv)
   vpCommandLine cli = commandLine(options);
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
+  if (cli.given("--threshold") && !cli.given("--focal"))
+    return cli.fail("--threshold is in pixels: give the camera's focal length with --focal PX to convert it");
   std::string error;
+  if (!vpOutputFile::checkWritable(options.output, error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
   std::vector<std::string> inputs;
   for (const std::string &f : {options.input, options.cameraImu, options.objectImu, options.frameTimes,
                                options.cameraRImu, options.objectRImu})
@@ -257,6 +329,7 @@ int main(int argc, char **argv)
     return EXIT_FAILURE;
   }
   std::vector<vpPoseRow> poses;
+  std::map<vpPoseGravity::vpGravityMistake, unsigned int> mistakes;
   unsigned int found = 0;
   for (vpGravityFrame &frame : frames) {
     const std::string imuStatus = gravityFromImu(imu, options, frame);
@@ -267,7 +340,9 @@ int main(int argc, char **argv)
       poses.push_back(row);
       continue;
     }
-    poses.push_back(estimateFrame(frame, options, vpCsvTools::location(options.input, frame.firstLine)));
+    vpPoseGravity::vpGravityMistake mistake = vpPoseGravity::GRAVITY_MISTAKE_NONE;
+    poses.push_back(estimateFrame(frame, options, vpCsvTools::location(options.input, frame.firstLine), mistake));
+    ++mistakes[mistake];
     found += poses.back().status == "ok" ? 1 : 0;
   }
   if (!vpGravityPointsIo::writePoses(options.output, poses, error)) {
@@ -276,5 +351,6 @@ int main(int argc, char **argv)
   }
   std::cout << options.methodName << (options.refine ? " + refinement" : "") << ": " << found << "/"
             << frames.size() << " frames with a pose, written to " << options.output << std::endl;
+  printSequenceDiagnosis(poses, mistakes, options, argv[0]);
   return EXIT_SUCCESS;
 }

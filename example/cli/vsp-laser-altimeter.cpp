@@ -20,7 +20,11 @@
   detected pixels are converted with vpPixelMeterConversion, the overlays drawn through the model).
   Output: CSV "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status". Exit status 0 when every
   image was processed (frames without a plane, and unreadable images, say why in their status), 1 on a
-  usage, file or format error, or when --max-altitude-error is exceeded.
+  usage, file or format error, an image whose size is not the camera file's, a failed write (nothing is
+  left half written: the CSV is written to a temporary file renamed when complete), or when
+  --max-altitude-error is exceeded. Status calibration_mismatch: the laser/camera calibration cannot
+  explain the trace (vpLaserConicPose::STATUS_CALIBRATION_MISMATCH); when most frames get it, one line on
+  stderr names the suspected mistake.
 */
 #include <algorithm>
 #include <cmath>
@@ -29,6 +33,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -39,8 +45,11 @@
 
 #include "vpCommandLine.h"
 #include "vpCsvTools.h"
+#include "vpImageFileCheck.h"
+#include "vpLaserFlightFusion.h"
 #include "vpLaserOverlay.h"
 #include "vpLaserRigIo.h"
+#include "vpOutputFile.h"
 
 namespace fs = std::filesystem;
 
@@ -67,14 +76,16 @@ vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
 }
 
 //! Declares the options of the program; \e options receives their values.
-vpCommandLine commandLine(Options &options)
+vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
 {
   vpCommandLine cli("--camera camera.xml [--camera-name Camera] --laser laser.txt\n"
                     "          (--images DIR | --list images.txt) --output results.csv\n"
                     "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
                     "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
                     "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
-                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]",
+                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
+                    "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
+                    "           [--covariance-inflation K]]",
                     "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
@@ -116,6 +127,7 @@ vpCommandLine commandLine(Options &options)
   cli.addDouble("--max-altitude-error", options.maxAltitudeError, "MM",
                 "with --truth: exit status 1 when an altitude error exceeds MM millimetres (default 0: no check)",
                 vpCommandLine::NON_NEGATIVE);
+  fusion.addOptions(cli); // IMU-rate output, vpLaserFlightFusion.h
   cli.require({"--camera", "--laser", "--output"});
   return cli;
 }
@@ -227,6 +239,13 @@ struct FrameResult
   size_t points = 0;
   std::vector<vpImagePoint> inlierPoints; //!< for the search region of the next frame (--track)
   std::string status = "ok";
+  vpLaserConicPose::vpLaserConicMistake mistake = vpLaserConicPose::MISTAKE_UNKNOWN; //!< calibration_mismatch only
+};
+
+//! The camera file's image size (0 when it gives none), which every image must have.
+struct ImageSize
+{
+  unsigned int width = 0, height = 0;
 };
 
 //! A detector with the settings of the command line. \exception vpLaserConicException on a bad setting.
@@ -249,20 +268,22 @@ vpLaserConicDetector makeDetector(const Options &options)
 }
 
 FrameResult processImage(const std::string &image, const Options &options, const vpCameraParameters &cam,
-                         vpLaserConicPose &estimator, vpLaserConicDetector &detector)
+                         const ImageSize &size, vpLaserConicPose &estimator, vpLaserConicDetector &detector)
 {
   FrameResult result;
   vpImage<vpRGBa> I;
-  std::string why = "empty image";
-  try {
-    vpImageIo::read(I, image);
-  } catch (const vpException &e) {
-    why = e.getStringMessage();
-  }
-  if (I.getSize() == 0) { // a file that is not an image may also read as an empty image
+  std::string why;
+  if (!vpImageFileCheck::read(image, I, why)) {
     std::cerr << image << ": cannot be read as an image (" << why << ")" << std::endl;
     result.status = "unreadable_image";
     return result;
+  }
+  if (size.width > 0 && (I.getWidth() != size.width || I.getHeight() != size.height)) {
+    std::ostringstream msg;
+    msg << image << ": image of " << I.getWidth() << "x" << I.getHeight() << " pixels, but --camera '" << options.camera
+        << "' is calibrated for " << size.width << "x" << size.height
+        << ": intrinsics of another camera or resolution (recalibrate, or scale them)";
+    throw vpException(vpException::dimensionError, msg.str());
   }
   const std::vector<vpImagePoint> points = detector.detect(I);
   result.points = points.size();
@@ -283,7 +304,9 @@ FrameResult processImage(const std::string &image, const Options &options, const
           result.inlierPoints.push_back(points[index]);
         conic = estimator.getImageConic();
       } else {
-        result.status = "no_plane";
+        const bool mismatch = estimator.getStatus() == vpLaserConicPose::STATUS_CALIBRATION_MISMATCH;
+        result.status = mismatch ? "calibration_mismatch" : "no_plane";
+        result.mistake = estimator.getSuspectedMistake();
         std::cerr << image << ": no plane (" << estimator.getFailureReason() << ")" << std::endl;
       }
     } catch (const vpException &e) {
@@ -309,13 +332,13 @@ FrameResult processImage(const std::string &image, const Options &options, const
   Reads the camera, the laser calibration and the image list, and checks that no output names an
   input. \return false with \e error naming the file at fault.
 */
-bool readInputs(const Options &options, vpCameraParameters &cam, double &openingAngle, vpHomogeneousMatrix &cMl,
-                std::vector<std::string> &images, std::string &error)
+bool readInputs(const Options &options, vpCameraParameters &cam, ImageSize &size, double &openingAngle,
+                vpHomogeneousMatrix &cMl, std::vector<std::string> &images, std::string &error)
 {
-  unsigned int width = 0, height = 0; // not needed: images of any size are accepted
   // The output is checked against the named files first, so that a wrong command line is refused
   // before the image list is read; then against the images.
-  return vpLaserRigIo::readCamera(options.camera, options.cameraName, cam, width, height, error) &&
+  return vpOutputFile::checkWritable(options.output, error) &&
+         vpLaserRigIo::readCamera(options.camera, options.cameraName, cam, size.width, size.height, error) &&
          vpLaserRigIo::readLaserCalibration(options.laser, openingAngle, cMl, error) &&
          checkOutputIsNotNamedInput(options, error) && listImages(options, images, error) &&
          checkOutputsAgainstImages(options, images, error);
@@ -333,11 +356,43 @@ void writeRow(std::ostream &out, size_t frame, const std::string &image, const F
   out << "," << r.inliers << "," << r.status << "\n";
 }
 
+/*!
+  One line naming the suspected mistake when most frames with a trace are refused as a calibration
+  mismatch (a per-frame row alone would leave the user to guess), nothing otherwise.
+*/
+void printSequenceDiagnosis(const std::vector<FrameResult> &results, const char *program)
+{
+  std::map<vpLaserConicPose::vpLaserConicMistake, unsigned int> mistakes;
+  unsigned int withTrace = 0, mismatches = 0;
+  for (const FrameResult &r : results) {
+    if (r.status == "unreadable_image" || r.status == "not_enough_points")
+      continue;
+    ++withTrace;
+    if (r.status == "calibration_mismatch") {
+      ++mismatches;
+      ++mistakes[r.mistake];
+    }
+  }
+  if (withTrace == 0 || 2 * mismatches <= withTrace)
+    return;
+  auto likely = std::max_element(mistakes.begin(), mistakes.end(),
+                                 [](const auto &a, const auto &b) { return a.second < b.second; });
+  std::cerr << program << ": " << mismatches << "/" << withTrace
+            << " frames with a trace refused as a calibration mismatch: "
+            << (likely->first == vpLaserConicPose::MISTAKE_UNKNOWN
+                    ? std::string("check --laser (full opening angle, cMl not lMc) and --camera (intrinsics of this "
+                                  "camera at this resolution)")
+                    : vpLaserConicPose::getMistakeMessage(likely->first) + " (" + std::to_string(likely->second) +
+                          " frames); fix --laser or --camera")
+            << "; the planes of the other frames come from the same calibration: do not trust them" << std::endl;
+}
+
 //! The program; main() only adds a last-resort error report.
 int run(int argc, char **argv)
 {
   Options options;
-  vpCommandLine cli = commandLine(options);
+  vpLaserFlightFusion fusion;
+  vpCommandLine cli = commandLine(options, fusion);
   if (!cli.parse(argc, argv))
     return cli.exitStatus();
   if (cli.given("--images") == cli.given("--list"))
@@ -347,7 +402,8 @@ int run(int argc, char **argv)
   double openingAngle = 0.0;
   vpHomogeneousMatrix cMl;
   std::vector<std::string> images;
-  if (!readInputs(options, cam, openingAngle, cMl, images, error)) {
+  ImageSize size;
+  if (!readInputs(options, cam, size, openingAngle, cMl, images, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
@@ -359,17 +415,18 @@ int run(int argc, char **argv)
       return EXIT_FAILURE;
     }
   }
-  std::ofstream out(options.output);
-  if (!out) {
-    std::cerr << argv[0] << ": " << options.output << ": cannot be written" << std::endl;
-    return EXIT_FAILURE;
-  }
-
   std::vector<vpLaserGroundTruthFrame> truth;
   if (!options.truth.empty() && !vpLaserRigIo::readGroundTruth(options.truth, truth, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
+  // Written to a temporary file renamed when complete: a failed run leaves an existing file as it was.
+  vpOutputFile outFile(options.output);
+  if (!outFile.open(error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  std::ostream &out = outFile.stream();
   vpLaserConicPose estimator;
   vpLaserConicDetector detector;
   try {
@@ -387,12 +444,28 @@ int run(int argc, char **argv)
     std::cerr << argv[0] << ": " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;
   }
+  if (fusion.enabled() && !fusion.prepare(images.size(), error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  if (fusion.enabled())
+    fusion.configure(estimator);
   out << "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status\n";
   unsigned int found = 0, compared = 0;
   double worstAltitude = 0.0, worstRoll = 0.0, worstPitch = 0.0;
+  std::vector<FrameResult> results;
   for (size_t k = 0; k < images.size(); ++k) {
-    const FrameResult r = processImage(images[k], options, cam, estimator, detector);
+    FrameResult r;
+    try {
+      r = processImage(images[k], options, cam, size, estimator, detector);
+    } catch (const vpException &e) {
+      if (e.getCode() != vpException::dimensionError)
+        throw;
+      std::cerr << argv[0] << ": " << e.getStringMessage() << "; nothing written" << std::endl;
+      return EXIT_FAILURE;
+    }
     writeRow(out, k, images[k], r);
+    fusion.addFrame(k, r.status == "ok", estimator);
     found += r.status == "ok" ? 1 : 0;
     // Next frame: search near this frame's inliers, or in the whole image after a failure.
     if (options.track > 0.0 && r.status == "ok" && options.detectorName == "ridge")
@@ -407,11 +480,21 @@ int run(int argc, char **argv)
         worstRoll = std::max(worstRoll, std::fabs(r.roll - t.roll));
         worstPitch = std::max(worstPitch, std::fabs(r.pitch - t.pitch));
       }
+    r.inlierPoints.clear();
+    results.push_back(r);
   }
-  if (!out) {
-    std::cerr << argv[0] << ": " << options.output << ": write error" << std::endl;
+  if (!outFile.commit(error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
+  printSequenceDiagnosis(results, argv[0]);
+  std::string summary;
+  if (fusion.enabled() && !fusion.run(summary, error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  if (fusion.enabled())
+    std::cout << summary << std::endl;
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
             << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
   if (!truth.empty()) {

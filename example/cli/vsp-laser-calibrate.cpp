@@ -16,6 +16,15 @@
                       [--report report.txt] [--figure before_after.png] [--robust-scale PX | --no-robust]
                       [--max-reprojection PX] [--corner-clearance PX]
   \endverbatim
+  or, without a chessboard, from ordinary frames of the ground at different attitudes (self-calibration,
+  vpLaserConicSelfCalibration; code in vpLaserSequenceCalibration.cpp):
+  \verbatim
+  vsp-laser-calibrate --from-sequence --camera camera.xml (--points points.csv | --images DIR | --list FILE)
+                      --laser previous.yaml (--apex-distance M | --previous-baseline | --hold-apex | --known-altitude FRAME:H)
+                      [--opening-angle-deg A] [--estimate-opening-angle] [--max-frames N] --output laser.yaml
+  \endverbatim
+  (points.csv: a header, then rows frame,u,v in pixels). Both modes write the same file; a failed
+  calibration writes nothing (the previous file stays).
   Output: the laser calibration in YAML (pose as a vpPoseVector, opening angle, standard deviations: the
   leave-one-view-out jackknife, which includes the grid pose errors, or with fewer than 3 views the formal
   ones from the laser point noise),
@@ -41,8 +50,12 @@
 
 #include "vpCommandLine.h"
 #include "vpCsvTools.h"
+#include "vpImageFileCheck.h"
 #include "vpLaserRigIo.h"
+#include "vpOutputFile.h"
+#include "vpLaserSequenceCalibration.h"
 #include "vpPngPlot.h"
+#include "vpProgress.h"
 
 namespace
 {
@@ -140,7 +153,15 @@ void writeFigure(const vpLaserConicCalibration &calib, size_t v, const std::stri
   plot.addPoints("predicted by the initial guess", x, y, vpColor::blue);
   coordinates(calib.getPredictedGridPoints()[v], x, y);
   plot.addPoints("predicted by the calibration", x, y, vpColor::red);
-  plot.write(file);
+  std::string error;
+  if (!vpOutputFile::writeThrough(
+          file,
+          [&](const std::string &scratch) {
+            plot.write(scratch);
+            return true;
+          },
+          error))
+    throw vpException(vpException::ioError, error);
 }
 
 //! Per view: image, points, inliers and RMS distance (mm) of the inliers to the calibrated trace on the grid.
@@ -217,7 +238,11 @@ int run(int argc, char **argv)
   std::vector<std::string> inputs = {o.camera};
   if (!o.listFile.empty())
     inputs.push_back(o.listFile);
-  if (!vpLaserRigIo::readCamera(o.camera, o.cameraName, cam, width, height, error) ||
+  // Every output is checked before the images are read and the calibration solved.
+  if (!vpOutputFile::checkWritable(o.output, error) ||
+      (!o.report.empty() && !vpOutputFile::checkWritable(o.report, error)) ||
+      (!o.figure.empty() && !vpOutputFile::checkWritable(o.figure, error)) ||
+      !vpLaserRigIo::readCamera(o.camera, o.cameraName, cam, width, height, error) ||
       !vpLaserRigIo::listImages(o.imagesDir.empty() ? o.listFile : o.imagesDir, o.imagesDir.empty(), images, error) ||
       !vpCsvTools::checkOutputIsNotInput(o.output, inputs, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
@@ -238,14 +263,14 @@ int run(int argc, char **argv)
 
   std::ostringstream report;
   report << "image,status,corner_rms_px,laser_points\n";
-  for (const std::string &file : images) {
+  vpProgress progress("vsp-laser-calibrate: images", images.size());
+  for (size_t k = 0; k < images.size(); ++k) {
+    progress.update(k);
+    const std::string &file = images[k];
     vpImage<vpRGBa> I;
-    std::string status;
-    try {
-      vpImageIo::read(I, file);
-    } catch (const vpException &e) {
-      status = "unreadable image (" + e.getStringMessage() + ")";
-    }
+    std::string status, why;
+    if (!vpImageFileCheck::read(file, I, why))
+      status = "unreadable image (" + why + ")";
     if (status.empty() && (I.getWidth() != width || I.getHeight() != height) && width > 0)
       status = "image size " + std::to_string(I.getWidth()) + "x" + std::to_string(I.getHeight()) +
                " differs from the camera's " + std::to_string(width) + "x" + std::to_string(height);
@@ -258,6 +283,7 @@ int run(int argc, char **argv)
       report << file << "," << status << ",,\n";
     }
   }
+  progress.finish();
   report << "\n" << calib.getNbViews() << "/" << images.size() << " images usable\n";
 
   const vpHomogeneousMatrix guess(vpTranslationVector(apex[0], apex[1], apex[2]),
@@ -265,6 +291,9 @@ int run(int argc, char **argv)
   vpHomogeneousMatrix cMl = guess;
   bool ok = false;
   std::string failure;
+  if (calib.getNbViews() > 0)
+    std::cerr << "vsp-laser-calibrate: solving on " << calib.getNbViews() << " views (" << calib.getNbPoints()
+              << " laser points; with the jackknife over the views this takes a few seconds per view)..." << std::endl;
   if (calib.getNbViews() == 0)
     failure = "no usable view";
   else if (!(ok = calib.compute(cMl)))
@@ -292,15 +321,21 @@ int run(int argc, char **argv)
         if (calib.getMeasuredGridPoints()[v].size() > calib.getMeasuredGridPoints()[best].size())
           best = v;
       const std::string name = images[grid.getViewImageIndex()[best]];
-      writeFigure(calib, best, "Laser trace on the grid: " + name.substr(name.find_last_of('/') + 1), o.figure);
+      try {
+        writeFigure(calib, best, "Laser trace on the grid: " + name.substr(name.find_last_of('/') + 1), o.figure);
+      } catch (const vpException &e) {
+        std::cout << report.str();
+        std::cerr << argv[0] << ": " << e.getStringMessage() << std::endl;
+        return EXIT_FAILURE;
+      }
       report << "figure written to " << o.figure << "\n";
     }
   }
   std::cout << report.str();
   if (!o.report.empty()) {
-    std::ofstream out(o.report.c_str());
-    if (!(out << report.str())) {
-      std::cerr << argv[0] << ": " << o.report << ": cannot be written" << std::endl;
+    vpOutputFile out(o.report);
+    if (!out.open(error) || !(out.stream() << report.str()) || !out.commit(error)) {
+      std::cerr << argv[0] << ": " << error << std::endl;
       return EXIT_FAILURE;
     }
   }
@@ -310,4 +345,9 @@ int run(int argc, char **argv)
 }
 } // namespace
 
-int main(int argc, char **argv) { return vpCommandLine::runGuarded(run, argc, argv); }
+int main(int argc, char **argv)
+{
+  if (vspLaserSequenceCalibration::requested(argc, argv))
+    return vpCommandLine::runGuarded(vspLaserSequenceCalibration::run, argc, argv);
+  return vpCommandLine::runGuarded(run, argc, argv);
+}

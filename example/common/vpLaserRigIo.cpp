@@ -4,6 +4,8 @@
  */
 #include "vpLaserRigIo.h"
 
+#include "vpOutputFile.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -326,8 +328,12 @@ bool vpLaserRigIo::writeLaserCalibrationYaml(const std::string &file, const vpLa
   if (calibration.nbViews > 0)
     header << "\nviews: " << calibration.nbViews;
   const vpPoseVector pose(calibration.cMl);
-  if (!vpPoseVector::saveYAML(file, pose, header.str().c_str())) {
-    error = "cannot write laser calibration file '" + file + "'";
+  // Through a temporary file: a failed write (disk full, missing folder) is an error and leaves an
+  // existing file as it was.
+  if (!vpOutputFile::writeThrough(
+          file, [&](const std::string &scratch) { return vpPoseVector::saveYAML(scratch, pose, header.str().c_str()); },
+          error)) {
+    error = "cannot write laser calibration file: " + error;
     return false;
   }
   return true;
@@ -336,11 +342,12 @@ bool vpLaserRigIo::writeLaserCalibrationYaml(const std::string &file, const vpLa
 bool vpLaserRigIo::writeLaserCalibration(const std::string &file, double openingAngleRad,
                                          const vpHomogeneousMatrix &cMl, std::string &error)
 {
-  std::ofstream out(file.c_str());
-  if (!out) {
-    error = "cannot write laser calibration file '" + file + "'";
+  vpOutputFile outFile(file);
+  if (!outFile.open(error)) {
+    error = "cannot write laser calibration file: " + error;
     return false;
   }
+  std::ostream &out = outFile.stream();
   out << "# laser calibration: full opening angle and pose of the laser frame in the camera frame\n";
   out << std::setprecision(std::numeric_limits<double>::max_digits10);
   out << "opening_angle_deg " << vpMath::deg(openingAngleRad) << "\n";
@@ -351,11 +358,7 @@ bool vpLaserRigIo::writeLaserCalibration(const std::string &file, double opening
     }
     out << "\n";
   }
-  if (!out) {
-    error = "error while writing '" + file + "'";
-    return false;
-  }
-  return true;
+  return outFile.commit(error);
 }
 
 bool vpLaserRigIo::readGroundTruth(const std::string &file, std::vector<vpLaserGroundTruthFrame> &frames,

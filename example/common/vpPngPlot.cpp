@@ -49,6 +49,25 @@ void drawMarker(vpImage<vpRGBa> &I, const vpImagePoint &p, unsigned int shape, c
   }
 }
 
+/*!
+  A marker beyond the y range: a filled triangle on the edge of the chart at column \e j, pointing out
+  (up on the top edge \e i, down on the bottom one), with the value on the inside.
+*/
+void drawClipped(vpImage<vpRGBa> &I, const vpFont &font, double i, double j, bool above, double value,
+                 const vpColor &color)
+{
+  const double height = 9.0, halfWidth = 6.0, inward = above ? 1.0 : -1.0;
+  for (double d = 0.0; d <= height; d += 1.0) { // row by row from the tip
+    const double w = halfWidth * d / height;
+    vpImageDraw::drawLine(I, vpImagePoint(i + inward * d, j - w), vpImagePoint(i + inward * d, j + w), color, 1);
+  }
+  char text[32];
+  std::snprintf(text, sizeof(text), std::abs(value) >= 100.0 ? "%.0f" : "%.3g", value);
+  const vpImagePoint size = font.getMeasure(text);
+  const double row = above ? i + height + 2.0 : i - height - 2.0 - size.get_i();
+  font.drawText(I, text, vpImagePoint(row, j - size.get_j() / 2), color);
+}
+
 std::string formatTick(double v, double step)
 {
   char buf[32];
@@ -191,12 +210,16 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   }
   vpImageDraw::drawRectangle(I, vpRect(vpImagePoint(top, left), vpImagePoint(bottom, right)), axis);
 
-  // Data, clipped to the plot area.
+  // Data, clipped to the plot area; markers beyond a fixed y range are drawn on its edge.
   auto inside = [&](const vpImagePoint &p) {
     return p.get_i() >= top - 0.5 && p.get_i() <= bottom + 0.5 && p.get_j() >= left - 0.5 && p.get_j() <= right + 0.5;
   };
+  auto insideColumns = [&](const vpImagePoint &p) { return p.get_j() >= left - 0.5 && p.get_j() <= right + 0.5; };
+  std::vector<unsigned int> clipped(m_series.size(), 0);
+  std::vector<vpImagePoint> drawn; // every sample on the chart, where the legend should not go
   unsigned int shape = 0;
-  for (const Series &s : m_series) {
+  for (size_t k = 0; k < m_series.size(); ++k) {
+    const Series &s = m_series[k];
     const size_t n = std::min(s.x.size(), s.y.size());
     bool havePrevious = false;
     vpImagePoint previous;
@@ -206,9 +229,17 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
         continue;
       }
       const vpImagePoint p = toPixel(s.x[i], plotY(s.y[i]));
+      if (inside(p))
+        drawn.push_back(p);
       if (s.markers) {
-        if (inside(p))
+        if (inside(p)) {
           drawMarker(I, p, shape, s.color);
+        } else if (m_fixedY && insideColumns(p)) {
+          const bool above = p.get_i() < top;
+          drawClipped(I, font, above ? top : bottom, p.get_j(), above, s.y[i], s.color);
+          drawn.push_back(vpImagePoint(above ? top + 12 : bottom - 12, p.get_j())); // the triangle and its value
+          ++clipped[k];
+        }
       } else if (havePrevious && inside(p) && inside(previous)) {
         vpImageDraw::drawLine(I, previous, p, s.color, 2);
       }
@@ -223,39 +254,73 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   font.drawText(I, m_xLabel, vpImagePoint(m_height - 24, (left + right - font.getMeasure(m_xLabel).get_j()) / 2),
                 vpColor::black);
   font.drawText(I, m_yLabel, vpImagePoint(top - 20, 8), vpColor::black);
-  drawLegend(I, font, right, top);
+  // The legend goes into the corner of the chart that hides the fewest samples (top right on a tie), off
+  // the bands along the top and bottom edges where markers beyond a fixed y range are drawn.
+  const vpImagePoint size = legendSize(font);
+  const double band = m_fixedY ? 28.0 : 6.0;
+  const vpImagePoint corners[] = {vpImagePoint(top + band, right - size.get_j() - 6),
+                                  vpImagePoint(top + band, left + 6),
+                                  vpImagePoint(bottom - size.get_i() - band, right - size.get_j() - 6),
+                                  vpImagePoint(bottom - size.get_i() - band, left + 6)};
+  size_t best = 0, fewest = drawn.size() + 1;
+  for (size_t c = 0; c < 4; ++c) {
+    const vpRect box(corners[c], corners[c] + size);
+    const size_t hidden = static_cast<size_t>(
+        std::count_if(drawn.begin(), drawn.end(), [&](const vpImagePoint &p) { return box.isInside(p); }));
+    if (hidden < fewest) {
+      fewest = hidden;
+      best = c;
+    }
+  }
+  drawLegend(I, font, corners[best], clipped);
 }
 
-void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, double right, double top) const
+namespace
 {
-  // One column of samples and one of names, on a white box that hides the data behind it.
+const double kLegendRowHeight = 20.0, kLegendSampleWidth = 30.0;
+}
+
+vpImagePoint vpPngPlot::legendSize(const vpFont &font) const
+{
+  // Room for the longest name and the count of markers beyond the range that may follow it.
   double nameWidth = 0.0;
   unsigned int rows = 0;
   for (const Series &s : m_series)
     if (!s.name.empty()) {
-      nameWidth = std::max(nameWidth, font.getMeasure(s.name).get_j());
+      const std::string longest = s.name + (s.markers && m_fixedY ? ", 000 off the chart" : "");
+      nameWidth = std::max(nameWidth, font.getMeasure(longest).get_j());
       ++rows;
     }
   if (rows == 0)
+    return vpImagePoint(0, 0);
+  return vpImagePoint(rows * kLegendRowHeight + 8, nameWidth + kLegendSampleWidth + 18);
+}
+
+void vpPngPlot::drawLegend(vpImage<vpRGBa> &I, const vpFont &font, const vpImagePoint &corner,
+                           const std::vector<unsigned int> &clipped) const
+{
+  // One column of samples and one of names, on a white box that hides the data behind it.
+  const vpImagePoint size = legendSize(font);
+  if (size.get_i() <= 0.0)
     return;
-  const double rowHeight = 20.0, sampleWidth = 30.0;
-  const vpImagePoint corner(top + 6, right - nameWidth - sampleWidth - 24);
-  const vpRect box(corner, corner + vpImagePoint(rows * rowHeight + 8, nameWidth + sampleWidth + 18));
+  const vpRect box(corner, corner + size);
   vpImageDraw::drawRectangle(I, box, vpColor::white, true);
   vpImageDraw::drawRectangle(I, box, vpColor(180, 180, 180), false, 1);
   double row = corner.get_i() + 4;
   unsigned int shape = 0;
-  for (const Series &s : m_series) {
-    const vpImagePoint sample(row + 8, corner.get_j() + 6 + sampleWidth / 2);
+  for (size_t k = 0; k < m_series.size(); ++k) {
+    const Series &s = m_series[k];
+    const vpImagePoint sample(row + 8, corner.get_j() + 6 + kLegendSampleWidth / 2);
     if (s.markers)
       drawMarker(I, sample, shape++, s.color);
     else if (!s.name.empty())
-      vpImageDraw::drawLine(I, sample - vpImagePoint(0, sampleWidth / 2), sample + vpImagePoint(0, sampleWidth / 2),
-                            s.color, 3);
+      vpImageDraw::drawLine(I, sample - vpImagePoint(0, kLegendSampleWidth / 2),
+                            sample + vpImagePoint(0, kLegendSampleWidth / 2), s.color, 3);
     if (s.name.empty())
       continue;
-    font.drawText(I, s.name, vpImagePoint(row, corner.get_j() + sampleWidth + 12), vpColor::black);
-    row += rowHeight;
+    const std::string name = clipped[k] > 0 ? s.name + ", " + std::to_string(clipped[k]) + " off the chart" : s.name;
+    font.drawText(I, name, vpImagePoint(row, corner.get_j() + kLegendSampleWidth + 12), vpColor::black);
+    row += kLegendRowHeight;
   }
 }
 

@@ -16,6 +16,7 @@
 #include <visp3/core/vpColor.h>
 #include <visp3/core/vpFont.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpRGBa.h>
 
 /*!
@@ -35,7 +36,11 @@ public:
                  const vpColor &color);
   //! Fixes the x range instead of fitting the data.
   void setXRange(double xmin, double xmax);
-  //! Fixes the y range instead of fitting the data.
+  /*!
+    Fixes the y range instead of fitting the data. A marker of addPoints() beyond it is drawn as a
+    triangle on the edge of the chart, pointing out, with its value, and the legend counts them: one
+    series far off (an estimator without outlier rejection) then leaves the others readable.
+  */
   void setYRange(double ymin, double ymax);
   //! Logarithmic y axis (decade ticks); samples <= 0 are then left out.
   void setLogY(bool logY);
@@ -57,8 +62,14 @@ private:
   //! Tick positions (plotted ordinates) between \e y0 and \e y1.
   std::vector<double> yTicks(double y0, double y1) const;
   void dataRange(double &x0, double &x1, double &y0, double &y1) const;
-  //! Legend box in the top-right corner of the plot area (right edge \e right, top edge \e top).
-  void drawLegend(vpImage<vpRGBa> &I, const vpFont &font, double right, double top) const;
+  //! Size (height, width) of the legend box of the series whose names are not empty.
+  vpImagePoint legendSize(const vpFont &font) const;
+  /*!
+    Legend box at \e corner (top-left pixel of the box); \e clipped[k] markers of series k lie beyond
+    the y range.
+  */
+  void drawLegend(vpImage<vpRGBa> &I, const vpFont &font, const vpImagePoint &corner,
+                  const std::vector<unsigned int> &clipped) const;
 
   std::string m_title, m_xLabel, m_yLabel;
   unsigned int m_width, m_height;

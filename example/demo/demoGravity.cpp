@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 
 #include <visp3/core/vpCameraParameters.h>
@@ -258,6 +259,20 @@ bool runGravityDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &
   vpPngPlot rPlot("Gravity-aided pose: rotation error", "frame", "error [deg], log scale");
   tPlot.setLogY(true);
   rPlot.setLogY(true);
+  // Above the largest error, nearly two decades of room for the legend, which then hides no curve.
+  auto setLogRange = [](vpPngPlot &plot, const std::vector<std::vector<double> > &series) {
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (const std::vector<double> &values : series)
+      for (const double v : values)
+        if (std::isfinite(v) && v > 0.0) {
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+    if (hi > 0.0)
+      plot.setYRange(lo / 1.5, hi * 60.0);
+  };
+  setLogRange(tPlot, plotT);
+  setLogRange(rPlot, plotR);
   for (size_t m = 0; m < nMethods; ++m) {
     tPlot.addCurve(summaries[m].method, plotX[m], plotT[m], colors[m % 5]);
     rPlot.addCurve(summaries[m].method, plotX[m], plotR[m], colors[m % 5]);

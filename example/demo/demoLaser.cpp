@@ -11,6 +11,7 @@
 #include "demoCommon.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -36,11 +37,12 @@ struct LaserMethod
   const char *name;
   vpLaserConicPose::vpLaserConicMethod method;
   unsigned int minPoints;
+  bool rejectsOutliers; //!< false: every detected point is fitted (the plots are scaled without it)
 };
-const LaserMethod kMethods[] = {{"GP3", vpLaserConicPose::GP3, 3},
-                                {"PP3", vpLaserConicPose::PP3, 3},
-                                {"PP5", vpLaserConicPose::PP5, 5},
-                                {"PLANE_PAIR", vpLaserConicPose::PLANE_PAIR, 5}};
+const LaserMethod kMethods[] = {{"GP3", vpLaserConicPose::GP3, 3, true},
+                                {"PP3", vpLaserConicPose::PP3, 3, true},
+                                {"PP5", vpLaserConicPose::PP5, 5, true},
+                                {"PLANE_PAIR", vpLaserConicPose::PLANE_PAIR, 5, false}};
 
 //! One estimate of one frame.
 struct LaserEstimate
@@ -117,6 +119,35 @@ struct LaserCurves
 {
   std::vector<double> frame, altitude, roll, pitch, altitudeError;
 };
+
+/*!
+  Fixes the y range of \e plot to the finite values of \e series over the truth (when \e withTruth) and
+  the methods that reject outliers, with a margin. PLANE_PAIR fits every detected point: on the frames
+  with a red distractor it is off by metres and tens of degrees, and a range fitted to it would flatten
+  the others' errors onto a line; its estimates beyond the range are drawn on the edge of the chart.
+*/
+void setRobustYRange(vpPngPlot &plot, const std::vector<LaserCurves> &curves, const LaserCurves &truth,
+                     std::vector<double> LaserCurves::*series, bool withTruth)
+{
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  auto include = [&](const std::vector<double> &values) {
+    for (const double v : values)
+      if (std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+  };
+  if (withTruth)
+    include(truth.*series);
+  for (size_t m = 0; m < curves.size(); ++m)
+    if (kMethods[m].rejectsOutliers)
+      include(curves[m].*series);
+  if (!(hi >= lo))
+    return; // no value: the plot fits whatever it has
+  // Room above the data for the legend, which goes into a corner that hides no sample.
+  const double span = hi > lo ? hi - lo : 1.0;
+  plot.setYRange(lo - 0.08 * span, hi + 0.45 * span);
+}
 } // namespace
 
 std::vector<vpAccuracyBound> laserBounds()
@@ -326,6 +357,7 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
       plot.addCurve("ground truth", truth.frame, truth.*(spec.series), vpColor::black);
     for (size_t m = 0; m < nMethods; ++m)
       plot.addPoints(kMethods[m].name, curves[m].frame, curves[m].*(spec.series), colors[m % 4]);
+    setRobustYRange(plot, curves, truth, spec.series, spec.withTruth);
     const std::string file = options.outputDir + "/" + spec.file;
     plot.write(file);
     writtenFiles.push_back(file);

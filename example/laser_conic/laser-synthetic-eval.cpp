@@ -33,6 +33,7 @@
 
 #include "laserRigSetup.h"
 #include "vpCommandLine.h"
+#include "vpProgress.h"
 #include "vpPngPlot.h"
 
 namespace
@@ -293,6 +294,8 @@ void runCurveStudy(CurveStudy &study, const Options &opt)
   vpLaserConicSimulator sim;
   sim.setCamera(vspLaserRig::camera(), vspLaserRig::kWidth, vspLaserRig::kHeight);
   sim.setLaser(vpMath::rad(vspLaserRig::kOpeningAngleDeg), vspLaserRig::laserPose());
+  vpProgress progress("laser-synthetic-eval: " + study.name + " trials",
+                      study.levels.size() * static_cast<std::size_t>(opt.trials));
   for (size_t l = 0; l < study.levels.size(); ++l) {
     // One seed per (study, level): any level can be reproduced alone.
     const unsigned int levelSeed = opt.seed * 1000003u + static_cast<unsigned int>(l) * 7919u;
@@ -300,6 +303,7 @@ void runCurveStudy(CurveStudy &study, const Options &opt)
     sim.setSeed(levelSeed);
     std::map<std::string, std::vector<TrialError> > errors;
     for (int t = 0; t < opt.trials; ++t) {
+      progress.update(l * static_cast<std::size_t>(opt.trials) + static_cast<std::size_t>(t));
       const Scenario truth = drawScenario(rng, sim);
       const TrialInput input = study.perturb(study.levels[l], sim, rng);
       for (const Method &m : methods()) {

@@ -13,11 +13,15 @@
   960x720 wide-angle camera with lens distortion (kdu, with the kud that inverts it) on a drone-like
   trajectory at 0.5-3 m, each frame in one of the hard conditions of the detector (dim stripe on a dark
   floor, saturated stripe with bloom on white glossy tiles, bright grey floor, colourful mosaic floor, red
-  distractors and clutter, an occluding object, motion blur, a few frames without laser) with sensor noise.
+  distractors and clutter, an occluding object, motion blur, a few frames without laser) with sensor noise,
+  followed by 9 frames of a stripe that fades along the ring (inverse-square and Lambert fall-off, 60-150 grey
+  levels of red dominance near, 14-30 far; on a dark floor and on a textured floor whose reflectance scales
+  the laser light; the last one faint, its far side at twice the sensor noise).
 
   Writes camera.xml, laser.txt (the laser pose calibrated with vpLaserConicCalibration from simulated
   grid views, as in the paper), laser_true.txt (the pose used for rendering), groundtruth.csv and
-  images/frame_XXX.jpg (with --hard, conditions.csv too: the condition of each frame). The output depends
+  images/frame_XXX.jpg (with --hard, conditions.csv too: the condition of each frame and what the default
+  detector finds on it). The output depends
   only on the seed and the options (deterministic).
 */
 #include <algorithm>
@@ -26,6 +30,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -78,12 +83,17 @@ enum HardCondition
   DISTRACTORS,
   OCCLUDED,
   MOTION_BLUR,
-  NO_LASER
+  NO_LASER,
+  FADING_RING,      // appended after the cycle
+  FADING_RING_FAINT // the last frame: the far side at about twice the sensor noise
 };
+//! Frames appended after the cycle with --hard: fading rings, then one faint ring.
+const unsigned int kFadingFrames = 8;
 const char *conditionName(HardCondition c)
 {
   static const char *names[] = {"dim_dark_floor", "saturated_white_tiles", "bright_grey_floor", "colourful_floor",
-                                "red_distractors", "occluded", "motion_blur", "no_laser"};
+                                "red_distractors", "occluded", "motion_blur", "no_laser",
+                                "fading_ring", "fading_ring_faint"};
   return names[c];
 }
 
@@ -158,6 +168,64 @@ vpLaserConicSimulator::vpRenderSettings hardSettings(HardCondition c, unsigned i
     break;
   }
   return s;
+}
+
+/*!
+  Render settings of the fading-ring frames: the stripe fades along the ring with the distance and the
+  incidence (inverse square, Lambert cosine) from \e nearPeak to \e farPeak grey levels of red dominance
+  R - max(G, B), as real photographs of a dark room show (60-150 near, 14-30 far, over a background red level
+  of 0-7). Frame \e f even: the dark floor at that background; odd: a textured (bright grey, mottled) floor
+  whose reflectance scales the laser light. The laser power is set from the ground truth at unit power so that
+  the brightest visible part reads \e nearPeak on the median reflectance of the ring.
+*/
+vpLaserConicSimulator::vpRenderSettings fadingSettings(unsigned int f, double nearPeak, double farPeak, double noise,
+                                                       std::mt19937 &rng, vpLaserConicSimulator &sim)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  vpLaserConicSimulator::vpRenderSettings s;
+  s.stripeWidth = 2.0 + 1.0 * unit(rng);
+  s.noise = noise;
+  s.distanceFalloff = 2.0;
+  s.lambertIncidence = true;
+  s.stripeFarFraction = farPeak / nearPeak;
+  const bool textured = f % 2 == 1;
+  s.floor = textured ? vpLaserConicSimulator::FLOOR_BRIGHT_GREY : vpLaserConicSimulator::FLOOR_DARK_TILES;
+  s.ambient = textured ? 0.45 : 0.12;
+  s.reflectanceScaled = textured;
+  s.laserPower = 1.0;
+  std::vector<double> perUnitPower;
+  for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(2000, s))
+    perUnitPower.push_back(t.peakDominance / t.falloff);
+  if (!perUnitPower.empty()) {
+    std::nth_element(perUnitPower.begin(), perUnitPower.begin() + perUnitPower.size() / 2, perUnitPower.end());
+    s.laserPower = nearPeak / perUnitPower[perUnitPower.size() / 2];
+  }
+  return s;
+}
+
+//! Condition of frame \e k of the hard sequence: the cycle for the first \e cycleFrames, then the fading rings.
+HardCondition frameCondition(unsigned int k, unsigned int cycleFrames)
+{
+  if (k < cycleFrames)
+    return hardCondition(k);
+  return k - cycleFrames < kFadingFrames ? FADING_RING : FADING_RING_FAINT;
+}
+
+//! Settings of frame \e k of the hard sequence (see hardSettings() and fadingSettings()).
+vpLaserConicSimulator::vpRenderSettings hardFrameSettings(unsigned int k, unsigned int cycleFrames, double noise,
+                                                          std::mt19937 &rng, vpLaserConicSimulator &sim)
+{
+  const HardCondition c = frameCondition(k, cycleFrames);
+  if (c == FADING_RING) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double nearPeak = 60.0 + 90.0 * unit(rng), farPeak = 14.0 + 16.0 * unit(rng);
+    return fadingSettings(k - cycleFrames, nearPeak, farPeak, noise, rng, sim);
+  }
+  if (c == FADING_RING_FAINT)
+    return fadingSettings(0, 40.0, 2.0 * noise, noise, rng, sim);
+  vpLaserConicSimulator::vpRenderSettings settings = hardSettings(c, k, rng);
+  settings.noise = noise;
+  return settings;
 }
 
 //! Attitude and position of the rig at one instant.
@@ -380,6 +448,22 @@ void detectorQuality(vpLaserConicSimulator &sim, const vpLaserConicSimulator::vp
   rms = on ? std::sqrt(sum2 / on) : 0.0;
 }
 
+/*!
+  The default detector on the frame as shipped (the JPEG file): share of the ring's length where the stripe is
+  at least 3 times the sensor noise with a detected point within 1.5 px of the true centre line
+  (vpLaserConicSimulator::stripeCoverage()); NaN without laser.
+*/
+double coverageOnShippedFrame(vpLaserConicSimulator &sim, const vpLaserConicSimulator::vpRenderSettings &settings,
+                              const std::string &file)
+{
+  if (!settings.laserOn)
+    return std::numeric_limits<double>::quiet_NaN();
+  vpImage<vpRGBa> I;
+  vpImageIo::read(I, file);
+  vpLaserConicDetector detector;
+  return vpLaserConicSimulator::stripeCoverage(sim.traceTruth(20000, settings), detector.detect(I), 3.0, 1.5);
+}
+
 //! Distance between the apexes (m) and angle between the cone axes (rad) of two laser poses.
 void laserPoseError(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b, double &apexError, double &axisError)
 {
@@ -394,11 +478,11 @@ vpCommandLine commandLine(Options &opt)
   vpCommandLine cli("[--hard] [--output DIR] [--frames N] [--seed S] [--quality Q] [--sensor-noise GREY]",
                     "Writes the simulated hand-held laser sequence (camera.xml, laser.txt, groundtruth.csv, images/),\n"
                     "or with --hard the sequence of hard conditions with a distorted wide-angle camera.");
-  cli.addFlag("--hard", opt.hard, "the hard sequence (default output " VSP_DATA_DIR "/laser_hard, 48 frames)");
+  cli.addFlag("--hard", opt.hard, "the hard sequence (default output " VSP_DATA_DIR "/laser_hard, 48 + 9 frames)");
   cli.addString("--output", opt.output, "DIR", "default " VSP_DATA_DIR "/laser_sequence (laser_hard with --hard)");
   cli.addString("--diagnostics", opt.diagnostics, "DIR",
                 "with --hard: also write each frame with the default detector's mask over it (PNG) to DIR");
-  cli.addUnsigned("--frames", opt.frames, "N", "number of frames (default 100, 48 with --hard)", 1);
+  cli.addUnsigned("--frames", opt.frames, "N", "number of frames (default 100; with --hard 48 of the cycle, then 9 fading rings)", 1);
   cli.addUnsigned("--seed", opt.seed, "S", "trajectory and rendering seed (default 2018)");
   cli.addInt("--quality", opt.quality, "Q", "JPEG quality (default 60)", 1, 100);
   cli.addDouble("--sensor-noise", opt.sensorNoise, "GREY", "sensor noise standard deviation, grey levels (default 1)",
@@ -443,11 +527,15 @@ int main(int argc, char **argv)
     sim.setCamera(cam, width, height);
     sim.setLaser(openingAngle, cMl);
     std::vector<vpLaserGroundTruthFrame> frames;
-    const std::vector<RigState> states = opt.hard ? hardTrajectory(opt.frames, opt.seed) : trajectory(opt.frames, opt.seed);
+    std::vector<RigState> states = opt.hard ? hardTrajectory(opt.frames, opt.seed) : trajectory(opt.frames, opt.seed);
+    if (opt.hard) { // the fading rings after the cycle, on a trajectory of their own (the cycle's frames unchanged)
+      const std::vector<RigState> fading = hardTrajectory(kFadingFrames + 1, opt.seed + 50);
+      states.insert(states.end(), fading.begin(), fading.end());
+    }
     std::ofstream conditions;
     if (opt.hard) {
       conditions.open(opt.output + "/conditions.csv");
-      conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px\n";
+      conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px,detector_coverage_3sigma\n";
     }
     std::mt19937 settingsRng(opt.seed + 7);
     vpLaserConicDetector detector;
@@ -455,6 +543,7 @@ int main(int argc, char **argv)
       vpIoTools::makeDirectory(opt.diagnostics);
     double worstCoverage = 1.0, worstRms = 0.0;
     std::string qualityLine;
+    std::ostringstream fadingCoverage;
     for (unsigned int k = 0; k < states.size(); ++k) {
       const RigState &s = states[k];
       sim.setGroundPose(vspLaserRig::groundPose(s.altitude, s.roll, s.pitch, s.yaw, s.x, s.y));
@@ -462,9 +551,9 @@ int main(int argc, char **argv)
       // seed: its floors and clutter stay fixed in the ground frame).
       sim.setSeed(opt.seed + k);
       vpImage<vpRGBa> I;
+      vpLaserConicSimulator::vpRenderSettings settings;
       if (opt.hard) {
-        vpLaserConicSimulator::vpRenderSettings settings = hardSettings(hardCondition(k), k, settingsRng);
-        settings.noise = 2.5 * opt.sensorNoise;
+        settings = hardFrameSettings(k, opt.frames, 2.5 * opt.sensorNoise, settingsRng, sim);
         settings.sceneSeed = static_cast<int>(opt.seed);
         sim.render(I, settings);
         // The default detector on the rendered frame (before the JPEG compression): how much of the trace it finds.
@@ -511,11 +600,25 @@ int main(int argc, char **argv)
       }
       vpImageIo::writeJPEG(I, opt.output + "/" + f.image, vpImageIo::IO_DEFAULT_BACKEND, opt.quality);
       frames.push_back(f);
-      if (opt.hard)
-        conditions << k << "," << f.image << "," << conditionName(hardCondition(k)) << "," << qualityLine << "\n";
+      if (opt.hard) {
+        const double coverage = coverageOnShippedFrame(sim, settings, opt.output + "/" + f.image);
+        conditions << k << "," << f.image << "," << conditionName(frameCondition(k, opt.frames)) << "," << qualityLine
+                   << "," << std::setprecision(4) << coverage << "\n";
+        if (frameCondition(k, opt.frames) >= FADING_RING) {
+          double nearPeak = 0.0, farPeak = 1e9;
+          for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(2000, settings)) {
+            nearPeak = std::max(nearPeak, t.peakDominance);
+            farPeak = std::min(farPeak, t.peakDominance);
+          }
+          fadingCoverage << "\n  " << f.image << " (" << conditionName(frameCondition(k, opt.frames)) << ", stripe "
+                         << std::setprecision(3) << nearPeak << " to " << farPeak << " grey levels of red dominance): "
+                         << 100.0 * coverage << " %";
+        }
+      }
       std::cout << f.image << ": altitude " << std::setprecision(4) << f.altitude << " m, roll "
                 << vpMath::deg(f.roll) << " deg, pitch " << vpMath::deg(f.pitch) << " deg"
-                << (opt.hard ? std::string(", ") + conditionName(hardCondition(k)) : std::string()) << std::endl;
+                << (opt.hard ? std::string(", ") + conditionName(frameCondition(k, opt.frames)) : std::string())
+                << std::endl;
     }
     if (!vpLaserRigIo::writeGroundTruth(opt.output + "/groundtruth.csv", frames, error)) {
       std::cerr << error << std::endl;
@@ -524,7 +627,9 @@ int main(int argc, char **argv)
     std::cout << "Wrote " << frames.size() << " frames to " << opt.output << std::endl;
     if (opt.hard)
       std::cout << "Default detector on the frames with laser: coverage >= " << 100.0 * worstCoverage
-                << " %, RMS distance to the trace <= " << worstRms << " px (conditions.csv)" << std::endl;
+                << " %, RMS distance to the trace <= " << worstRms << " px (conditions.csv)\n"
+                << "Default detector on the fading rings as shipped (JPEG): share of the ring where the stripe is >= 3x "
+                << "the noise with a point within 1.5 px of the true centre line" << fadingCoverage.str() << std::endl;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getMessage() << std::endl;
     return EXIT_FAILURE;

@@ -54,6 +54,7 @@
 #include <visp3/vision/vpPose.h>
 
 #include "vpCommandLine.h"
+#include "vpProgress.h"
 
 namespace
 {
@@ -547,7 +548,9 @@ int main(int argc, char **argv)
 
   std::mt19937 rng(opt.seed);
   const auto start = std::chrono::steady_clock::now();
+  vpProgress progress("table1-gravity-p3p: trials", static_cast<std::size_t>(opt.trials));
   for (int i = 0; i < opt.trials; ++i) {
+    progress.update(static_cast<std::size_t>(i));
     const Trial trial = drawTrial(camera, rng);
     std::array<Estimate, kNumMethods> estimates;
     estimateGravityP3P(trial, estimates[kP3PIMU], estimates[kP3PIMURefined]);
@@ -557,6 +560,7 @@ int main(int argc, char **argv)
     for (int m = 0; m < kNumMethods; ++m)
       stats[m].add(relativeReprojectionError(trial, estimates[m], referenceMeasured));
   }
+  progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::cout << "Table I of D'Alfonso et al. (MED 2013), relative reprojection error eps (eq. 17) against the "

@@ -77,6 +77,12 @@ public:
     m_commandLine.addInt(name, value, "N", help + " (default " + std::to_string(value) + ")", minValue);
   }
 
+  //! Declares `name VALUE`: a string stored in value.
+  void addString(const std::string &name, std::string &value, const std::string &valueName, const std::string &help)
+  {
+    m_commandLine.addString(name, value, valueName, help);
+  }
+
   //! True when the program was run with --display (valid once run() has parsed the command line).
   bool display() const { return m_display; }
 

@@ -1,7 +1,8 @@
 # ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
 # Runs COMMAND (arguments joined with '|') and passes when it exits non-zero with a message matching
 # EXPECT. PROTECT "src>dst" first copies src to dst and then checks that dst was left unchanged (the
-# program must never overwrite one of its inputs).
+# program must never overwrite one of its inputs). KEEP FILE first writes FILE as the result of an
+# earlier run and then checks that the failed run left it as it was, with no temporary file beside it.
 string(REPLACE "|" ";" command "${COMMAND}")
 if(PROTECT)
   string(REPLACE ">" ";" protect "${PROTECT}")
@@ -9,6 +10,9 @@ if(PROTECT)
   list(GET protect 1 protected)
   configure_file("${protect_source}" "${protected}" COPYONLY)
   file(SHA256 "${protected}" hash_before)
+endif()
+if(KEEP)
+  file(WRITE "${KEEP}" "results of an earlier run\n")
 endif()
 execute_process(COMMAND ${command} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("exit status: ${status}\nstdout:\n${out}\nstderr:\n${err}")
@@ -22,5 +26,17 @@ if(PROTECT)
   file(SHA256 "${protected}" hash_after)
   if(NOT hash_before STREQUAL hash_after)
     message(FATAL_ERROR "the input ${protected} was modified")
+  endif()
+endif()
+if(KEEP)
+  file(READ "${KEEP}" content)
+  if(NOT content STREQUAL "results of an earlier run\n")
+    message(FATAL_ERROR "${KEEP} was changed by the failed run:\n${content}")
+  endif()
+  get_filename_component(folder "${KEEP}" DIRECTORY)
+  get_filename_component(name "${KEEP}" NAME)
+  file(GLOB leftovers "${folder}/.${name}.tmp*")
+  if(leftovers)
+    message(FATAL_ERROR "temporary files left: ${leftovers}")
   endif()
 endif()

@@ -1,13 +1,15 @@
 # ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
 # vsp-laser-altimeter on a folder holding three images of data/laser_hard and a file with an image
-# extension that is not an image: exit status 0, a failure row "unreadable_image" for that file, and a
-# plane (status ok) for each of the three images.
+# extension that is not an image, and a truncated JPEG (libjpeg would decode it with a warning only,
+# the missing part grey): exit status 0, a failure row "unreadable_image" for each of these two files
+# (stderr names them), and a plane (status ok) for each of the three images.
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/images")
 foreach(k 000 001 002)
   file(COPY "${DATA}/images/frame_${k}.jpg" DESTINATION "${WORK}/images")
 endforeach()
 file(WRITE "${WORK}/images/frame_001b.png" "this is not a PNG file\n")
+file(COPY "${TRUNCATED}" DESTINATION "${WORK}/images")
 execute_process(COMMAND "${PROGRAM}" --camera "${DATA}/camera.xml" --laser "${DATA}/laser.txt"
                         --images "${WORK}/images" --output "${WORK}/results.csv"
                 RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -17,19 +19,22 @@ if(NOT status EQUAL 0)
 endif()
 file(STRINGS "${WORK}/results.csv" rows)
 list(LENGTH rows count)
-if(NOT count EQUAL 5)
-  message(FATAL_ERROR "expected a header and 4 rows, got ${count} lines")
+if(NOT count EQUAL 6)
+  message(FATAL_ERROR "expected a header and 5 rows, got ${count} lines")
 endif()
 set(ok 0)
 set(unreadable 0)
 foreach(row ${rows})
-  if(row MATCHES "frame_001b\\.png,0,nan,nan,nan,0,unreadable_image$")
+  if(row MATCHES "(frame_001b\\.png|truncated_frame\\.jpg),0,nan,nan,nan,0,unreadable_image$")
     math(EXPR unreadable "${unreadable} + 1")
   elseif(row MATCHES "frame_00[0-2]\\.jpg,[0-9]+,[0-9.]+,[-0-9.e]+,[-0-9.e]+,[0-9]+,ok$")
     math(EXPR ok "${ok} + 1")
   endif()
 endforeach()
-if(NOT ok EQUAL 3 OR NOT unreadable EQUAL 1)
-  message(FATAL_ERROR "expected 3 frames with a plane and 1 unreadable image, got ${ok} and ${unreadable}:\n${rows}")
+if(NOT ok EQUAL 3 OR NOT unreadable EQUAL 2)
+  message(FATAL_ERROR "expected 3 frames with a plane and 2 unreadable images, got ${ok} and ${unreadable}:\n${rows}")
 endif()
-message("laser unreadable-image test: 3 planes, 1 failure row, exit status 0")
+if(NOT err MATCHES "truncated_frame\\.jpg: cannot be read as an image \\(truncated or corrupt JPEG file")
+  message(FATAL_ERROR "stderr does not name the truncated JPEG file")
+endif()
+message("laser unreadable-image test: 3 planes, 2 failure rows, exit status 0")

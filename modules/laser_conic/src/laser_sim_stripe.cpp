@@ -13,7 +13,11 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
+#include <utility>
 #include <vector>
+
+#include <opencv2/imgproc.hpp>
 
 namespace
 {
@@ -37,6 +41,21 @@ inline float squaredDistanceToSegment(float px, float py, float ax, float ay, fl
 
 // Peak of a Gaussian line profile of standard deviation \e sigma after a Gaussian blur \e blur (both pixels).
 inline double blurredPeak(double sigma, double blur) { return sigma / std::sqrt(sigma * sigma + blur * blur); }
+
+// True when the image point (u, v) is hidden by one of the occluders (as render() fills them).
+bool occluded(const std::vector<std::vector<vpImagePoint> > &occluders, double u, double v)
+{
+  for (const std::vector<vpImagePoint> &polygon : occluders) {
+    if (polygon.size() < 3)
+      continue;
+    std::vector<cv::Point2f> contour;
+    for (const vpImagePoint &p : polygon)
+      contour.push_back(cv::Point2f(static_cast<float>(std::lround(p.get_u())), static_cast<float>(std::lround(p.get_v()))));
+    if (cv::pointPolygonTest(contour, cv::Point2f(static_cast<float>(u), static_cast<float>(v)), false) >= 0)
+      return true;
+  }
+  return false;
+}
 
 // True when the settings shape the stripe's brightness along the ring.
 inline bool hasFalloff(const vpLaserConicSimulator::vpRenderSettings &s)
@@ -97,11 +116,9 @@ void vpLaserConicSimulator::traceDistanceMap(float radius, std::vector<float> &d
   const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
   dist2.assign(static_cast<size_t>(W) * H, std::numeric_limits<float>::infinity());
   const bool withFalloff = settings != nullptr && falloff != nullptr;
-  vpFalloffModel model;
-  if (withFalloff) {
+  const vpFalloffModel model = withFalloff ? falloffModel(*settings) : vpFalloffModel();
+  if (withFalloff)
     falloff->assign(dist2.size(), 1.f);
-    model = falloffModel(*settings);
-  }
 
   // Image point of the cone ray gamma, if that ray lights a ground point in front of the camera.
   struct Sample
@@ -236,10 +253,49 @@ std::vector<vpLaserConicSimulator::vpTraceTruth> vpLaserConicSimulator::traceTru
       const double Y = gMc[1][0] * P[0] + gMc[1][1] * P[1] + gMc[1][2] * P[2] + gMc[1][3];
       t.reflectance = groundReflectance(settings, X, Y);
     }
-    t.peakDominance = settings.laserOn ? settings.laserPower * t.falloff * t.reflectance * unitPeak : 0.0;
+    const bool lit = settings.laserOn && !occluded(settings.occluders, u, v);
+    t.peakDominance = lit ? settings.laserPower * t.falloff * t.reflectance * unitPeak : 0.0;
     t.peakOverNoise = settings.noise > 0.0 ? t.peakDominance / settings.noise
                                            : (t.peakDominance > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
     truth.push_back(t);
   }
   return truth;
+}
+
+double vpLaserConicSimulator::stripeCoverage(const std::vector<vpTraceTruth> &truth,
+                                             const std::vector<vpImagePoint> &points, double minOverNoise,
+                                             double radius)
+{
+  // The points by cell of side 2 radius (at least 1 px): a query reads its 3 x 3 cells.
+  const double cellSize = std::max(1.0, 2.0 * radius);
+  auto cellOf = [cellSize](double x) { return static_cast<long long>(std::floor(x / cellSize)); };
+  std::map<std::pair<long long, long long>, std::vector<vpImagePoint> > cells;
+  for (const vpImagePoint &p : points)
+    cells[std::make_pair(cellOf(p.get_u()), cellOf(p.get_v()))].push_back(p);
+  auto covered = [&](const vpImagePoint &q) {
+    const long long cu = cellOf(q.get_u()), cv = cellOf(q.get_v());
+    for (long long dv = -1; dv <= 1; ++dv)
+      for (long long du = -1; du <= 1; ++du) {
+        const auto it = cells.find(std::make_pair(cu + du, cv + dv));
+        if (it != cells.end())
+          for (const vpImagePoint &p : it->second)
+            if (vpImagePoint::distance(p, q) <= radius)
+              return true;
+      }
+    return false;
+  };
+  double visible = 0.0, found = 0.0;
+  const size_t n = truth.size();
+  for (size_t k = 0; k < n; ++k) {
+    if (!(truth[k].peakOverNoise >= minOverNoise))
+      continue;
+    double length = 0.0;
+    for (size_t m : {(k + n - 1) % n, (k + 1) % n}) {
+      const double d = vpImagePoint::distance(truth[k].point, truth[m].point);
+      length += d < 4.0 ? 0.5 * d : 0.0;
+    }
+    visible += length;
+    found += covered(truth[k].point) ? length : 0.0;
+  }
+  return visible > 0.0 ? found / visible : 0.0;
 }

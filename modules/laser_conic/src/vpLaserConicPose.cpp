@@ -16,6 +16,7 @@
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 #include <visp3/robust/vpRansac.h>
 
+#include "laser_calibration_check.h"
 #include "laser_estimators.h"
 #include "laser_robust_fit.h"
 
@@ -120,7 +121,8 @@ vpLaserConicPose::vpLaserConicPose()
     m_trials(0), m_conic(3, 3, 0.0), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
     m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_finalFit(FINAL_FIT_DEFAULT), m_computeCovariance(false),
     m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0), m_sigma(0.0), m_coverage(0.0),
-    m_constrainedChosen(false), m_points()
+    m_constrainedChosen(false), m_points(), m_calibrationCheck(true),
+    m_mistake(MISTAKE_UNKNOWN)
 {
 }
 
@@ -142,6 +144,10 @@ std::string vpLaserConicPose::getStatusMessage(vpLaserConicStatus status)
   case STATUS_PLANE_BEHIND: return "the plane is behind the system: the laser or the camera cannot see its trace there";
   case STATUS_SHORT_ARC:
     return "the trace found covers too short an arc of the laser cone: its tilt is weakly constrained";
+  case STATUS_CALIBRATION_MISMATCH:
+    return "the calibration does not explain the trace: the plane it constrains misses the points far beyond their "
+           "noise (usual causes: the half opening angle given for the full one, lMc given for cMl, u and v swapped, "
+           "intrinsics of another camera or resolution)";
   }
   return "unknown status";
 }
@@ -353,6 +359,15 @@ Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserCo
   consensus.inliers = consensus.report.inliers;
   return consensus;
 }
+
+//! \e points with u and v exchanged.
+std::vector<vpImagePoint> swappedUV(const std::vector<vpImagePoint> &points)
+{
+  std::vector<vpImagePoint> out(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    out[i].set_uv(points[i].get_v(), points[i].get_u());
+  return out;
+}
 } // namespace
 
 void vpLaserConicPose::checkInput(const std::vector<vpImagePoint> &points, vpLaserConicMethod method) const
@@ -385,6 +400,7 @@ void vpLaserConicPose::resetEstimate(const std::vector<vpImagePoint> &points)
   m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
   m_constrainedChosen = false;
   m_points = points;
+  m_mistake = MISTAKE_UNKNOWN;
 }
 
 vpRansacOptions vpLaserConicPose::ransacOptions(double focal) const
@@ -413,6 +429,55 @@ vsp::laser_robust_fit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicM
                       : fit == FINAL_FIT_SELECT    ? vsp::laser_robust_fit::FinalFit::SELECT
                                                    : vsp::laser_robust_fit::FinalFit::FREE;
   return settings;
+}
+
+vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const std::vector<vpImagePoint> &points,
+                                                                        vpLaserConicMethod method) const
+{
+  const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
+  // The estimate again under each alternative calibration: its misfit when it explains the trace, else -1.
+  const auto fits = [&](const vsp::laser_calibration_check::Alternative &alternative) {
+    const PointList normalized = normalizedPoints(alternative.swapUV ? swappedUV(points) : points, alternative.cam);
+    const vpLaserSolvers::LaserCone cone = laserCone(alternative.cMl, alternative.openingAngle);
+    const double focal = 0.5 * (alternative.cam.get_px() + alternative.cam.get_py());
+    const Consensus consensus = findConsensus(normalized, method, cone, ransacOptions(focal), !m_scaleAdaptive);
+    vsp::laser_robust_fit::Result fit;
+    if (!consensus.found || consensus.inliers.size() < needed ||
+        vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
+                              finalFitSettings(method, focal), fit) != vsp::laser_robust_fit::Outcome::OK ||
+        !fit.plane.allFinite() || fractionInFront(normalized, fit.inliers, fit.plane, cone) < 0.5 ||
+        !vsp::laser_calibration_check::explained(fit))
+      return -1.0;
+    return vsp::laser_calibration_check::misfit(fit);
+  };
+  return vsp::laser_calibration_check::diagnose(m_openingAngle, m_cMl, m_cam, fits);
+}
+
+bool vpLaserConicPose::failCalibration(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
+                                       const vsp::laser_robust_fit::Result &result)
+{
+  m_rmsConstrained = result.rmsConstrained;
+  m_rmsFree = result.rmsFree;
+  m_sigma = result.sigma;
+  m_coverage = result.coverage;
+  m_mistake = suspectedMistake(points, method);
+  std::ostringstream msg;
+  msg << " (the constrained fit misses the trace by " << vsp::laser_calibration_check::misfit(result)
+      << " px beyond the free fit, " << vsp::laser_calibration_check::tolerance(result) << " px allowed; "
+      << getMistakeMessage(m_mistake) << ")";
+  return fail(STATUS_CALIBRATION_MISMATCH, msg.str());
+}
+
+bool vpLaserConicPose::failOrMismatch(vpLaserConicStatus status, const std::string &details,
+                                      const std::vector<vpImagePoint> &points, vpLaserConicMethod method)
+{
+  if (m_calibrationCheck)
+    m_mistake = suspectedMistake(points, method);
+  if (m_mistake == MISTAKE_UNKNOWN)
+    return fail(status, details);
+  return fail(STATUS_CALIBRATION_MISMATCH,
+              " (" + getMistakeMessage(m_mistake) + "; with the calibration given: " + getStatusMessage(status) +
+                  details + ")");
 }
 
 void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result, vpPlane &cPlane)
@@ -460,14 +525,14 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
   const Consensus consensus = findConsensus(normalized, method, cone, ransacOptions(focal), !m_scaleAdaptive);
   if (consensus.cameraInsideCone)
-    return fail(STATUS_CAMERA_INSIDE_CONE);
+    return failOrMismatch(STATUS_CAMERA_INSIDE_CONE, "", points, method);
   m_trials = consensus.report.trials;
   const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
   if (!consensus.found || consensus.inliers.size() < needed) {
     std::ostringstream msg;
     msg << " (" << methodName(method) << ", " << consensus.inliers.size() << " inliers at best, " << needed
         << " needed, after " << consensus.report.trials << " samples)";
-    return fail(STATUS_NO_CONSENSUS, msg.str());
+    return failOrMismatch(STATUS_NO_CONSENSUS, msg.str(), points, method);
   }
 
   // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
@@ -478,15 +543,17 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   case vsp::laser_robust_fit::Outcome::SHORT_ARC: {
     std::ostringstream msg;
     msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
-    return fail(STATUS_SHORT_ARC, msg.str());
+    return failOrMismatch(STATUS_SHORT_ARC, msg.str(), points, method);
   }
   case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
-  case vsp::laser_robust_fit::Outcome::NO_PLANE: return fail(STATUS_NO_PLANE_PAIR);
+  case vsp::laser_robust_fit::Outcome::NO_PLANE: return failOrMismatch(STATUS_NO_PLANE_PAIR, "", points, method);
   }
   if (!result.plane.allFinite())
     return fail(STATUS_PLANE_NOT_FINITE);
   if (fractionInFront(normalized, result.inliers, result.plane, cone) < 0.5)
-    return fail(STATUS_PLANE_BEHIND);
+    return failOrMismatch(STATUS_PLANE_BEHIND, "", points, method);
+  if (m_calibrationCheck && !vsp::laser_calibration_check::explained(result))
+    return failCalibration(points, method, result);
 
   storeEstimate(result, cPlane);
   m_status = STATUS_OK;
@@ -509,10 +576,18 @@ const vpMatrix &computedCovariance(const vpMatrix &covariance, const char *gette
 
 vpMatrix vpLaserConicPose::getCovarianceMatrix() const
 {
-  return computedCovariance(m_covariance, "getCovarianceMatrix");
+  return m_covarianceInflation * computedCovariance(m_covariance, "getCovarianceMatrix");
 }
 
 vpMatrix vpLaserConicPose::getPlaneCovarianceMatrix() const
 {
-  return computedCovariance(m_planeCovariance, "getPlaneCovarianceMatrix");
+  return m_covarianceInflation * computedCovariance(m_planeCovariance, "getPlaneCovarianceMatrix");
+}
+
+void vpLaserConicPose::setCovarianceInflation(double varianceScale)
+{
+  if (!(varianceScale > 0.0) || !std::isfinite(varianceScale))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "setCovarianceInflation: the variance scale must be finite and > 0");
+  m_covarianceInflation = varianceScale;
 }

@@ -148,48 +148,6 @@ private:
   std::unordered_map<int64_t, std::vector<int> > m_cells;
 };
 
-/*!
-  Share of the ring's length where the rendered stripe is at least \e minOverNoise times the sensor noise
-  (vpLaserConicSimulator::traceTruth(): peakOverNoise) that has an image point of \e points within \e radius
-  pixels. Each truth sample stands for half of the chords to its neighbours (samples more than 4 px apart are
-  not joined: the ring leaves the image there); 0 when no part of the ring is that bright.
-*/
-inline double coverageOfVisibleStripe(const std::vector<vpLaserConicSimulator::vpTraceTruth> &truth,
-                                      const std::vector<vpImagePoint> &points, double minOverNoise = 3.0,
-                                      double radius = 1.5)
-{
-  std::unordered_map<int64_t, std::vector<vpImagePoint> > cells; // detections by 4 px cell
-  auto key = [](double u, double v) {
-    return (static_cast<int64_t>(std::floor(v / 4.0)) + 8) * (int64_t(1) << 20) + static_cast<int64_t>(std::floor(u / 4.0)) + 8;
-  };
-  for (const vpImagePoint &p : points)
-    cells[key(p.get_u(), p.get_v())].push_back(p);
-  auto covered = [&](const vpImagePoint &q) {
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const auto it = cells.find(key(q.get_u() + 4.0 * dx, q.get_v() + 4.0 * dy));
-        if (it != cells.end())
-          for (const vpImagePoint &p : it->second)
-            if (vpImagePoint::distance(p, q) <= radius)
-              return true;
-      }
-    return false;
-  };
-  double visible = 0.0, found = 0.0;
-  for (size_t k = 0; k < truth.size(); ++k) {
-    if (!(truth[k].peakOverNoise >= minOverNoise))
-      continue;
-    double length = 0.0;
-    for (size_t n : {(k + truth.size() - 1) % truth.size(), (k + 1) % truth.size()}) {
-      const double d = vpImagePoint::distance(truth[k].point, truth[n].point);
-      length += d < 4.0 ? 0.5 * d : 0.0;
-    }
-    visible += length;
-    found += covered(truth[k].point) ? length : 0.0;
-  }
-  return visible > 0.0 ? found / visible : 0.0;
-}
-
 //! Writes \e I as <dir>/<name>.png when the environment variable VSP_LASER_DUMP_DIR names a folder (to look at).
 inline void dumpIfRequested(const std::string &name, const vpImage<vpRGBa> &I)
 {

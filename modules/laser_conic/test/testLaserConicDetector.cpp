@@ -767,6 +767,6 @@ TEST(LaserConicDetector, CoarseToFineFindsThePointsOfTheFullSearchOnTheShippedSe
       ++frames;
     }
   }
-  EXPECT_EQ(frames, 148u); // 48 hard frames, 100 clean ones
+  EXPECT_EQ(frames, 157u); // 57 hard frames, 100 clean ones
   std::cout << "frames " << frames << ", points compared: " << compared << std::endl;
 }

@@ -853,3 +853,31 @@ TEST(LaserConicPose, DrawOverlay)
   }
   EXPECT_EQ(bright, static_cast<int>(points.size()));
 }
+
+// setCovarianceInflation() scales both covariances by the same factor, nothing else.
+TEST(LaserConicPose, CovarianceInflationScalesBothCovariances)
+{
+  std::mt19937 rng(77);
+  std::vector<vpImagePoint> points;
+  laser_test::SceneRanges ranges;
+  const laser_test::Scene s = laser_test::randomScene(rng, ranges, 200, points);
+  points = laser_test::addNoise(points, 0.5, rng);
+  vpLaserConicPose a = makeEstimator(s.rig), b = makeEstimator(s.rig);
+  a.setCovarianceComputation(true);
+  b.setCovarianceComputation(true);
+  b.setCovarianceInflation(4.0);
+  EXPECT_EQ(b.getCovarianceInflation(), 4.0);
+  vpPlane pa, pb;
+  ASSERT_TRUE(a.computePlane(points, vpLaserConicPose::GP3, pa));
+  ASSERT_TRUE(b.computePlane(points, vpLaserConicPose::GP3, pb));
+  EXPECT_EQ(a.getAltitude(), b.getAltitude());
+  const vpMatrix Ca = a.getCovarianceMatrix(), Cb = b.getCovarianceMatrix();
+  const vpMatrix Pa = a.getPlaneCovarianceMatrix(), Pb = b.getPlaneCovarianceMatrix();
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      EXPECT_NEAR(Cb[i][j], 4.0 * Ca[i][j], 1e-12 * std::abs(Ca[i][j]) + 1e-300);
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      EXPECT_NEAR(Pb[i][j], 4.0 * Pa[i][j], 1e-12 * std::abs(Pa[i][j]) + 1e-300);
+  EXPECT_THROW(a.setCovarianceInflation(-1.0), vpLaserConicException);
+}

@@ -316,14 +316,14 @@ TEST(LaserConicSimulatorStripe, CoverageCountsTheRingWhereTheStripeIsStrong)
   }
   EXPECT_GT(strong, truth.size() / 4);
   EXPECT_LT(strong, truth.size() * 9 / 10);
-  EXPECT_DOUBLE_EQ(coverageOfVisibleStripe(truth, exact), 1.0);
-  EXPECT_DOUBLE_EQ(coverageOfVisibleStripe(truth, shifted), 0.0);
+  EXPECT_DOUBLE_EQ(vpLaserConicSimulator::stripeCoverage(truth, exact), 1.0);
+  EXPECT_DOUBLE_EQ(vpLaserConicSimulator::stripeCoverage(truth, shifted), 0.0);
   // Only the weak part detected: nothing of the strong part covered.
   std::vector<vpImagePoint> weakOnly;
   for (const Truth &t : truth)
     if (t.peakOverNoise < 3.0)
       weakOnly.push_back(t.point);
-  EXPECT_LT(coverageOfVisibleStripe(truth, weakOnly), 0.01);
+  EXPECT_LT(vpLaserConicSimulator::stripeCoverage(truth, weakOnly), 0.01);
 }
 
 TEST(LaserConicSimulatorStripe, BadStripeSettingsThrow)

@@ -118,7 +118,8 @@ vpPoseGravity::vpPoseGravity()
     m_ransacSeed(0), m_ransacNbInliersConsensus(4), m_ransacSignificance(0.01),
     m_ransacFilter(PREFILTER_DEGENERATE_POINTS), m_inlierIndex(), m_ransacTrials(0), m_imageStdDev(1e-3),
     m_gCamStdDev(0.0), m_gObjStdDev(0.0), m_loss(LOSS_NONE), m_lossScale(3e-3), m_computeCovariance(false),
-    m_hasCovariance(false), m_covariance(), m_status(STATUS_NOT_COMPUTED), m_refineOnInliers(false)
+    m_hasCovariance(false), m_covariance(), m_status(STATUS_NOT_COMPUTED), m_refineOnInliers(false),
+    m_mistake(GRAVITY_MISTAKE_NONE)
 {
 }
 
@@ -159,6 +160,7 @@ void vpPoseGravity::forgetInliers()
 {
   m_inlierIndex.clear();
   m_refineOnInliers = false;
+  m_mistake = GRAVITY_MISTAKE_NONE;
 }
 
 void vpPoseGravity::checkReady(unsigned int minPoints, unsigned int usedPoints, const char *what,
@@ -301,19 +303,36 @@ bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMa
   Pose pose, reversed;
   double error = 0.0, reversedError = 0.0;
   m_status = solveClosedForm(method == P3P, m_pairRule, gCam, gObj, x, X, m_consistencyThreshold, pose, error);
-  // The same solve with the camera gravity reversed (equivalently the object one) tells a sign
-  // mix-up apart: a specific force passed as gravity. With 3 points the two redundant equations
-  // cannot always reject a wrong sign on their own, so a fit that passes the tolerance is still not
-  // trusted when it leaves more error than the noise explains (3 sigma of the image and gravity
-  // noise) and the reversed sign fits with less than half of it. A fit within the noise needs no
-  // comparison.
+  // The same solve with the camera gravity reversed (a specific force passed as gravity) and with
+  // the two gravity vectors exchanged tells these mix-ups apart. With 3 points the two redundant
+  // equations cannot always reject a wrong vector on their own, so a fit that passes the tolerance
+  // is still not trusted when it leaves more error than the noise explains (3 sigma of the image and
+  // gravity noise) and an alternative fits with less than half of it (the exchange: within twice the noise).
+  // A fit within the noise needs no comparison.
   const double noise = 3.0 * std::sqrt(m_imageStdDev * m_imageStdDev + m_gCamStdDev * m_gCamStdDev +
                                        m_gObjStdDev * m_gObjStdDev);
+  m_mistake = GRAVITY_MISTAKE_NONE;
   if (m_status != STATUS_OK || error > noise) {
-    const vpPoseGravityStatus reversedStatus = solveClosedForm(method == P3P, m_pairRule, -gCam, gObj, x, X,
-                                                               m_consistencyThreshold, reversed, reversedError);
-    if (reversedStatus == STATUS_OK && (m_status != STATUS_OK || 2.0 * reversedError < error))
-      m_status = STATUS_GRAVITY_SIGN_REVERSED;
+    const struct {
+      Eigen::Vector3d gCam, gObj;
+      vpGravityMistake mistake;
+      vpPoseGravityStatus status;
+    } alternatives[] = {{-gCam, gObj, GRAVITY_MISTAKE_SIGN_REVERSED, STATUS_GRAVITY_SIGN_REVERSED},
+                        {gObj, gCam, GRAVITY_MISTAKE_SWAPPED, STATUS_GRAVITY_SWAPPED}};
+    double bestError = std::numeric_limits<double>::infinity();
+    const bool fitted = m_status == STATUS_OK;
+    for (const auto &alternative : alternatives) {
+      const vpPoseGravityStatus status = solveClosedForm(method == P3P, m_pairRule, alternative.gCam, alternative.gObj,
+                                                         x, X, m_consistencyThreshold, reversed, reversedError);
+      // The exchange must also fit within twice the noise: a wrong IMU rotation often leaves some tilt
+      // that the exchanged vectors absorb a little better, which is no evidence of an exchange.
+      const bool withinNoise = alternative.mistake != GRAVITY_MISTAKE_SWAPPED || reversedError <= 2.0 * noise;
+      if (status == STATUS_OK && withinNoise && (!fitted || 2.0 * reversedError < error) && reversedError < bestError) {
+        bestError = reversedError;
+        m_mistake = alternative.mistake;
+        m_status = alternative.status;
+      }
+    }
   }
   if (m_status != STATUS_OK)
     return false;
@@ -498,6 +517,23 @@ std::string vpPoseGravity::getStatusMessage(vpPoseGravityStatus status)
            "at rest measures the specific force, which points up (negate it, or use vpImuGravity)";
   case STATUS_BEHIND_CAMERA:
     return "the best pose puts a point behind the camera: check the gravity sign and the IMU-to-camera rotation";
+  case STATUS_GRAVITY_SWAPPED:
+    return "the points fit a pose only with the camera and object gravity exchanged: setCameraGravity() takes the "
+           "gravity in the camera frame, setObjectGravity() the one in the object frame";
   }
   return "unknown status";
+}
+
+std::string vpPoseGravity::getMistakeMessage(vpGravityMistake mistake)
+{
+  switch (mistake) {
+  case GRAVITY_MISTAKE_NONE:
+    return "no standard mistake explains it (check the IMU-to-camera and IMU-to-object rotations: missing, "
+           "transposed or of another IMU)";
+  case GRAVITY_MISTAKE_SIGN_REVERSED:
+    return "the points fit the camera gravity reversed: an accelerometer reading (specific force, pointing up) was "
+           "passed as gravity";
+  case GRAVITY_MISTAKE_SWAPPED: return "the points fit the camera and object gravity exchanged";
+  }
+  return "unknown mistake";
 }

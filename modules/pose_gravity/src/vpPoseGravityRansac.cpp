@@ -159,6 +159,33 @@ double chanceInlierProbability(const std::vector<Eigen::Vector3d> &x, double tau
   const double area = (xmax - xmin + 2.0 * tau) * (ymax - ymin + 2.0 * tau);
   return std::min(1.0, 3.14159265358979323846 * tau * tau / area);
 }
+
+//! The settings and the acceptance rule of a RANSAC run (see the file description).
+struct ConsensusRule
+{
+  vpRansacOptions options;
+  unsigned int minimum;  //!< the user's minimum consensus
+  double significance;   //!< of the chance consensus
+};
+
+/*!
+  The RANSAC loop with the given gravity vectors: true, with \e best and \e report, when the
+  consensus is both large enough and unlikely to be chance.
+*/
+bool ransacConsensus(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const std::vector<Eigen::Vector3d> &x,
+                     const std::vector<Eigen::Vector3d> &X, const ConsensusRule &rule, Pose &best,
+                     vpRansacReport &report)
+{
+  const int n = static_cast<int>(x.size());
+  const GravityRansacEstimator estimator(gCam, gObj, x, X);
+  const bool found = n >= 3 && vpRansacLoop(estimator, rule.options, best, report);
+  // The consensus needed: the user's minimum (at least 3, for the least squares refit) and the
+  // count that chance does not explain.
+  const unsigned int needed = std::max(
+      {3u, rule.minimum,
+       chanceConsensus(n, chanceInlierProbability(x, rule.options.threshold), report.models, rule.significance)});
+  return found && static_cast<unsigned int>(report.inlierCount) >= needed;
+}
 } // namespace
 
 bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
@@ -171,26 +198,38 @@ bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
   const std::vector<unsigned int> kept = filteredPoints(m_points, m_ransacFilter == PREFILTER_DEGENERATE_POINTS);
   std::vector<Eigen::Vector3d> x, X;
   collectPoints(m_points, &kept, x, X);
-  const int n = static_cast<int>(kept.size());
   const Eigen::Vector3d gCam = toEigen(m_gCam), gObj = toEigen(m_gObj);
   const GravityRansacEstimator estimator(gCam, gObj, x, X);
 
-  vpRansacOptions options;
-  options.threshold = m_ransacThreshold;
-  options.probability = m_ransacProbability;
-  options.maxTrials = m_ransacMaxTrials;
-  options.seed = m_ransacSeed;
-  options.localOptimisation = true;
+  ConsensusRule rule;
+  rule.options.threshold = m_ransacThreshold;
+  rule.options.probability = m_ransacProbability;
+  rule.options.maxTrials = m_ransacMaxTrials;
+  rule.options.seed = m_ransacSeed;
+  rule.options.localOptimisation = true;
+  rule.minimum = m_ransacNbInliersConsensus;
+  rule.significance = m_ransacSignificance;
   Pose best;
   vpRansacReport report;
-  const bool found = n >= 3 && vpRansacLoop(estimator, options, best, report);
+  const bool found = ransacConsensus(gCam, gObj, x, X, rule, best, report);
   m_ransacTrials = report.trials;
-  // The consensus needed: the user's minimum (at least 3, for the least squares refit) and the
-  // count that chance does not explain.
-  const unsigned int needed =
-      std::max({3u, m_ransacNbInliersConsensus,
-                chanceConsensus(n, chanceInlierProbability(x, m_ransacThreshold), report.models, m_ransacSignificance)});
-  if (!found || static_cast<unsigned int>(report.inlierCount) < needed) {
+  if (!found) {
+    // The same search with the standard mix-ups of the gravity vectors: a consensus under one of
+    // them names the mistake.
+    const struct {
+      vpGravityMistake mistake;
+      Eigen::Vector3d gCam, gObj;
+    } alternatives[] = {{GRAVITY_MISTAKE_SIGN_REVERSED, -gCam, gObj}, {GRAVITY_MISTAKE_SWAPPED, gObj, gCam}};
+    int bestCount = 0;
+    for (const auto &alternative : alternatives) {
+      Pose pose;
+      vpRansacReport alternativeReport;
+      if (ransacConsensus(alternative.gCam, alternative.gObj, x, X, rule, pose, alternativeReport) &&
+          alternativeReport.inlierCount > bestCount) {
+        bestCount = alternativeReport.inlierCount;
+        m_mistake = alternative.mistake;
+      }
+    }
     m_status = STATUS_NO_CONSENSUS;
     return false;
   }

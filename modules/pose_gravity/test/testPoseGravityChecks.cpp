@@ -268,7 +268,7 @@ TEST(PoseGravityChecks, WrongImuToCameraRotationIsRefused)
   // by a few tens of degrees once yaw and translation adapt. Here: 12 points spread over a 3 m
   // object 2 to 8 m away, 1 px.
   SceneGenerator gen(67);
-  int accepted = 0;
+  int accepted = 0, calledSwapped = 0;
   const int runs = 300;
   for (int k = 0; k < runs; ++k) {
     Scene s = gen.scene(12, 3.0);
@@ -279,6 +279,8 @@ TEST(PoseGravityChecks, WrongImuToCameraRotationIsRefused)
     vpHomogeneousMatrix cMo;
     if (pose.computePose(vpPoseGravity::LEAST_SQUARES, cMo))
       ++accepted;
+    else if (pose.getStatus() == vpPoseGravity::STATUS_GRAVITY_SWAPPED)
+      ++calledSwapped; // the exchanged vectors absorb the tilt within twice the noise: a wrong diagnosis
     else
       EXPECT_TRUE(pose.getStatus() == vpPoseGravity::STATUS_INCONSISTENT_GRAVITY ||
                   pose.getStatus() == vpPoseGravity::STATUS_BEHIND_CAMERA ||
@@ -286,8 +288,9 @@ TEST(PoseGravityChecks, WrongImuToCameraRotationIsRefused)
           << vpPoseGravity::getStatusMessage(pose.getStatus());
   }
   std::cout << "IMU-to-camera rotation off by 30 deg, LEAST_SQUARES 12 points on 3 m: " << accepted << " / " << runs
-            << " accepted" << std::endl;
+            << " accepted, " << calledSwapped << " called an exchange of the gravity vectors" << std::endl;
   EXPECT_LE(accepted, runs / 4);
+  EXPECT_LE(calledSwapped, runs / 100); // measured: 1 of 300
 }
 
 TEST(PoseGravityChecks, P3PAvoidsTheVerticalPair)

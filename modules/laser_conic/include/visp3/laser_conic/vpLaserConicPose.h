@@ -73,8 +73,23 @@ public:
     STATUS_NO_PLANE_PAIR,      //!< the plane pair of the conic has no ground plane
     STATUS_PLANE_NOT_FINITE,   //!< the estimated plane is not finite
     STATUS_PLANE_BEHIND,       //!< the plane is behind the system (its trace cannot be seen there)
-    STATUS_SHORT_ARC           //!< the trace found covers too short an arc (setArcCoverageThreshold())
+    STATUS_SHORT_ARC,          //!< the trace found covers too short an arc (setArcCoverageThreshold())
+    STATUS_CALIBRATION_MISMATCH //!< the calibration cannot explain the trace (setCalibrationCheck(), getSuspectedMistake())
   } vpLaserConicStatus;
+
+  /*!
+    A standard calibration mistake that explains a trace the given calibration does not
+    (STATUS_CALIBRATION_MISMATCH): the estimate is run again under each alternative, and the one whose
+    constrained fit explains the trace best is named (getMistakeMessage() says it in words).
+  */
+  typedef enum {
+    MISTAKE_UNKNOWN,               //!< no mismatch, or none of the alternatives explains the trace
+    MISTAKE_HALF_OPENING_ANGLE,    //!< the trace fits twice the opening angle: the half angle was given for the full one
+    MISTAKE_DOUBLED_OPENING_ANGLE, //!< the trace fits half the opening angle: twice the full angle was given
+    MISTAKE_INVERSE_LASER_POSE,    //!< the trace fits the inverse laser pose: lMc was given for cMl
+    MISTAKE_SWAPPED_UV,            //!< the trace fits with u and v exchanged: the image points are (v, u)
+    MISTAKE_CAMERA_RESOLUTION      //!< the trace fits intrinsics scaled by 2 or 1/2: intrinsics of another resolution
+  } vpLaserConicMistake;
 
   /*!
     Final fit on the trace, after the RANSAC search (setFinalFit()).
@@ -152,6 +167,20 @@ public:
     \exception vpLaserConicException::badValueError outside [0, 2 pi].
   */
   void setArcCoverageThreshold(double radians);
+  /*!
+    Calibration check of each estimate (default true). The constrained fit (the trace a plane
+    predicts through the rig's calibration, 3 DOF) and the free conic fit (5 DOF) run on the same
+    trace; with a right calibration the misfit the constraint adds, sqrt(rms_c^2 - rms_f^2) (pixels),
+    is a small fraction of the noise (about 0.07 sigma for 1000 points at a 1e-6 false-alarm rate; at
+    most 0.3 sigma on the shipped image sequences, where the detector adds its bias); an imperfect
+    calibration, which the estimators tolerate, adds more (intrinsics off by 5 px: 24 sigma at most
+    at 0.5 px noise). A misfit above 30 times the noise scale (max(getResidualScale(), getFreeRms()))
+    and above 3 px is refused with STATUS_CALIBRATION_MISMATCH: the usual mistakes (half opening angle,
+    lMc for cMl, u and v swapped, intrinsics of another camera or resolution) leave tens of pixels, and
+    the free fit would then give a confidently wrong plane. The standard mistakes are tried (getSuspectedMistake()). false: no check,
+    the behaviour of FINAL_FIT_SELECT alone (the free fit is used when the constrained one is rejected).
+  */
+  void setCalibrationCheck(bool enable) { m_calibrationCheck = enable; }
   //! Final fit on the trace (see vpLaserConicFinalFit); default FINAL_FIT_DEFAULT.
   void setFinalFit(vpLaserConicFinalFit fit) { m_finalFit = fit; }
   /*!
@@ -160,6 +189,22 @@ public:
     scale (RMS residual with the fit's degrees of freedom removed).
   */
   void setCovarianceComputation(bool enable) { m_computeCovariance = enable; }
+  /*!
+    Variance scale of getCovarianceMatrix() and getPlaneCovarianceMatrix() (default 1): an error model
+    of the detector. The first-order covariance takes the trace points' errors as independent; the
+    points of a detected stripe are not (blur, JPEG blocks, the stripe-width and sampling errors of the
+    ridge are shared by neighbours along the trace), and hundreds of them in a frame then average far
+    less than independent errors would. On frames rendered by vpLaserConicSimulator and read back as
+    JPEG, found by vpLaserConicDetector (testLaserConicCovarianceRendered), the mean NEES of (altitude,
+    roll, pitch) is 13-17 instead of 3 (median 8-11 instead of 2.37); recommendedDetectorInflation(), 5,
+    brings it to about 3. Keep 1 for independent point noise (e.g. points from another front-end).
+    \exception vpLaserConicException::badValueError unless finite and > 0.
+  */
+  void setCovarianceInflation(double varianceScale);
+  //! Variance scale set with setCovarianceInflation().
+  double getCovarianceInflation() const { return m_covarianceInflation; }
+  //! The variance scale measured for vpLaserConicDetector's traces (see setCovarianceInflation()).
+  static double recommendedDetectorInflation() { return 5.0; }
 
   /*!
     Refit the best model on its inliers (default true), during the RANSAC loop (kept when it scores
@@ -248,6 +293,14 @@ public:
   //! What a status means, in words.
   static std::string getStatusMessage(vpLaserConicStatus status);
   /*!
+    After STATUS_CALIBRATION_MISMATCH, the standard mistake that explains the trace (MISTAKE_UNKNOWN
+    when none does, or after any other status). getCalibrationHealth(), getConstrainedRms() and
+    getFreeRms() then give the figures of the refused estimate.
+  */
+  vpLaserConicMistake getSuspectedMistake() const { return m_mistake; }
+  //! What a suspected mistake means, in words, with the setting to check.
+  static std::string getMistakeMessage(vpLaserConicMistake mistake);
+  /*!
     \deprecated Use getStatus() and getStatusMessage(). Why the last computePlane() returned false
     (the status message, with details; empty after a success).
   */
@@ -320,6 +373,9 @@ private:
   double m_rmsConstrained, m_rmsFree, m_sigma, m_coverage;
   bool m_constrainedChosen;
   std::vector<vpImagePoint> m_points;
+  bool m_calibrationCheck;
+  vpLaserConicMistake m_mistake;
+  double m_covarianceInflation = 1.0; //!< setCovarianceInflation()
 
   //! Records a failure (status and message with \e details) and returns false.
   bool fail(vpLaserConicStatus status, const std::string &details = std::string());
@@ -331,6 +387,17 @@ private:
   vpRansacOptions ransacOptions(double focal) const;
   //! Settings of the final fit (laser_robust_fit.h) of \e method.
   vsp::laser_robust_fit::Settings finalFitSettings(vpLaserConicMethod method, double focal) const;
+  //! STATUS_CALIBRATION_MISMATCH naming the standard mistake that explains the trace of \e result.
+  bool failCalibration(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
+                       const vsp::laser_robust_fit::Result &result);
+  /*!
+    A failure of the given calibration (no consensus, no plane, short arc, plane behind): reported as
+    STATUS_CALIBRATION_MISMATCH when a standard mistake explains the trace, as \e status otherwise.
+  */
+  bool failOrMismatch(vpLaserConicStatus status, const std::string &details, const std::vector<vpImagePoint> &points,
+                      vpLaserConicMethod method);
+  //! The standard mistake under which \e method explains \e points (setCalibrationCheck()).
+  vpLaserConicMistake suspectedMistake(const std::vector<vpImagePoint> &points, vpLaserConicMethod method) const;
   //! Keeps a successful final fit: plane, attitude, inliers, fit statistics, covariances, pixel conic.
   void storeEstimate(const vsp::laser_robust_fit::Result &result, vpPlane &cPlane);
 };

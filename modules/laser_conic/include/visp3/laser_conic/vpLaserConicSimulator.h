@@ -206,7 +206,7 @@ public:
       laserPower x falloff x reflectance x (1 - the laser's green leak) for the stripe and its bloom, times the
       peak loss of the optical blur (\f$ \sigma_s / \sqrt{\sigma_s^2 + \sigma_b^2} \f$ across a straight line),
       before the sensor's noise and clipping (a saturated stripe reads less; motion blur is not counted).
-      0 when the laser is off.
+      0 when the laser is off or an occluder hides the point.
     */
     double peakDominance = 0.0;
     //! peakDominance over the sensor noise standard deviation (+inf without noise, 0 when the laser is off).
@@ -303,6 +303,15 @@ public:
     (badValueError).
   */
   std::vector<vpTraceTruth> traceTruth(unsigned int n, const vpRenderSettings &settings);
+  /*!
+    Share of the ring's length where the rendered stripe is at least \e minOverNoise times the sensor noise
+    (peakOverNoise of \e truth, samples of traceTruth() in their order) that has a point of \e points within
+    \e radius pixels: the coverage a detector reaches on what it can be asked to find. Each sample stands for
+    half of the chords to its neighbours (samples more than 4 px apart are not joined: the ring leaves the
+    image there); 0 when no part of the ring is that strong.
+  */
+  static double stripeCoverage(const std::vector<vpTraceTruth> &truth, const std::vector<vpImagePoint> &points,
+                               double minOverNoise = 3.0, double radius = 1.5);
 
   /*!
     Renders a colour image of the camera's view with the default vpRenderSettings but for the stripe

@@ -53,7 +53,8 @@
   - Every method checks its result: every used point in front of the camera and the points not
     needed by the minimal solve reprojected within setConsistencyThreshold(). An inconsistent result
     returns false with STATUS_GRAVITY_SIGN_REVERSED (the data fit with one gravity reversed: a
-    specific force passed as gravity), STATUS_INCONSISTENT_GRAVITY (wrong IMU-to-camera rotation,
+    specific force passed as gravity), STATUS_GRAVITY_SWAPPED (the data fit with the camera and
+    object gravity exchanged), STATUS_INCONSISTENT_GRAVITY (wrong IMU-to-camera rotation,
     IMU in motion, mismatched points) or STATUS_BEHIND_CAMERA.
   - refinePose(): Ceres maximum likelihood, optional robust loss (setRefineLoss()), gravity priors
     (setCameraGravityStdDev(), setObjectGravityStdDev()); setCovarianceComputation() /
@@ -96,8 +97,19 @@ public:
     STATUS_REFINEMENT_FAILED,   //!< refinePose() did not converge or moved a point behind the camera; the input pose was left unchanged.
     STATUS_INCONSISTENT_GRAVITY, //!< the best pose leaves points beyond setConsistencyThreshold(): wrong IMU-to-camera rotation, IMU in motion, wrong matches or outliers (use RANSAC).
     STATUS_GRAVITY_SIGN_REVERSED, //!< the points fit a pose only with one of the two gravity vectors reversed: an accelerometer reading (specific force, pointing up) was passed as gravity (which points down).
-    STATUS_BEHIND_CAMERA        //!< the best pose puts a used point behind the camera.
+    STATUS_BEHIND_CAMERA,       //!< the best pose puts a used point behind the camera.
+    STATUS_GRAVITY_SWAPPED      //!< the points fit a pose only with the camera and object gravity exchanged.
   } vpPoseGravityStatus;
+
+  /*!
+    A standard mistake in the gravity vectors that explains a failure (getSuspectedMistake()): the
+    computation is run again with the alternative vectors and the points fit them.
+  */
+  typedef enum {
+    GRAVITY_MISTAKE_NONE,          //!< no failure, or no alternative explains it
+    GRAVITY_MISTAKE_SIGN_REVERSED, //!< the points fit the camera gravity reversed (a specific force passed as gravity)
+    GRAVITY_MISTAKE_SWAPPED        //!< the points fit the camera and object gravity exchanged
+  } vpGravityMistake;
 
   //! Pair choice of the P3P method (see vpGravitySolvers::p3p()).
   typedef enum {
@@ -309,6 +321,17 @@ public:
   vpPoseGravityStatus getStatus() const { return m_status; }
   //! A sentence describing a status, naming the likely cause for the failures.
   static std::string getStatusMessage(vpPoseGravityStatus status);
+  /*!
+    The standard mistake that explains the last failure: for P3P and LEAST_SQUARES the one their
+    status names (STATUS_GRAVITY_SIGN_REVERSED, STATUS_GRAVITY_SWAPPED); after STATUS_NO_CONSENSUS of
+    RANSAC, the alternative gravity under which a consensus exists (the same loop, threshold and
+    significance). GRAVITY_MISTAKE_NONE after a success or when no alternative fits. A wrong or
+    missing IMU-to-sensor rotation is not among the alternatives (the class only sees the rotated
+    vectors): STATUS_INCONSISTENT_GRAVITY, or a consensus under no alternative, points to it.
+  */
+  vpGravityMistake getSuspectedMistake() const { return m_mistake; }
+  //! A sentence describing a suspected mistake.
+  static std::string getMistakeMessage(vpGravityMistake mistake);
 
   /*!
     Displays the frame of the pose cMo (axes of length \e size in object units) with vpDisplay, like
@@ -364,6 +387,7 @@ private:
   vpMatrix m_covariance;
   vpPoseGravityStatus m_status;
   bool m_refineOnInliers; // refinePose() uses m_inlierIndex (set by a successful RANSAC)
+  vpGravityMistake m_mistake;
 };
 
 #endif

@@ -1,0 +1,63 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*
+  The calibration check of vpLaserConicPose: a trace that the plane-constrained fit (3 DOF, the
+  rig's calibration) misses far beyond what the free conic fit (5 DOF, the image alone) leaves is
+  not a noisy trace but a wrong calibration. Both fits run on the same trace; with a right
+  calibration and noise sigma, n (rms_c^2 - rms_f^2) / sigma^2 follows a chi-square law of 2 degrees
+  of freedom, so the misfit the calibration adds, sqrt(rms_c^2 - rms_f^2), is a small fraction of
+  sigma for the hundreds of points of a trace (about 0.07 sigma at 1e-6 for 1000 points); detector
+  bias adds a little (at most 0.3 sigma on the 144 shipped frames). An imperfect calibration adds
+  more, and the estimators tolerate it: intrinsics off by 5 px (the paper's Fig. 9 protocol, 0.5 px
+  noise) leave a misfit of 4.7 sigma at the median, 21 sigma at the 99th percentile, 24 at most
+  (300 scenes). The check refuses a misfit above 30 times the noise scale and above 3 px. The usual
+  mistakes leave tens of pixels, 45 to 300 times the noise on the shipped frames.
+*/
+#ifndef VP_LASER_CALIBRATION_CHECK_H
+#define VP_LASER_CALIBRATION_CHECK_H
+
+#include <functional>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/laser_conic/vpLaserConicPose.h>
+
+#include "laser_robust_fit.h"
+
+namespace vsp::laser_calibration_check
+{
+//! Misfit allowed, in multiples of the noise scale of the trace (above the 24 of intrinsics off by 5 px).
+constexpr double kNoiseFactor = 30.0;
+//! Misfit always allowed (pixels): small calibration errors on near-exact points.
+constexpr double kFloorPixels = 3.0;
+
+//! Misfit (pixels) the calibration adds to the free fit, sqrt(max(0, rms_c^2 - rms_f^2)); NaN without constrained fit.
+double misfit(const vsp::laser_robust_fit::Result &result);
+//! Largest misfit the noise explains: max(kNoiseFactor max(sigma, rms_f), kFloorPixels).
+double tolerance(const vsp::laser_robust_fit::Result &result);
+//! True unless the misfit is beyond the tolerance (a missing constrained fit cannot be judged: true).
+bool explained(const vsp::laser_robust_fit::Result &result);
+
+//! A calibration the user may have meant, one standard mistake away from the one given.
+struct Alternative
+{
+  vpLaserConicPose::vpLaserConicMistake mistake;
+  double openingAngle;     //!< full opening angle (rad)
+  vpHomogeneousMatrix cMl; //!< laser pose
+  vpCameraParameters cam;  //!< intrinsics
+  bool swapUV;             //!< image points with u and v exchanged
+};
+
+/*!
+  The standard mistake that explains the trace: \e fits runs the estimation under an alternative
+  calibration and returns its misfit when it is explained (a negative number otherwise); the
+  alternative of smallest misfit wins. MISTAKE_UNKNOWN when none fits.
+*/
+vpLaserConicPose::vpLaserConicMistake diagnose(double openingAngle, const vpHomogeneousMatrix &cMl,
+                                               const vpCameraParameters &cam,
+                                               const std::function<double(const Alternative &)> &fits);
+} // namespace vsp::laser_calibration_check
+
+#endif

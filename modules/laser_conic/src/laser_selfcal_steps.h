@@ -1,0 +1,90 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file laser_selfcal_steps.h
+  \brief Private: the steps of vpLaserConicSelfCalibration::compute(): initial planes, scale, frame
+  selection by information, robust rounds of the joint problem, covariance and observability.
+*/
+#ifndef VP_LASER_SELFCAL_STEPS_H
+#define VP_LASER_SELFCAL_STEPS_H
+
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/core/vpPlane.h>
+#include <visp3/laser_conic/vpLaserConicSelfCalibration.h>
+
+#include "laser_selfcal_problem.h"
+
+namespace vpLaserSelfCal
+{
+//! A frame as given to the facade.
+struct InputFrame
+{
+  const std::vector<vpImagePoint> *points = nullptr;
+  bool hasPlane = false;
+  vpPlane plane;
+  double knownAltitude = 0.0; //!< 0: unknown
+};
+
+//! Settings of the facade that the steps use.
+struct StepsSettings
+{
+  double apexDistance = 0.0; //!< 0: the scale comes from known altitudes
+  bool estimateAngle = false;
+  bool holdApex = false;      //!< the apex held at the initial laser's
+  unsigned int maxFrames = 40;
+  double maxStd = 0.0; //!< observability limit (rad) on the axis; twice it on the apex direction
+};
+
+//! What the steps produce (the facade copies it).
+struct StepsOutcome
+{
+  vpLaserConicSelfCalibration::vpSelfCalibrationStatus status = vpLaserConicSelfCalibration::STATUS_NOT_COMPUTED;
+  std::string details;
+  vpHomogeneousMatrix cMl;
+  double openingAngle = 0.0;
+  vpMatrix covariance = vpMatrix(6, 6, 0.0);
+  double axisStd = 0.0, apexDirStd = 0.0, spreadWeak = 0.0, spreadStrong = 0.0, rms = 0.0, sigma = 0.0,
+         condition = 0.0;
+  unsigned int nbPoints = 0, nbInliers = 0;
+  std::vector<bool> used;
+  std::vector<vpPlane> planes;
+};
+
+//! The steps of one self-calibration.
+class Steps
+{
+public:
+  Steps(const vpCameraParameters &cam, double openingAngle, const vpHomogeneousMatrix &cMl);
+  StepsOutcome run(const std::vector<InputFrame> &inputs, const StepsSettings &settings);
+
+private:
+  bool initialPlanes(const std::vector<InputFrame> &inputs, StepsOutcome &out);
+  void applyScale(const std::vector<InputFrame> &inputs, const StepsSettings &settings);
+  std::vector<size_t> selectFrames(const std::vector<InputFrame> &inputs, unsigned int maxFrames) const;
+  bool robustRounds(StepsOutcome &out);
+  void analyse(StepsOutcome &out) const;
+  void attitudeSpread(StepsOutcome &out) const;
+  std::string degeneracyDetails(const StepsOutcome &out, const LaserVector &weakest) const;
+  std::vector<double> residuals(const Frame &f) const;
+
+  vpCameraParameters m_cam;
+  double m_focal;
+  vpLaserSolvers::LaserCone m_cone0;
+  ApexChart m_chart;
+  LaserVector m_L;
+  SolveSettings m_solve;
+  std::vector<Frame> m_all;        //!< one per input frame (empty points when unusable)
+  std::vector<size_t> m_index;     //!< input index of each frame of m_frames
+  std::vector<Frame> m_frames;     //!< the frames of the joint problem
+};
+} // namespace vpLaserSelfCal
+
+#endif

@@ -1,0 +1,491 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+#include <visp3/laser_conic/vpLaserConicFilter.h>
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+
+#include "laser_filter_model.h"
+
+using namespace vpLaserFilterModel;
+
+namespace
+{
+void badValue(const std::string &what) { throw vpLaserConicException(vpLaserConicException::badValueError, what); }
+
+//! Quantile of the chi-square distribution with 3 degrees of freedom (CDF erf(sqrt(x/2)) - sqrt(2x/pi) e^(-x/2)).
+double chi2Quantile3(double p)
+{
+  double lo = 0.0, hi = 200.0;
+  for (int it = 0; it < 200; ++it) {
+    const double x = 0.5 * (lo + hi);
+    const double cdf = std::erf(std::sqrt(0.5 * x)) - std::sqrt(2.0 * x / M_PI) * std::exp(-0.5 * x);
+    (cdf < p ? lo : hi) = x;
+  }
+  return 0.5 * (lo + hi);
+}
+
+//! One IMU sample of the history (camera frame) and the state after it.
+struct Entry
+{
+  double t = 0.0;
+  Eigen::Vector3d w = Eigen::Vector3d::Zero(), f = Eigen::Vector3d::Zero();
+  State x = State::Zero();
+  Covariance P = Covariance::Identity();
+  bool valid = false; //!< false before the first frame initialised the state
+};
+} // namespace
+
+struct vpLaserConicFilter::Impl
+{
+  Noise noise;
+  double sigmaVz0 = 0.5, sigmaBg0 = 0.01, sigmaBa0 = 0.2;
+  Eigen::Matrix3d cRimu = Eigen::Matrix3d::Identity();
+  double gravity = 9.80665, maxLatency = 0.1, maxGap = 0.05, predictionTimeout = 0.1, minStepHeight = 0.03;
+  double gateProbability = 0.99, gate = chi2Quantile3(0.99), attitudeGate = -2.0 * std::log(1.0 - 0.99);
+  unsigned int stepFrames = 2, maxRejections = 30, initFrames = 3;
+
+  std::vector<Entry> ring = std::vector<Entry>(64);
+  size_t newest = 0, count = 0;
+
+  bool initialised = false, diverged = false, stepPending = false;
+  double lastFrameTime = -std::numeric_limits<double>::infinity();
+  double lastAcceptTime = -std::numeric_limits<double>::infinity();
+  unsigned int accepted = 0, rejectedInRow = 0, stepCandidates = 0, stepCount = 0;
+  double stepOffset = 0.0, stepVariance = 0.0;
+  vpFrameStatus lastFrameStatus = FRAME_MISSING;
+  double lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
+
+  //! k-th kept sample, 0 the oldest.
+  Entry &at(size_t k) { return ring[(newest + ring.size() + 1 - count + k) % ring.size()]; }
+  const Entry &last() const { return ring[newest]; }
+
+  void clearState()
+  {
+    initialised = diverged = stepPending = false;
+    accepted = rejectedInRow = stepCandidates = 0;
+    lastFrameTime = lastAcceptTime = -std::numeric_limits<double>::infinity();
+  }
+
+  //! A frame at \e t updated the state (\e step: by a ground step): the rejection counts start again.
+  void frameUsed(double t, bool step)
+  {
+    rejectedInRow = stepCandidates = 0;
+    stepPending = step;
+    lastAcceptTime = t;
+  }
+
+  vpImuStatus addImu(double t, const Eigen::Vector3d &w, const Eigen::Vector3d &f);
+  vpFrameStatus checkFrameTime(double t) const;
+  vpFrameStatus addFrame(double t, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
+  void initialise(State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
+  vpFrameStatus gateAndUpdate(double t, State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
+  bool stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S);
+  void repropagate(size_t k, double t, const State &x, const Covariance &P);
+};
+
+
+// --- IMU ---------------------------------------------------------------------------------------
+
+vpLaserConicFilter::vpImuStatus vpLaserConicFilter::Impl::addImu(double t, const Eigen::Vector3d &w,
+                                                                 const Eigen::Vector3d &f)
+{
+  if (!std::isfinite(t) || !w.allFinite() || !f.allFinite())
+    return IMU_NOT_FINITE;
+  bool restart = false;
+  if (count > 0) {
+    if (!(t > last().t))
+      return IMU_NOT_INCREASING;
+    restart = t - last().t > maxGap; // nothing can bridge the gap: start again from this sample
+  }
+  if (restart) {
+    count = 0;
+    clearState();
+  }
+  // The new sample is written in place (the slot of the oldest one): no copy of the state on the way.
+  const size_t previous = newest;
+  const bool hasPrevious = count > 0;
+  newest = hasPrevious ? (newest + 1) % ring.size() : 0;
+  count = std::min(count + 1, ring.size());
+  Entry &e = ring[newest];
+  const Entry &prev = ring[previous];
+  e.t = t;
+  e.w = cRimu * w;
+  e.f = cRimu * f;
+  e.valid = hasPrevious && prev.valid;
+  if (e.valid) {
+    e.x = prev.x;
+    e.P = prev.P;
+    propagate(e.x, e.P, 0.5 * (prev.w + e.w), 0.5 * (prev.f + e.f), t - prev.t, gravity, noise);
+  }
+  return restart ? IMU_GAP : IMU_OK;
+}
+
+// --- frames ------------------------------------------------------------------------------------
+
+vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::checkFrameTime(double t) const
+{
+  if (count == 0 || t > last().t + 1e-9)
+    return FRAME_AHEAD_OF_IMU;
+  const Entry &oldest = ring[(newest + ring.size() + 1 - count) % ring.size()];
+  if (t < last().t - maxLatency || t < oldest.t)
+    return FRAME_TOO_OLD;
+  if (t < lastFrameTime)
+    return FRAME_OUT_OF_ORDER;
+  return FRAME_ACCEPTED;
+}
+
+void vpLaserConicFilter::Impl::initialise(State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R)
+{
+  x.setZero();
+  x(H) = z(0);
+  x(ROLL) = z(1);
+  x(PITCH) = z(2);
+  P.setZero();
+  const int idx[3] = {H, ROLL, PITCH};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      P(idx[i], idx[j]) = R(i, j);
+  P(VZ, VZ) = sigmaVz0 * sigmaVz0;
+  P.diagonal().segment<3>(BG).setConstant(sigmaBg0 * sigmaBg0);
+  P.diagonal().segment<3>(BA).setConstant(sigmaBa0 * sigmaBa0);
+  initialised = true;
+  diverged = stepPending = false;
+  accepted = 1;
+  rejectedInRow = stepCandidates = 0;
+}
+
+/*!
+  A rejected frame is a ground-step candidate when its attitude agrees with the prediction, its altitude
+  is off by a jump (not by a tail of the noise) and that jump agrees with the previous candidate's (the
+  ground moved, the vehicle did not jump).
+*/
+bool vpLaserConicFilter::Impl::stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S)
+{
+  const Eigen::Vector2d ya = y.tail<2>();
+  const double attitude = ya.dot(S.bottomRightCorner<2, 2>().ldlt().solve(ya));
+  // A step is a jump no noise explains: at least minStepHeight, and twice the gate's distance in altitude.
+  const bool large = std::abs(y(0)) >= minStepHeight && y(0) * y(0) >= 4.0 * gate * S(0, 0);
+  if (!(attitude <= attitudeGate) || !large) {
+    stepCandidates = 0;
+    return false;
+  }
+  const double d = y(0) - stepOffset;
+  const bool sameStep = stepCandidates > 0 && d * d <= gate * (S(0, 0) + stepVariance);
+  stepCandidates = sameStep ? stepCandidates + 1 : 1;
+  stepOffset = y(0);
+  stepVariance = S(0, 0);
+  return stepCandidates >= stepFrames;
+}
+
+vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::gateAndUpdate(double t, State &x, Covariance &P,
+                                                                          const Eigen::Vector3d &z,
+                                                                          const Eigen::Matrix3d &R)
+{
+  Eigen::Vector3d y;
+  Eigen::Matrix3d S;
+  lastMahalanobis = innovation(x, P, z, R, y, S);
+  if (lastMahalanobis <= gate) {
+    update(x, P, y, S, R);
+    ++accepted;
+    frameUsed(t, false);
+    return FRAME_ACCEPTED;
+  }
+  if (stepCandidate(y, S)) {
+    // Re-initialise the altitude: forget what it was (and its correlations), then update normally,
+    // so that the altitude takes this frame's value and the attitude still gains from it.
+    x(H) = z(0);
+    P.row(H).setZero();
+    P.col(H).setZero();
+    P(H, H) = 1e4 * R(0, 0);
+    lastMahalanobis = innovation(x, P, z, R, y, S);
+    update(x, P, y, S, R);
+    ++stepCount;
+    frameUsed(t, true);
+    return FRAME_GROUND_STEP;
+  }
+  if (++rejectedInRow >= maxRejections)
+    diverged = true;
+  return FRAME_REJECTED;
+}
+
+vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::addFrame(double t, const Eigen::Vector3d &z,
+                                                                     const Eigen::Matrix3d &R)
+{
+  const vpFrameStatus timing = checkFrameTime(t);
+  if (timing != FRAME_ACCEPTED)
+    return timing;
+  size_t k = count - 1; // the last sample at or before t
+  while (k > 0 && at(k).t > t)
+    --k;
+  const Entry &before = at(k);
+  State x = before.x;
+  Covariance P = before.P;
+  vpFrameStatus status = FRAME_INITIALISED;
+  // Until setInitialisationFrames() frames agree, a frame that disagrees starts the state again: the
+  // first frame may be the wrong one.
+  const bool confirmed = accepted >= initFrames;
+  if (!initialised || diverged || !before.valid) {
+    initialise(x, P, z, R);
+    lastAcceptTime = t;
+    lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
+  } else {
+    if (t > before.t) {
+      const Entry &after = (k + 1 < count) ? at(k + 1) : before;
+      propagate(x, P, 0.5 * (before.w + after.w), 0.5 * (before.f + after.f), t - before.t, gravity, noise);
+    }
+    status = gateAndUpdate(t, x, P, z, R);
+    if (status == FRAME_REJECTED && !confirmed) {
+      x = before.x;
+      P = before.P;
+      initialise(x, P, z, R);
+      lastAcceptTime = t;
+      status = FRAME_INITIALISED;
+    }
+  }
+  lastFrameTime = t;
+  if (status != FRAME_REJECTED)
+    repropagate(k, t, x, P);
+  return status;
+}
+
+//! Replaces the states of the samples after the k-th by those propagated from (x, P) at time t.
+void vpLaserConicFilter::Impl::repropagate(size_t k, double t, const State &x, const Covariance &P)
+{
+  State xs = x;
+  Covariance Ps = P;
+  double time = t;
+  for (size_t j = k + 1; j < count; ++j) {
+    const Entry &prev = at(j - 1);
+    Entry &e = at(j);
+    propagate(xs, Ps, 0.5 * (prev.w + e.w), 0.5 * (prev.f + e.f), e.t - time, gravity, noise);
+    time = e.t;
+    e.x = xs;
+    e.P = Ps;
+    e.valid = true;
+  }
+  if (k + 1 == count) { // the frame is at the last sample's time
+    Entry &e = at(k);
+    e.x = xs;
+    e.P = Ps;
+    e.valid = true;
+  }
+}
+
+// --- public API --------------------------------------------------------------------------------
+
+vpLaserConicFilter::vpLaserConicFilter() : m_impl(new Impl) {}
+vpLaserConicFilter::~vpLaserConicFilter() = default;
+
+void vpLaserConicFilter::setImuNoise(double gyro, double gyroBiasWalk, double acc, double accBiasWalk)
+{
+  for (double v : {gyro, gyroBiasWalk, acc, accBiasWalk})
+    if (!(v > 0.0) || !std::isfinite(v))
+      badValue("vpLaserConicFilter::setImuNoise: noise densities must be finite and > 0");
+  m_impl->noise.gyro = gyro;
+  m_impl->noise.gyroBiasWalk = gyroBiasWalk;
+  m_impl->noise.acc = acc;
+  m_impl->noise.accBiasWalk = accBiasWalk;
+}
+
+void vpLaserConicFilter::setInitialUncertainty(double verticalSpeed, double gyroBias, double accBias)
+{
+  for (double v : {verticalSpeed, gyroBias, accBias})
+    if (!(v > 0.0) || !std::isfinite(v))
+      badValue("vpLaserConicFilter::setInitialUncertainty: standard deviations must be finite and > 0");
+  m_impl->sigmaVz0 = verticalSpeed;
+  m_impl->sigmaBg0 = gyroBias;
+  m_impl->sigmaBa0 = accBias;
+}
+
+void vpLaserConicFilter::setImuToCameraRotation(const vpRotationMatrix &cRimu)
+{
+  for (unsigned int i = 0; i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      m_impl->cRimu(i, j) = cRimu[i][j];
+  if (!m_impl->cRimu.allFinite() || !(m_impl->cRimu * m_impl->cRimu.transpose()).isIdentity(1e-6))
+    badValue("vpLaserConicFilter::setImuToCameraRotation: not a rotation matrix");
+}
+
+void vpLaserConicFilter::setGravityNorm(double g)
+{
+  if (!(g > 0.0) || !std::isfinite(g))
+    badValue("vpLaserConicFilter::setGravityNorm: the gravity norm must be finite and > 0");
+  m_impl->gravity = g;
+}
+
+void vpLaserConicFilter::setMaxLatency(double seconds, unsigned int samples)
+{
+  if (!(seconds >= 0.0) || !std::isfinite(seconds) || samples < 2)
+    badValue("vpLaserConicFilter::setMaxLatency: the latency must be finite and >= 0, the history >= 2 samples");
+  m_impl->maxLatency = seconds;
+  m_impl->ring.assign(samples, Entry());
+  m_impl->count = 0;
+  m_impl->clearState();
+}
+
+void vpLaserConicFilter::setMaxImuGap(double seconds)
+{
+  if (!(seconds > 0.0) || !std::isfinite(seconds))
+    badValue("vpLaserConicFilter::setMaxImuGap: the gap must be finite and > 0");
+  m_impl->maxGap = seconds;
+}
+
+void vpLaserConicFilter::setGateProbability(double p)
+{
+  if (!(p > 0.0 && p < 1.0))
+    badValue("vpLaserConicFilter::setGateProbability: the probability must be in (0, 1)");
+  m_impl->gateProbability = p;
+  m_impl->gate = chi2Quantile3(p);
+  m_impl->attitudeGate = -2.0 * std::log(1.0 - p); // chi-square quantile, 2 degrees of freedom
+}
+
+void vpLaserConicFilter::setStepFrames(unsigned int frames)
+{
+  if (frames == 0)
+    badValue("vpLaserConicFilter::setStepFrames: at least one frame");
+  m_impl->stepFrames = frames;
+}
+
+void vpLaserConicFilter::setMinStepHeight(double metres)
+{
+  if (!(metres >= 0.0) || !std::isfinite(metres))
+    badValue("vpLaserConicFilter::setMinStepHeight: the height must be finite and >= 0");
+  m_impl->minStepHeight = metres;
+}
+
+void vpLaserConicFilter::setMaxRejections(unsigned int frames)
+{
+  if (frames == 0)
+    badValue("vpLaserConicFilter::setMaxRejections: at least one frame");
+  m_impl->maxRejections = frames;
+}
+
+void vpLaserConicFilter::setInitialisationFrames(unsigned int frames) { m_impl->initFrames = frames; }
+
+void vpLaserConicFilter::setPredictionTimeout(double seconds)
+{
+  if (!(seconds > 0.0) || !std::isfinite(seconds))
+    badValue("vpLaserConicFilter::setPredictionTimeout: the timeout must be finite and > 0");
+  m_impl->predictionTimeout = seconds;
+}
+
+void vpLaserConicFilter::reset()
+{
+  m_impl->count = 0;
+  m_impl->stepCount = 0;
+  m_impl->clearState();
+}
+
+vpLaserConicFilter::vpImuStatus vpLaserConicFilter::addImu(double t, const double gyro[3], const double acc[3])
+{
+  return m_impl->addImu(t, Eigen::Vector3d(gyro[0], gyro[1], gyro[2]), Eigen::Vector3d(acc[0], acc[1], acc[2]));
+}
+
+vpLaserConicFilter::vpImuStatus vpLaserConicFilter::addImu(double t, const vpColVector &gyro, const vpColVector &acc)
+{
+  if (gyro.getRows() != 3 || acc.getRows() != 3)
+    badValue("vpLaserConicFilter::addImu: gyro and accelerometer readings must be 3-vectors");
+  return addImu(t, gyro.data, acc.data);
+}
+
+vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::addFrame(double t, double altitude, double roll, double pitch,
+                                                               const vpMatrix &covariance)
+{
+  Impl &d = *m_impl;
+  d.lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Matrix3d R;
+  bool ok = covariance.getRows() == 3 && covariance.getCols() == 3 && std::isfinite(t) && std::isfinite(altitude) &&
+            std::isfinite(roll) && std::isfinite(pitch) && altitude > 0.0;
+  for (unsigned int i = 0; ok && i < 3; ++i)
+    for (unsigned int j = 0; j < 3; ++j)
+      R(i, j) = covariance[i][j];
+  ok = ok && R.allFinite() && (R - R.transpose()).norm() <= 1e-9 * R.norm() && R.llt().info() == Eigen::Success;
+  d.lastFrameStatus = ok ? d.addFrame(t, Eigen::Vector3d(altitude, roll, pitch), R) : FRAME_BAD_INPUT;
+  return d.lastFrameStatus;
+}
+
+vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::addFrame(double t, const vpLaserConicPose &estimator)
+{
+  if (estimator.getStatus() != vpLaserConicPose::STATUS_OK)
+    return addMissingFrame(t);
+  return addFrame(t, estimator.getAltitude(), estimator.getRoll(), estimator.getPitch(),
+                  estimator.getCovarianceMatrix());
+}
+
+vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::addMissingFrame(double t)
+{
+  Impl &d = *m_impl;
+  d.lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
+  if (!std::isfinite(t))
+    return d.lastFrameStatus = FRAME_BAD_INPUT;
+  const vpFrameStatus timing = d.checkFrameTime(t);
+  if (timing != FRAME_ACCEPTED)
+    return d.lastFrameStatus = timing;
+  d.lastFrameTime = t;
+  return d.lastFrameStatus = FRAME_MISSING;
+}
+
+bool vpLaserConicFilter::isInitialised() const { return m_impl->count > 0 && m_impl->last().valid; }
+double vpLaserConicFilter::getTime() const
+{
+  return m_impl->count > 0 ? m_impl->last().t : std::numeric_limits<double>::quiet_NaN();
+}
+
+double vpLaserConicFilter::getAltitude() const { return getState()[H]; }
+double vpLaserConicFilter::getVerticalSpeed() const { return getState()[VZ]; }
+double vpLaserConicFilter::getRoll() const { return getState()[ROLL]; }
+double vpLaserConicFilter::getPitch() const { return getState()[PITCH]; }
+
+vpColVector vpLaserConicFilter::getState() const
+{
+  vpColVector x(kStateSize, std::numeric_limits<double>::quiet_NaN());
+  if (isInitialised())
+    for (int i = 0; i < kStateSize; ++i)
+      x[i] = m_impl->last().x(i);
+  return x;
+}
+
+vpMatrix vpLaserConicFilter::getStateCovarianceMatrix() const
+{
+  vpMatrix P(kStateSize, kStateSize);
+  for (int i = 0; i < kStateSize; ++i)
+    for (int j = 0; j < kStateSize; ++j)
+      P[i][j] = isInitialised() ? m_impl->last().P(i, j) : std::numeric_limits<double>::quiet_NaN();
+  return P;
+}
+
+vpMatrix vpLaserConicFilter::getCovarianceMatrix() const
+{
+  const vpMatrix P = getStateCovarianceMatrix();
+  vpMatrix C(4, 4);
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      C[i][j] = P[i][j];
+  return C;
+}
+
+vpLaserConicFilter::vpFilterStatus vpLaserConicFilter::getStatus() const
+{
+  const Impl &d = *m_impl;
+  if (!isInitialised())
+    return STATUS_INITIALISING;
+  if (d.diverged)
+    return STATUS_DIVERGED;
+  if (d.stepPending)
+    return STATUS_GROUND_STEP;
+  if (d.accepted < d.initFrames)
+    return STATUS_INITIALISING;
+  if (d.last().t - d.lastAcceptTime > d.predictionTimeout)
+    return STATUS_PREDICTING;
+  return STATUS_TRACKING;
+}
+
+vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::getLastFrameStatus() const { return m_impl->lastFrameStatus; }
+double vpLaserConicFilter::getLastMahalanobis() const { return m_impl->lastMahalanobis; }
+double vpLaserConicFilter::getGateThreshold() const { return m_impl->gate; }
+unsigned int vpLaserConicFilter::getGroundStepCount() const { return m_impl->stepCount; }

@@ -1,0 +1,151 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// vpLaserConicFilter: status messages and the IMU CSV reader (vpImuGravity's layout, mirrored here so that
+// the laser module does not depend on the gravity module).
+#include <visp3/laser_conic/vpLaserConicFilter.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace
+{
+void badFile(const std::string &file, size_t line, const std::string &what)
+{
+  std::string where = file;
+  if (line > 0)
+    where += ":" + std::to_string(line);
+  throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicFilter::loadImuCsv: " + where + ": " + what);
+}
+
+bool blankOrComment(const std::string &line)
+{
+  const size_t first = line.find_first_not_of(" \t\r");
+  return first == std::string::npos || line[first] == '#';
+}
+
+//! Splits a line on commas (spaces around fields allowed); false when a field is not a finite number.
+bool parseNumbers(const std::string &line, std::vector<double> &values)
+{
+  values.clear();
+  size_t start = 0;
+  while (start <= line.size()) {
+    size_t end = line.find(',', start);
+    if (end == std::string::npos)
+      end = line.size();
+    const std::string field = line.substr(start, end - start);
+    const char *begin = field.c_str();
+    char *stop = nullptr;
+    errno = 0;
+    const double v = std::strtod(begin, &stop);
+    if (stop == begin || errno != 0 || !std::isfinite(v))
+      return false;
+    for (; *stop != '\0'; ++stop)
+      if (*stop != ' ' && *stop != '\t' && *stop != '\r')
+        return false;
+    values.push_back(v);
+    start = end + 1;
+  }
+  return true;
+}
+} // namespace
+
+std::vector<vpLaserConicFilter::vpImuSample> vpLaserConicFilter::loadImuCsv(const std::string &file, double timeScale)
+{
+  if (!(timeScale > 0.0) || !std::isfinite(timeScale))
+    badFile(file, 0, "the time scale must be finite and > 0");
+  std::ifstream in(file.c_str());
+  if (!in)
+    badFile(file, 0, "cannot open the IMU file");
+  std::vector<vpImuSample> samples;
+  std::vector<double> values;
+  std::string line;
+  size_t lineNo = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (blankOrComment(line))
+      continue;
+    const bool numeric = parseNumbers(line, values);
+    if (!numeric && first) { // a header line
+      first = false;
+      continue;
+    }
+    first = false;
+    if (!numeric)
+      badFile(file, lineNo, "a field is not a number: '" + line + "'");
+    if (values.size() != 7)
+      badFile(file, lineNo,
+              "expected 7 columns (timestamp, wx, wy, wz, ax, ay, az), got " + std::to_string(values.size()));
+    vpImuSample s;
+    s.t = values[0] * timeScale;
+    for (int i = 0; i < 3; ++i) {
+      s.gyro[i] = values[1 + i];
+      s.acc[i] = values[4 + i];
+    }
+    samples.push_back(s);
+  }
+  if (samples.empty())
+    badFile(file, 0, "no IMU sample");
+  return samples;
+}
+
+std::string vpLaserConicFilter::getStatusMessage(vpFilterStatus status)
+{
+  switch (status) {
+  case STATUS_INITIALISING:
+    return "initialising: waiting for the first frames";
+  case STATUS_TRACKING:
+    return "tracking: frames accepted recently";
+  case STATUS_PREDICTING:
+    return "predicting: no frame accepted recently, IMU prediction only";
+  case STATUS_GROUND_STEP:
+    return "ground step: the altitude was re-initialised on a change of ground";
+  case STATUS_DIVERGED:
+    return "diverged: frames rejected in a row, the next frame re-initialises the filter";
+  }
+  return "unknown status";
+}
+
+std::string vpLaserConicFilter::getFrameStatusMessage(vpFrameStatus status)
+{
+  switch (status) {
+  case FRAME_ACCEPTED:
+    return "frame accepted";
+  case FRAME_INITIALISED:
+    return "frame initialised the state";
+  case FRAME_REJECTED:
+    return "frame rejected: its plane is inconsistent with the prediction (Mahalanobis gate)";
+  case FRAME_GROUND_STEP:
+    return "ground step: the altitude was re-initialised from the frame";
+  case FRAME_MISSING:
+    return "frame without a plane: prediction only";
+  case FRAME_TOO_OLD:
+    return "frame too old: older than the latency limit or the kept IMU history";
+  case FRAME_OUT_OF_ORDER:
+    return "frame out of order: older than a frame already used";
+  case FRAME_AHEAD_OF_IMU:
+    return "frame after the last IMU sample: add the IMU samples up to its time first";
+  case FRAME_BAD_INPUT:
+    return "bad frame: non-finite value, non-positive altitude or covariance not symmetric positive definite";
+  }
+  return "unknown frame status";
+}
+
+std::string vpLaserConicFilter::getImuStatusMessage(vpImuStatus status)
+{
+  switch (status) {
+  case IMU_OK:
+    return "IMU sample used";
+  case IMU_NOT_INCREASING:
+    return "IMU timestamp not after the previous one: sample ignored";
+  case IMU_GAP:
+    return "gap in the IMU stream longer than the limit: the filter restarts";
+  case IMU_NOT_FINITE:
+    return "IMU sample with a non-finite value: ignored";
+  }
+  return "unknown IMU status";
+}

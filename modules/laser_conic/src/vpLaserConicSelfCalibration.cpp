@@ -1,0 +1,259 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+/*!
+  \file vpLaserConicSelfCalibration.cpp
+  \brief Facade of the self-calibration from ground frames: validation, initial planes, scale, status and
+  outputs; the steps of the solve are in laser_selfcal_steps.cpp.
+*/
+#include <visp3/laser_conic/vpLaserConicSelfCalibration.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <visp3/core/vpMath.h>
+
+#include "laser_selfcal_steps.h"
+
+namespace
+{
+bool finitePose(const vpHomogeneousMatrix &M)
+{
+  for (unsigned int i = 0; i < 4; ++i)
+    for (unsigned int j = 0; j < 4; ++j)
+      if (!std::isfinite(M[i][j]))
+        return false;
+  return M.isAnHomogeneousMatrix();
+}
+
+void checkPoints(const std::vector<vpImagePoint> &points)
+{
+  if (points.size() < 5)
+    throw vpLaserConicException(vpLaserConicException::notEnoughPointError,
+                                "vpLaserConicSelfCalibration: a frame needs at least 5 laser points, got " +
+                                    std::to_string(points.size()));
+  for (const vpImagePoint &p : points)
+    if (!std::isfinite(p.get_u()) || !std::isfinite(p.get_v()))
+      throw vpLaserConicException(vpLaserConicException::badPointError,
+                                  "vpLaserConicSelfCalibration: a laser point is not finite");
+}
+} // namespace
+
+vpLaserConicSelfCalibration::vpLaserConicSelfCalibration()
+  : m_cam(), m_hasCam(false), m_hasLaser(false), m_estimateAngle(false), m_holdApex(false), m_openingAngle(0.0), m_apexDistance(0.0),
+    m_maxStd(vpMath::rad(0.1)), m_maxRms(3.0), m_maxFrames(40), m_cMl(), m_frames(), m_status(STATUS_NOT_COMPUTED),
+    m_details(), m_covariance(6, 6, 0.0), m_axisStd(0.0), m_apexDirStd(0.0), m_spreadWeak(0.0), m_spreadStrong(0.0),
+    m_rms(0.0), m_sigma(0.0), m_condition(0.0), m_nbPoints(0), m_nbInliers(0), m_used(), m_planes()
+{
+}
+
+void vpLaserConicSelfCalibration::setCameraParameters(const vpCameraParameters &cam)
+{
+  if (!(cam.get_px() > 0.0) || !(cam.get_py() > 0.0) || !std::isfinite(cam.get_px()) || !std::isfinite(cam.get_py()) ||
+      !std::isfinite(cam.get_u0()) || !std::isfinite(cam.get_v0()) || !std::isfinite(cam.get_kdu()))
+    throw vpLaserConicException(vpLaserConicException::badCameraError,
+                                "vpLaserConicSelfCalibration: focal lengths must be positive and finite");
+  m_cam = cam;
+  m_hasCam = true;
+  m_status = STATUS_NOT_COMPUTED;
+}
+
+void vpLaserConicSelfCalibration::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
+{
+  if (!(openingAngle > 0.0 && openingAngle < M_PI))
+    throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                "vpLaserConicSelfCalibration: the full opening angle must be in (0, pi)");
+  if (!finitePose(cMl) || cMl.getTranslationVector().frobeniusNorm() < 1e-9)
+    throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                "vpLaserConicSelfCalibration: the laser pose must be a finite rigid transformation "
+                                "with the apex away from the camera centre");
+  m_openingAngle = openingAngle;
+  m_cMl = cMl;
+  m_hasLaser = true;
+  m_status = STATUS_NOT_COMPUTED;
+}
+
+void vpLaserConicSelfCalibration::setApexDistance(double metres)
+{
+  if (!(metres >= 0.0) || !std::isfinite(metres))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: the apex distance must be finite and >= 0");
+  m_apexDistance = metres;
+  m_status = STATUS_NOT_COMPUTED;
+}
+
+void vpLaserConicSelfCalibration::setKnownAltitude(unsigned int frame, double altitude)
+{
+  if (frame >= m_frames.size())
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: no frame " + std::to_string(frame));
+  if (!(altitude > 0.0) || !std::isfinite(altitude))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: a known altitude must be positive and finite");
+  m_frames[frame].knownAltitude = altitude;
+  m_status = STATUS_NOT_COMPUTED;
+}
+
+void vpLaserConicSelfCalibration::setMaxFrames(unsigned int n)
+{
+  if (n < 3)
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: at least 3 frames are needed");
+  m_maxFrames = n;
+}
+
+void vpLaserConicSelfCalibration::setMaxAngularStdDeviation(double radians)
+{
+  if (!(radians > 0.0) || !std::isfinite(radians))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: the angular standard deviation limit must be positive");
+  m_maxStd = radians;
+}
+
+void vpLaserConicSelfCalibration::setMaxRmsPixels(double pixels)
+{
+  if (!(pixels > 0.0) || !std::isfinite(pixels))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: the RMS limit must be positive and finite");
+  m_maxRms = pixels;
+}
+
+unsigned int vpLaserConicSelfCalibration::addFrame(const std::vector<vpImagePoint> &points)
+{
+  checkPoints(points);
+  FrameData f;
+  f.points = points;
+  m_frames.push_back(f);
+  m_status = STATUS_NOT_COMPUTED;
+  return static_cast<unsigned int>(m_frames.size() - 1);
+}
+
+unsigned int vpLaserConicSelfCalibration::addFrame(const std::vector<vpImagePoint> &points, const vpPlane &roughPlane)
+{
+  checkPoints(points);
+  const double norm = std::sqrt(vpMath::sqr(roughPlane.getA()) + vpMath::sqr(roughPlane.getB()) +
+                                vpMath::sqr(roughPlane.getC()));
+  if (!(norm > 0.0) || !std::isfinite(norm) || !(roughPlane.getD() > 0.0) || !std::isfinite(roughPlane.getD()) ||
+      !(roughPlane.getC() < 0.0))
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: the rough plane must be a finite ground plane in front "
+                                "of the camera (normal towards the camera, d > 0)");
+  FrameData f;
+  f.points = points;
+  f.hasPlane = true;
+  f.plane = roughPlane;
+  m_frames.push_back(f);
+  m_status = STATUS_NOT_COMPUTED;
+  return static_cast<unsigned int>(m_frames.size() - 1);
+}
+
+void vpLaserConicSelfCalibration::clearFrames()
+{
+  m_frames.clear();
+  m_status = STATUS_NOT_COMPUTED;
+}
+
+std::string vpLaserConicSelfCalibration::getStatusMessage(vpSelfCalibrationStatus status)
+{
+  switch (status) {
+  case STATUS_NOT_COMPUTED: return "not computed";
+  case STATUS_OK: return "ok";
+  case STATUS_NOT_ENOUGH_FRAMES: return "not enough frames with a ground plane (at least 3)";
+  case STATUS_DEGENERATE_FRAMES:
+    return "degenerate frames: their attitudes relative to the ground do not span enough to determine the laser";
+  case STATUS_NO_CONVERGENCE: return "no convergence (iteration limit reached)";
+  case STATUS_SOLVER_FAILURE: return "solver failure or non-finite result";
+  case STATUS_TOO_MANY_OUTLIERS: return "too many outliers: fewer than half the points fit the laser";
+  case STATUS_LARGE_RESIDUALS: return "large residuals: the laser does not fit the traces (camera model, points)";
+  }
+  return "unknown status";
+}
+
+vpColVector vpLaserConicSelfCalibration::getStdDeviations() const
+{
+  vpColVector s(6, 0.0);
+  for (unsigned int i = 0; i < 6; ++i)
+    s[i] = std::sqrt(std::max(0.0, m_covariance[i][i]));
+  return s;
+}
+
+bool vpLaserConicSelfCalibration::fail(vpSelfCalibrationStatus status, const std::string &details)
+{
+  m_status = status;
+  m_details = details;
+  return false;
+}
+
+void vpLaserConicSelfCalibration::checkReady() const
+{
+  if (!m_hasCam)
+    throw vpLaserConicException(vpLaserConicException::badCameraError,
+                                "vpLaserConicSelfCalibration: setCameraParameters() was not called");
+  if (!m_hasLaser)
+    throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                "vpLaserConicSelfCalibration: setLaser() (initial guess) was not called");
+  if (m_frames.empty())
+    throw vpLaserConicException(vpLaserConicException::notEnoughPointError, "vpLaserConicSelfCalibration: no frame");
+  bool known = false;
+  for (const FrameData &f : m_frames)
+    known = known || f.knownAltitude > 0.0;
+  if (!(m_apexDistance > 0.0) && !known && !m_holdApex)
+    throw vpLaserConicException(vpLaserConicException::badValueError,
+                                "vpLaserConicSelfCalibration: no scale constraint: images do not determine the apex "
+                                "distance; give setApexDistance() (ruler, previous baseline) or setKnownAltitude()");
+}
+
+bool vpLaserConicSelfCalibration::compute(vpHomogeneousMatrix &cMl, double &openingAngle)
+{
+  checkReady();
+  m_status = STATUS_NOT_COMPUTED;
+  m_details.clear();
+  m_covariance = vpMatrix(6, 6, 0.0);
+  m_axisStd = m_apexDirStd = m_spreadWeak = m_spreadStrong = m_rms = m_sigma = m_condition = 0.0;
+  m_nbPoints = m_nbInliers = 0;
+  return solve(cMl, openingAngle);
+}
+
+bool vpLaserConicSelfCalibration::solve(vpHomogeneousMatrix &cMl, double &openingAngle)
+{
+  using namespace vpLaserSelfCal;
+  Steps steps(m_cam, m_openingAngle, m_cMl);
+  std::vector<InputFrame> inputs(m_frames.size());
+  for (size_t i = 0; i < m_frames.size(); ++i) {
+    inputs[i].points = &m_frames[i].points;
+    inputs[i].hasPlane = m_frames[i].hasPlane;
+    inputs[i].plane = m_frames[i].plane;
+    inputs[i].knownAltitude = m_frames[i].knownAltitude;
+  }
+  StepsSettings settings;
+  settings.apexDistance = m_apexDistance;
+  settings.estimateAngle = m_estimateAngle;
+  settings.holdApex = m_holdApex;
+  settings.maxFrames = m_maxFrames;
+  settings.maxStd = m_maxStd;
+  const StepsOutcome out = steps.run(inputs, settings);
+  m_used = out.used;
+  m_planes = out.planes;
+  m_covariance = out.covariance;
+  m_axisStd = out.axisStd;
+  m_apexDirStd = out.apexDirStd;
+  m_spreadWeak = out.spreadWeak;
+  m_spreadStrong = out.spreadStrong;
+  m_rms = out.rms;
+  m_sigma = out.sigma;
+  m_condition = out.condition;
+  m_nbPoints = out.nbPoints;
+  m_nbInliers = out.nbInliers;
+  if (out.status != STATUS_OK)
+    return fail(static_cast<vpSelfCalibrationStatus>(out.status), out.details);
+  if (m_rms > m_maxRms) {
+    std::ostringstream os;
+    os << "inlier RMS " << m_rms << " px > " << m_maxRms << " px";
+    return fail(STATUS_LARGE_RESIDUALS, os.str());
+  }
+  cMl = out.cMl;
+  openingAngle = out.openingAngle;
+  m_status = STATUS_OK;
+  return true;
+}

@@ -1,0 +1,257 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// vpLaserConicFilter on simulated flights: 200 Hz IMU with the ADIS16448 noise densities and bias
+// walks, 30 Hz frames 30 ms late, each frame's plane from GP-3 on 120 trace points with 0.5 px noise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <visp3/laser_conic/vpLaserConicFilter.h>
+
+#include "laser_flight_sim.h"
+
+using laser_flight::Flight;
+using laser_flight::FrameEvents;
+using laser_flight::FrameRecord;
+using laser_flight::Sample;
+
+namespace
+{
+const double kChi2Dof4At95 = 9.4877; // chi-square quantile, 4 degrees of freedom, 95 %
+const double kWarmUp = 1.0;          // s: the initial vertical speed and biases settle first
+
+struct Consistency
+{
+  double neesSum = 0.0;
+  int n = 0, inside = 0;
+  Eigen::Vector4d perComponent = Eigen::Vector4d::Zero();
+  void add(const Sample &s)
+  {
+    const Eigen::Vector4d e = laser_flight::error(s);
+    for (int i = 0; i < 4; ++i)
+      perComponent(i) += e(i) * e(i) / s.P(i, i);
+    const double nees = e.dot(s.P.ldlt().solve(e));
+    neesSum += nees;
+    inside += nees <= kChi2Dof4At95;
+    ++n;
+  }
+};
+} // namespace
+
+// Over Monte Carlo flights the normalised error of (altitude, vertical speed, roll, pitch) at IMU rate
+// is chi-square with 4 degrees of freedom when the covariance is right: mean 4 and 95 % of the samples
+// under its 95 % quantile. Samples of one flight are correlated in time, so the mean over 8 flights of
+// 7 s carries a few per cent of spread: [0.8, 1.25] x 4 and [0.90, 0.98] fail a covariance off by 25 %.
+TEST(LaserConicFilter, CovarianceIsConsistentOverFlights)
+{
+  Consistency c;
+  for (unsigned int run = 0; run < 8; ++run) {
+    vpLaserConicFilter filter;
+    std::vector<Sample> samples;
+    std::vector<FrameRecord> frames;
+    laser_flight::fly(Flight(100 + run), 8.0, 200 + run, filter, samples, frames);
+    for (const Sample &s : samples)
+      if (s.t > kWarmUp)
+        c.add(s);
+  }
+  ASSERT_GT(c.n, 10000);
+  const double meanNees = c.neesSum / c.n, coverage = double(c.inside) / c.n;
+  std::printf("filter NEES mean %.3f (state dimension 4), 95 %% coverage %.3f over %d samples; per output "
+              "(altitude, vertical speed, roll, pitch) %.2f %.2f %.2f %.2f\n",
+              meanNees, coverage, c.n, c.perComponent(0) / c.n, c.perComponent(1) / c.n, c.perComponent(2) / c.n,
+              c.perComponent(3) / c.n);
+  EXPECT_GE(meanNees, 0.8 * 4);
+  EXPECT_LE(meanNees, 1.25 * 4);
+  EXPECT_GE(coverage, 0.90);
+  EXPECT_LE(coverage, 0.98);
+}
+
+// The IMU carries the altitude between frames and averages the frames' noise: its error at IMU rate
+// is at most 0.7 times the per-frame GP-3 error at the frame times.
+TEST(LaserConicFilter, AltitudeBeatsPerFrameEstimate)
+{
+  double filterSq = 0.0, frameSq = 0.0;
+  int nf = 0, ns = 0;
+  for (unsigned int run = 0; run < 3; ++run) {
+    vpLaserConicFilter filter;
+    std::vector<Sample> samples;
+    std::vector<FrameRecord> frames;
+    laser_flight::fly(Flight(300 + run), 8.0, 400 + run, filter, samples, frames);
+    for (const Sample &s : samples)
+      if (s.t > kWarmUp) {
+        filterSq += (s.x(0) - s.truth.h) * (s.x(0) - s.truth.h);
+        ++ns;
+      }
+    for (const FrameRecord &f : frames)
+      if (f.hasPlane && f.t > kWarmUp) {
+        frameSq += (f.h - f.hTrue) * (f.h - f.hTrue);
+        ++nf;
+      }
+  }
+  const double ratio = std::sqrt(filterSq / ns) / std::sqrt(frameSq / nf);
+  std::printf("altitude RMS: filter %.3f mm at 200 Hz, per-frame GP-3 %.3f mm at 30 Hz, ratio %.3f\n",
+              1e3 * std::sqrt(filterSq / ns), 1e3 * std::sqrt(frameSq / nf), ratio);
+  EXPECT_LE(ratio, 0.7);
+}
+
+// Half a second without any plane: the prediction runs on, its covariance grows, and the altitude
+// error stays inside 3 sigma; the status says so; the first frame after it is accepted.
+TEST(LaserConicFilter, DropoutKeepsErrorInsideThreeSigma)
+{
+  for (unsigned int run = 0; run < 4; ++run) {
+    vpLaserConicFilter filter;
+    std::vector<Sample> samples;
+    std::vector<FrameRecord> frames;
+    FrameEvents events;
+    events.dropFrom = 3.0;
+    events.dropTo = 3.5;
+    laser_flight::fly(Flight(500 + run), 5.0, 600 + run, filter, samples, frames, events);
+    double sigmaBefore = 0.0, sigmaEnd = 0.0;
+    int predicting = 0;
+    for (const Sample &s : samples) {
+      if (s.t < events.dropFrom || s.t > events.dropTo + 0.03)
+        continue;
+      const double sigma = std::sqrt(s.P(0, 0));
+      EXPECT_LE(std::abs(s.x(0) - s.truth.h), 3.0 * sigma) << "t = " << s.t;
+      predicting += s.status == vpLaserConicFilter::STATUS_PREDICTING;
+      (sigmaBefore == 0.0 ? sigmaBefore : sigmaEnd) = sigma;
+    }
+    EXPECT_GT(sigmaEnd, sigmaBefore);
+    EXPECT_GT(predicting, 50); // 0.4 s of 0.5 s at 200 Hz after the 0.1 s timeout
+    for (const FrameRecord &f : frames)
+      if (f.t >= events.dropTo && f.t < events.dropTo + 0.05) {
+        EXPECT_EQ(f.status, vpLaserConicFilter::FRAME_ACCEPTED);
+      }
+  }
+}
+
+// A frame whose plane is off by 5 sigma of the innovation is gated out (99 % gate: distance² 11.34)
+// in at least 99 % of the cases, and the filter goes on tracking.
+TEST(LaserConicFilter, RejectsFiveSigmaOutliers)
+{
+  int outliers = 0, rejected = 0;
+  for (unsigned int run = 0; run < 6; ++run) {
+    vpLaserConicFilter filter;
+    std::vector<Sample> samples;
+    std::vector<FrameRecord> frames;
+    FrameEvents events;
+    for (int k = 40; k < 240; k += 7)
+      events.outlierFrames.push_back(k);
+    laser_flight::fly(Flight(700 + run), 8.0, 800 + run, filter, samples, frames, events);
+    for (size_t i = 0; i < frames.size(); ++i)
+      for (int o : events.outlierFrames)
+        if (static_cast<int>(i) == o && frames[i].hasPlane) {
+          ++outliers;
+          rejected += frames[i].status == vpLaserConicFilter::FRAME_REJECTED;
+        }
+    EXPECT_EQ(filter.getGroundStepCount(), 0u);
+    EXPECT_EQ(filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING);
+  }
+  std::printf("5-sigma outliers rejected: %d of %d\n", rejected, outliers);
+  ASSERT_GT(outliers, 150);
+  EXPECT_GE(rejected, 0.99 * outliers);
+}
+
+// Flying onto a 20 cm box: the altitude drops by 0.2 m at once. The filter detects the step within 3
+// frames (two consistent rejected frames) and re-initialises the altitude: from 0.1 s later its error
+// stays under 5 mm (no transient: the step is 200 mm) and inside 3 sigma in 95 % of the samples, as
+// before the step; no other step is reported.
+TEST(LaserConicFilter, DetectsGroundStepWithinThreeFrames)
+{
+  int allAfter = 0, allInside = 0; // samples of one flight are correlated: the fraction is over all flights
+  for (unsigned int run = 0; run < 6; ++run) {
+    Flight flight(900 + run);
+    flight.stepTime = 3.01 + 0.005 * run;
+    vpLaserConicFilter filter;
+    std::vector<Sample> samples;
+    std::vector<FrameRecord> frames;
+    laser_flight::fly(flight, 5.0, 1000 + run, filter, samples, frames);
+    int first = -1, detected = -1;
+    for (size_t i = 0; i < frames.size(); ++i) {
+      if (first < 0 && frames[i].t >= flight.stepTime)
+        first = static_cast<int>(i);
+      if (detected < 0 && frames[i].status == vpLaserConicFilter::FRAME_GROUND_STEP)
+        detected = static_cast<int>(i);
+    }
+    ASSERT_GE(detected, first) << "run " << run;
+    EXPECT_LE(detected - first, 2) << "run " << run;
+    EXPECT_EQ(filter.getGroundStepCount(), 1u);
+    // After the step no transient: the error stays at the noise level (a few sigma, never a part of the
+    // 20 cm step) and inside 3 sigma as often as before it.
+    const double settled = frames[detected].t + 0.1 + 0.03;
+    int after = 0, inside = 0;
+    for (const Sample &s : samples)
+      if (s.t > settled) {
+        ++after;
+        inside += std::abs(s.x(0) - s.truth.h) <= 3.0 * std::sqrt(s.P(0, 0));
+        EXPECT_LE(std::abs(s.x(0) - s.truth.h), 0.005) << "t = " << s.t;
+      }
+    allAfter += after;
+    allInside += inside;
+    EXPECT_EQ(filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING);
+  }
+  std::printf("after the step: altitude inside 3 sigma in %d of %d samples\n", allInside, allAfter);
+  EXPECT_GE(allInside, 0.95 * allAfter);
+}
+
+// Bad input never crashes, names what is wrong and keeps the earlier estimate.
+TEST(LaserConicFilter, BadInputHasAStatus)
+{
+  vpLaserConicFilter filter;
+  const double w[3] = {0, 0, 0}, f[3] = {0, 0, -9.80665}, nanv[3] = {NAN, 0, 0};
+  vpMatrix C(3, 3);
+  C.eye();
+  C *= 1e-6;
+  EXPECT_EQ(filter.addFrame(0.0, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_AHEAD_OF_IMU);
+  EXPECT_EQ(filter.addImu(0.0, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addImu(0.005, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addFrame(0.005, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_INITIALISED);
+  EXPECT_EQ(filter.addImu(0.010, nanv, f), vpLaserConicFilter::IMU_NOT_FINITE);
+  EXPECT_EQ(filter.addImu(0.005, w, f), vpLaserConicFilter::IMU_NOT_INCREASING);
+  EXPECT_EQ(filter.addImu(0.010, w, f), vpLaserConicFilter::IMU_OK);
+  const double altitude = filter.getAltitude();
+  EXPECT_NEAR(altitude, 1.0, 1e-6);
+  EXPECT_EQ(filter.addFrame(0.002, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_OUT_OF_ORDER);
+  EXPECT_EQ(filter.addFrame(0.020, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_AHEAD_OF_IMU);
+  EXPECT_EQ(filter.addFrame(0.010, NAN, 0.0, 0.0, C), vpLaserConicFilter::FRAME_BAD_INPUT);
+  EXPECT_EQ(filter.addFrame(0.010, -1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_BAD_INPUT);
+  vpMatrix notPd(3, 3);
+  notPd.eye();
+  notPd[2][2] = -1.0;
+  EXPECT_EQ(filter.addFrame(0.010, 1.0, 0.0, 0.0, notPd), vpLaserConicFilter::FRAME_BAD_INPUT);
+  EXPECT_EQ(filter.addFrame(0.010, 1.0, 0.0, 0.0, vpMatrix(2, 2)), vpLaserConicFilter::FRAME_BAD_INPUT);
+  EXPECT_EQ(filter.getAltitude(), altitude); // nothing above changed the estimate
+  for (int k = 3; k < 40; ++k)
+    filter.addImu(0.005 * k, w, f);
+  EXPECT_EQ(filter.addFrame(0.010, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_TOO_OLD);
+  EXPECT_EQ(filter.addImu(1.0, w, f), vpLaserConicFilter::IMU_GAP);
+  EXPECT_FALSE(filter.isInitialised());
+  EXPECT_TRUE(std::isnan(filter.getAltitude()));
+  EXPECT_THROW(filter.setGateProbability(1.0), vpLaserConicException);
+  EXPECT_THROW(filter.setImuNoise(0.0, 1, 1, 1), vpLaserConicException);
+  EXPECT_THROW(filter.setMaxLatency(-1.0), vpLaserConicException);
+  EXPECT_THROW(filter.addImu(0.0, vpColVector(2), vpColVector(3)), vpLaserConicException);
+  EXPECT_THROW(vpLaserConicFilter::loadImuCsv("/nonexistent/imu.csv"), vpLaserConicException);
+  EXPECT_FALSE(vpLaserConicFilter::getFrameStatusMessage(vpLaserConicFilter::FRAME_TOO_OLD).empty());
+}
+
+// The latency is handled exactly: frames delivered 30 ms late give the same state as frames delivered
+// at once (the history is re-propagated, not approximated).
+TEST(LaserConicFilter, LatencyIsExact)
+{
+  vpLaserConicFilter late, onTime;
+  std::vector<Sample> sLate, sOnTime;
+  std::vector<FrameRecord> fLate, fOnTime;
+  laser_flight::fly(Flight(11), 2.0, 12, late, sLate, fLate, FrameEvents(), 200.0, 30.0, 0.03);
+  FrameEvents undelivered; // the late run has not received the frames of its last 30 ms yet
+  undelivered.dropFrom = 2.0 - 0.03;
+  undelivered.dropTo = 10.0;
+  laser_flight::fly(Flight(11), 2.0, 12, onTime, sOnTime, fOnTime, undelivered, 200.0, 30.0, 0.0);
+  const vpColVector a = late.getState(), b = onTime.getState();
+  for (unsigned int i = 0; i < a.getRows(); ++i)
+    EXPECT_NEAR(a[i], b[i], 1e-9 * (1.0 + std::abs(b[i]))) << i;
+}
