@@ -46,7 +46,7 @@ vpFeatureLaserPlane featureAt(const vpHomogeneousMatrix &wMc)
 
 // ds/dt = L v: each column of L against a central difference of the feature when the camera moves by
 // one velocity component (vpExponentialMap, camera frame, as vpServo's velocities) for 1e-6 s.
-TEST(FeatureLaserPlane, InteractionMatchesFiniteDifferences)
+TEST(LaserConicFeatureLaserPlane, InteractionMatchesFiniteDifferences)
 {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 50; ++trial) {
@@ -68,7 +68,7 @@ TEST(FeatureLaserPlane, InteractionMatchesFiniteDifferences)
 }
 
 // The plane and the (altitude, roll, pitch) of vpLaserConicPose give the same feature; a selection gives its rows.
-TEST(FeatureLaserPlane, BuildFromAltitudeRollPitchMatchesPlane)
+TEST(LaserConicFeatureLaserPlane, BuildFromAltitudeRollPitchMatchesPlane)
 {
   std::mt19937 rng(4);
   for (int trial = 0; trial < 20; ++trial) {
@@ -99,7 +99,7 @@ TEST(FeatureLaserPlane, BuildFromAltitudeRollPitchMatchesPlane)
 
 // One vpServo task: the laser plane (altitude, roll, pitch) and a vpFeaturePoint on a pad at the world
 // origin (x, y). From 2 m, 1.5 m off the pad and tilted by 20 deg, the camera lands 0.3 m above the pad, level.
-TEST(FeatureLaserPlane, ServoWithPointLandsOnPad)
+TEST(LaserConicFeatureLaserPlane, ServoWithPointLandsOnPad)
 {
   vpSimulatorCamera robot;
   robot.setSamplingTime(0.04);
