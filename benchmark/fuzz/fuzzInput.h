@@ -32,11 +32,14 @@ inline double consumeDouble(FuzzedDataProvider &fdp)
     return v;
   }
   case 1: {
+    // Sixteen values, kept as written.
+    // clang-format off
     static const double special[] = {0.0, -0.0, 1.0, -1.0, 1e-300, -1e-300, 1e300, -1e300,
                                      std::numeric_limits<double>::infinity(),
                                      -std::numeric_limits<double>::infinity(),
                                      std::numeric_limits<double>::quiet_NaN(),
                                      std::numeric_limits<double>::denorm_min(), 1e-8, 1e8, 0.5, 2.0};
+    // clang-format on
     return special[fdp.ConsumeIntegralInRange<int>(0, 15)];
   }
   case 2:
