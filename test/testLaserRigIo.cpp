@@ -64,7 +64,8 @@ TEST(LaserRigIo, YamlRoundTripKeepsThePoseTheAngleAndTheStandardDeviations)
       EXPECT_NEAR(read.cMl[i][j], written.cMl[i][j], 1e-6);
   EXPECT_TRUE(read.hasStdDeviations);
   for (unsigned int k = 0; k < 6; ++k)
-    EXPECT_NEAR(read.stdDeviations[k], written.stdDeviations[k], 1e-5 * written.stdDeviations[k]); // 6 digits, in degrees for the angles
+    EXPECT_NEAR(read.stdDeviations[k], written.stdDeviations[k],
+                1e-5 * written.stdDeviations[k]); // 6 digits, in degrees for the angles
   EXPECT_NEAR(read.rms, written.rms, 1e-9);
   EXPECT_EQ(read.nbViews, 9u);
 
@@ -96,8 +97,8 @@ TEST(LaserRigIo, TheOlderTextFormatIsStillRead)
 {
   vpLaserCalibrationData read;
   std::string error;
-  ASSERT_TRUE(vpLaserRigIo::readLaserCalibration(std::string(VSP_DATA_DIR) + "/laser_sequence/laser_true.txt", read,
-                                                 error))
+  ASSERT_TRUE(
+      vpLaserRigIo::readLaserCalibration(std::string(VSP_DATA_DIR) + "/laser_sequence/laser_true.txt", read, error))
       << error;
   EXPECT_NEAR(vpMath::deg(read.openingAngle), 34.0, 1e-9);
   EXPECT_FALSE(read.hasStdDeviations);
@@ -118,22 +119,27 @@ TEST(LaserRigIo, MalformedYamlFilesAreRefusedWithTheLine)
   EXPECT_NE(error.find("cannot open"), std::string::npos);
   writeText(workFile("valid_laser.yaml"), kValidYaml); // the reference the malformed files are made from
   EXPECT_TRUE(vpLaserRigIo::readLaserCalibration(workFile("valid_laser.yaml"), c, error)) << error;
-  EXPECT_NE(readError(std::string(kValidYaml).replace(0, 17, "opening_angle_deg: 190")).find("line 1: opening_angle_deg"),
-            std::string::npos);
+  EXPECT_NE(
+      readError(std::string(kValidYaml).replace(0, 17, "opening_angle_deg: 190")).find("line 1: opening_angle_deg"),
+      std::string::npos);
   EXPECT_NE(readError(std::string("colour: red\n") + kValidYaml).find("line 1: unknown key 'colour'"),
             std::string::npos);
   EXPECT_NE(readError(std::string(kValidYaml).replace(std::string(kValidYaml).find("[0.1]"), 5, "[0.1x]"))
                 .find("line 5: expected a pose row"),
             std::string::npos);
-  EXPECT_NE(readError(std::string(kValidYaml).substr(std::string(kValidYaml).find("rows:"))).find("missing 'opening_angle_deg"),
+  EXPECT_NE(readError(std::string(kValidYaml).substr(std::string(kValidYaml).find("rows:")))
+                .find("missing 'opening_angle_deg"),
             std::string::npos);
-  EXPECT_NE(readError(std::string("std_dev_apex_m: [1e-5, 1e-5]\n") + kValidYaml).find("std_dev_apex_m expects a list of 3"),
-            std::string::npos);
+  EXPECT_NE(
+      readError(std::string("std_dev_apex_m: [1e-5, 1e-5]\n") + kValidYaml).find("std_dev_apex_m expects a list of 3"),
+      std::string::npos);
   EXPECT_NE(readError(std::string("std_dev_apex_m: [1e-5, 1e-5, 1e-5]\n") + kValidYaml).find("or none"),
             std::string::npos);
-  EXPECT_NE(readError("opening_angle_deg: 34\nrows: 4\ncols: 4\ndata:\n  - [1, 0, 0, 0]\n").find("line 5: expected a pose row"),
+  EXPECT_NE(readError("opening_angle_deg: 34\nrows: 4\ncols: 4\ndata:\n  - [1, 0, 0, 0]\n")
+                .find("line 5: expected a pose row"),
             std::string::npos);
-  EXPECT_NE(readError(std::string(kValidYaml).replace(std::string(kValidYaml).find("rows: 6"), 7, "rows: 5")).find("vpPoseVector"),
+  EXPECT_NE(readError(std::string(kValidYaml).replace(std::string(kValidYaml).find("rows: 6"), 7, "rows: 5"))
+                .find("vpPoseVector"),
             std::string::npos);
 }
 

@@ -43,7 +43,8 @@ double medianNsPerBatch(const std::function<void()> &batch, int nInstances, int 
   time divided by the batch size is returned. The median resists the occasional preemption by the
   other processes of a shared machine.
 */
-template <typename Call> double medianNsPerCall(Call &&call, int nInstances, int repetitions = 15, double minSeconds = 0.3)
+template <typename Call>
+double medianNsPerCall(Call &&call, int nInstances, int repetitions = 15, double minSeconds = 0.3)
 {
   for (int i = 0; i < nInstances; ++i) { // warm-up: caches, lazy initialisations, page faults
     call(i);

@@ -23,9 +23,9 @@ struct LaserRig
 {
   double px = 800.0, py = 800.0, u0 = 800.0, v0 = 600.0; //!< intrinsics
   int width = 1600, height = 1200;                       //!< image size
-  Eigen::Matrix3d cRl = Eigen::Matrix3d::Identity();      //!< laser orientation, cone axis = third column
-  Eigen::Vector3d apex = Eigen::Vector3d::Zero();         //!< laser centre in the camera frame
-  double halfAngle = 0.0;                                 //!< half opening angle (rad)
+  Eigen::Matrix3d cRl = Eigen::Matrix3d::Identity();     //!< laser orientation, cone axis = third column
+  Eigen::Vector3d apex = Eigen::Vector3d::Zero();        //!< laser centre in the camera frame
+  double halfAngle = 0.0;                                //!< half opening angle (rad)
 };
 
 //! The rig of the benchmarks: 34 deg full opening angle, laser 10 cm right of the camera, tilted 3 deg.
@@ -72,7 +72,10 @@ inline bool traceAt(const LaserRig &rig, const Eigen::Vector4d &plane, double ph
 }
 
 //! Normalized image coordinates of a camera-frame point.
-inline Eigen::Vector2d normalizedOf(const Eigen::Vector3d &Xc) { return Eigen::Vector2d(Xc.x() / Xc.z(), Xc.y() / Xc.z()); }
+inline Eigen::Vector2d normalizedOf(const Eigen::Vector3d &Xc)
+{
+  return Eigen::Vector2d(Xc.x() / Xc.z(), Xc.y() / Xc.z());
+}
 
 //! Pixel coordinates (u, v) of normalized coordinates.
 inline Eigen::Vector2d pixelOf(const LaserRig &rig, const Eigen::Vector2d &xn)

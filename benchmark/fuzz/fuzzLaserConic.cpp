@@ -91,7 +91,8 @@ void run(FuzzedDataProvider &fdp)
       !std::isfinite(plane.getD())) {
     vspFuzz::fail("computePlane returned true with a non-finite plane");
   }
-  const double norm = std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
+  const double norm =
+      std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
   if (!(std::abs(norm - 1.0) < 1e-6)) {
     vspFuzz::fail("computePlane returned true with a plane whose normal is not unit");
   }
@@ -116,7 +117,8 @@ void run(FuzzedDataProvider &fdp)
   for (unsigned int i = 0; i < 3; ++i) {
     for (unsigned int j = 0; j < 3; ++j) {
       // NaN marks a covariance that could not be computed; a finite one must be symmetric.
-      if (std::isfinite(C[i][j]) && std::isfinite(C[j][i]) && !(std::abs(C[i][j] - C[j][i]) <= 1e-9 * (std::abs(C[i][j]) + 1e-300))) {
+      if (std::isfinite(C[i][j]) && std::isfinite(C[j][i]) &&
+          !(std::abs(C[i][j] - C[j][i]) <= 1e-9 * (std::abs(C[i][j]) + 1e-300))) {
         vspFuzz::fail("covariance not symmetric");
       }
     }

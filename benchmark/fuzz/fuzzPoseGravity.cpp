@@ -17,7 +17,8 @@ namespace
 vpColVector consumeGravity(FuzzedDataProvider &fdp)
 {
   // Mostly 3-vectors; sometimes another size, which must be refused cleanly.
-  const unsigned int size = fdp.ConsumeIntegralInRange<int>(0, 15) == 0 ? fdp.ConsumeIntegralInRange<unsigned int>(0, 5) : 3;
+  const unsigned int size = fdp.ConsumeIntegralInRange<int>(0, 15) == 0 ? fdp.ConsumeIntegralInRange<unsigned int>(0, 5)
+                                                                        : 3;
   vpColVector g(size);
   for (unsigned int i = 0; i < size; ++i) {
     g[i] = vspFuzz::consumeDouble(fdp);

@@ -19,8 +19,8 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/laser_conic/vpLaserConicFilter.h>
 #include <visp3/laser_conic/vpLaserConicImuSimulator.h>
-#include <visp3/laser_conic/vpLaserConicSimulator.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicSimulator.h>
 #endif
 
 namespace
@@ -157,15 +157,17 @@ void runFilterBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets,
   table.title = "Circular laser in flight: IMU-rate filter beside the per-frame estimator";
   table.note = "vpLaserConicFilter (10 states) at 200 Hz; a frame update is the update at the exposure time 30 ms "
                "back plus the re-propagation of the 6 newer IMU samples (timed as 7 samples + 1 frame minus 7 "
-               "samples). Heap allocations per filter call: " + std::to_string(perSample) +
-               " (counted by the program's operator new over " + std::to_string(8 * cycles) + " calls); " + std::to_string(accepted) + " of " + std::to_string(cycles) + " frames accepted.";
+               "samples). Heap allocations per filter call: " +
+               std::to_string(perSample) + " (counted by the program's operator new over " +
+               std::to_string(8 * cycles) + " calls); " + std::to_string(accepted) + " of " + std::to_string(cycles) +
+               " frames accepted.";
   table.ratioHeader = "Ratio to one IMU propagation";
   table.rows.push_back(benchRow("IMU sample", "ours vpLaserConicFilter::addImu", propagate, propagate, true));
   table.rows.push_back(benchRow("frame, 30 ms late", "ours vpLaserConicFilter::addFrame", update, propagate, true));
-  table.rows.push_back(benchRow("frame, 120 trace points", "ours vpLaserConicPose GP3 + covariance", gp3Small,
-                                propagate, true));
-  table.rows.push_back(benchRow("frame, 1000 trace points", "ours vpLaserConicPose GP3 + covariance", gp3Large,
-                                propagate, true));
+  table.rows.push_back(
+      benchRow("frame, 120 trace points", "ours vpLaserConicPose GP3 + covariance", gp3Small, propagate, true));
+  table.rows.push_back(
+      benchRow("frame, 1000 trace points", "ours vpLaserConicPose GP3 + covariance", gp3Large, propagate, true));
   tables.push_back(table);
   targets.filterPropagate = propagate;
   targets.filterUpdate = update;

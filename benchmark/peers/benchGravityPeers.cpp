@@ -35,9 +35,9 @@ namespace
 //! One seeded pose problem: the true pose, the points in both frames and gravity in both frames.
 struct PoseInstance
 {
-  Eigen::Matrix3d R;             // cRo
-  Eigen::Vector3d t;             // cto
-  Eigen::Vector3d gCam, gObj;    // unit gravity in camera / object frames
+  Eigen::Matrix3d R;              // cRo
+  Eigen::Vector3d t;              // cto
+  Eigen::Vector3d gCam, gObj;     // unit gravity in camera / object frames
   std::vector<Eigen::Vector3d> X; // object points
   std::vector<Eigen::Vector3d> x; // bearings (x, y, 1), noisy when requested
   std::vector<bool> outlier;
@@ -152,8 +152,7 @@ template <typename Solver> double timeOpenGv(const std::vector<PoseInstance> &in
   for (const PoseInstance &p : in) {
     adapters.emplace_back(p.gvBearings, p.gvPoints, opengv::rotation_t(p.R.transpose()));
   }
-  return vspBench::medianNsPerCall([&](int i) { vspBench::consume(solver(adapters[i])); },
-                                   static_cast<int>(in.size()));
+  return vspBench::medianNsPerCall([&](int i) { vspBench::consume(solver(adapters[i])); }, static_cast<int>(in.size()));
 }
 
 double timeCvSolvePnPRansac(const std::vector<PoseInstance> &in, int flags)
@@ -371,15 +370,16 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
   // P2P: ours solves the yaw and the translation; OpenGV's p2p is given the full rotation.
   rows.push_back(benchRow("P2P (2 points)", "ours vpGravitySolvers::p2p (gravity)", oursP2P, oursP2P, true));
   rows.push_back(benchRow("P2P (2 points)", "OpenGV absolute_pose::p2p (rotation known)",
-                     timeOpenGv(two, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
-                       return opengv::absolute_pose::p2p(a, 0, 1).z();
-                     }),
-                     oursP2P));
+                          timeOpenGv(two,
+                                     [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
+                                       return opengv::absolute_pose::p2p(a, 0, 1).z();
+                                     }),
+                          oursP2P));
 
   rows.push_back(benchRow("P3P (3 points)", "ours vpGravitySolvers::p3p (gravity)", oursP3P, oursP3P, true));
 #ifdef VSP_HAVE_POSE_GRAVITY
   rows.push_back(benchRow("P3P (3 points)", "ours vpPoseGravity API: set gravity, addPoints, computePose(P3P)",
-                     timeOursFacade(three, vpPoseGravity::P3P, 15), oursP3P, true));
+                          timeOursFacade(three, vpPoseGravity::P3P, 15), oursP3P, true));
   rows.push_back(benchRow("P3P (3 points)", "ours vpPoseGravity::computePose(P3P) alone (points added before)",
                           timeOursFacadeComputeOnly(three, vpPoseGravity::P3P), oursP3P, true));
 #endif
@@ -389,22 +389,25 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
   rows.push_back(benchRow("P3P (3 points)", "OpenCV solveP3P SOLVEPNP_P3P", cvP3P, oursP3P));
   rows.push_back(benchRow("P3P (3 points)", "OpenCV solveP3P SOLVEPNP_AP3P", cvAP3P, oursP3P));
   rows.push_back(benchRow("P3P (3 points)", "OpenGV p3p_kneip",
-                     timeOpenGv(three, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
-                       const opengv::transformations_t T = opengv::absolute_pose::p3p_kneip(a, 0, 1, 2);
-                       return T.empty() ? 0.0 : T[0](2, 3);
-                     }),
-                     oursP3P));
+                          timeOpenGv(three,
+                                     [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
+                                       const opengv::transformations_t T = opengv::absolute_pose::p3p_kneip(a, 0, 1, 2);
+                                       return T.empty() ? 0.0 : T[0](2, 3);
+                                     }),
+                          oursP3P));
   rows.push_back(benchRow("P3P (3 points)", "OpenGV p3p_gao",
-                     timeOpenGv(three, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
-                       const opengv::transformations_t T = opengv::absolute_pose::p3p_gao(a, 0, 1, 2);
-                       return T.empty() ? 0.0 : T[0](2, 3);
-                     }),
-                     oursP3P));
+                          timeOpenGv(three,
+                                     [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
+                                       const opengv::transformations_t T = opengv::absolute_pose::p3p_gao(a, 0, 1, 2);
+                                       return T.empty() ? 0.0 : T[0](2, 3);
+                                     }),
+                          oursP3P));
 
   const std::string four4 = "4 coplanar points";
   rows.push_back(benchRow(four4, "ours vpGravitySolvers::p3p (first 3 points)", oursP3P4, oursP3P4, true));
 #ifdef VSP_HAVE_POSE_GRAVITY
-  rows.push_back(benchRow(four4, "ours vpGravitySolvers::leastSquares (4 points)", timeOursLeastSquares(four), oursP3P4, true));
+  rows.push_back(
+      benchRow(four4, "ours vpGravitySolvers::leastSquares (4 points)", timeOursLeastSquares(four), oursP3P4, true));
 #endif
   rows.push_back(benchRow(four4, "OpenCV solvePnP SOLVEPNP_SQPNP", timeCvSolvePnP(four, cv::SOLVEPNP_SQPNP), oursP3P4));
   rows.push_back(benchRow(four4, "OpenCV solvePnP SOLVEPNP_IPPE", timeCvSolvePnP(four, cv::SOLVEPNP_IPPE), oursP3P4));
@@ -412,7 +415,8 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
   targets.vpPoseLagrange4 = lagrange4;
   rows.push_back(benchRow(four4, "ViSP vpPose LAGRANGE", lagrange4, oursP3P4));
   rows.push_back(benchRow(four4, "ViSP vpPose DEMENTHON", timeVpPose(four, vpPose::DEMENTHON), oursP3P4));
-  rows.push_back(benchRow(four4, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(four, vpPose::LAGRANGE_VIRTUAL_VS), oursP3P4));
+  rows.push_back(
+      benchRow(four4, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(four, vpPose::LAGRANGE_VIRTUAL_VS), oursP3P4));
   rows.push_back(
       benchRow(four4, "ViSP vpPose DEMENTHON_VIRTUAL_VS", timeVpPose(four, vpPose::DEMENTHON_VIRTUAL_VS), oursP3P4));
 
@@ -424,21 +428,23 @@ void runGravityBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets
     rows.push_back(benchRow(problem, "OpenCV solvePnP SOLVEPNP_SQPNP", timeCvSolvePnP(in, cv::SOLVEPNP_SQPNP), ours));
     rows.push_back(benchRow(problem, "OpenCV solvePnP SOLVEPNP_EPNP", timeCvSolvePnP(in, cv::SOLVEPNP_EPNP), ours));
     rows.push_back(benchRow(problem, "OpenGV epnp",
-                       timeOpenGv(in, [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
-                         return opengv::absolute_pose::epnp(a)(2, 3);
-                       }),
-                       ours));
-    rows.push_back(benchRow(problem, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(in, vpPose::LAGRANGE_VIRTUAL_VS), ours));
+                            timeOpenGv(in,
+                                       [](const opengv::absolute_pose::CentralAbsoluteAdapter &a) {
+                                         return opengv::absolute_pose::epnp(a)(2, 3);
+                                       }),
+                            ours));
+    rows.push_back(
+        benchRow(problem, "ViSP vpPose LAGRANGE_VIRTUAL_VS", timeVpPose(in, vpPose::LAGRANGE_VIRTUAL_VS), ours));
   }
 
   const std::string rs = "RANSAC, 100 points, 30 % outliers";
 #ifdef VSP_HAVE_POSE_GRAVITY
   rows.push_back(benchRow(rs, "ours vpPoseGravity RANSAC (2-point)", oursRansac, oursRansac, true,
-                     successOursFacade(ransac, vpPoseGravity::RANSAC)));
+                          successOursFacade(ransac, vpPoseGravity::RANSAC)));
 #endif
-  rows.push_back(benchRow(rs, "OpenCV solvePnPRansac SOLVEPNP_AP3P", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_AP3P), oursRansac,
-                     false, successCvSolvePnPRansac(ransac, cv::SOLVEPNP_AP3P)));
-  rows.push_back(benchRow(rs, "OpenCV solvePnPRansac SOLVEPNP_EPNP", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_EPNP), oursRansac,
-                     false, successCvSolvePnPRansac(ransac, cv::SOLVEPNP_EPNP)));
+  rows.push_back(benchRow(rs, "OpenCV solvePnPRansac SOLVEPNP_AP3P", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_AP3P),
+                          oursRansac, false, successCvSolvePnPRansac(ransac, cv::SOLVEPNP_AP3P)));
+  rows.push_back(benchRow(rs, "OpenCV solvePnPRansac SOLVEPNP_EPNP", timeCvSolvePnPRansac(ransac, cv::SOLVEPNP_EPNP),
+                          oursRansac, false, successCvSolvePnPRansac(ransac, cv::SOLVEPNP_EPNP)));
   tables.push_back(table);
 }

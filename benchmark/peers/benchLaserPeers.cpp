@@ -96,7 +96,8 @@ Eigen::Matrix3d conicOfRotatedRect(const cv::RotatedRect &box)
 {
   return vspBench::medianNsPerCall(
       [&](int i) {
-        const cv::RotatedRect box = direct ? cv::fitEllipseDirect(frames[i].cvPoints) : cv::fitEllipse(frames[i].cvPoints);
+        const cv::RotatedRect box = direct ? cv::fitEllipseDirect(frames[i].cvPoints)
+                                           : cv::fitEllipse(frames[i].cvPoints);
         vspBench::consume(box.size.width);
       },
       static_cast<int>(frames.size()), 9, 0.2);
@@ -186,9 +187,9 @@ void renderFrames(const vspBench::LaserRig &rig, unsigned int seed, int count,
   for (int i = 0; i < count; ++i) {
     const double h = altitude(rng), roll = tilt(rng), pitch = tilt(rng);
     // Ground frame: Z up towards the camera, the camera at height h, then the rig tilted by roll/pitch.
-    const Eigen::Matrix3d tiltR = (Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()) *
-                                   Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
-                                      .toRotationMatrix();
+    const Eigen::Matrix3d tiltR =
+        (Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+            .toRotationMatrix();
     const Eigen::Matrix3d flip = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
     simulator.setGroundPose(toHomogeneous(tiltR * flip, tiltR * Eigen::Vector3d(0.0, 0.0, h)));
     vpImage<vpRGBa> I;
@@ -239,17 +240,18 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
       }
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::printf("%s, %s: %d/%d frames good, %.0f points per frame, %.3f ms per frame (wall clock)\n", methodName.c_str(),
-                floors[f].first.c_str(), good, frames, static_cast<double>(detected) / frames, ms / frames);
+    std::printf("%s, %s: %d/%d frames good, %.0f points per frame, %.3f ms per frame (wall clock)\n",
+                methodName.c_str(), floors[f].first.c_str(), good, frames, static_cast<double>(detected) / frames,
+                ms / frames);
     return 0;
   }
   const std::vector<LaserFrame> data = makeFrames(rig, seed, frames, outlierRatio, points);
   vpLaserConicPose estimator = makeEstimator(rig);
   const vpLaserConicPose::vpLaserConicMethod method =
-      methodName == "pp3" ? vpLaserConicPose::PP3
-                          : (methodName == "pp5" ? vpLaserConicPose::PP5
-                                                 : (methodName == "planepair" ? vpLaserConicPose::PLANE_PAIR
-                                                                              : vpLaserConicPose::GP3));
+      methodName == "pp3"
+          ? vpLaserConicPose::PP3
+          : (methodName == "pp5" ? vpLaserConicPose::PP5
+                                 : (methodName == "planepair" ? vpLaserConicPose::PLANE_PAIR : vpLaserConicPose::GP3));
   int good = 0;
   long trials = 0;
   for (const LaserFrame &f : data) {
@@ -279,7 +281,8 @@ void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, 
                "normal error < 1 deg. Default settings (2 px threshold, 1000 trials max, p = 0.99). "
                "Ratio to GP-3 of the same outlier ratio.";
   for (double ratio : {0.0, 0.25, 0.5, 0.75}) {
-    const std::vector<LaserFrame> frames = makeFrames(rig, seed + static_cast<unsigned int>(100 * ratio), nFrames, ratio);
+    const std::vector<LaserFrame> frames =
+        makeFrames(rig, seed + static_cast<unsigned int>(100 * ratio), nFrames, ratio);
     const std::string problem = std::to_string(static_cast<int>(100 * ratio)) + " % outliers";
     double referenceNs = 0.0;
     std::vector<BenchRow> group;
@@ -329,12 +332,14 @@ void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, 
             vspBench::consume(plane(3));
           },
           static_cast<int>(frames.size()), 9, 0.2);
-      group.push_back(row(problem, direct ? "OpenCV fitEllipseDirect + our plane pair" : "OpenCV fitEllipse + our plane pair",
+      group.push_back(row(problem,
+                          direct ? "OpenCV fitEllipseDirect + our plane pair" : "OpenCV fitEllipse + our plane pair",
                           ns, 0.0, false, static_cast<double>(good) / frames.size()));
     }
 #else
     group.push_back(row(problem, "OpenCV fitEllipse (fit only)", timeFitEllipseOnly(frames, false), 0.0, false, -1.0));
-    group.push_back(row(problem, "OpenCV fitEllipseDirect (fit only)", timeFitEllipseOnly(frames, true), 0.0, false, -1.0));
+    group.push_back(
+        row(problem, "OpenCV fitEllipseDirect (fit only)", timeFitEllipseOnly(frames, true), 0.0, false, -1.0));
 #endif
     for (BenchRow &r : group) {
       r.referenceNs = referenceNs;
@@ -413,7 +418,8 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
       traces[i] = detector.detect(images[i]);
       vpPlane plane;
       try {
-        good += estimator.computePlane(traces[i], vpLaserConicPose::GP3, plane) && planeIsGood(toEigen(plane), truths[i])
+        good += estimator.computePlane(traces[i], vpLaserConicPose::GP3, plane) &&
+                        planeIsGood(toEigen(plane), truths[i])
                     ? 1
                     : 0;
       } catch (const vpException &) {
@@ -455,8 +461,8 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
     frame.rows.push_back(row(problem, "ours detect + GP-3", wholeNs, cvtNs, true, static_cast<double>(good) / nImages));
     frame.rows.push_back(row(problem, "ours detect (ROI 20 px) + GP-3", roiNs, cvtNs, true, -1.0));
     frame.rows.push_back(row(problem, "ours detect (previous conic, 20 px) + GP-3", trackNs, cvtNs, true, -1.0));
-    frame.rows.push_back(row(problem, "ours detect (previous conic, 20 px, every 3rd line) + GP-3", trackSparseNs, cvtNs,
-                             true, -1.0));
+    frame.rows.push_back(
+        row(problem, "ours detect (previous conic, 20 px, every 3rd line) + GP-3", trackSparseNs, cvtNs, true, -1.0));
     worstWhole = std::max(worstWhole, wholeNs / cvtNs);
   }
   // The target is a ratio: the worst floor's ratio, on the dark floor's cvtColor scale.

@@ -38,12 +38,14 @@ void printMarkdown(std::ostream &os, const std::vector<BenchTable> &tables)
     for (const BenchRow &row : table.rows) {
       withSuccess = withSuccess || row.successRate >= 0.0;
     }
-    os << "| Problem | Method | Median time | " << table.ratioHeader << " |" << (withSuccess ? " Success |" : "") << "\n";
+    os << "| Problem | Method | Median time | " << table.ratioHeader << " |" << (withSuccess ? " Success |" : "")
+       << "\n";
     os << "|---|---|---:|---:|" << (withSuccess ? "---:|" : "") << "\n";
     for (const BenchRow &row : table.rows) {
       std::ostringstream ratio;
       if (row.referenceNs > 0.0) {
-        ratio << std::fixed << std::setprecision(row.ns / row.referenceNs < 10.0 ? 2 : 0) << row.ns / row.referenceNs << "x";
+        ratio << std::fixed << std::setprecision(row.ns / row.referenceNs < 10.0 ? 2 : 0) << row.ns / row.referenceNs
+              << "x";
       } else {
         ratio << "-";
       }
@@ -83,8 +85,8 @@ void printTargets(std::ostream &os, const BenchTargets &t)
                (t.oursP3P > 0 && t.cvAp3p > 0) ? t.cvAp3p / t.oursP3P : -1.0, 100.0, true, "x");
   printVerdict(os, "our P3P >= 200x faster than vpPose LAGRANGE (4 points)",
                (t.oursP3P > 0 && t.vpPoseLagrange4 > 0) ? t.vpPoseLagrange4 / t.oursP3P : -1.0, 200.0, true, "x");
-  printVerdict(os, "GP-3 at 50 % outliers <= 0.3 ms per 1000-point frame", t.gp3At50 > 0 ? t.gp3At50 * 1e-6 : -1.0,
-               0.3, false, " ms");
+  printVerdict(os, "GP-3 at 50 % outliers <= 0.3 ms per 1000-point frame", t.gp3At50 > 0 ? t.gp3At50 * 1e-6 : -1.0, 0.3,
+               false, " ms");
   printVerdict(os, "GP-3 on a 1000-point trace + 1000 outliers <= 1x one cv::fitEllipse on the 2000 points",
                t.gp3Vs2000FitEllipse, 1.0, false, "x");
   printVerdict(os, "whole frame (detection + GP-3, worst floor) <= 1x one cvtColor BGR->HSV",
@@ -108,11 +110,12 @@ int main(int argc, char **argv)
   bool quick = false;
   std::string only, out, profile;
   const std::vector<std::string> gravityProfiles = {"p2p", "p3p", "lsq", "facade", "compute"};
-  const std::vector<std::string> laserProfiles = {"gp3", "pp3", "pp5", "planepair", "detect-dark",
-                                                   "detect-grey", "detect-mosaic"};
+  const std::vector<std::string> laserProfiles = {"gp3",         "pp3",         "pp5",          "planepair",
+                                                  "detect-dark", "detect-grey", "detect-mosaic"};
   std::vector<std::string> profiles = gravityProfiles;
   profiles.insert(profiles.end(), laserProfiles.begin(), laserProfiles.end());
-  vpCommandLine cli("[--seed S] [--quick] [--only gravity|laser|laser-frame|filter|selfcal] [--out FILE] | --profile METHOD "
+  vpCommandLine cli("[--seed S] [--quick] [--only gravity|laser|laser-frame|filter|selfcal] [--out FILE] | --profile "
+                    "METHOD "
                     "[--frames N] "
                     "[--outliers R] [--points N]",
                     "Times our gravity-aided and laser-conic estimators against OpenCV, ViSP and OpenGV (Google "
@@ -136,9 +139,8 @@ int main(int argc, char **argv)
                   "--outliers 0.5 is the problem of the fitEllipse target)",
                   10);
   // Google Benchmark takes out its --benchmark_* flags; it would answer --help with its own usage.
-  const bool help = std::any_of(argv + 1, argv + argc, [](const char *a) {
-    return std::string(a) == "--help" || std::string(a) == "-h";
-  });
+  const bool help = std::any_of(argv + 1, argv + argc,
+                                [](const char *a) { return std::string(a) == "--help" || std::string(a) == "-h"; });
   if (!help)
     benchmark::Initialize(&argc, argv);
   if (!cli.parse(argc, argv))
@@ -152,7 +154,8 @@ int main(int argc, char **argv)
   if (std::find(gravityProfiles.begin(), gravityProfiles.end(), profile) != gravityProfiles.end())
     return runGravityProfileLoop(profile, frames ? static_cast<int>(frames) : 1000, seed);
   if (!profile.empty())
-    return runLaserProfileLoop(profile, outliers, frames ? static_cast<int>(frames) : 20, static_cast<int>(points), seed);
+    return runLaserProfileLoop(profile, outliers, frames ? static_cast<int>(frames) : 20, static_cast<int>(points),
+                               seed);
 
   std::vector<BenchTable> tables;
   BenchTargets targets;

@@ -117,10 +117,11 @@ void runSelfCalibrationBenchmarks(std::vector<BenchTable> &tables, BenchTargets 
                "of the same frames). Drift test: vpLaserConicDriftMonitor::addFrame(), window of 20 frames, ratio to "
                "one cv::fitEllipse on 1000 points. Self-calibrations that succeeded: " +
                std::to_string(ok) + "/" + std::to_string(runs) + ".";
-  table.rows.push_back(benchRow("self-calibration, 20 frames", "ours vpLaserConicSelfCalibration::compute", selfcalNs, fitNs,
-                           true, static_cast<double>(ok) / runs));
+  table.rows.push_back(benchRow("self-calibration, 20 frames", "ours vpLaserConicSelfCalibration::compute", selfcalNs,
+                                fitNs, true, static_cast<double>(ok) / runs));
   table.rows.push_back(benchRow("self-calibration, 20 frames", "OpenCV cv::fitEllipse x 20", fitNs, fitNs));
-  table.rows.push_back(benchRow("drift test, one frame", "ours vpLaserConicDriftMonitor::addFrame", driftNs, oneFitNs, true));
+  table.rows.push_back(
+      benchRow("drift test, one frame", "ours vpLaserConicDriftMonitor::addFrame", driftNs, oneFitNs, true));
   table.rows.push_back(benchRow("drift test, one frame", "OpenCV cv::fitEllipse (1000 points)", oneFitNs, oneFitNs));
   tables.push_back(table);
 #else

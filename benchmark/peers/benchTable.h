@@ -13,12 +13,12 @@
 //! One measured method: its median time and, for estimators run on noisy data, a success rate.
 struct BenchRow
 {
-  std::string problem;     //!< what is solved ("P3P", "4 coplanar points", ...)
-  std::string method;      //!< the method and its library
-  double ns = 0.0;         //!< median time per call, nanoseconds
-  double referenceNs = 0.0; //!< median time of our solver of the same group (ratio denominator)
+  std::string problem;       //!< what is solved ("P3P", "4 coplanar points", ...)
+  std::string method;        //!< the method and its library
+  double ns = 0.0;           //!< median time per call, nanoseconds
+  double referenceNs = 0.0;  //!< median time of our solver of the same group (ratio denominator)
   double successRate = -1.0; //!< fraction of successful estimates in [0, 1], or < 0 when not measured
-  bool ours = false;       //!< true for this project's code
+  bool ours = false;         //!< true for this project's code
 };
 
 //! A row from its fields: \e referenceNs is the ratio denominator, \e success < 0 when not measured.
@@ -47,9 +47,10 @@ struct BenchTargets
   double gp3At50 = -1.0;
   double gp3Vs2000FitEllipse = -1.0; //!< GP-3 on 1000 trace points + 1000 outliers / cv::fitEllipse on them
   double wholeFrame = -1.0, cvtColor = -1.0;
-  double filterPropagate = -1.0, filterUpdate = -1.0, filterAllocationsPerSample = -1.0; //!< vpLaserConicFilter (ns, ns, count)
-  double selfCalibration20 = -1.0; //!< laser self-calibration on 20 frames of 1000 points, ns
-  double driftPerFrame = -1.0;     //!< drift monitor, one frame, ns
+  double filterPropagate = -1.0, filterUpdate = -1.0,
+         filterAllocationsPerSample = -1.0; //!< vpLaserConicFilter (ns, ns, count)
+  double selfCalibration20 = -1.0;          //!< laser self-calibration on 20 frames of 1000 points, ns
+  double driftPerFrame = -1.0;              //!< drift monitor, one frame, ns
 };
 
 //! Gravity-aided pose benchmarks: appends their tables and fills the P3P targets.
@@ -59,7 +60,8 @@ void runLaserBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, 
 //! vpLaserConicFilter: IMU propagation, frame update, allocations per sample, beside GP-3 frames.
 void runFilterBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 //! Laser self-calibration from ground frames and the drift test (benchSelfCalPeers.cpp).
-void runSelfCalibrationBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
+void runSelfCalibrationBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed,
+                                  bool quick);
 //! The whole-frame part of the laser benchmarks alone (detection + GP-3 against cvtColor, three floors, ROI).
 void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targets, unsigned int seed, bool quick);
 

@@ -102,7 +102,8 @@ inline bool parseOptions(int argc, char **argv, const char *solverOption, const 
   vpCommandLine cli(std::string("[") + solverOption + " " + choices + "] [--n N] [--seed S] [--verbose]",
                     "Random exact configurations through the minimal solvers; counts wrong answers "
                     "(exit status 1 when there is one).");
-  cli.addChoice(solverOption, o.solver, solvers, "solver", std::string("solver to stress (default ") + defaultSolver + ")");
+  cli.addChoice(solverOption, o.solver, solvers, "solver",
+                std::string("solver to stress (default ") + defaultSolver + ")");
   cli.addOption("--n", "N", std::string("number of configurations (default ") + defaultCount + ")",
                 [&count](const std::string &value, std::string &error) {
                   if (!vpCsvTools::toDouble(value, count) || count < 1 || count > 1e12 || count != std::floor(count)) {

@@ -175,9 +175,10 @@ int main(int argc, char **argv)
   bool ok = true;
   if (o.solver == "p3p" || o.solver == "all") {
     ok = vspStress::report("P3P", o.count,
-                           stressOnePose(o.count, o.seed, 3, o.verbose, [](const Config &c, vpGravitySolvers::Pose &p) {
-                             return vpGravitySolvers::p3p(c.gCam, c.gObj, c.x, c.X, p);
-                           })) &&
+                           stressOnePose(o.count, o.seed, 3, o.verbose,
+                                         [](const Config &c, vpGravitySolvers::Pose &p) {
+                                           return vpGravitySolvers::p3p(c.gCam, c.gObj, c.x, c.X, p);
+                                         })) &&
          ok;
   }
   if (o.solver == "p2p" || o.solver == "all") {
@@ -186,9 +187,10 @@ int main(int argc, char **argv)
   if (o.solver == "ls" || o.solver == "all") {
     const int n = 6;
     ok = vspStress::report("LEAST_SQUARES", o.count,
-                           stressOnePose(o.count, o.seed, n, o.verbose, [n](const Config &c, vpGravitySolvers::Pose &p) {
-                             return vpGravitySolvers::leastSquares(c.gCam, c.gObj, c.x, c.X, n, p);
-                           })) &&
+                           stressOnePose(o.count, o.seed, n, o.verbose,
+                                         [n](const Config &c, vpGravitySolvers::Pose &p) {
+                                           return vpGravitySolvers::leastSquares(c.gCam, c.gObj, c.x, c.X, n, p);
+                                         })) &&
          ok;
   }
   return ok ? 0 : 1;

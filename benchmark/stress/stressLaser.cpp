@@ -51,8 +51,8 @@ struct Config
 //! A random rig and plane and \e n exact trace points; false when the trace misses the camera's front.
 bool makeConfig(std::mt19937_64 &rng, int n, Config &c)
 {
-  std::uniform_real_distribution<double> half(10.0, 40.0), offset(-0.2, 0.2), tilt(-10.0, 10.0),
-      altitude(0.5, 5.0), attitude(-30.0, 30.0), angle(-M_PI, M_PI);
+  std::uniform_real_distribution<double> half(10.0, 40.0), offset(-0.2, 0.2), tilt(-10.0, 10.0), altitude(0.5, 5.0),
+      attitude(-30.0, 30.0), angle(-M_PI, M_PI);
   const double deg = M_PI / 180.0;
   c.rig.halfAngle = half(rng) * deg;
   c.rig.apex = Eigen::Vector3d(offset(rng), offset(rng), offset(rng) * 0.25);
@@ -110,8 +110,8 @@ double illConditionedError = 0.0, illConditionedBound = 0.0;
 void dump(const char *what, long index, const Config &c, int n, double error)
 {
   std::printf("  %s at configuration %ld (best error %.3g):\n", what, index, error);
-  std::printf("    halfAngle = %.17g  apex = [%.17g %.17g %.17g]\n", c.cone.halfAngle, c.cone.apex.x(),
-              c.cone.apex.y(), c.cone.apex.z());
+  std::printf("    halfAngle = %.17g  apex = [%.17g %.17g %.17g]\n", c.cone.halfAngle, c.cone.apex.x(), c.cone.apex.y(),
+              c.cone.apex.z());
   std::printf("    cRl = [%.17g %.17g %.17g; %.17g %.17g %.17g; %.17g %.17g %.17g]\n", c.cone.cRl(0, 0),
               c.cone.cRl(0, 1), c.cone.cRl(0, 2), c.cone.cRl(1, 0), c.cone.cRl(1, 1), c.cone.cRl(1, 2),
               c.cone.cRl(2, 0), c.cone.cRl(2, 1), c.cone.cRl(2, 2));

@@ -117,27 +117,28 @@ bool vpGravityPointsIo::readPoints(const std::string &file, std::vector<vpGravit
                                    bool requireGravity)
 {
   std::map<unsigned int, vpGravityFrame> byIndex;
-  const bool read = forEachRow(file, "points", error, [&](const std::vector<std::string> &fields,
-                                                           const std::string &where, unsigned int lineNumber) {
-    if (fields.size() < 2) {
-      error = where + ": expected 'frame,gravity,...' or 'frame,point,...', found 1 column";
-      return false;
-    }
-    unsigned int index = 0;
-    if (!vpCsvTools::parseIndex(fields[0], index, where, "frame", error))
-      return false;
-    vpGravityFrame &frame = byIndex[index];
-    if (frame.firstLine == 0) {
-      frame.frame = index;
-      frame.firstLine = lineNumber;
-    }
-    if (fields[1] == "gravity")
-      return parseGravityRow(fields, where, frame, error);
-    if (fields[1] == "point")
-      return parsePointRow(fields, where, frame, error);
-    error = where + ": column kind ('" + fields[1] + "') must be 'gravity' or 'point'";
-    return false;
-  });
+  const bool read =
+      forEachRow(file, "points", error,
+                 [&](const std::vector<std::string> &fields, const std::string &where, unsigned int lineNumber) {
+                   if (fields.size() < 2) {
+                     error = where + ": expected 'frame,gravity,...' or 'frame,point,...', found 1 column";
+                     return false;
+                   }
+                   unsigned int index = 0;
+                   if (!vpCsvTools::parseIndex(fields[0], index, where, "frame", error))
+                     return false;
+                   vpGravityFrame &frame = byIndex[index];
+                   if (frame.firstLine == 0) {
+                     frame.frame = index;
+                     frame.firstLine = lineNumber;
+                   }
+                   if (fields[1] == "gravity")
+                     return parseGravityRow(fields, where, frame, error);
+                   if (fields[1] == "point")
+                     return parsePointRow(fields, where, frame, error);
+                   error = where + ": column kind ('" + fields[1] + "') must be 'gravity' or 'point'";
+                   return false;
+                 });
   if (!read)
     return false;
   if (byIndex.empty()) {
@@ -265,23 +266,24 @@ bool vpGravityPointsIo::readFrameTimes(const std::string &file, std::map<unsigne
                                        std::string &error)
 {
   times.clear();
-  const bool read = forEachRow(file, "frame times", error, [&](const std::vector<std::string> &fields,
-                                                                const std::string &where, unsigned int) {
-    if (fields.size() != 2) {
-      error = where + ": a frame time row has 2 columns (frame,timestamp), found " + std::to_string(fields.size());
-      return false;
-    }
-    unsigned int index = 0;
-    double t = 0.0;
-    if (!vpCsvTools::parseIndex(fields[0], index, where, "frame", error) ||
-        !vpCsvTools::parseDouble(fields[1], t, where, "timestamp", error))
-      return false;
-    if (!times.insert(std::make_pair(index, t)).second) {
-      error = where + ": second time for frame " + std::to_string(index);
-      return false;
-    }
-    return true;
-  });
+  const bool read = forEachRow(file, "frame times", error,
+                               [&](const std::vector<std::string> &fields, const std::string &where, unsigned int) {
+                                 if (fields.size() != 2) {
+                                   error = where + ": a frame time row has 2 columns (frame,timestamp), found " +
+                                           std::to_string(fields.size());
+                                   return false;
+                                 }
+                                 unsigned int index = 0;
+                                 double t = 0.0;
+                                 if (!vpCsvTools::parseIndex(fields[0], index, where, "frame", error) ||
+                                     !vpCsvTools::parseDouble(fields[1], t, where, "timestamp", error))
+                                   return false;
+                                 if (!times.insert(std::make_pair(index, t)).second) {
+                                   error = where + ": second time for frame " + std::to_string(index);
+                                   return false;
+                                 }
+                                 return true;
+                               });
   if (!read)
     return false;
   if (times.empty()) {

@@ -37,11 +37,11 @@
 */
 struct vpGravityFrame
 {
-  unsigned int frame = 0;        //!< frame index
-  vpColVector gCam;              //!< gravity in the camera frame (3-vector)
-  vpColVector gObj;              //!< gravity in the object frame (3-vector)
-  std::vector<vpPoint> points;   //!< points with oX, oY, oZ and x, y set
-  unsigned int firstLine = 0;    //!< line of the file where the frame first appears (for messages)
+  unsigned int frame = 0;      //!< frame index
+  vpColVector gCam;            //!< gravity in the camera frame (3-vector)
+  vpColVector gObj;            //!< gravity in the object frame (3-vector)
+  std::vector<vpPoint> points; //!< points with oX, oY, oZ and x, y set
+  unsigned int firstLine = 0;  //!< line of the file where the frame first appears (for messages)
 };
 
 /*!
@@ -49,9 +49,9 @@ struct vpGravityFrame
 */
 struct vpPoseRow
 {
-  unsigned int frame = 0;        //!< frame index
-  std::string status = "ok";     //!< "ok" or why there is no pose
-  vpHomogeneousMatrix cMo;       //!< the pose when status is "ok"
+  unsigned int frame = 0;    //!< frame index
+  std::string status = "ok"; //!< "ok" or why there is no pose
+  vpHomogeneousMatrix cMo;   //!< the pose when status is "ok"
 };
 
 /*!

@@ -171,8 +171,8 @@ bool vpLaserFlightFusion::run(std::string &summary, std::string &error)
     for (; next < m_frames.size() && m_frameTimes[next] * 1e-9 <= s.t; ++next) {
       const double t = m_frameTimes[next] * 1e-9;
       const Frame &f = m_frames[next];
-      const vpLaserConicFilter::vpFrameStatus st =
-          f.ok ? filter.addFrame(t, f.altitude, f.roll, f.pitch, f.covariance) : filter.addMissingFrame(t);
+      const vpLaserConicFilter::vpFrameStatus st = f.ok ? filter.addFrame(t, f.altitude, f.roll, f.pitch, f.covariance)
+                                                        : filter.addMissingFrame(t);
       ++counts[st];
     }
     const vpColVector x = filter.getState();
@@ -188,8 +188,8 @@ bool vpLaserFlightFusion::run(std::string &summary, std::string &error)
   if (!outFile.commit(error))
     return false;
   std::ostringstream s;
-  s << m_imu.size() << " IMU samples written to " << m_output << "; frames: " << counts[0] + counts[1]
-    << " used, " << counts[2] << " rejected, " << counts[3] << " ground steps, " << counts[4] << " without plane, "
+  s << m_imu.size() << " IMU samples written to " << m_output << "; frames: " << counts[0] + counts[1] << " used, "
+    << counts[2] << " rejected, " << counts[3] << " ground steps, " << counts[4] << " without plane, "
     << counts[5] + counts[6] + counts[7] + (m_frames.size() - next) << " outside the IMU stream, " << counts[8]
     << " without a usable covariance";
   summary = s.str();

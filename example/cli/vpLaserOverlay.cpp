@@ -31,15 +31,17 @@ void vpLaserOverlay::draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &p
 }
 
 void vpLaserOverlay::draw(vpImage<vpRGBa> &I, const std::vector<vpImagePoint> &points,
-                          const std::vector<unsigned int> &inliers, const vpMatrix &conic, const vpCameraParameters &cam,
-                          const std::string &caption)
+                          const std::vector<unsigned int> &inliers, const vpMatrix &conic,
+                          const vpCameraParameters &cam, const std::string &caption)
 {
   // The red laser stripe of the image would read as outliers: the image is shown in grey.
   dimToGrey(I);
   vpLaserConicPose::draw(I, points, inliers, conic, cam, 1);
   if (!caption.empty())
     drawCaption(I, caption,
-                {{"detected points (outliers)", vpColor::red}, {"inliers", vpColor::green}, {"fitted conic", vpColor::yellow}});
+                {{"detected points (outliers)", vpColor::red},
+                 {"inliers", vpColor::green},
+                 {"fitted conic", vpColor::yellow}});
 }
 
 void vpLaserOverlay::drawCaption(vpImage<vpRGBa> &I, const std::string &caption,

@@ -45,14 +45,15 @@ struct Options
 
 vpCommandLine commandLine(Options &o)
 {
-  vpCommandLine cli("--from-sequence --camera camera.xml [--camera-name Camera]\n"
-                    "          (--points points.csv | --images DIR | --list images.txt) --laser previous.yaml\n"
-                    "          [--opening-angle-deg A] (--apex-distance M | --previous-baseline | --hold-apex |\n"
-                    "          --known-altitude FRAME:H)"
-                    "          [--estimate-opening-angle] [--max-frames N] [--max-std-deg D] --output laser.yaml [--report FILE]",
-                    "Laser/camera self-calibration from ordinary frames of the ground at different attitudes (no chessboard).\n"
-                    "Images determine the cone but for its scale: give one length (apex distance, the previous\n"
-                    "calibration's baseline, or one frame's altitude). A length off by x % gives altitudes off by x %.");
+  vpCommandLine cli(
+      "--from-sequence --camera camera.xml [--camera-name Camera]\n"
+      "          (--points points.csv | --images DIR | --list images.txt) --laser previous.yaml\n"
+      "          [--opening-angle-deg A] (--apex-distance M | --previous-baseline | --hold-apex |\n"
+      "          --known-altitude FRAME:H)"
+      "          [--estimate-opening-angle] [--max-frames N] [--max-std-deg D] --output laser.yaml [--report FILE]",
+      "Laser/camera self-calibration from ordinary frames of the ground at different attitudes (no chessboard).\n"
+      "Images determine the cone but for its scale: give one length (apex distance, the previous\n"
+      "calibration's baseline, or one frame's altitude). A length off by x % gives altitudes off by x %.");
   cli.addFlag("--from-sequence", o.sequence, "the sequence mode (this usage)");
   cli.addString("--camera", o.camera, "FILE", "intrinsics in vpXmlParserCamera format (with distortion if it has it)");
   cli.addString("--camera-name", o.cameraName, "NAME", "camera name in that file (default Camera)");
@@ -135,9 +136,9 @@ void writeReport(std::ostream &os, const vpLaserConicSelfCalibration &selfcal, c
   const vpColVector s = selfcal.getStdDeviations();
   os << std::setprecision(6);
   const std::vector<bool> used = selfcal.getFrameUsed();
-  os << "frames used " << std::count(used.begin(), used.end(), true) << "/"
-     << selfcal.getNbFrames() << ", points " << selfcal.getNbPoints() << ", inliers " << selfcal.getNbInliers()
-     << ", RMS " << selfcal.getRmsPixels() << " px\n";
+  os << "frames used " << std::count(used.begin(), used.end(), true) << "/" << selfcal.getNbFrames() << ", points "
+     << selfcal.getNbPoints() << ", inliers " << selfcal.getNbInliers() << ", RMS " << selfcal.getRmsPixels()
+     << " px\n";
   double weak = 0.0, strong = 0.0;
   selfcal.getAttitudeSpread(weak, strong);
   os << "attitude spread " << vpMath::deg(weak) << " / " << vpMath::deg(strong) << " deg (weakest / strongest)\n";

@@ -81,7 +81,8 @@ vpCommandLine commandLine(Options &options)
   cli.addFlag("--refine", options.refine, "maximum-likelihood refinement of each pose on its points (RANSAC: inliers)");
   cli.addDouble("--threshold", options.threshold, "PX",
                 "RANSAC inlier threshold in pixels, as in vsp-laser-altimeter (default 3); converted to the\n"
-                "normalized coordinates of the input with --focal", vpCommandLine::POSITIVE);
+                "normalized coordinates of the input with --focal",
+                vpCommandLine::POSITIVE);
   cli.addDouble("--focal", options.focal, "PX",
                 "focal length of the camera in pixels ((px + py) / 2 of its intrinsics); needed by --threshold\n"
                 "(without both, the library's default 4e-3 normalized, 3.2 px at 800 px)",
@@ -103,7 +104,8 @@ vpCommandLine commandLine(Options &options)
   cli.addDouble("--norm-tolerance", options.normTolerance, "A",
                 "|accelerometer| farther than A m/s^2 from 9.81 flags the frame as in motion (default 0.5)",
                 vpCommandLine::POSITIVE);
-  cli.addFlag("--keep-moving", options.keepMoving, "estimate the frames flagged in motion too (default: status imu_in_motion)");
+  cli.addFlag("--keep-moving", options.keepMoving,
+              "estimate the frames flagged in motion too (default: status imu_in_motion)");
   cli.require({"--input", "--output"});
   return cli;
 }
@@ -121,18 +123,19 @@ std::string lookUp(Key key, const std::vector<std::pair<Key, const char *> > &ta
 //! Short status word of a vpPoseGravity status, for the CSV.
 std::string statusWord(vpPoseGravity::vpPoseGravityStatus status)
 {
-  return lookUp<vpPoseGravity::vpPoseGravityStatus>(status,
-                                                    {{vpPoseGravity::STATUS_OK, "ok"},
-                                                     {vpPoseGravity::STATUS_COINCIDENT_IMAGE_POINTS, "coincident_image_points"},
-                                                     {vpPoseGravity::STATUS_VERTICAL_RAY, "vertical_ray"},
-                                                     {vpPoseGravity::STATUS_NO_SOLUTION, "no_solution"},
-                                                     {vpPoseGravity::STATUS_NO_CONSENSUS, "no_consensus"},
-                                                     {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"},
-                                                     {vpPoseGravity::STATUS_INCONSISTENT_GRAVITY, "inconsistent_gravity"},
-                                                     {vpPoseGravity::STATUS_GRAVITY_SIGN_REVERSED, "gravity_sign_reversed"},
-                                                     {vpPoseGravity::STATUS_BEHIND_CAMERA, "behind_camera"},
-                                                     {vpPoseGravity::STATUS_GRAVITY_SWAPPED, "gravity_swapped"}},
-                                                    "not_computed");
+  return lookUp<vpPoseGravity::vpPoseGravityStatus>(
+      status,
+      {{vpPoseGravity::STATUS_OK, "ok"},
+       {vpPoseGravity::STATUS_COINCIDENT_IMAGE_POINTS, "coincident_image_points"},
+       {vpPoseGravity::STATUS_VERTICAL_RAY, "vertical_ray"},
+       {vpPoseGravity::STATUS_NO_SOLUTION, "no_solution"},
+       {vpPoseGravity::STATUS_NO_CONSENSUS, "no_consensus"},
+       {vpPoseGravity::STATUS_REFINEMENT_FAILED, "refinement_failed"},
+       {vpPoseGravity::STATUS_INCONSISTENT_GRAVITY, "inconsistent_gravity"},
+       {vpPoseGravity::STATUS_GRAVITY_SIGN_REVERSED, "gravity_sign_reversed"},
+       {vpPoseGravity::STATUS_BEHIND_CAMERA, "behind_camera"},
+       {vpPoseGravity::STATUS_GRAVITY_SWAPPED, "gravity_swapped"}},
+      "not_computed");
 }
 
 //! Status word of an input error reported by vpPoseGravity for one frame.
@@ -349,8 +352,8 @@ int main(int argc, char **argv)
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
-  std::cout << options.methodName << (options.refine ? " + refinement" : "") << ": " << found << "/"
-            << frames.size() << " frames with a pose, written to " << options.output << std::endl;
+  std::cout << options.methodName << (options.refine ? " + refinement" : "") << ": " << found << "/" << frames.size()
+            << " frames with a pose, written to " << options.output << std::endl;
   printSequenceDiagnosis(poses, mistakes, options, argv[0]);
   return EXIT_SUCCESS;
 }

@@ -78,25 +78,30 @@ vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
 //! Declares the options of the program; \e options receives their values.
 vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
 {
-  vpCommandLine cli("--camera camera.xml [--camera-name Camera] --laser laser.txt\n"
-                    "          (--images DIR | --list images.txt) --output results.csv\n"
-                    "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
-                    "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
-                    "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
-                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
-                    "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
-                    "           [--covariance-inflation K]]",
-                    "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
+  vpCommandLine cli(
+      "--camera camera.xml [--camera-name Camera] --laser laser.txt\n"
+      "          (--images DIR | --list images.txt) --output results.csv\n"
+      "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
+      "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
+      "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
+      "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
+      "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
+      "           [--covariance-inflation K]]",
+      "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
   cli.addString("--camera-name", options.cameraName, "NAME", "camera name in that file (default Camera)");
   cli.addString("--laser", options.laser, "FILE", "laser calibration: 'opening_angle_deg A' then 'cMl' and its 4 rows");
-  cli.addString("--images", options.imagesDir, "DIR", "folder of images (.png .jpg .jpeg .ppm .pgm), processed in name order");
-  cli.addString("--list", options.listFile, "FILE", "text file with one image path per line (relative to the list's folder)");
+  cli.addString("--images", options.imagesDir, "DIR",
+                "folder of images (.png .jpg .jpeg .ppm .pgm), processed in name order");
+  cli.addString("--list", options.listFile, "FILE",
+                "text file with one image path per line (relative to the list's folder)");
   cli.addString("--output", options.output, "FILE",
                 "CSV 'frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status'; never an input");
-  cli.addChoice("--method", options.methodName, {"GP3", "PP3", "PP5", "PLANE_PAIR"}, "METHOD", "estimator (default GP3)");
-  cli.addString("--overlays", options.overlays, "DIR", "folder receiving <image>_overlay.png (points, inliers, fitted conic)");
+  cli.addChoice("--method", options.methodName, {"GP3", "PP3", "PP5", "PLANE_PAIR"}, "METHOD",
+                "estimator (default GP3)");
+  cli.addString("--overlays", options.overlays, "DIR",
+                "folder receiving <image>_overlay.png (points, inliers, fitted conic)");
   cli.addDouble("--threshold", options.threshold, "PX", "RANSAC inlier threshold in pixels (default 2)",
                 vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
@@ -104,7 +109,8 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
                 "trace detector: ridge of R - max(G, B) with a threshold from the image's noise (default), or the "
                 "historical fixed HSV thresholds");
   cli.addDouble("--min-contrast", options.minContrast, "GREY",
-                "ridge: smallest stripe contrast above its background, grey levels (default 10)", vpCommandLine::POSITIVE);
+                "ridge: smallest stripe contrast above its background, grey levels (default 10)",
+                vpCommandLine::POSITIVE);
   cli.addDouble("--noise-factor", options.noiseFactor, "K",
                 "ridge: the threshold is at least K times the noise estimated in the image (default 5)",
                 vpCommandLine::NON_NEGATIVE);
@@ -135,7 +141,8 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
 bool hasImageExtension(const fs::path &p)
 {
   std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm";
 }
 
@@ -435,7 +442,8 @@ int run(int argc, char **argv)
     estimator.setRansacThreshold(options.threshold);
     estimator.setRansacSeed(options.seed);
   } catch (const vpException &e) {
-    std::cerr << argv[0] << ": " << options.camera << " / " << options.laser << ": " << e.getStringMessage() << std::endl;
+    std::cerr << argv[0] << ": " << options.camera << " / " << options.laser << ": " << e.getStringMessage()
+              << std::endl;
     return EXIT_FAILURE;
   }
   try {
@@ -498,9 +506,9 @@ int run(int argc, char **argv)
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
             << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
   if (!truth.empty()) {
-    std::cout << "against " << options.truth << ": " << compared << " frames with a plane and a ground truth, worst errors "
-              << 1000.0 * worstAltitude << " mm altitude, " << vpMath::deg(worstRoll) << " deg roll, "
-              << vpMath::deg(worstPitch) << " deg pitch" << std::endl;
+    std::cout << "against " << options.truth << ": " << compared
+              << " frames with a plane and a ground truth, worst errors " << 1000.0 * worstAltitude << " mm altitude, "
+              << vpMath::deg(worstRoll) << " deg roll, " << vpMath::deg(worstPitch) << " deg pitch" << std::endl;
     if (options.maxAltitudeError > 0.0 && 1000.0 * worstAltitude > options.maxAltitudeError) {
       std::cerr << argv[0] << ": altitude error " << 1000.0 * worstAltitude << " mm > --max-altitude-error "
                 << options.maxAltitudeError << " mm" << std::endl;

@@ -52,8 +52,8 @@
 #include "vpCsvTools.h"
 #include "vpImageFileCheck.h"
 #include "vpLaserRigIo.h"
-#include "vpOutputFile.h"
 #include "vpLaserSequenceCalibration.h"
+#include "vpOutputFile.h"
 #include "vpPngPlot.h"
 #include "vpProgress.h"
 
@@ -72,7 +72,8 @@ vpCommandLine commandLine(Options &o)
   vpCommandLine cli("--camera camera.xml [--camera-name Camera] (--images DIR | --list images.txt)\n"
                     "          --board NXxNY --square S --opening-angle-deg A [--estimate-opening-angle]\n"
                     "          [--guess-apex X,Y,Z] [--guess-axis-deg RX,RY] --output laser.yaml\n"
-                    "          [--report FILE] [--figure FILE.png] [--robust-scale PX | --no-robust] [--max-reprojection PX]\n"
+                    "          [--report FILE] [--figure FILE.png] [--robust-scale PX | --no-robust] "
+                    "[--max-reprojection PX]\n"
                     "          [--corner-clearance PX]",
                     "Laser/camera calibration from images of a chessboard with the laser trace on it.");
   cli.addString("--camera", o.camera, "FILE", "intrinsics in vpXmlParserCamera format (with distortion if it has it)");
@@ -84,14 +85,17 @@ vpCommandLine commandLine(Options &o)
   cli.addDouble("--opening-angle-deg", o.openingDeg, "A",
                 "full opening angle of the laser, degrees (initial value with --estimate-opening-angle)",
                 vpCommandLine::POSITIVE);
-  cli.addFlag("--estimate-opening-angle", o.estimateOpening, "estimate the opening angle too (grids at several distances)");
-  cli.addString("--guess-apex", o.guessApex, "X,Y,Z", "rough apex position in the camera frame, metres (default 0,0,0)");
+  cli.addFlag("--estimate-opening-angle", o.estimateOpening,
+              "estimate the opening angle too (grids at several distances)");
+  cli.addString("--guess-apex", o.guessApex, "X,Y,Z",
+                "rough apex position in the camera frame, metres (default 0,0,0)");
   cli.addString("--guess-axis-deg", o.guessAxis, "RX,RY",
                 "rough cone axis Rx(RX) Ry(RY) (0,0,1) in the camera frame, degrees (default 0,0)");
   cli.addString("--output", o.output, "FILE", "laser calibration written in YAML (never an input)");
   cli.addString("--report", o.report, "FILE", "the report, also written to this file");
-  cli.addString("--figure", o.figure, "FILE", "PNG: the trace of the view with most points, measured and "
-                                              "predicted before and after calibration, on the grid");
+  cli.addString("--figure", o.figure, "FILE",
+                "PNG: the trace of the view with most points, measured and "
+                "predicted before and after calibration, on the grid");
   cli.addDouble("--robust-scale", o.robustScale, "PX", "Cauchy loss scale in pixels (default: from the data)",
                 vpCommandLine::POSITIVE);
   cli.addFlag("--no-robust", o.noRobust, "plain least squares (no outlier rejection)");
@@ -169,7 +173,7 @@ void reportViews(std::ostream &os, const vpLaserConicGridCalibration &grid, cons
 {
   const vpLaserConicCalibration &calib = grid.getCalibration();
   const std::vector<std::vector<std::pair<double, double> > > measured = calib.getMeasuredGridPoints(),
-                                                                predicted = calib.getPredictedGridPoints();
+                                                              predicted = calib.getPredictedGridPoints();
   const std::vector<std::vector<bool> > inlier = calib.getInlierFlags();
   os << "view,image,points,inliers,rms_mm\n";
   for (size_t v = 0; v < measured.size(); ++v) {
@@ -287,7 +291,8 @@ int run(int argc, char **argv)
   report << "\n" << calib.getNbViews() << "/" << images.size() << " images usable\n";
 
   const vpHomogeneousMatrix guess(vpTranslationVector(apex[0], apex[1], apex[2]),
-                                  vpRotationMatrix(vpMath::rad(axis[0]), 0, 0) * vpRotationMatrix(0, vpMath::rad(axis[1]), 0));
+                                  vpRotationMatrix(vpMath::rad(axis[0]), 0, 0) *
+                                      vpRotationMatrix(0, vpMath::rad(axis[1]), 0));
   vpHomogeneousMatrix cMl = guess;
   bool ok = false;
   std::string failure;
@@ -307,7 +312,8 @@ int run(int argc, char **argv)
     data.openingAngle = calib.getOpeningAngle();
     data.cMl = cMl;
     data.hasStdDeviations = true;
-    data.stdDeviations = calib.hasJackknifeStdDeviations() ? calib.getJackknifeStdDeviations() : calib.getStdDeviations();
+    data.stdDeviations = calib.hasJackknifeStdDeviations() ? calib.getJackknifeStdDeviations()
+                                                           : calib.getStdDeviations();
     data.rms = calib.getRms();
     data.nbViews = calib.getNbViews();
     if (!vpLaserRigIo::writeLaserCalibrationYaml(o.output, data, error)) {

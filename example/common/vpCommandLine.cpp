@@ -119,8 +119,8 @@ void vpCommandLine::addUnsigned(const std::string &name, unsigned int &target, c
   });
 }
 
-void vpCommandLine::addInt(const std::string &name, int &target, const std::string &valueName,
-                           const std::string &help, int minimum, int maximum)
+void vpCommandLine::addInt(const std::string &name, int &target, const std::string &valueName, const std::string &help,
+                           int minimum, int maximum)
 {
   addOption(name, valueName, help, [=, &target](const std::string &value, std::string &error) {
     long long v = 0;
@@ -175,8 +175,8 @@ bool vpCommandLine::parse(int argc, const char *const argv[])
     if (!given(name))
       missing.push_back(name);
   if (!missing.empty()) {
-    m_exitStatus = fail("missing required option" + std::string(missing.size() > 1 ? "s " : " ") +
-                        enumerate(missing, "and"));
+    m_exitStatus =
+        fail("missing required option" + std::string(missing.size() > 1 ? "s " : " ") + enumerate(missing, "and"));
     return false;
   }
   return true;

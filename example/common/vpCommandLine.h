@@ -34,8 +34,7 @@ class vpCommandLine
 {
 public:
   //! Values accepted by addDouble().
-  enum vpNumberDomain
-  {
+  enum vpNumberDomain {
     ANY,          //!< any finite number
     NON_NEGATIVE, //!< >= 0
     POSITIVE      //!< > 0
@@ -52,8 +51,7 @@ public:
   //! An option without value that sets \e target to \e value.
   void addFlag(const std::string &name, bool &target, const std::string &help, bool value = true);
   //! An option whose value is copied to \e target.
-  void addString(const std::string &name, std::string &target, const std::string &valueName,
-                 const std::string &help);
+  void addString(const std::string &name, std::string &target, const std::string &valueName, const std::string &help);
   //! An option whose value must be one of \e choices ("unknown <valuename> 'x' (A, B or C)" otherwise).
   void addChoice(const std::string &name, std::string &target, const std::vector<std::string> &choices,
                  const std::string &valueName, const std::string &help);
@@ -61,14 +59,13 @@ public:
   void addDouble(const std::string &name, double &target, const std::string &valueName, const std::string &help,
                  vpNumberDomain domain = ANY);
   //! A whole number in [minimum, maximum].
-  void addUnsigned(const std::string &name, unsigned int &target, const std::string &valueName,
-                   const std::string &help, unsigned int minimum = 0, unsigned int maximum = UINT_MAX);
+  void addUnsigned(const std::string &name, unsigned int &target, const std::string &valueName, const std::string &help,
+                   unsigned int minimum = 0, unsigned int maximum = UINT_MAX);
   //! A whole number in [minimum, maximum] (programs whose counts are int).
-  void addInt(const std::string &name, int &target, const std::string &valueName, const std::string &help,
-              int minimum, int maximum = INT_MAX);
+  void addInt(const std::string &name, int &target, const std::string &valueName, const std::string &help, int minimum,
+              int maximum = INT_MAX);
   //! An option with a value handled by \e apply (conversions the other kinds do not cover).
-  void addOption(const std::string &name, const std::string &valueName, const std::string &help,
-                 const vpApply &apply);
+  void addOption(const std::string &name, const std::string &valueName, const std::string &help, const vpApply &apply);
 
   /*!
     Accepts arguments that are not options (they do not start with '-'), appended to \e target in
@@ -111,7 +108,7 @@ private:
   struct Option
   {
     std::string name, valueName, help;
-    vpApply apply; //!< empty for a flag
+    vpApply apply;             //!< empty for a flag
     std::function<void()> set; //!< what a flag does
   };
   const Option *find(const std::string &name) const;

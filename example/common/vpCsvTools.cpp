@@ -4,9 +4,9 @@
  */
 #include "vpCsvTools.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>

@@ -287,8 +287,7 @@ bool vpLaserRigIo::readLaserCalibration(const std::string &file, vpLaserCalibrat
   in.clear();
   in.seekg(0);
   vpLaserCalibrationData result;
-  if (yaml ? !readLaserYaml(file, in, result, error)
-           : !readLaserText(file, in, result.openingAngle, result.cMl, error))
+  if (yaml ? !readLaserYaml(file, in, result, error) : !readLaserText(file, in, result.openingAngle, result.cMl, error))
     return false;
   calibration = result;
   return true;
@@ -513,7 +512,8 @@ bool vpLaserRigIo::readDataset(const std::string &directory, vpLaserDataset &dat
     return false;
   }
   if (!readCamera(directory + "/camera.xml", "Camera", result.cam, result.width, result.height, error) ||
-      !readLaserCalibration(directory + (vpIoTools::checkFilename(directory + "/laser.yaml") ? "/laser.yaml" : "/laser.txt"),
+      !readLaserCalibration(directory +
+                                (vpIoTools::checkFilename(directory + "/laser.yaml") ? "/laser.yaml" : "/laser.txt"),
                             result.openingAngle, result.cMl, error) ||
       !readGroundTruth(directory + "/groundtruth.csv", result.frames, error)) {
     return false;

@@ -64,13 +64,13 @@ struct vpLaserGroundTruthFrame
 */
 struct vpLaserDataset
 {
-  std::string directory;                        //!< the dataset directory
-  vpCameraParameters cam;                       //!< intrinsics (with distortion when camera.xml has it)
-  unsigned int width = 0;                       //!< image width, pixels
-  unsigned int height = 0;                      //!< image height, pixels
-  double openingAngle = 0.0;                    //!< full opening angle of the laser, radians
-  vpHomogeneousMatrix cMl;                      //!< laser frame (apex, axis +Z) in the camera frame
-  std::vector<vpLaserGroundTruthFrame> frames;  //!< ground truth, one entry per image
+  std::string directory;                       //!< the dataset directory
+  vpCameraParameters cam;                      //!< intrinsics (with distortion when camera.xml has it)
+  unsigned int width = 0;                      //!< image width, pixels
+  unsigned int height = 0;                     //!< image height, pixels
+  double openingAngle = 0.0;                   //!< full opening angle of the laser, radians
+  vpHomogeneousMatrix cMl;                     //!< laser frame (apex, axis +Z) in the camera frame
+  std::vector<vpLaserGroundTruthFrame> frames; //!< ground truth, one entry per image
 
   //! Full path of the image of \e frame.
   std::string imagePath(const vpLaserGroundTruthFrame &frame) const { return directory + "/" + frame.image; }
@@ -82,16 +82,16 @@ struct vpLaserDataset
 */
 struct vpLaserCalibrationData
 {
-  double openingAngle = 0.0;       //!< full opening angle, radians
-  vpHomogeneousMatrix cMl;         //!< laser frame (apex at the origin, cone axis +Z) in the camera frame
-  bool hasStdDeviations = false;   //!< true when the file gives the standard deviations below
+  double openingAngle = 0.0;     //!< full opening angle, radians
+  vpHomogeneousMatrix cMl;       //!< laser frame (apex at the origin, cone axis +Z) in the camera frame
+  bool hasStdDeviations = false; //!< true when the file gives the standard deviations below
   /*!
     Standard deviations in the order of vpLaserConicCalibration::getStdDeviations(): axis angles
     alpha, beta (rad), apex vx, vy, vz (m), opening angle (rad; 0 when it was not estimated).
   */
   vpColVector stdDeviations = vpColVector(6, 0.0);
-  double rms = -1.0;               //!< RMS residual of the calibration on the grids, metres (-1: not given)
-  unsigned int nbViews = 0;        //!< grid views used (0: not given)
+  double rms = -1.0;        //!< RMS residual of the calibration on the grids, metres (-1: not given)
+  unsigned int nbViews = 0; //!< grid views used (0: not given)
 };
 
 /*!
@@ -170,8 +170,8 @@ public:
     \return false with \e error (naming the file) when the file is missing or not a vpXmlParserCamera
     file, the camera is not in it, or its focal lengths are not positive.
   */
-  static bool readCamera(const std::string &file, const std::string &name, vpCameraParameters &cam,
-                         unsigned int &width, unsigned int &height, std::string &error);
+  static bool readCamera(const std::string &file, const std::string &name, vpCameraParameters &cam, unsigned int &width,
+                         unsigned int &height, std::string &error);
   //! Writes the camera (its projection model, with distortion or not) as "Camera" in vpXmlParserCamera format.
   //! \return false with \e error on failure.
   static bool writeCamera(const std::string &file, const vpCameraParameters &cam, unsigned int width,
@@ -183,8 +183,7 @@ public:
     paths listed in the text file \e source, one a line ('#' comments and blank lines skipped), relative
     to the list's folder. \return false with \e error on a missing folder/list/image or an empty result.
   */
-  static bool listImages(const std::string &source, bool isList, std::vector<std::string> &images,
-                         std::string &error);
+  static bool listImages(const std::string &source, bool isList, std::vector<std::string> &images, std::string &error);
 
   /*!
     Reads camera.xml, laser.yaml (laser.txt when there is no laser.yaml) and groundtruth.csv of \e directory.

@@ -86,10 +86,11 @@ std::string formatTick(double v, double step)
 }
 } // namespace
 
-vpPngPlot::vpPngPlot(const std::string &title, const std::string &xLabel, const std::string &yLabel,
-                     unsigned int width, unsigned int height)
+vpPngPlot::vpPngPlot(const std::string &title, const std::string &xLabel, const std::string &yLabel, unsigned int width,
+                     unsigned int height)
   : m_title(title), m_xLabel(xLabel), m_yLabel(yLabel), m_width(std::max(width, 200u)),
-    m_height(std::max(height, 150u)), m_fixedX(false), m_fixedY(false), m_logY(false), m_xmin(0), m_xmax(1), m_ymin(0), m_ymax(1)
+    m_height(std::max(height, 150u)), m_fixedX(false), m_fixedY(false), m_logY(false), m_xmin(0), m_xmax(1), m_ymin(0),
+    m_ymax(1)
 {
 }
 
@@ -226,7 +227,7 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   auto insideColumns = [&](const vpImagePoint &p) { return p.get_j() >= left - 0.5 && p.get_j() <= right + 0.5; };
   std::vector<unsigned int> clipped(m_series.size(), 0);
   std::vector<double> labelEnds[2]; // the value labels of the markers beyond the range, top and bottom edges
-  std::vector<vpImagePoint> drawn; // every sample on the chart, where the legend should not go
+  std::vector<vpImagePoint> drawn;  // every sample on the chart, where the legend should not go
   unsigned int shape = 0;
   for (size_t k = 0; k < m_series.size(); ++k) {
     const Series &s = m_series[k];
@@ -260,7 +261,8 @@ void vpPngPlot::render(vpImage<vpRGBa> &I) const
   }
 
   // Title, axis labels and legend.
-  titleFont.drawText(I, m_title, vpImagePoint(10, (m_width - titleFont.getMeasure(m_title).get_j()) / 2), vpColor::black);
+  titleFont.drawText(I, m_title, vpImagePoint(10, (m_width - titleFont.getMeasure(m_title).get_j()) / 2),
+                     vpColor::black);
   font.drawText(I, m_xLabel, vpImagePoint(m_height - 24, (left + right - font.getMeasure(m_xLabel).get_j()) / 2),
                 vpColor::black);
   font.drawText(I, m_yLabel, vpImagePoint(top - 20, 8), vpColor::black);

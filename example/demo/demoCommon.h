@@ -48,30 +48,30 @@ private:
 //! One error quantity of a method, with its display unit and scale.
 struct vpErrorColumn
 {
-  std::string name;  //!< e.g. "altitude"
-  std::string unit;  //!< e.g. "mm"
-  double scale;      //!< multiplies the stored values for display (e.g. 1000 for m -> mm)
+  std::string name;   //!< e.g. "altitude"
+  std::string unit;   //!< e.g. "mm"
+  double scale;       //!< multiplies the stored values for display (e.g. 1000 for m -> mm)
   vpErrorStats stats; //!< the errors, in SI units (m, rad)
 };
 
 //! Summary of one method over a sequence.
 struct vpMethodSummary
 {
-  std::string method;                 //!< method name as printed
-  unsigned int frames = 0;            //!< frames attempted
-  unsigned int successes = 0;         //!< frames with a result
-  double totalTimeMs = 0.0;           //!< time spent in the estimator
-  std::vector<vpErrorColumn> errors;  //!< error quantities, in the order printed
+  std::string method;                //!< method name as printed
+  unsigned int frames = 0;           //!< frames attempted
+  unsigned int successes = 0;        //!< frames with a result
+  double totalTimeMs = 0.0;          //!< time spent in the estimator
+  std::vector<vpErrorColumn> errors; //!< error quantities, in the order printed
 };
 
 //! An accuracy bound checked by --check: \e quantity of \e method must not exceed \e value (display unit).
 struct vpAccuracyBound
 {
-  std::string method;   //!< method name as in vpMethodSummary
-  std::string quantity; //!< error column name
+  std::string method;    //!< method name as in vpMethodSummary
+  std::string quantity;  //!< error column name
   std::string statistic; //!< "mean", "median" or "max"
-  double value;         //!< bound in the display unit
-  std::string why;      //!< where the bound comes from
+  double value;          //!< bound in the display unit
+  std::string why;       //!< where the bound comes from
 };
 
 /*!

@@ -69,8 +69,8 @@ bool estimate(Method method, const vpGravityFrame &frame, vpHomogeneousMatrix &c
     pose.setRansacThreshold(kRansacThreshold);
     pose.setRansacSeed(frame.frame);
     const vpPoseGravity::vpPoseGravityMethod m = method == Method::LEAST_SQUARES ? vpPoseGravity::LEAST_SQUARES
-                                                 : method == Method::RANSAC     ? vpPoseGravity::RANSAC
-                                                                                : vpPoseGravity::P3P;
+                                                 : method == Method::RANSAC      ? vpPoseGravity::RANSAC
+                                                                                 : vpPoseGravity::P3P;
     if (!pose.computePose(m, cMo))
       return false;
     if (method == Method::P3P_REFINED) {
@@ -96,7 +96,8 @@ bool estimate(Method method, const vpGravityFrame &frame, vpHomogeneousMatrix &c
   (thin, white, drawn over them: where they agree, a white line runs inside each arrow).
 */
 void writeOverlay(const std::string &file, const vpGravityFrame &frame, const vpHomogeneousMatrix &cMo,
-                  const std::vector<unsigned int> &inliers, const vpHomogeneousMatrix &cMoTrue, const std::string &caption)
+                  const std::vector<unsigned int> &inliers, const vpHomogeneousMatrix &cMoTrue,
+                  const std::string &caption)
 {
   const vpColor reprojectionColor(70, 140, 255);
   vpImage<vpRGBa> I(kHeight, kWidth, vpRGBa(40, 40, 40));
@@ -233,7 +234,8 @@ bool runGravityDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &
         csv << "," << vpCsvTools::formatDouble(tu[i]);
       csv << "," << vpCsvTools::formatDouble(tErr) << "," << vpCsvTools::formatDouble(rErr) << "," << elapsed << "\n";
 
-      if (kMethods[m] == Method::RANSAC && std::find(overlayFrames.begin(), overlayFrames.end(), k) != overlayFrames.end()) {
+      if (kMethods[m] == Method::RANSAC &&
+          std::find(overlayFrames.begin(), overlayFrames.end(), k) != overlayFrames.end()) {
         char name[64], caption[128];
         std::snprintf(name, sizeof(name), "/gravity_overlay_frame_%03u.png", frame.frame);
         std::snprintf(caption, sizeof(caption), "RANSAC frame %u: error %.1f mm, %.2f deg, %zu/%zu inliers",

@@ -160,14 +160,16 @@ std::vector<vpAccuracyBound> laserBounds()
   // of roll or pitch (frames at 2.6-2.9 m) for the robust methods; PLANE_PAIR, which keeps every point,
   // is pulled off by the red cable of the distractor frames (errors of metres and tens of degrees): its
   // bounds are on the median (measured 2.4 mm, 0.18 deg). Margins of about 2.5.
-  const std::string why = "worst frame; measured <= 16 mm and 1.7 deg, a distractor taken for the trace is off by dm or degrees";
+  const std::string why =
+      "worst frame; measured <= 16 mm and 1.7 deg, a distractor taken for the trace is off by dm or degrees";
   std::vector<vpAccuracyBound> bounds;
   for (const char *method : {"GP3", "PP3", "PP5"}) {
     bounds.push_back({method, "altitude", "max", 40.0, why});
     bounds.push_back({method, "roll", "max", 4.0, why});
     bounds.push_back({method, "pitch", "max", 4.0, why});
   }
-  const std::string whyMedian = "median; measured 2.4 mm and 0.18 deg, no outlier rejection: the mean is off on distractor frames";
+  const std::string whyMedian =
+      "median; measured 2.4 mm and 0.18 deg, no outlier rejection: the mean is off on distractor frames";
   bounds.push_back({"PLANE_PAIR", "altitude", "median", 6.0, whyMedian});
   bounds.push_back({"PLANE_PAIR", "roll", "median", 0.4, whyMedian});
   bounds.push_back({"PLANE_PAIR", "pitch", "median", 0.4, whyMedian});
@@ -305,8 +307,9 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
       if (overlay && (kMethods[m].method == vpLaserConicPose::GP3 || kMethods[m].method == vpLaserConicPose::PP5)) {
         vpImage<vpRGBa> O = I;
         char caption[200], name[128];
-        std::snprintf(caption, sizeof(caption), "%s frame %u (%s): altitude %.3f m (truth %.3f), %zu inliers, %zu outliers",
-                      kMethods[m].name, gt.frame, condition.c_str(), e.altitude, gt.altitude, e.inliers.size(),
+        std::snprintf(caption, sizeof(caption),
+                      "%s frame %u (%s): altitude %.3f m (truth %.3f), %zu inliers, %zu outliers", kMethods[m].name,
+                      gt.frame, condition.c_str(), e.altitude, gt.altitude, e.inliers.size(),
                       points.size() - e.inliers.size());
         vpLaserOverlay::draw(O, points, e.inliers, e.conic, dataset.cam, caption);
         std::snprintf(name, sizeof(name), "/laser_overlay_frame_%03u_%s%s%s.png", gt.frame,
@@ -330,8 +333,9 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
     for (const auto &c : perCondition) {
       const ConditionStats &st = c.second;
       char row[200];
-      std::snprintf(row, sizeof(row), "\n  %-22s %u frames, %u planes, %5.0f points, %5.1f %% inliers, %5.1f / %5.1f mm",
-                    c.first.c_str(), st.frames, st.successes, st.frames ? static_cast<double>(st.points) / st.frames : 0.0,
+      std::snprintf(row, sizeof(row),
+                    "\n  %-22s %u frames, %u planes, %5.0f points, %5.1f %% inliers, %5.1f / %5.1f mm", c.first.c_str(),
+                    st.frames, st.successes, st.frames ? static_cast<double>(st.points) / st.frames : 0.0,
                     st.points ? 100.0 * st.inliers / st.points : 0.0,
                     st.successes ? 1000.0 * st.altitudeErrorSum / st.successes : 0.0, 1000.0 * st.worstAltitudeError);
       text << row;
@@ -346,11 +350,12 @@ bool runLaserDemo(const vpDemoOptions &options, std::vector<vpMethodSummary> &su
     std::vector<double> LaserCurves::*series;
     bool withTruth;
   };
-  const PlotSpec specs[] = {
-      {"laser_altitude.png", "Laser sequence: altitude", "altitude [m]", &LaserCurves::altitude, true},
-      {"laser_roll.png", "Laser sequence: roll", "roll [deg]", &LaserCurves::roll, true},
-      {"laser_pitch.png", "Laser sequence: pitch", "pitch [deg]", &LaserCurves::pitch, true},
-      {"laser_altitude_error.png", "Laser sequence: altitude error", "error [mm]", &LaserCurves::altitudeError, false}};
+  const PlotSpec specs[] = {{"laser_altitude.png", "Laser sequence: altitude", "altitude [m]", &LaserCurves::altitude,
+                             true},
+                            {"laser_roll.png", "Laser sequence: roll", "roll [deg]", &LaserCurves::roll, true},
+                            {"laser_pitch.png", "Laser sequence: pitch", "pitch [deg]", &LaserCurves::pitch, true},
+                            {"laser_altitude_error.png", "Laser sequence: altitude error", "error [mm]",
+                             &LaserCurves::altitudeError, false}};
   for (const PlotSpec &spec : specs) {
     vpPngPlot plot(spec.title, "frame", spec.ylabel);
     if (spec.withTruth)

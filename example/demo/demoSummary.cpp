@@ -56,8 +56,8 @@ namespace
 std::string meanStdMedian(const vpErrorColumn &column)
 {
   std::ostringstream os;
-  os << std::fixed << std::setprecision(column.scale >= 100.0 ? 1 : 3) << column.stats.mean() * column.scale
-     << " +/- " << column.stats.stddev() * column.scale << ", " << column.stats.median() * column.scale;
+  os << std::fixed << std::setprecision(column.scale >= 100.0 ? 1 : 3) << column.stats.mean() * column.scale << " +/- "
+     << column.stats.stddev() * column.scale << ", " << column.stats.median() * column.scale;
   return os.str();
 }
 
@@ -74,7 +74,8 @@ double statistic(const vpErrorStats &stats, const std::string &name)
 void printSummary(std::ostream &os, const std::string &title, const std::vector<vpMethodSummary> &summaries,
                   const std::string &note)
 {
-  os << "\n" << title << "\n(absolute errors against the ground truth over the frames with a result: mean +/- std, median)\n";
+  os << "\n"
+     << title << "\n(absolute errors against the ground truth over the frames with a result: mean +/- std, median)\n";
   if (summaries.empty())
     return;
   const int methodWidth = 22, successWidth = 9, columnWidth = 26;
@@ -101,8 +102,8 @@ bool checkBounds(std::ostream &os, const std::vector<vpMethodSummary> &summaries
   bool pass = true;
   for (const vpMethodSummary &s : summaries)
     if (s.frames == 0 || s.successes < minSuccessRate * s.frames) {
-      os << "CHECK FAILED: " << s.method << " succeeded on " << s.successes << "/" << s.frames
-         << " frames (at least " << minSuccessRate * 100.0 << " % required)\n";
+      os << "CHECK FAILED: " << s.method << " succeeded on " << s.successes << "/" << s.frames << " frames (at least "
+         << minSuccessRate * 100.0 << " % required)\n";
       pass = false;
     }
   for (const vpAccuracyBound &b : bounds) {

@@ -42,9 +42,9 @@ namespace
 const double kFocalPx = 800.0;
 const double kWidthPx = 640.0;
 const double kHeightPx = 480.0;
-const double kPixelNoisePx = 0.5;         // image noise, standard deviation per coordinate
-const double kGravityNoiseDeg = 0.3;      // IMU tilt noise, standard deviation per axis
-const unsigned int kOutlierPeriod = 6;    // one mismatched point in every 6th frame (frames 5, 11, ...)
+const double kPixelNoisePx = 0.5;      // image noise, standard deviation per coordinate
+const double kGravityNoiseDeg = 0.3;   // IMU tilt noise, standard deviation per axis
+const unsigned int kOutlierPeriod = 6; // one mismatched point in every 6th frame (frames 5, 11, ...)
 
 //! Seeded Gaussian samples from a Mersenne twister (Box-Muller, portable across standard libraries).
 class SeededGaussian
@@ -67,7 +67,7 @@ private:
 //! The object: 8 points spread in 3D (the first three, used by P3P, are never outliers).
 std::vector<vpPoint> objectPoints()
 {
-  const double coords[8][3] = {{-0.15, -0.10, 0.0}, {0.15, -0.10, 0.0}, {0.15, 0.10, 0.0},  {-0.15, 0.10, 0.0},
+  const double coords[8][3] = {{-0.15, -0.10, 0.0}, {0.15, -0.10, 0.0},  {0.15, 0.10, 0.0},   {-0.15, 0.10, 0.0},
                                {0.0, 0.0, 0.08},    {-0.08, 0.05, 0.12}, {0.10, -0.04, 0.05}, {0.05, 0.07, -0.06}};
   std::vector<vpPoint> points;
   for (const auto &c : coords)

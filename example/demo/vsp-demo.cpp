@@ -61,7 +61,7 @@ vpCommandLine commandLine(vpDemoOptions &options)
                 "folder for the CSV results, PNG plots and overlays (default ./demo-output)");
   cli.addString("--data", options.dataDir, "DIR",
                 "folder holding laser_hard/ and gravity_sequence/ (default " + options.dataDir +
-                  ": " VSP_DATA_RELATIVE_TO_PROGRAM " from the folder of this program)");
+                    ": " VSP_DATA_RELATIVE_TO_PROGRAM " from the folder of this program)");
   cli.addUnsigned("--frames", options.maxFrames, "N", "process only the first N frames of each sequence", 1);
   cli.addFlag("--check", options.check, "exit with status 1 when an error exceeds its bound (see the bounds printed)");
   return cli;
@@ -89,8 +89,8 @@ void printBounds(const std::vector<vpAccuracyBound> &bounds, const std::vector<v
       for (const vpErrorColumn &c : s.errors)
         if (s.method == b.method && c.name == b.quantity)
           unit = " " + c.unit;
-    std::cout << "  " << b.method << " " << b.statistic << " " << b.quantity << " error <= " << b.value << unit
-              << "  (" << b.why << ")\n";
+    std::cout << "  " << b.method << " " << b.statistic << " " << b.quantity << " error <= " << b.value << unit << "  ("
+              << b.why << ")\n";
   }
 }
 } // namespace
@@ -117,8 +117,7 @@ int main(int argc, char **argv)
   }
   const std::string outputPath = std::filesystem::absolute(options.outputDir).lexically_normal().string();
   std::cout << "Data: " << std::filesystem::weakly_canonical(std::filesystem::absolute(options.dataDir), ec).string()
-            << "\nOutput: " << outputPath
-            << std::endl;
+            << "\nOutput: " << outputPath << std::endl;
 
   std::vector<vpMethodSummary> laser, gravity;
   std::string laserNote, gravityNote;
@@ -133,8 +132,7 @@ int main(int argc, char **argv)
 
   printSummary(std::cout, "Summary of the laser sequence", laser, laserNote);
   printSummary(std::cout, "Summary of the gravity-aided pose sequence", gravity, gravityNote);
-  std::cout << "\nWrote " << files.size() << " files to " << outputPath
-            << ":\n";
+  std::cout << "\nWrote " << files.size() << " files to " << outputPath << ":\n";
   for (const std::string &f : files)
     std::cout << "  " << std::filesystem::path(f).filename().string() << "\n";
 

@@ -67,7 +67,8 @@ int run(int argc, char **argv)
 {
   Options o;
   vpCommandLine cli("[--output DIR] [--frames N] [--knock-frame K] [--knock-deg D] [--write-sequence DIR] [--check]",
-                    "A flight whose laser mount is knocked halfway: drift detected, laser self-calibrated, errors restored.");
+                    "A flight whose laser mount is knocked halfway: drift detected, laser self-calibrated, errors "
+                    "restored.");
   cli.addString("--output", o.output, "DIR", "folder of the plots and the CSV (default laser-drift-demo)");
   cli.addUnsigned("--frames", o.frames, "N", "frames of the flight (default 240)", 100, 100000);
   cli.addUnsigned("--knock-frame", o.knockFrame, "K", "frame of the knock (default 120)", 30);
@@ -79,10 +80,11 @@ int run(int argc, char **argv)
   if (o.knockFrame + o.calibrationFrames + 20 > o.frames)
     return cli.fail("--knock-frame leaves too few frames after the knock");
 
-  const vpCameraParameters cam = vpLaserConicSimulator::fitInverseDistortion(
-      vpCameraParameters(vspLaserRig::kFocal, vspLaserRig::kFocal, vspLaserRig::kWidth / 2.0, vspLaserRig::kHeight / 2.0,
-                         0.0, 0.1),
-      vspLaserRig::kWidth, vspLaserRig::kHeight);
+  const vpCameraParameters cam =
+      vpLaserConicSimulator::fitInverseDistortion(vpCameraParameters(vspLaserRig::kFocal, vspLaserRig::kFocal,
+                                                                     vspLaserRig::kWidth / 2.0,
+                                                                     vspLaserRig::kHeight / 2.0, 0.0, 0.1),
+                                                  vspLaserRig::kWidth, vspLaserRig::kHeight);
   const double A = vpMath::rad(vspLaserRig::kOpeningAngleDeg);
   const vpHomogeneousMatrix calibrated = vspLaserRig::laserPose();
   const vpHomogeneousMatrix knocked = calibrated * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(o.knockDeg), 0, 0);
@@ -135,13 +137,14 @@ int run(int argc, char **argv)
         recalibrated = static_cast<int>(k);
         records[k].recalibrated = true;
         std::cout << "frame " << k << ": self-calibrated on " << o.calibrationFrames << " frames, axis off the knocked "
-                  << "laser by " << vpMath::deg(std::acos(std::min(1.0, vpColVector::dotProd(cMl.getRotationMatrix().getCol(2),
-                                                                                          knocked.getRotationMatrix().getCol(2)))))
+                  << "laser by "
+                  << vpMath::deg(std::acos(std::min(1.0, vpColVector::dotProd(cMl.getRotationMatrix().getCol(2),
+                                                                              knocked.getRotationMatrix().getCol(2)))))
                   << " deg" << std::endl;
       } else {
-        std::cout << "frame " << k << ": self-calibration failed: "
-                  << vpLaserConicSelfCalibration::getStatusMessage(selfcal.getStatus()) << " ("
-                  << selfcal.getStatusDetails() << ")" << std::endl;
+        std::cout << "frame " << k
+                  << ": self-calibration failed: " << vpLaserConicSelfCalibration::getStatusMessage(selfcal.getStatus())
+                  << " (" << selfcal.getStatusDetails() << ")" << std::endl;
       }
     }
   }
@@ -190,8 +193,8 @@ int run(int argc, char **argv)
     std::cerr << argv[0] << ": " << o.output << "/frames.csv cannot be written" << std::endl;
     return EXIT_FAILURE;
   }
-  vpPngPlot errors("GP3 altitude error; mount knocked by " + std::to_string(o.knockDeg).substr(0, 4) + " deg at frame " +
-                       std::to_string(o.knockFrame),
+  vpPngPlot errors("GP3 altitude error; mount knocked by " + std::to_string(o.knockDeg).substr(0, 4) +
+                       " deg at frame " + std::to_string(o.knockFrame),
                    "frame", "altitude error (mm)");
   errors.addCurve("altitude error", x, e, vpColor::blue);
   errors.addPoints("drift suspected", xa, ya, vpColor::red);
@@ -216,11 +219,12 @@ int run(int argc, char **argv)
     for (size_t f = 0; f < afterKnock.size(); ++f)
       for (const vpImagePoint &p : afterKnock[f])
         points << f << "," << p.get_u() << "," << p.get_v() << "\n";
-    if (!points || !vpLaserRigIo::writeCamera(o.sequence + "/camera.xml", cam, vspLaserRig::kWidth, vspLaserRig::kHeight, error) ||
+    if (!points ||
+        !vpLaserRigIo::writeCamera(o.sequence + "/camera.xml", cam, vspLaserRig::kWidth, vspLaserRig::kHeight, error) ||
         !vpLaserRigIo::writeLaserCalibrationYaml(o.sequence + "/laser_previous.yaml", previous, error) ||
-        !vpLaserRigIo::writeLaserCalibrationYaml(o.sequence + "/laser_knocked_truth.yaml",
-                                                 truth, error)) {
-      std::cerr << argv[0] << ": " << (error.empty() ? o.sequence + "/points.csv cannot be written" : error) << std::endl;
+        !vpLaserRigIo::writeLaserCalibrationYaml(o.sequence + "/laser_knocked_truth.yaml", truth, error)) {
+      std::cerr << argv[0] << ": " << (error.empty() ? o.sequence + "/points.csv cannot be written" : error)
+                << std::endl;
       return EXIT_FAILURE;
     }
   }

@@ -276,8 +276,8 @@ int main(int argc, char **argv)
   }
 
   const unsigned int minDetected = *std::min_element(detected.begin(), detected.end());
-  std::cout << dataset.frames.size() << " frames of " << opt.data << ", " << minDetected
-            << " to " << *std::max_element(detected.begin(), detected.end()) << " trace points detected per frame, "
+  std::cout << dataset.frames.size() << " frames of " << opt.data << ", " << minDetected << " to "
+            << *std::max_element(detected.begin(), detected.end()) << " trace points detected per frame, "
             << "laser " << (opt.laserFile.empty() ? opt.data + "/laser.txt" : opt.laserFile) << ", RANSAC threshold "
             << opt.threshold << " px, " << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit")
             << "\nPer-frame results: " << opt.output << "/sequence.csv, curves: " << opt.output
@@ -292,7 +292,8 @@ int main(int argc, char **argv)
     outlierFraction /= residuals.size();
     std::sort(residuals.begin(), residuals.end());
     std::cout << "Detection error against the exact trace (laser_true.txt): RMS " << rmsResidual << " px, median "
-              << residuals[residuals.size() / 2] << " px, " << 100.0 * outlierFraction << " % of points beyond 2 px\n\n";
+              << residuals[residuals.size() / 2] << " px, " << 100.0 * outlierFraction
+              << " % of points beyond 2 px\n\n";
   }
   std::cout << "| | PP-5 | PP-3 | GP-3 |\n|---|---|---|---|\n";
   std::cout << "| Altitude error (mm) | " << cell(results[0].altitudeMm) << " | " << cell(results[1].altitudeMm)
@@ -331,8 +332,8 @@ int main(int argc, char **argv)
     failed += condition ? 0 : 1;
   };
   if (hasTrueLaser) {
-    expect(rmsResidual < maxDetectionRmsPx, "detection RMS error " + fmt(rmsResidual) + " px < " +
-                                                fmt(maxDetectionRmsPx));
+    expect(rmsResidual < maxDetectionRmsPx,
+           "detection RMS error " + fmt(rmsResidual) + " px < " + fmt(maxDetectionRmsPx));
   }
   expect(minDetected >= 100, "at least 100 trace points detected in every frame (" + std::to_string(minDetected) + ")");
   for (size_t i = 0; i < methods().size(); ++i) {

@@ -33,8 +33,8 @@
 
 #include "laserRigSetup.h"
 #include "vpCommandLine.h"
-#include "vpProgress.h"
 #include "vpPngPlot.h"
+#include "vpProgress.h"
 
 namespace
 {
@@ -51,9 +51,9 @@ struct Options
   bool quick = false;
   bool check = false;
   bool localOptimisation = true;
-  double threshold = 2.0; //!< minimum RANSAC threshold, pixels
-  double calibrationNoise = 0.5; //!< image noise (px) of the calibration-error studies (Fig. 9, 10)
-  bool scaleAdaptive = true;     //!< vpLaserConicPose::setScaleAdaptive()
+  double threshold = 2.0;           //!< minimum RANSAC threshold, pixels
+  double calibrationNoise = 0.5;    //!< image noise (px) of the calibration-error studies (Fig. 9, 10)
+  bool scaleAdaptive = true;        //!< vpLaserConicPose::setScaleAdaptive()
   std::string finalFit = "default"; //!< vpLaserConicPose::setFinalFit(): default, free, constrained, select
 };
 
@@ -137,7 +137,7 @@ TrialError evaluate(const Method &method, const TrialInput &input, const Scenari
   } else if (opt.finalFit == "legacy") {
     // The estimators before the scale-adaptive stage: PP-3 ended with a free conic fit, GP-3 with the plane refit.
     estimator.setFinalFit(method.id == vpLaserConicPose::GP3 ? vpLaserConicPose::FINAL_FIT_CONSTRAINED
-                                                              : vpLaserConicPose::FINAL_FIT_FREE);
+                                                             : vpLaserConicPose::FINAL_FIT_FREE);
     estimator.setArcCoverageThreshold(0.0);
   }
   vpPlane plane;
@@ -152,9 +152,10 @@ TrialError evaluate(const Method &method, const TrialInput &input, const Scenari
   e.altitude = std::fabs(estimator.getAltitude() - truth.altitude);
   e.roll = angleDifference(estimator.getRoll(), truth.roll);
   e.pitch = angleDifference(estimator.getPitch(), truth.pitch);
-  const double dot = plane.getA() * truth.plane.getA() + plane.getB() * truth.plane.getB() +
-                     plane.getC() * truth.plane.getC();
-  const double norm = std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
+  const double dot =
+      plane.getA() * truth.plane.getA() + plane.getB() * truth.plane.getB() + plane.getC() * truth.plane.getC();
+  const double norm =
+      std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
   e.normal = std::acos(std::max(-1.0, std::min(1.0, dot / norm)));
   return e;
 }
@@ -286,8 +287,8 @@ std::vector<CurveStudy> curveStudies(const Options &opt)
                                 return vpTranslationVector(t[0] * scale, t[1] * scale, t[2] * scale);
                               }));
 
-  CurveStudy roughness = makeStudy(opt, "roughness", "Fig. 11", "ground roughness sigma (mm)", {0.0, 5.0, 20.0},
-                                   range(0.0, 20.0, 2.5));
+  CurveStudy roughness =
+      makeStudy(opt, "roughness", "Fig. 11", "ground roughness sigma (mm)", {0.0, 5.0, 20.0}, range(0.0, 20.0, 2.5));
   roughness.perturb = [n, minThreshold](double sigmaMm, vpLaserConicSimulator &sim, std::mt19937 &) {
     return exactInput(sim, n, sigmaMm * 1e-3, minThreshold);
   };
@@ -391,15 +392,15 @@ void writeCurveStudy(const CurveStudy &study, const Options &opt)
 // ---- Outlier break-down (Table 1) -----------------------------------------------------------------
 
 //! Failure criterion of the break-down study (inliers are exact, so a correct estimate is exact).
-const double kMaxAltitudeError = 0.01;           // metres
-const double kMaxNormalError = M_PI / 180.0;     // 1 degree
+const double kMaxAltitudeError = 0.01;       // metres
+const double kMaxNormalError = M_PI / 180.0; // 1 degree
 //! A method breaks down at the first outlier ratio where fewer than half of the trials succeed.
 const double kBreakdownSuccessRate = 0.5;
 
 struct OutlierStudy
 {
   std::map<std::string, std::map<int, double> > successRate; //!< method -> outlier percent -> rate
-  std::map<std::string, int> breakdown;                     //!< method -> first percent below 50 %, -1 if none
+  std::map<std::string, int> breakdown;                      //!< method -> first percent below 50 %, -1 if none
 };
 
 double successRate(const Method &m, int percent, const Options &opt)
@@ -611,11 +612,13 @@ vpCommandLine commandLine(Options &opt)
                 "image noise of the intrinsics / baseline / extent studies (default 0.5, the paper's)",
                 vpCommandLine::NON_NEGATIVE);
   cli.addFlag("--no-scale-adaptive", opt.scaleAdaptive,
-              "final fit on the RANSAC inliers at the fixed threshold (vpLaserConicPose::setScaleAdaptive(false))", false);
+              "final fit on the RANSAC inliers at the fixed threshold (vpLaserConicPose::setScaleAdaptive(false))",
+              false);
   cli.addChoice("--final-fit", opt.finalFit, {"default", "free", "constrained", "select", "legacy"}, "FIT",
                 "final fit of PP3 and GP3 (vpLaserConicPose::setFinalFit(); legacy: PP3 free, GP3 constrained, "
                 "no arc test)");
-  cli.addString("--output", opt.output, "DIR", "directory of the CSV and PNG results (default laser-synthetic-results)");
+  cli.addString("--output", opt.output, "DIR",
+                "directory of the CSV and PNG results (default laser-synthetic-results)");
   cli.addChoice("--only", opt.only, {"noise", "outliers", "intrinsics", "baseline", "extent", "roughness"}, "STUDY",
                 "run one study");
   cli.addFlag("--quick", opt.quick, "30 trials per point, 3 levels per curve, outlier ratios by 10 % (for ctest)");
@@ -652,7 +655,8 @@ int main(int argc, char **argv)
               << opt.trials << " trials per curve level; seed " << opt.seed << ";\nRANSAC: " << opt.ransacTrials
               << " samples at most, adaptive stop p = 0.99, threshold max(" << opt.threshold
               << " px, 3 sigma of the image noise), "
-              << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit on the inliers") << std::endl;
+              << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit on the inliers")
+              << std::endl;
 
     std::vector<CurveStudy> studies = curveStudies(opt);
     for (CurveStudy &study : studies) {

@@ -38,10 +38,7 @@ inline vpCameraParameters camera() { return vpCameraParameters(kFocal, kFocal, k
 /*! Laser pose in the camera frame: apex 15 cm to the right of and 2 cm below the camera centre,
     axis tilted by 8 deg towards the optical axis (so that the trace is centred at about 1 m), like a
     hand-held rig where both sensors look down. */
-inline vpHomogeneousMatrix laserPose()
-{
-  return vpHomogeneousMatrix(0.15, 0.02, 0.0, 0.0, vpMath::rad(-8.0), 0.0);
-}
+inline vpHomogeneousMatrix laserPose() { return vpHomogeneousMatrix(0.15, 0.02, 0.0, 0.0, vpMath::rad(-8.0), 0.0); }
 
 /*!
   Pose cMg of a ground frame (ground plane Z = 0, +Z towards the camera) for a camera at \e altitude
@@ -71,8 +68,7 @@ inline vpHomogeneousMatrix groundPose(double altitude, double roll, double pitch
   Options of the RANSAC estimators shared by the evaluation programs: --threshold (pixels, \e note
   says what the program does with it) and --no-local-optimisation (keeps the best minimal-sample model).
 */
-inline void addEstimatorOptions(vpCommandLine &cli, double &threshold, bool &localOptimisation,
-                                const std::string &note)
+inline void addEstimatorOptions(vpCommandLine &cli, double &threshold, bool &localOptimisation, const std::string &note)
 {
   cli.addDouble("--threshold", threshold, "PX", "RANSAC threshold in pixels (default 2" + note + ")",
                 vpCommandLine::POSITIVE);

@@ -196,8 +196,8 @@ void ransacPureOutliers(Generator &gen, int trials)
         vpHomogeneousMatrix cMo;
         success += pose.computePose(vpPoseGravity::RANSAC, cMo);
       }
-      row("ransac_pure_outliers", "n = " + std::to_string(n) + ", threshold " + std::to_string(thr).substr(0, 6) +
-                                      ": % success claimed",
+      row("ransac_pure_outliers",
+          "n = " + std::to_string(n) + ", threshold " + std::to_string(thr).substr(0, 6) + ": % success claimed",
           100.0 * success / trials, "target <= 1 %", success <= trials / 100);
     }
 }
@@ -245,8 +245,8 @@ void signMixup(Generator &gen, int trials)
         wrong += ok && rotationErrorDeg(cMo, s.cMo) > 10.0;
         reversedStatus += pose.getStatus() == vpPoseGravity::STATUS_GRAVITY_SIGN_REVERSED;
       }
-      const std::string name = std::string(method == vpPoseGravity::P3P ? "P3P" : "LEAST_SQUARES (8 points)") +
-                               ", " + (px > 0 ? "1 px" : "exact");
+      const std::string name = std::string(method == vpPoseGravity::P3P ? "P3P" : "LEAST_SQUARES (8 points)") + ", " +
+                               (px > 0 ? "1 px" : "exact");
       row("sign_mixup", name + ": % success > 10 deg off", 100.0 * wrong / trials, "target <= 1 %",
           wrong <= trials / 100);
       row("sign_mixup", name + ": % STATUS_GRAVITY_SIGN_REVERSED", 100.0 * reversedStatus / trials, "(diagnosis)");
@@ -417,7 +417,8 @@ int main(int argc, char **argv)
     std::cerr << "gravity-robustness: " << e.what() << std::endl;
     return EXIT_FAILURE;
   }
-  std::cout << (g_failedTargets ? std::to_string(g_failedTargets) + " target(s) MISSED" : std::string("All targets met"))
+  std::cout << (g_failedTargets ? std::to_string(g_failedTargets) + " target(s) MISSED"
+                                : std::string("All targets met"))
             << std::endl;
   return (check && g_failedTargets) ? EXIT_FAILURE : EXIT_SUCCESS;
 }

@@ -142,11 +142,11 @@ vpCommandLine commandLine(Options &opt)
 struct Trial
 {
   CameraModel camera;
-  Eigen::Matrix3d wRc, wRo;                     // orientations in the world frame (z axis = gravity, x = north)
-  Eigen::Matrix3d cRo;                          // true relative pose...
-  Eigen::Vector3d cto;                          // ...object to camera
-  Eigen::Vector3d gCam, gObj;                   // noisy unit gravity measured by each IMU
-  double headingError = 0.0;                    // compass error used by P3P_NM, radians
+  Eigen::Matrix3d wRc, wRo;   // orientations in the world frame (z axis = gravity, x = north)
+  Eigen::Matrix3d cRo;        // true relative pose...
+  Eigen::Vector3d cto;        // ...object to camera
+  Eigen::Vector3d gCam, gObj; // noisy unit gravity measured by each IMU
+  double headingError = 0.0;  // compass error used by P3P_NM, radians
   std::array<Eigen::Vector2d, kNumFeaturePoints> uvTrue, uvMeasured; // pixels, noise-free and noisy
 };
 
@@ -451,10 +451,10 @@ double relativeReprojectionError(const Trial &trial, const Estimate &e, bool ref
 struct MethodStats
 {
   std::string name;
-  std::array<int, 4> below{};  // trials under each threshold
+  std::array<int, 4> below{}; // trials under each threshold
   int trials = 0;
-  int failures = 0;            // no pose, or a pose with a point behind the camera (eps = inf)
-  double sumFinite = 0.0;      // sum of the finite errors
+  int failures = 0;       // no pose, or a pose with a point behind the camera (eps = inf)
+  double sumFinite = 0.0; // sum of the finite errors
 
   void add(double eps)
   {
@@ -520,8 +520,8 @@ bool checkResults(const std::array<MethodStats, kNumMethods> &stats)
     ok = false;
   }
   if (!(imu.percentBelow(0) >= p4p.percentBelow(0))) {
-    std::cout << "CHECK FAILED: P3P_IMU has " << std::setprecision(1) << imu.percentBelow(0)
-              << " % under 0.02, P4P " << p4p.percentBelow(0) << " %\n";
+    std::cout << "CHECK FAILED: P3P_IMU has " << std::setprecision(1) << imu.percentBelow(0) << " % under 0.02, P4P "
+              << p4p.percentBelow(0) << " %\n";
     ok = false;
   }
   if (ok)

@@ -97,9 +97,9 @@ bool laserQuickStart()
   const vpHomogeneousMatrix cMl(0.15, 0.02, 0.0, 0.0, vpMath::rad(-8), 0.0);
   const double altitude = 1.0, roll = vpMath::rad(10), pitch = vpMath::rad(-5);
   // Ground frame: its +Z (the plane normal) points towards the camera, 1 m away.
-  const vpHomogeneousMatrix cMg =
-      vpHomogeneousMatrix(0, 0, 0, roll, 0, 0) * vpHomogeneousMatrix(0, 0, 0, 0, pitch, 0) *
-      vpHomogeneousMatrix(0, 0, altitude, 0, 0, 0) * vpHomogeneousMatrix(0, 0, 0, M_PI, 0, 0);
+  const vpHomogeneousMatrix cMg = vpHomogeneousMatrix(0, 0, 0, roll, 0, 0) * vpHomogeneousMatrix(0, 0, 0, 0, pitch, 0) *
+                                  vpHomogeneousMatrix(0, 0, altitude, 0, 0, 0) *
+                                  vpHomogeneousMatrix(0, 0, 0, M_PI, 0, 0);
   vpLaserConicSimulator sim;
   sim.setCamera(cam, 1600, 1200);
   sim.setLaser(vpMath::rad(34), cMl);

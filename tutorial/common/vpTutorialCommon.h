@@ -22,9 +22,9 @@
 #include <visp3/core/vpFont.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpImageConvert.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpIoTools.h>
-#include <visp3/core/vpImageConvert.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/core/vpThetaUVector.h>

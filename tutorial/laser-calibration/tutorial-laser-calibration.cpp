@@ -175,12 +175,11 @@ bool runCalibrationTutorial(const std::string &outputDir, bool display)
                    outputDir);
   //! [Figures]
 
-  const double apexGuessMm =
-      1000 * (cMlGuess.getTranslationVector() - cMlTrue.getTranslationVector()).frobeniusNorm();
+  const double apexGuessMm = 1000 * (cMlGuess.getTranslationVector() - cMlTrue.getTranslationVector()).frobeniusNorm();
   const double apexMm = 1000 * (cMl.getTranslationVector() - cMlTrue.getTranslationVector()).frobeniusNorm();
   const double axisGuessDeg = axisAngleDeg(cMlGuess, cMlTrue), axisDeg = axisAngleDeg(cMl, cMlTrue);
-  std::cout << "Laser apex error: " << apexGuessMm << " mm -> " << apexMm << " mm; cone axis error: "
-            << axisGuessDeg << " deg -> " << axisDeg << " deg" << std::endl;
+  std::cout << "Laser apex error: " << apexGuessMm << " mm -> " << apexMm << " mm; cone axis error: " << axisGuessDeg
+            << " deg -> " << axisDeg << " deg" << std::endl;
   std::cout << "Figures written to " << outputDir << "/laser-calibration-{before,after}.png" << std::endl;
 
   // Bounds. 0.3 px of noise at 0.45-0.8 m with f = 500 px is 0.3-0.5 mm on the grid per point, which
@@ -194,9 +193,8 @@ bool runCalibrationTutorial(const std::string &outputDir, bool display)
 
 int main(int argc, char **argv)
 {
-  vpTutorialProgram program("",
-                            "Calibrates the laser pose cMl from simulated grid views; "
-                            "writes laser-calibration-{before,after}.png.");
+  vpTutorialProgram program("", "Calibrates the laser pose cMl from simulated grid views; "
+                                "writes laser-calibration-{before,after}.png.");
   return program.run(argc, argv, [&](const std::string &outputDir) {
     return runCalibrationTutorial(outputDir, program.display());
   });

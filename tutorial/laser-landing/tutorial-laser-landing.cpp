@@ -37,9 +37,9 @@ namespace
 //! Truth of one frame of the descent.
 struct FlightState
 {
-  double altitude; //!< metres
-  double roll;     //!< rad
-  double pitch;    //!< rad
+  double altitude;       //!< metres
+  double roll;           //!< rad
+  double pitch;          //!< rad
   double driftX, driftY; //!< horizontal position over the ground, metres
 };
 
@@ -138,7 +138,7 @@ bool runLandingTutorial(int frames, const std::string &outputDir, bool display)
   //! [Rig]
   const unsigned int width = 640, height = 480;
   const vpCameraParameters cam(500, 500, 320, 240);
-  const double openingAngle = vpMath::rad(34);              // full opening angle of the laser
+  const double openingAngle = vpMath::rad(34);                     // full opening angle of the laser
   const vpHomogeneousMatrix cMl(0.08, 0, 0, 0, vpMath::rad(2), 0); // laser 8 cm beside the camera, slightly tilted
 
   vpLaserConicSimulator simulator;
@@ -175,8 +175,8 @@ bool runLandingTutorial(int frames, const std::string &outputDir, bool display)
         vpDisplay::displayPoint(viewer.image(), points[i], vpColor::green, 2);
     viewer.flush();
     if (!found) {
-      std::cerr << "frame " << k << ": no plane (" << points.size() << " points) "
-                << estimator.getFailureReason() << std::endl;
+      std::cerr << "frame " << k << ": no plane (" << points.size() << " points) " << estimator.getFailureReason()
+                << std::endl;
       ++failures;
       continue;
     }
@@ -231,8 +231,7 @@ bool runLandingTutorial(int frames, const std::string &outputDir, bool display)
   // 0.08 %) and 0.05 deg. A wrong model, a marker pixel kept as inlier or a mismatched convention
   // costs at least several tenths of a percent or of a degree; the bounds (mean 0.1 %, worst frame
   // 0.5 %, roll and pitch 0.2 deg, every frame estimated) catch that with a margin over the noise.
-  return vpTutorialCheck(failures == 0 && meanAltRel < 0.001 && maxAltRel < 0.005 && meanRoll < 0.2 &&
-                             meanPitch < 0.2,
+  return vpTutorialCheck(failures == 0 && meanAltRel < 0.001 && maxAltRel < 0.005 && meanRoll < 0.2 && meanPitch < 0.2,
                          "errors above the bounds (mean altitude 0.1 %, max 0.5 %, roll/pitch 0.2 deg) or frames "
                          "without estimate");
 }
@@ -240,8 +239,7 @@ bool runLandingTutorial(int frames, const std::string &outputDir, bool display)
 
 int main(int argc, char **argv)
 {
-  vpTutorialProgram program("[--frames N]",
-                            "Simulated landing measured by a camera and a circular laser (GP-3); "
-                            "writes laser-landing-*.png.");
+  vpTutorialProgram program("[--frames N]", "Simulated landing measured by a camera and a circular laser (GP-3); "
+                                            "writes laser-landing-*.png.");
   return program.run(argc, argv, "--frames", 40, 2, "number of frames of the descent", runLandingTutorial);
 }

@@ -87,7 +87,7 @@ public:
     // vehicle's is, so that the IMU samples it at each instant.
     const vpColVector aNext = m_a + (m_dt / 0.05) * ((limit * vCommand - m_v) / 0.15 - m_a);
     const vpColVector vMid = m_v + (m_dt / 6.0) * (2.0 * m_a + aNext); // mean velocity over the period
-    m_robot.setVelocity(vpRobot::CAMERA_FRAME, vMid); // the twist of this period
+    m_robot.setVelocity(vpRobot::CAMERA_FRAME, vMid);                  // the twist of this period
     m_v += (0.5 * m_dt) * (m_a + aNext);
     m_a = aNext;
     // In the rotating camera frame the acceleration is omega x v + dv/dt; the accelerometer adds the
@@ -360,8 +360,7 @@ bool report(const vpHomogeneousMatrix &wMc, const Summary &sum, bool check)
             << " with the box edge; " << sum.rejected << " rejected by the filter, " << sum.steps << " ground steps"
             << std::endl
             << "per-frame GP-3 mean NEES on the frames without box or cable " << std::setprecision(2) << frameNees
-            << " (3 if its covariance is honest)"
-            << std::endl
+            << " (3 if its covariance is honest)" << std::endl
             << "filter altitude inside 3 sigma: " << 100.0 * sum.inside3Sigma / std::max(1.0, sum.samples) << " %"
             << std::endl
             << std::setprecision(4) << "final: altitude " << h << " m, roll " << vpMath::deg(roll) << " deg, pitch "
@@ -476,8 +475,8 @@ bool runServoLanding(double duration, const std::string &outputDir, bool display
     }
     while (!pending.empty() && pending.front().t + kLatency <= t + 1e-9) { // delivered after the latency
       const PendingFrame &f = pending.front();
-      const vpLaserConicFilter::vpFrameStatus st =
-          f.found ? filter.addFrame(f.t, f.h, f.roll, f.pitch, f.covariance) : filter.addMissingFrame(f.t);
+      const vpLaserConicFilter::vpFrameStatus st = f.found ? filter.addFrame(f.t, f.h, f.roll, f.pitch, f.covariance)
+                                                           : filter.addMissingFrame(f.t);
       sum.rejected += st == vpLaserConicFilter::FRAME_REJECTED;
       pending.pop_front();
     }
@@ -512,8 +511,8 @@ bool runServoLanding(double duration, const std::string &outputDir, bool display
   task.kill();
   viewer.waitClick();
   writePlots(rec, outputDir);
-  std::cout << "Plots written to " << outputDir << "/laser-servo-landing-{altitude,altitude-error,speed,attitude,servo-error}.png"
-            << std::endl;
+  std::cout << "Plots written to " << outputDir
+            << "/laser-servo-landing-{altitude,altitude-error,speed,attitude,servo-error}.png" << std::endl;
   sum.steps = static_cast<int>(filter.getGroundStepCount());
   if (!exporter.good()) {
     std::cerr << "cannot write the data set in " << exportDir << std::endl;

@@ -43,7 +43,7 @@ std::string estimatorName(Estimator e) { return e == Estimator::GravityP3P ? "vp
 //! Noise levels of the simulated sensors.
 struct SensorNoise
 {
-  double pixel = 0.5;   //!< image noise, pixels (standard deviation per coordinate)
+  double pixel = 0.5;     //!< image noise, pixels (standard deviation per coordinate)
   double gravity = 0.002; //!< noise on each component of a unit gravity vector (about 0.16 deg of tilt)
 };
 
@@ -247,12 +247,10 @@ void writePlots(const ServoRun &gravity, const ServoRun &classic, const vpHomoge
                 const std::string &outputDir)
 {
   const vpHomogeneousMatrix oMcd = cdMo.inverse();
-  writeTrajectoryPlot("Camera trajectory, front view", "Y (m)", gravity, gravity.oY, classic, classic.oY,
-                      oMcd[0][3], oMcd[1][3],
-                      vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xy.png"));
-  writeTrajectoryPlot("Camera trajectory, top view", "Z (m)", gravity, gravity.oZ, classic, classic.oZ,
-                      oMcd[0][3], oMcd[2][3],
-                      vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xz.png"));
+  writeTrajectoryPlot("Camera trajectory, front view", "Y (m)", gravity, gravity.oY, classic, classic.oY, oMcd[0][3],
+                      oMcd[1][3], vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xy.png"));
+  writeTrajectoryPlot("Camera trajectory, top view", "Z (m)", gravity, gravity.oZ, classic, classic.oZ, oMcd[0][3],
+                      oMcd[2][3], vpIoTools::createFilePath(outputDir, "servo-gravity-trajectory-xz.png"));
 
   vpPngPlot errors("True pose error", "iteration", "error (mm, deg)", 640, 420);
   errors.setLogY(true);
@@ -297,8 +295,8 @@ bool runServoTutorial(int seed, const std::string &outputDir, bool display)
     const Estimator e = (run == &gravity) ? Estimator::GravityP3P : Estimator::ClassicP4P;
     const double rmsT = rmsOfLast(run->errorTranslationMm, tail);
     const double rmsR = rmsOfLast(run->errorRotationDeg, tail);
-    std::cout << estimatorName(e) << ": converged (1 cm, 1 deg) at iteration " << run->convergedAt << ", last "
-              << tail << " iterations: RMS error " << rmsT << " mm, " << rmsR << " deg, estimation failures "
+    std::cout << estimatorName(e) << ": converged (1 cm, 1 deg) at iteration " << run->convergedAt << ", last " << tail
+              << " iterations: RMS error " << rmsT << " mm, " << rmsR << " deg, estimation failures "
               << run->estimationFailures << std::endl;
     std::ostringstream failure;
     failure << estimatorName(e) << " did not converge to " << boundMm << " mm / " << boundDeg << " deg RMS";

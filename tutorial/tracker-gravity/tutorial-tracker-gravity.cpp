@@ -158,10 +158,10 @@ bool runTrackerTutorial(int frames, const std::string &outputDir, bool display)
       points[d].set_y(y);
     }
     vpPoseGravity pose;
-    pose.setCameraGravity(vpTutorialMeasureGravity(vpColVector(cMoTrue.getRotationMatrix() * kGravityInTarget),
-                                         gravityNoise, rng));
+    pose.setCameraGravity(
+        vpTutorialMeasureGravity(vpColVector(cMoTrue.getRotationMatrix() * kGravityInTarget), gravityNoise, rng));
     pose.setObjectGravity(vpTutorialMeasureGravity(kGravityInTarget, gravityNoise, rng));
-    pose.addPoints(points); // P3P uses the first three; refinePose() all four
+    pose.addPoints(points);                  // P3P uses the first three; refinePose() all four
     pose.setImageStdDev(0.2 / cam.get_px()); // tracked centres: ~0.2 px, in normalized coordinates
     pose.setGravityStdDev(gravityNoise);     // refine all 6 DOF, gravity as soft priors
     vpHomogeneousMatrix cMo;
@@ -212,13 +212,12 @@ bool runTrackerTutorial(int frames, const std::string &outputDir, bool display)
 
   const int estimated = static_cast<int>(frameIndex.size());
   const double meanMm = estimated ? sumMm / estimated : 0, meanDeg = estimated ? sumDeg / estimated : 0;
-  std::cout << std::fixed << std::setprecision(2) << frames << " frames, " << failures << " without pose."
-            << std::endl;
+  std::cout << std::fixed << std::setprecision(2) << frames << " frames, " << failures << " without pose." << std::endl;
   if (estimated)
     std::cout << "P3P alone: mean error " << sumP3pMm / estimated << " mm / " << sumP3pDeg / estimated << " deg"
               << std::endl;
-  std::cout << "P3P + refinePose(): mean error " << meanMm << " mm / " << meanDeg << " deg, max " << maxMm
-            << " mm / " << maxDeg << " deg" << std::endl;
+  std::cout << "P3P + refinePose(): mean error " << meanMm << " mm / " << meanDeg << " deg, max " << maxMm << " mm / "
+            << maxDeg << " deg" << std::endl;
   std::cout << "Images written to " << outputDir << "/tracker-gravity-*.png" << std::endl;
 
   // Bounds. The dots are 1.5 cm disks 0.5-0.7 m away (about 20 px radius); vpDot2's centroid of a

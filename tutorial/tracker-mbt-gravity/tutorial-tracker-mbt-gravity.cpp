@@ -370,15 +370,15 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
   plot.write(vpIoTools::createFilePath(outputDir, "tracker-mbt-gravity-errors.png"));
 
   std::cout << std::fixed << std::setprecision(2) << "Initial P3P pose: " << initError.meanMm << " mm / "
-            << initError.meanDeg << " deg\nTracking before the push (" << beforePush.frames
-            << " frames): mean " << beforePush.meanMm << " mm / " << beforePush.meanDeg << " deg, max "
-            << beforePush.maxMm << " mm / " << beforePush.maxDeg << " deg\nLosses detected at frame(s):";
+            << initError.meanDeg << " deg\nTracking before the push (" << beforePush.frames << " frames): mean "
+            << beforePush.meanMm << " mm / " << beforePush.meanDeg << " deg, max " << beforePush.maxMm << " mm / "
+            << beforePush.maxDeg << " deg\nLosses detected at frame(s):";
   for (int f : lossFrames)
     std::cout << " " << f;
-  std::cout << " (box pushed at frame " << pushFrame << ")\nRe-initialised P3P pose: " << reinitError.meanMm
-            << " mm / " << reinitError.meanDeg << " deg\nTracking after the re-initialisation (" << afterPush.frames
-            << " frames): mean " << afterPush.meanMm << " mm / " << afterPush.meanDeg << " deg, max "
-            << afterPush.maxMm << " mm / " << afterPush.maxDeg << " deg\nTracker without re-initialisation: "
+  std::cout << " (box pushed at frame " << pushFrame << ")\nRe-initialised P3P pose: " << reinitError.meanMm << " mm / "
+            << reinitError.meanDeg << " deg\nTracking after the re-initialisation (" << afterPush.frames
+            << " frames): mean " << afterPush.meanMm << " mm / " << afterPush.meanDeg << " deg, max " << afterPush.maxMm
+            << " mm / " << afterPush.maxDeg << " deg\nTracker without re-initialisation: "
             << "largest error after the push " << lostUnaidedMm << " mm\nImages written to " << outputDir
             << "/tracker-mbt-gravity-*.png" << std::endl;
   viewer.waitClick();

@@ -70,8 +70,8 @@ inline double dot(const double *a, const double *b, int m)
 VSP_LASER_KERNEL Matrix6d triangularFactor(const Eigen::Matrix3d &T, const Eigen::Vector2d *points, int n)
 {
   constexpr int kBlockRows = 64;
-  double R[6][6] = {};          // R[k][j], upper triangle
-  double X[6][kBlockRows];      // the block, column j = X[j]
+  double R[6][6] = {};     // R[k][j], upper triangle
+  double X[6][kBlockRows]; // the block, column j = X[j]
   for (int start = 0; start < n; start += kBlockRows) {
     const int m = std::min(kBlockRows, n - start);
     for (int i = 0; i < m; ++i) {

@@ -74,13 +74,16 @@ vpLaserConicPose::vpLaserConicMistake diagnose(double openingAngle, const vpHomo
 std::string vpLaserConicPose::getMistakeMessage(vpLaserConicMistake mistake)
 {
   switch (mistake) {
-  case MISTAKE_UNKNOWN: return "no standard mistake explains the trace";
+  case MISTAKE_UNKNOWN:
+    return "no standard mistake explains the trace";
   case MISTAKE_HALF_OPENING_ANGLE:
     return "the trace fits twice the opening angle: the half angle was given, setLaser() takes the full one";
-  case MISTAKE_DOUBLED_OPENING_ANGLE: return "the trace fits half the opening angle: give the full angle, not twice it";
+  case MISTAKE_DOUBLED_OPENING_ANGLE:
+    return "the trace fits half the opening angle: give the full angle, not twice it";
   case MISTAKE_INVERSE_LASER_POSE:
     return "the trace fits the inverse laser pose: lMc was given, setLaser() takes cMl (the laser in the camera frame)";
-  case MISTAKE_SWAPPED_UV: return "the trace fits with u and v exchanged: vpImagePoint(i, j) takes (v, u), row first";
+  case MISTAKE_SWAPPED_UV:
+    return "the trace fits with u and v exchanged: vpImagePoint(i, j) takes (v, u), row first";
   case MISTAKE_CAMERA_RESOLUTION:
     return "the trace fits the intrinsics scaled by 2 or 1/2: the camera parameters are those of another resolution";
   }

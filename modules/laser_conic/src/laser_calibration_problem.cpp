@@ -17,8 +17,7 @@ namespace
 {
 // Direction of the cone ray gamma in the camera frame, D' = Rx(alpha) Ry(beta) Rz(gamma) (sin h, 0, cos h)
 // with h the half opening angle (paper eq. 58-59).
-template <typename T>
-void coneRay(const T &alpha, const T &beta, const T &gamma, const T &halfAngle, T D[3])
+template <typename T> void coneRay(const T &alpha, const T &beta, const T &gamma, const T &halfAngle, T D[3])
 {
   using std::cos;
   using std::sin;
@@ -26,7 +25,7 @@ void coneRay(const T &alpha, const T &beta, const T &gamma, const T &halfAngle, 
   const T dx = sinHalf * cos(gamma), dy = sinHalf * sin(gamma), dz = cos(halfAngle);
   const T cb = cos(beta), sb = sin(beta), ca = cos(alpha), sa = sin(alpha);
   const T x = cb * dx + sb * dz, z = -sb * dx + cb * dz; // Ry(beta) leaves y = dy
-  D[0] = x;                                               // Rx(alpha)
+  D[0] = x;                                              // Rx(alpha)
   D[1] = ca * dy - sa * z;
   D[2] = sa * dy + ca * z;
 }
@@ -50,8 +49,7 @@ struct GridPointResidual
   }
 
   template <typename T>
-  bool operator()(const T *const angles, const T *const apex, const T *const gamma, const T *const opening,
-                  T *r) const
+  bool operator()(const T *const angles, const T *const apex, const T *const gamma, const T *const opening, T *r) const
   {
     T D[3];
     coneRay(angles[0], angles[1], gamma[0], T(0.5) * opening[0], D);
@@ -74,8 +72,7 @@ struct GridPointResidual
 typedef ceres::AutoDiffCostFunction<GridPointResidual, 2, 2, 3, 1, 1> GridPointCost;
 
 // Pixels per metre of grid displacement at grid point (X, Y): diag(px, py) d(x, y)/d(X, Y), row-major.
-void gridToPixelJacobian(const vpHomogeneousMatrix &cMg, const vpCameraParameters &cam, double X, double Y,
-                         double W[4])
+void gridToPixelJacobian(const vpHomogeneousMatrix &cMg, const vpCameraParameters &cam, double X, double Y, double W[4])
 {
   double P[3];
   for (unsigned int i = 0; i < 3; ++i)

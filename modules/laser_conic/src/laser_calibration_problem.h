@@ -126,7 +126,8 @@ public:
 private:
   void initialState(const std::vector<vpHomogeneousMatrix> &cMg, const GridPoints &measured,
                     const vpHomogeneousMatrix &guess, double openingAngle);
-  void addBlocks(const std::vector<vpHomogeneousMatrix> &cMg, const GridPoints &measured, const vpCameraParameters &cam);
+  void addBlocks(const std::vector<vpHomogeneousMatrix> &cMg, const GridPoints &measured,
+                 const vpCameraParameters &cam);
   bool solve();
   void residual(const PointBlock &b, double r[2], double *jacobians[4] = nullptr);
   void gridResidual(const PointBlock &b, double d[2]);

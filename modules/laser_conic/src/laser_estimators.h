@@ -176,7 +176,7 @@ public:
     for (int first = begin; first < end; first += kChunk) {
       const int size = std::min(end - first, kChunk);
       count += vpLaserSolvers::detail::scoreConicChunk(c, m_x.data() + first, m_y.data() + first, first, size, thr2,
-                                                         cost, inliers ? inliers + count : local);
+                                                       cost, inliers ? inliers + count : local);
     }
     return count;
   }

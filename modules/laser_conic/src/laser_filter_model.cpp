@@ -56,8 +56,8 @@ Eigen::Vector3d normalOf(double roll, double pitch)
   return Eigen::Vector3d(std::sin(pitch), -std::sin(roll) * cp, std::cos(roll) * cp);
 }
 
-void propagate(State &x, Covariance &P, const Eigen::Vector3d &w, const Eigen::Vector3d &f, double dt,
-               double gravity, const Noise &noise)
+void propagate(State &x, Covariance &P, const Eigen::Vector3d &w, const Eigen::Vector3d &f, double dt, double gravity,
+               const Noise &noise)
 {
   const Eigen::Vector3d g = normalOf(x(ROLL), x(PITCH));
   // The camera turns by R = exp([(w - bg) dt]x): a world-fixed direction becomes R^T g in the new frame.

@@ -32,10 +32,10 @@ typedef Eigen::Matrix<double, kStateSize, kStateSize> Covariance;
 //! Continuous-time noise densities of the IMU (white noise and bias random walks).
 struct Noise
 {
-  double gyro = 1.7e-4;        //!< rad/s/sqrt(Hz)
+  double gyro = 1.7e-4;         //!< rad/s/sqrt(Hz)
   double gyroBiasWalk = 1.9e-5; //!< rad/s²/sqrt(Hz)
-  double acc = 2.0e-3;         //!< m/s²/sqrt(Hz)
-  double accBiasWalk = 3.0e-3; //!< m/s³/sqrt(Hz)
+  double acc = 2.0e-3;          //!< m/s²/sqrt(Hz)
+  double accBiasWalk = 3.0e-3;  //!< m/s³/sqrt(Hz)
 };
 
 //! Downward ground normal of (roll, pitch).
@@ -45,8 +45,8 @@ Eigen::Vector3d normalOf(double roll, double pitch);
   Propagates (x, P) over dt seconds with one IMU reading (camera frame: gyro w in rad/s, specific force f
   in m/s²), with the first-order transition and the discretised process noise of \e noise.
 */
-void propagate(State &x, Covariance &P, const Eigen::Vector3d &w, const Eigen::Vector3d &f, double dt,
-               double gravity, const Noise &noise);
+void propagate(State &x, Covariance &P, const Eigen::Vector3d &w, const Eigen::Vector3d &f, double dt, double gravity,
+               const Noise &noise);
 
 //! Innovation of a measurement z = (h, roll, pitch) of covariance R: y, S and the squared Mahalanobis distance.
 double innovation(const State &x, const Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R,

@@ -26,12 +26,15 @@ constexpr int kLanes = 4;
 
 VSP_LASER_INLINE double sqrtOf(double v) { return std::sqrt(v); }
 #if defined(__GNUC__)
-VSP_LASER_INLINE Lanes sqrtOf(const Lanes &v) { return Lanes{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])}; }
+VSP_LASER_INLINE Lanes sqrtOf(const Lanes &v)
+{
+  return Lanes{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])};
+}
 #endif
 } // namespace
 
-VSP_LASER_KERNEL int scoreConicChunk(const ConicCoefficients &c, const double *x, const double *y, int first,
-                                      int size, double thr2, double &cost, int *inliers)
+VSP_LASER_KERNEL int scoreConicChunk(const ConicCoefficients &c, const double *x, const double *y, int first, int size,
+                                     double thr2, double &cost, int *inliers)
 {
   const double thr2Times4 = 4.0 * thr2;
   int count = 0;
@@ -267,7 +270,7 @@ template <class T> VSP_LASER_INLINE T atan2Polynomial(const T &y, const T &x)
     a = a * z2 + k;
   a = a * z;
   const T zero = T();
-  a = a + select(above, 0.5 * M_PI - 2.0 * a, zero); // above the diagonal: pi / 2 - a
+  a = a + select(above, 0.5 * M_PI - 2.0 * a, zero);   // above the diagonal: pi / 2 - a
   a = a + select(signFactor(x), M_PI - 2.0 * a, zero); // left half-plane: pi - a
   return select(signFactor(y), -a, a);
 }
@@ -296,7 +299,7 @@ VSP_LASER_KERNEL void huberWeights(const double *r, int n, double k, double *w)
     Lanes a;
     std::memcpy(&a, r + i, sizeof a);
     a = absOf(a);
-    const Lanes q = k / a; // k / 0 = inf: weight 1
+    const Lanes q = k / a;                                             // k / 0 = inf: weight 1
     const Lanes weight = a < infLanes ? (q < one ? q : one) : Lanes{}; // NaN compares false: weight 0
     std::memcpy(w + i, &weight, sizeof weight);
   }
@@ -371,8 +374,8 @@ VSP_LASER_KERNEL void ellipseBins(const Eigen::Vector2d *points, const int *indi
     const Lanes inRange = ((t >= 0.0) & (t < bins + 1.0)) ? t : Lanes{};
     const Quad whole = __builtin_convertvector(inRange, Quad);
     const Lanes f = __builtin_convertvector(whole, Lanes);
-    const LaneMask settled = (absOf(v0) < inf) & (absOf(v1) < inf) & ((v0 != 0.0) | (v1 != 0.0)) &
-                             (t - f > margin) & (f + 1.0 - t > margin);
+    const LaneMask settled = (absOf(v0) < inf) & (absOf(v1) < inf) & ((v0 != 0.0) | (v1 != 0.0)) & (t - f > margin) &
+                             (f + 1.0 - t > margin);
     std::memcpy(out + i, &whole, sizeof whole);
     if (!(settled[0] & settled[1] & settled[2] & settled[3]))
       for (int l = 0; l < kLanes; ++l)

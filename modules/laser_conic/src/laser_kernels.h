@@ -85,8 +85,8 @@ void planeTermsKernel(const PlaneTermsCoefficients &k, const Eigen::Vector2d *po
                       double *r, double *j0, double *j1, double *j2, PlaneTermsSums &sums);
 
 //! The weighted sums of planeTermsKernel() from stored terms (zero weight or NaN residual: no contribution).
-void planeTermsSums(const double *r, const double *j0, const double *j1, const double *j2, const double *weights,
-                    int n, PlaneTermsSums &sums);
+void planeTermsSums(const double *r, const double *j0, const double *j1, const double *j2, const double *weights, int n,
+                    PlaneTermsSums &sums);
 /*!
   IRLS weights of the Huber loss, w = min(1, k / |r|) (1 for r = 0), 0 for a non-finite residual:
   vpRobustWeight(vpRobustLoss::HUBER, r, k / 1.345) for k > 0, four residuals at a time.

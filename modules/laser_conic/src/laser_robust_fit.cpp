@@ -160,7 +160,7 @@ bool constrainedFit(const PointList &trace, const LaserCone &cone, double focal,
   if (robust) {
     // The residuals of the final plane come from the refinement's own last pass.
     if (!vpLaserSolvers::detail::refinePlaneHuber(trace.data(), n, cone, plane, kIrlsRounds, kIrlsIterations,
-                                                    residuals))
+                                                  residuals))
       return false;
     for (double &r : residuals)
       r *= focal;
@@ -226,9 +226,9 @@ Eigen::Matrix3d constrainedCovariance(const PointList &trace, const LaserCone &c
     plus(j) += h;
     minus(j) -= h;
     const Eigen::Matrix3d cp = vpLaserSolvers::conicFromPlane(
-                                  vpLaserSolvers::planeFromAltitudeRollPitch(plus(0), plus(1), plus(2)), cone),
+                              vpLaserSolvers::planeFromAltitudeRollPitch(plus(0), plus(1), plus(2)), cone),
                           cm = vpLaserSolvers::conicFromPlane(
-                                  vpLaserSolvers::planeFromAltitudeRollPitch(minus(0), minus(1), minus(2)), cone);
+                              vpLaserSolvers::planeFromAltitudeRollPitch(minus(0), minus(1), minus(2)), cone);
     for (int i = 0; i < n; ++i)
       J(i, j) = focal * (signedSampson(cp, trace[i]) - signedSampson(cm, trace[i])) / (2.0 * h);
   }
@@ -301,8 +301,8 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
   // Occupied bins of 0.5 deg around the ellipse; the coverage is the circle minus its largest empty run.
   constexpr int kBins = 720;
   std::vector<int> bins(indices.size());
-  vpLaserSolvers::detail::ellipseBins(points.data(), indices.data(), static_cast<int>(indices.size()), centre, U,
-                                        kBins, bins.data());
+  vpLaserSolvers::detail::ellipseBins(points.data(), indices.data(), static_cast<int>(indices.size()), centre, U, kBins,
+                                      bins.data());
   char occupied[kBins] = {};
   for (int bin : bins)
     occupied[std::min(kBins - 1, std::max(0, bin))] = 1;
@@ -352,8 +352,8 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   std::vector<double> rc;
   const bool hasConstrained = constrainedPlane.head<3>().norm() > 0.0 &&
                               constrainedFit(trace, cone, s.focal, s.adaptive && s.finalFit != FinalFit::FREE,
-                                             s.finalFit == FinalFit::FREE ? kHealthIterations : 20,
-                                             constrainedPlane, rc) &&
+                                             s.finalFit == FinalFit::FREE ? kHealthIterations : 20, constrainedPlane,
+                                             rc) &&
                               constrainedPlane.allFinite();
   const Eigen::Matrix3d constrainedConic =
       hasConstrained ? normalised(vpLaserSolvers::conicFromPlane(constrainedPlane, cone)) : Eigen::Matrix3d::Zero();
@@ -363,8 +363,12 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
 
   bool useConstrained = false;
   switch (s.finalFit) {
-  case FinalFit::FREE: useConstrained = false; break;
-  case FinalFit::CONSTRAINED: useConstrained = hasConstrained; break;
+  case FinalFit::FREE:
+    useConstrained = false;
+    break;
+  case FinalFit::CONSTRAINED:
+    useConstrained = hasConstrained;
+    break;
   case FinalFit::SELECT: {
     const double rssC = res.rmsConstrained * res.rmsConstrained * n, rssF = res.rmsFree * res.rmsFree * n;
     useConstrained = hasConstrained && (!hasFreePlane || constrainedPValue(rssC, rssF, n) >= kSelectSignificance);

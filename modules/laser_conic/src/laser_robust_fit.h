@@ -50,14 +50,14 @@ enum class Outcome { OK, SHORT_ARC, NOT_AN_ELLIPSE, NO_PLANE };
 struct Result
 {
   Eigen::Vector4d plane = Eigen::Vector4d::Zero();
-  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero(); //!< image conic of the final plane or free fit
-  std::vector<int> inliers;                        //!< the points of the trace
-  double sigma = 0.0;            //!< residual scale (pixels, MAD) of the free fit on the trace
-  double rmsConstrained = 0.0;   //!< RMS residual (pixels) of the constrained fit on the trace
-  double rmsFree = 0.0;          //!< RMS residual (pixels) of the free fit on the trace
-  double coverage = 0.0;         //!< angular coverage of the trace around the ellipse (rad)
-  bool constrainedChosen = false; //!< the final plane is the constrained fit
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();      //!< of (altitude, roll, pitch)
+  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();      //!< image conic of the final plane or free fit
+  std::vector<int> inliers;                             //!< the points of the trace
+  double sigma = 0.0;                                   //!< residual scale (pixels, MAD) of the free fit on the trace
+  double rmsConstrained = 0.0;                          //!< RMS residual (pixels) of the constrained fit on the trace
+  double rmsFree = 0.0;                                 //!< RMS residual (pixels) of the free fit on the trace
+  double coverage = 0.0;                                //!< angular coverage of the trace around the ellipse (rad)
+  bool constrainedChosen = false;                       //!< the final plane is the constrained fit
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero(); //!< of (altitude, roll, pitch)
   Eigen::Matrix4d planeCovariance = Eigen::Matrix4d::Zero(); //!< of (a, b, c, d)
 };
 

@@ -170,7 +170,10 @@ Eigen::Vector3d planeParameters(const Eigen::Vector4d &plane)
   return Eigen::Vector3d(roll, pitch, h);
 }
 
-Eigen::Vector4d planeOf(const Eigen::Vector3d &P) { return vpLaserSolvers::planeFromAltitudeRollPitch(P(2), P(0), P(1)); }
+Eigen::Vector4d planeOf(const Eigen::Vector3d &P)
+{
+  return vpLaserSolvers::planeFromAltitudeRollPitch(P(2), P(0), P(1));
+}
 
 bool frameResiduals(const Frame &frame, const Eigen::Vector3d &plane, const LaserVector &L, const ApexChart &chart,
                     double focal, double *residuals, double *jacobianPlane, double *jacobianLaser)
@@ -223,7 +226,8 @@ LaserMatrix frameLaserInformation(const Frame &frame, const LaserVector &L, cons
   Frame sample;
   sample.plane = frame.plane;
   sample.fixedAltitude = frame.fixedAltitude;
-  const size_t n = frame.points.size(), step = std::max<size_t>(1, (n + maxPoints - 1) / std::max<size_t>(1, maxPoints));
+  const size_t n = frame.points.size(),
+               step = std::max<size_t>(1, (n + maxPoints - 1) / std::max<size_t>(1, maxPoints));
   double total = 0.0, kept = 0.0;
   for (size_t i = 0; i < n; ++i) {
     total += frame.weights[i];
@@ -260,7 +264,8 @@ LaserMatrix frameLaserInformation(const Frame &frame, const LaserVector &L, cons
   return (kept > 0.0 ? total / kept : 1.0) * 0.5 * (info + info.transpose());
 }
 
-SolveResult solveJoint(std::vector<Frame> &frames, LaserVector &L, const ApexChart &chart, const SolveSettings &settings)
+SolveResult solveJoint(std::vector<Frame> &frames, LaserVector &L, const ApexChart &chart,
+                       const SolveSettings &settings)
 {
   ceres::Problem::Options problemOptions;
   problemOptions.manifold_ownership = ceres::TAKE_OWNERSHIP;

@@ -47,10 +47,10 @@ struct ApexChart
 //! One frame of the problem: its normalized points, their weights and its plane.
 struct Frame
 {
-  std::vector<Eigen::Vector2d> points;                 //!< normalized (undistorted) coordinates
-  std::vector<double> weights;                         //!< IRLS weights, 0 for a rejected point
+  std::vector<Eigen::Vector2d> points;                //!< normalized (undistorted) coordinates
+  std::vector<double> weights;                        //!< IRLS weights, 0 for a rejected point
   Eigen::Vector3d plane = Eigen::Vector3d(0, 0, 1.0); //!< (roll, pitch, h)
-  bool fixedAltitude = false;                          //!< h held (a known altitude)
+  bool fixedAltitude = false;                         //!< h held (a known altitude)
 };
 
 //! Laser parameters of a cone (full opening angle) in a chart.
@@ -81,18 +81,18 @@ LaserMatrix frameLaserInformation(const Frame &frame, const LaserVector &L, cons
 //! Settings of one joint solve.
 struct SolveSettings
 {
-  double focal = 1.0;               //!< mean focal length, pixels (residual units)
+  double focal = 1.0;                                             //!< mean focal length, pixels (residual units)
   bool free[kLaserSize] = {true, true, true, true, false, false}; //!< laser parameters estimated
-  int maxIterations = 100;          //!< Levenberg-Marquardt iterations
+  int maxIterations = 100;                                        //!< Levenberg-Marquardt iterations
 };
 
 //! Outcome of one joint solve.
 struct SolveResult
 {
-  bool converged = false;    //!< Ceres reported convergence (not the iteration limit, not a failure)
-  bool finite = false;       //!< every parameter finite
-  int iterations = 0;        //!< iterations run
-  std::string message;       //!< Ceres' message
+  bool converged = false; //!< Ceres reported convergence (not the iteration limit, not a failure)
+  bool finite = false;    //!< every parameter finite
+  int iterations = 0;     //!< iterations run
+  std::string message;    //!< Ceres' message
 };
 
 /*!

@@ -170,8 +170,8 @@ std::vector<size_t> Steps::selectFrames(const std::vector<InputFrame> &inputs, u
   for (size_t k = 0; k < m_all.size(); ++k) {
     if (m_all[k].points.empty())
       continue;
-    const LaserMatrix I = scale.asDiagonal() * frameLaserInformation(m_all[k], m_L, m_chart, m_focal, kSelectionPoints) *
-                          scale.asDiagonal();
+    const LaserMatrix I = scale.asDiagonal() *
+                          frameLaserInformation(m_all[k], m_L, m_chart, m_focal, kSelectionPoints) * scale.asDiagonal();
     info[k].resize(free.size(), free.size());
     for (size_t a = 0; a < free.size(); ++a)
       for (size_t b = 0; b < free.size(); ++b)
@@ -309,8 +309,8 @@ void Steps::analyse(StepsOutcome &out) const
   LaserMatrix C = LaserMatrix::Zero();
   const bool singular = !(lo > 1e-14 * hi);
   if (!singular) {
-    const Eigen::MatrixXd inv = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() *
-                                eig.eigenvectors().transpose();
+    const Eigen::MatrixXd inv =
+        eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
     for (int a = 0; a < p; ++a)
       for (int b = 0; b < p; ++b)
         C(free[a], free[b]) = variance * scale(free[a]) * inv(a, b) * scale(free[b]);

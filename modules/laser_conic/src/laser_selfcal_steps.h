@@ -38,7 +38,7 @@ struct StepsSettings
 {
   double apexDistance = 0.0; //!< 0: the scale comes from known altitudes
   bool estimateAngle = false;
-  bool holdApex = false;      //!< the apex held at the initial laser's
+  bool holdApex = false; //!< the apex held at the initial laser's
   unsigned int maxFrames = 40;
   double maxStd = 0.0; //!< observability limit (rad) on the axis; twice it on the apex direction
 };
@@ -51,8 +51,7 @@ struct StepsOutcome
   vpHomogeneousMatrix cMl;
   double openingAngle = 0.0;
   vpMatrix covariance = vpMatrix(6, 6, 0.0);
-  double axisStd = 0.0, apexDirStd = 0.0, spreadWeak = 0.0, spreadStrong = 0.0, rms = 0.0, sigma = 0.0,
-         condition = 0.0;
+  double axisStd = 0.0, apexDirStd = 0.0, spreadWeak = 0.0, spreadStrong = 0.0, rms = 0.0, sigma = 0.0, condition = 0.0;
   unsigned int nbPoints = 0, nbInliers = 0;
   std::vector<bool> used;
   std::vector<vpPlane> planes;
@@ -81,9 +80,9 @@ private:
   ApexChart m_chart;
   LaserVector m_L;
   SolveSettings m_solve;
-  std::vector<Frame> m_all;        //!< one per input frame (empty points when unusable)
-  std::vector<size_t> m_index;     //!< input index of each frame of m_frames
-  std::vector<Frame> m_frames;     //!< the frames of the joint problem
+  std::vector<Frame> m_all;    //!< one per input frame (empty points when unusable)
+  std::vector<size_t> m_index; //!< input index of each frame of m_frames
+  std::vector<Frame> m_frames; //!< the frames of the joint problem
 };
 } // namespace vpLaserSelfCal
 

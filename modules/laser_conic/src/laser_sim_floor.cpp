@@ -28,7 +28,10 @@ float valueNoise(double X, double Y, double size, uint32_t seed)
 }
 
 // Grain of 2 mm texels in [-1, 1).
-inline float grain(double X, double Y, uint32_t seed) { return 2.f * unit(hash(cell(X, 0.002), cell(Y, 0.002), seed ^ 0xA5A5u)) - 1.f; }
+inline float grain(double X, double Y, uint32_t seed)
+{
+  return 2.f * unit(hash(cell(X, 0.002), cell(Y, 0.002), seed ^ 0xA5A5u)) - 1.f;
+}
 
 void darkTiles(double X, double Y, uint32_t seed, float rgb[3], float &gloss)
 {
@@ -43,8 +46,8 @@ void darkTiles(double X, double Y, uint32_t seed, float rgb[3], float &gloss)
 void brightGrey(double X, double Y, uint32_t seed, float rgb[3], float &gloss)
 {
   // Concrete: large soft stains and a finer mottling over a mid grey, a fine grain on top.
-  const float v = 45.f + 40.f * valueNoise(X, Y, 0.25, seed) + 20.f * valueNoise(X, Y, 0.04, seed + 1) +
-                  6.f * grain(X, Y, seed);
+  const float v =
+      45.f + 40.f * valueNoise(X, Y, 0.25, seed) + 20.f * valueNoise(X, Y, 0.04, seed + 1) + 6.f * grain(X, Y, seed);
   rgb[0] = v + 2.f;
   rgb[1] = v;
   rgb[2] = v - 2.f;
@@ -76,7 +79,8 @@ void mosaic(double X, double Y, uint32_t seed, float rgb[3], float &gloss)
     return;
   }
   // Warm palette: hues from red-brown to ochre (some brick reds close to the laser's hue).
-  const float r1 = unit(hash(static_cast<int>(bestHash), 1, seed)), r2 = unit(hash(static_cast<int>(bestHash), 2, seed)),
+  const float r1 = unit(hash(static_cast<int>(bestHash), 1, seed)),
+              r2 = unit(hash(static_cast<int>(bestHash), 2, seed)),
               r3 = unit(hash(static_cast<int>(bestHash), 3, seed));
   const float hue = r1 < 0.15f ? 350.f + 10.f * r1 / 0.15f : 45.f * (r1 - 0.15f) / 0.85f;
   hsvToRgb(hue, 0.3f + 0.5f * r2, (70.f + 140.f * r3) / 255.f, rgb);

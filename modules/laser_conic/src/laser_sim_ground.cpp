@@ -28,7 +28,8 @@ bool sampleTexture(const vpImage<vpRGBa> &T, double x, double y, float rgb[3])
     return false;
   const int j0 = std::max(0, std::min(static_cast<int>(T.getWidth()) - 1, static_cast<int>(std::floor(fx))));
   const int i0 = std::max(0, std::min(static_cast<int>(T.getHeight()) - 1, static_cast<int>(std::floor(fy))));
-  const int j1 = std::min(static_cast<int>(T.getWidth()) - 1, j0 + 1), i1 = std::min(static_cast<int>(T.getHeight()) - 1, i0 + 1);
+  const int j1 = std::min(static_cast<int>(T.getWidth()) - 1, j0 + 1),
+            i1 = std::min(static_cast<int>(T.getHeight()) - 1, i0 + 1);
   const float tx = static_cast<float>(std::min(1.0, std::max(0.0, fx - j0)));
   const float ty = static_cast<float>(std::min(1.0, std::max(0.0, fy - i0)));
   const vpRGBa &a = T[i0][j0], &b = T[i0][j1], &c = T[i1][j0], &d = T[i1][j1];
@@ -83,8 +84,8 @@ std::vector<vpLaserConicSimulator::vpDistractor> sceneObjects(const vpLaserConic
     d.size = 0.01 + 0.03 * vsp::laser_sim_floor::unit(h1 >> 5);
     float c[3];
     vsp::laser_sim_floor::hsvToRgb(vsp::laser_sim_floor::unit(h2 >> 3) < 0.5f ? 355.f : 5.f,
-                              0.75f + 0.25f * vsp::laser_sim_floor::unit(h2 >> 9),
-                              0.45f + 0.4f * vsp::laser_sim_floor::unit(h2 >> 13), c);
+                                   0.75f + 0.25f * vsp::laser_sim_floor::unit(h2 >> 9),
+                                   0.45f + 0.4f * vsp::laser_sim_floor::unit(h2 >> 13), c);
     d.colour = vpRGBa(static_cast<unsigned char>(c[0]), static_cast<unsigned char>(c[1]),
                       static_cast<unsigned char>(c[2]), 255);
     objects.push_back(d);
@@ -142,8 +143,8 @@ void vpLaserConicSimulator::surfaceAlbedo(const vpRenderSettings &settings, uint
       sampleTexture(m_texture.image, (X - m_textureX0) / m_texelSize, (Y - m_textureY0) / m_texelSize, albedo))
     gloss = 0.2f;
   if (m_boardX != 0 && chessboardGrey(X, Y, m_boardX, m_boardY, m_boardSquare) >= 0.f) {
-    albedo[0] = albedo[1] = albedo[2] =
-        i >= 0 ? chessboardAlbedo(i, j, R, C) : chessboardGrey(X, Y, m_boardX, m_boardY, m_boardSquare);
+    albedo[0] = albedo[1] = albedo[2] = i >= 0 ? chessboardAlbedo(i, j, R, C)
+                                               : chessboardGrey(X, Y, m_boardX, m_boardY, m_boardSquare);
     gloss = 0.15f;
   }
   for (const vpDistractor &o : objects)
@@ -168,7 +169,8 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
 {
   const int W = static_cast<int>(m_width), H = static_cast<int>(m_height);
   const vpHomogeneousMatrix gMc = m_cMg.inverse();
-  const double R[3][3] = {{gMc[0][0], gMc[0][1], gMc[0][2]}, {gMc[1][0], gMc[1][1], gMc[1][2]},
+  const double R[3][3] = {{gMc[0][0], gMc[0][1], gMc[0][2]},
+                          {gMc[1][0], gMc[1][1], gMc[1][2]},
                           {gMc[2][0], gMc[2][1], gMc[2][2]}};
   const double C[3] = {gMc[0][3], gMc[1][3], gMc[2][3]}; // camera centre in the ground frame
   const double maxDistance = 50.0 * std::fabs(C[2]);
@@ -220,9 +222,8 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
         continue; // historical path: the texture as is, no lighting
       }
       surfaceAlbedo(settings, sceneSeed, objects, X, Y, i, j, R, C, albedo, gloss);
-      const float spec = specular > 0.f && gloss > 0.f
-                             ? lampSpecular(C, lamp, X, Y, specular, gloss, settings.shininess)
-                             : 0.f;
+      const float spec =
+          specular > 0.f && gloss > 0.f ? lampSpecular(C, lamp, X, Y, specular, gloss, settings.shininess) : 0.f;
       for (int c = 0; c < 3; ++c)
         out[c] = ambient * albedo[c] + spec;
       if (reflectance != nullptr)

@@ -128,11 +128,21 @@ int realQuarticRoots(const double k[5], double roots[4])
   std::complex<double> candidates[4];
   int ncandidates = 0;
   switch (degree) {
-  case 4: ncandidates = companionRoots<4>(k, candidates); break;
-  case 3: ncandidates = companionRoots<3>(k, candidates); break;
-  case 2: ncandidates = companionRoots<2>(k, candidates); break;
-  case 1: candidates[0] = -k[0] / k[1]; ncandidates = 1; break;
-  default: return 0;
+  case 4:
+    ncandidates = companionRoots<4>(k, candidates);
+    break;
+  case 3:
+    ncandidates = companionRoots<3>(k, candidates);
+    break;
+  case 2:
+    ncandidates = companionRoots<2>(k, candidates);
+    break;
+  case 1:
+    candidates[0] = -k[0] / k[1];
+    ncandidates = 1;
+    break;
+  default:
+    return 0;
   }
   int count = 0;
   for (int i = 0; i < ncandidates; ++i) {
@@ -329,7 +339,7 @@ int pp3Conics(const Eigen::Vector2d points[3], const EpipolarTangents &tangents,
     const double t = (2.0 * u * (s - r) + u * u * (r * r - s * s)) / denominator;
     Eigen::Matrix3d cc;
     cc << 2.0, u, -1.0, u, 2.0 * t, -t, -1.0, -t, 0.0; // eq. 43
-    Eigen::Matrix3d c = H.transpose() * cc * H;     // eq. 54
+    Eigen::Matrix3d c = H.transpose() * cc * H;        // eq. 54
     polishConic(x, tangents.u, tangents.v, c);
     const double norm = c.norm();
     if (!(norm > 0.0) || !std::isfinite(norm))

@@ -47,8 +47,8 @@ void vpFeatureLaserPlane::buildFrom(const vpPlane &cPlane)
   const double a = cPlane.getA(), b = cPlane.getB(), c = cPlane.getC(), d = cPlane.getD();
   const double norm = std::sqrt(a * a + b * b + c * c);
   if (!(norm > 0.0) || !std::isfinite(norm) || !std::isfinite(d) || d == 0.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpFeatureLaserPlane::buildFrom: the plane needs a non-zero normal and the camera off it");
+    throw vpLaserConicException(vpLaserConicException::badValueError, "vpFeatureLaserPlane::buildFrom: the plane needs "
+                                                                      "a non-zero normal and the camera off it");
   // Plane a x + b y + c z + d = 0: the camera centre is on the side of sign(d); the downward normal
   // points from the camera to the plane.
   const double sign = d > 0.0 ? -1.0 : 1.0;
@@ -58,7 +58,9 @@ void vpFeatureLaserPlane::buildFrom(const vpPlane &cPlane)
 vpMatrix vpFeatureLaserPlane::interaction(unsigned int select)
 {
   const double gx = s[1], gy = s[2], gz = m_gz;
-  const double rows[3][6] = {{-gx, -gy, -gz, 0.0, 0.0, 0.0}, {0.0, 0.0, 0.0, 0.0, -gz, gy}, {0.0, 0.0, 0.0, gz, 0.0, -gx}};
+  const double rows[3][6] = {{-gx, -gy, -gz, 0.0, 0.0, 0.0},
+                             {0.0, 0.0, 0.0, 0.0, -gz, gy},
+                             {0.0, 0.0, 0.0, gz, 0.0, -gx}};
   vpMatrix L(0, 6);
   for (unsigned int i = 0; i < 3; ++i) {
     if (!(select & FEATURE_LINE[i]))
@@ -97,8 +99,7 @@ vpFeatureLaserPlane *vpFeatureLaserPlane::duplicate() const { return new vpFeatu
 
 namespace
 {
-template <typename Image>
-void caption(const vpFeatureLaserPlane &f, const Image &I, const vpColor &color)
+template <typename Image> void caption(const vpFeatureLaserPlane &f, const Image &I, const vpColor &color)
 {
   char text[96];
   const double roll = std::atan2(-f.get_gy(), f.get_gz()), pitch = std::asin(std::max(-1.0, std::min(1.0, f.get_gx())));

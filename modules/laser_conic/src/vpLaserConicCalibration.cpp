@@ -21,11 +21,11 @@
 using namespace vsp::laser_calibration;
 
 vpLaserConicCalibration::vpLaserConicCalibration()
-  : m_cam(), m_hasCam(false), m_hasGuess(false), m_estimateAngle(false), m_jackknife(false), m_openingAngle(0.0), m_guess(),
-    m_loss(LOSS_CAUCHY), m_userLossScale(0.0), m_maxIterations(200), m_maxCondition(1e5), m_maxRmsPixels(3.0), m_views(),
-    m_status(STATUS_NOT_COMPUTED), m_statusDetails(), m_rms(0.0), m_rmsPixels(0.0), m_initialRms(0.0), m_openingAngleEstimate(0.0),
-    m_lossScale(0.0), m_condition(0.0), m_nbInliers(0), m_covariance(kNbConeParams, kNbConeParams, 0.0), m_hasJackknifeStd(false),
-    m_jackknifeStd(kNbConeParams, 0.0),
+  : m_cam(), m_hasCam(false), m_hasGuess(false), m_estimateAngle(false), m_jackknife(false), m_openingAngle(0.0),
+    m_guess(), m_loss(LOSS_CAUCHY), m_userLossScale(0.0), m_maxIterations(200), m_maxCondition(1e5),
+    m_maxRmsPixels(3.0), m_views(), m_status(STATUS_NOT_COMPUTED), m_statusDetails(), m_rms(0.0), m_rmsPixels(0.0),
+    m_initialRms(0.0), m_openingAngleEstimate(0.0), m_lossScale(0.0), m_condition(0.0), m_nbInliers(0),
+    m_covariance(kNbConeParams, kNbConeParams, 0.0), m_hasJackknifeStd(false), m_jackknifeStd(kNbConeParams, 0.0),
     m_predicted(), m_initialPredicted(), m_measured(), m_inlier()
 {
 }
@@ -51,8 +51,8 @@ void vpLaserConicCalibration::setOpeningAngle(double openingAngle)
 
 void vpLaserConicCalibration::setRobustLoss(vpLaserConicLoss loss, double scale)
 {
-  vsp::laser_value_check::requireNonNegative(
-      scale, "vpLaserConicCalibration: the robust loss scale must be finite and >= 0 (0: automatic)");
+  vsp::laser_value_check::requireNonNegative(scale, "vpLaserConicCalibration: the robust loss scale must be finite and "
+                                                    ">= 0 (0: automatic)");
   if (loss != LOSS_NONE && loss != LOSS_HUBER && loss != LOSS_CAUCHY)
     throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicCalibration: unknown robust loss");
   m_loss = loss;
@@ -69,7 +69,8 @@ void vpLaserConicCalibration::setMaxIterations(int maxIterations)
 
 void vpLaserConicCalibration::setMaxRmsPixels(double maxRms)
 {
-  vsp::laser_value_check::requirePositive(maxRms, "vpLaserConicCalibration: the largest RMS must be positive and finite");
+  vsp::laser_value_check::requirePositive(maxRms,
+                                          "vpLaserConicCalibration: the largest RMS must be positive and finite");
   m_maxRmsPixels = maxRms;
 }
 
@@ -119,7 +120,6 @@ void vpLaserConicCalibration::clearViews()
   m_inlier.clear();
   m_status = STATUS_NOT_COMPUTED;
 }
-
 
 unsigned int vpLaserConicCalibration::getNbPoints() const
 {

@@ -24,11 +24,12 @@ void check(bool ok, const char *message)
 } // namespace
 
 vpLaserConicDetector::vpLaserConicDetector()
-  : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0),
-    m_maxStripeWidth(12), m_saturationLevel(250), m_step(1), m_instructions(INSTRUCTIONS_BEST), m_maxHueLow(10), m_minHueHigh(170), m_minSaturation(80),
-    m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(), m_maskDirty(false), m_height(0), m_width(0),
-    m_threshold(0.0), m_noise(0.0), m_guided(true), m_guidedMargin(12.0), m_guidedFactor(3.5), m_guidedStep(1),
-    m_guidedCount(0), m_stripeWidth(0), m_regionIsConic(false), m_regionConic(), m_work(), m_runs()
+  : m_method(DETECTION_RIDGE), m_minContrast(10.0), m_noiseFactor(5.0), m_minSegmentLength(50.0), m_maxStripeWidth(12),
+    m_saturationLevel(250), m_step(1), m_instructions(INSTRUCTIONS_BEST), m_maxHueLow(10), m_minHueHigh(170),
+    m_minSaturation(80), m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(),
+    m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0), m_noise(0.0), m_guided(true), m_guidedMargin(12.0),
+    m_guidedFactor(3.5), m_guidedStep(1), m_guidedCount(0), m_stripeWidth(0), m_regionIsConic(false), m_regionConic(),
+    m_work(), m_runs()
 {
 }
 
@@ -56,7 +57,8 @@ vpLaserConicDetector::vpWorkspace::~vpWorkspace() = default;
 
 void vpLaserConicDetector::setMinContrast(double greyLevels)
 {
-  check(std::isfinite(greyLevels) && greyLevels >= 1.0 && greyLevels <= 255.0, "the minimum contrast must be in [1, 255]");
+  check(std::isfinite(greyLevels) && greyLevels >= 1.0 && greyLevels <= 255.0,
+        "the minimum contrast must be in [1, 255]");
   m_minContrast = greyLevels;
 }
 
@@ -185,11 +187,11 @@ void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 void vpLaserConicDetector::rasteriseRegion(int H, int W)
 {
   vsp::laser_detector::RidgeWorkspace &work = m_work.get();
-  if (work.regionValid && work.regionGeneration == m_regionGeneration && work.regionHeight == static_cast<unsigned int>(H) &&
-      work.regionWidth == static_cast<unsigned int>(W))
+  if (work.regionValid && work.regionGeneration == m_regionGeneration &&
+      work.regionHeight == static_cast<unsigned int>(H) && work.regionWidth == static_cast<unsigned int>(W))
     return;
-  vsp::laser_detector::rasteriseBand(m_region, m_regionMargin, static_cast<int>(m_maxStripeWidth), H, W, work.searchRegion,
-                                 work.scoreRegion);
+  vsp::laser_detector::rasteriseBand(m_region, m_regionMargin, static_cast<int>(m_maxStripeWidth), H, W,
+                                     work.searchRegion, work.scoreRegion);
   work.regionValid = true;
   work.regionGeneration = m_regionGeneration;
   work.regionHeight = static_cast<unsigned int>(H);
@@ -224,34 +226,43 @@ Eigen::Matrix3d toEigen(const vpMatrix &C)
 
 std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion)
 {
-  const vsp::laser_detector::RidgeSettings settings = {m_minContrast, m_noiseFactor, static_cast<int>(m_maxStripeWidth),
-                                                    static_cast<int>(m_saturationLevel), m_minSegmentLength,
-                                                    static_cast<int>(m_step), getInstructionSetUsed()};
+  const vsp::laser_detector::RidgeSettings settings = {m_minContrast,
+                                                       m_noiseFactor,
+                                                       static_cast<int>(m_maxStripeWidth),
+                                                       static_cast<int>(m_saturationLevel),
+                                                       m_minSegmentLength,
+                                                       static_cast<int>(m_step),
+                                                       getInstructionSetUsed()};
   vsp::laser_detector::RidgeReport report;
   vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   if (inRegion)
     rasteriseRegion(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()));
   std::vector<vpImagePoint> points =
-      inRegion ? vsp::laser_detector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report)
-               : vsp::laser_detector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
+      inRegion
+          ? vsp::laser_detector::detectRidge(I, settings, &work.scoreRegion, &work.searchRegion, work, m_runs, report)
+          : vsp::laser_detector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
   m_threshold = report.threshold;
   m_noise = report.noise;
   m_stripeWidth = vsp::laser_detector::observedStripeWidth(work, m_stripeWidth);
   Eigen::Matrix3d C;
   std::vector<int> inliers;
-  if (!m_guided || !vsp::laser_detector::fitTraceEllipse(points, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()),
-                                                     kMinGuidedPoints, C, inliers))
+  if (!m_guided || !vsp::laser_detector::fitTraceEllipse(points, static_cast<int>(I.getWidth()),
+                                                         static_cast<int>(I.getHeight()), kMinGuidedPoints, C, inliers))
     return points;
   std::vector<vpImagePoint> anchors;
   anchors.reserve(inliers.size());
   for (int k : inliers)
     anchors.push_back(points[static_cast<size_t>(k)]);
-  const vsp::laser_detector::GuidedSettings guided = {m_guidedMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
-                                                  static_cast<int>(m_maxStripeWidth), static_cast<int>(m_saturationLevel),
-                                                  m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
+  const vsp::laser_detector::GuidedSettings guided = {m_guidedMargin,
+                                                      static_cast<int>(m_guidedStep),
+                                                      m_guidedFactor,
+                                                      static_cast<int>(m_maxStripeWidth),
+                                                      static_cast<int>(m_saturationLevel),
+                                                      m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
   vsp::laser_detector::GuidedReport guidedReport;
   const size_t before = points.size();
-  vsp::laser_detector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work, guidedReport);
+  vsp::laser_detector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work,
+                                  guidedReport);
   m_guidedCount = static_cast<unsigned int>(points.size() - before);
   return points;
 }
@@ -261,12 +272,16 @@ bool vpLaserConicDetector::trackConic(const vpImage<vpRGBa> &I, std::vector<vpIm
   vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   work.crossings.clear();
   work.keep.clear();
-  const vsp::laser_detector::GuidedSettings guided = {m_regionMargin, static_cast<int>(m_guidedStep), m_guidedFactor,
-                                                  static_cast<int>(m_maxStripeWidth), static_cast<int>(m_saturationLevel),
-                                                  m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
+  const vsp::laser_detector::GuidedSettings guided = {m_regionMargin,
+                                                      static_cast<int>(m_guidedStep),
+                                                      m_guidedFactor,
+                                                      static_cast<int>(m_maxStripeWidth),
+                                                      static_cast<int>(m_saturationLevel),
+                                                      m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
   vsp::laser_detector::GuidedReport report;
   points.clear();
-  vsp::laser_detector::guidedPass(I, guided, toEigen(m_regionConic), std::vector<vpImagePoint>(), nullptr, points, work, report);
+  vsp::laser_detector::guidedPass(I, guided, toEigen(m_regionConic), std::vector<vpImagePoint>(), nullptr, points, work,
+                                  report);
   m_guidedCount = static_cast<unsigned int>(points.size());
   m_noise = report.noise;
   m_threshold = report.threshold;
@@ -282,8 +297,12 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   m_width = I.getWidth();
   m_maskDirty = m_method == DETECTION_RIDGE;
   if (m_method == DETECTION_HSV) {
-    const vsp::laser_detector::HsvSettings settings = {m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue,
-                                                    static_cast<int>(m_maxStripeWidth), static_cast<int>(m_step)};
+    const vsp::laser_detector::HsvSettings settings = {m_maxHueLow,
+                                                       m_minHueHigh,
+                                                       m_minSaturation,
+                                                       m_minValue,
+                                                       static_cast<int>(m_maxStripeWidth),
+                                                       static_cast<int>(m_step)};
     return vsp::laser_detector::detectHsv(I, settings, m_mask.image);
   }
   m_guidedCount = 0;

@@ -18,12 +18,12 @@ namespace
 //! Standard normal quantile (Acklam's rational approximation, relative error below 1.2e-9).
 double normalQuantile(double p)
 {
-  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                             1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
+                             1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
   static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
                              6.680131188771972e+01, -1.328068155288572e+01};
   static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                             -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+                             -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
   static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
                              3.754408661907416e+00};
   if (p < 0.02425) {
@@ -48,8 +48,8 @@ double chiSquareQuantile(double k, double alpha)
 } // namespace
 
 vpLaserConicDriftMonitor::vpLaserConicDriftMonitor()
-  : m_window(20), m_rate(0.001), m_threshold(0.0), m_values(), m_next(0), m_count(0), m_skipped(0),
-    m_sum(0.0), m_last(std::numeric_limits<double>::quiet_NaN()), m_status(DRIFT_WARMING_UP)
+  : m_window(20), m_rate(0.001), m_threshold(0.0), m_values(), m_next(0), m_count(0), m_skipped(0), m_sum(0.0),
+    m_last(std::numeric_limits<double>::quiet_NaN()), m_status(DRIFT_WARMING_UP)
 {
   reset();
 }
@@ -122,8 +122,10 @@ vpLaserConicDriftMonitor::vpDriftStatus vpLaserConicDriftMonitor::addFrame(doubl
 std::string vpLaserConicDriftMonitor::getStatusMessage(vpDriftStatus status)
 {
   switch (status) {
-  case DRIFT_WARMING_UP: return "warming up: fewer frames than the window";
-  case DRIFT_OK: return "calibration consistent with the images";
+  case DRIFT_WARMING_UP:
+    return "warming up: fewer frames than the window";
+  case DRIFT_OK:
+    return "calibration consistent with the images";
   case DRIFT_SUSPECTED:
     return "calibration drift suspected: the calibrated laser no longer explains the traces (mount knocked or moved); "
            "recalibrate (vpLaserConicSelfCalibration on recent frames)";

@@ -88,7 +88,6 @@ struct vpLaserConicFilter::Impl
   void repropagate(size_t k, double t, const State &x, const Covariance &P);
 };
 
-
 // --- IMU ---------------------------------------------------------------------------------------
 
 vpLaserConicFilter::vpImuStatus vpLaserConicFilter::Impl::addImu(double t, const Eigen::Vector3d &w,

@@ -18,7 +18,8 @@ void badFile(const std::string &file, size_t line, const std::string &what)
   std::string where = file;
   if (line > 0)
     where += ":" + std::to_string(line);
-  throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicFilter::loadImuCsv: " + where + ": " + what);
+  throw vpLaserConicException(vpLaserConicException::badValueError,
+                              "vpLaserConicFilter::loadImuCsv: " + where + ": " + what);
 }
 
 bool blankOrComment(const std::string &line)

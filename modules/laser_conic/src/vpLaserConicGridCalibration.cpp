@@ -17,10 +17,9 @@
 #include "laser_value_check.h"
 
 vpLaserConicGridCalibration::vpLaserConicGridCalibration()
-  : m_cam(), m_hasCam(false), m_squaresX(0), m_squaresY(0), m_squareSize(0.0), m_margin(0.5), m_maxReprojection(1.0), m_cornerClearance(8.0),
-    m_laserClearancePoints(nullptr),
-    m_detector(), m_calibration(), m_viewStatus(), m_gridPoses(), m_reprojection(), m_corners(), m_laserPoints(),
-    m_viewImage()
+  : m_cam(), m_hasCam(false), m_squaresX(0), m_squaresY(0), m_squareSize(0.0), m_margin(0.5), m_maxReprojection(1.0),
+    m_cornerClearance(8.0), m_laserClearancePoints(nullptr), m_detector(), m_calibration(), m_viewStatus(),
+    m_gridPoses(), m_reprojection(), m_corners(), m_laserPoints(), m_viewImage()
 {
 }
 
@@ -51,15 +50,15 @@ void vpLaserConicGridCalibration::setGridMargin(double squares)
 
 void vpLaserConicGridCalibration::setCornerClearance(double pixels)
 {
-  vsp::laser_value_check::requireNonNegative(
-      pixels, "vpLaserConicGridCalibration: the corner clearance must be finite and >= 0");
+  vsp::laser_value_check::requireNonNegative(pixels, "vpLaserConicGridCalibration: the corner clearance must be finite "
+                                                     "and >= 0");
   m_cornerClearance = pixels;
 }
 
 void vpLaserConicGridCalibration::setMaxReprojectionError(double pixels)
 {
-  vsp::laser_value_check::requirePositive(pixels,
-                                          "vpLaserConicGridCalibration: the largest reprojection error must be positive");
+  vsp::laser_value_check::requirePositive(pixels, "vpLaserConicGridCalibration: the largest reprojection error must be "
+                                                  "positive");
   m_maxReprojection = pixels;
 }
 
@@ -153,7 +152,7 @@ bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogen
 }
 
 std::vector<vpImagePoint> vpLaserConicGridCalibration::pointsOnGrid(const vpHomogeneousMatrix &cMg,
-                                                                   const std::vector<vpImagePoint> &laserPoints) const
+                                                                    const std::vector<vpImagePoint> &laserPoints) const
 {
   const vpHomogeneousMatrix gMc = cMg.inverse();
   const double lo = m_squareSize * (1.0 - m_margin);

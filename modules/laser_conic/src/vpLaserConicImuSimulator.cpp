@@ -9,8 +9,8 @@
 #include <visp3/laser_conic/vpLaserConicException.h>
 
 vpLaserConicImuSimulator::vpLaserConicImuSimulator()
-  : m_rng(0), m_normal(0.0, 1.0), m_gyro(1.7e-4), m_gyroWalk(1.9e-5), m_acc(2.0e-3), m_accWalk(3.0e-3), m_bg{0, 0, 0},
-    m_ba{0, 0, 0}
+  : m_rng(0), m_normal(0.0, 1.0), m_gyro(1.7e-4), m_gyroWalk(1.9e-5), m_acc(2.0e-3),
+    m_accWalk(3.0e-3), m_bg{0, 0, 0}, m_ba{0, 0, 0}
 {
 }
 

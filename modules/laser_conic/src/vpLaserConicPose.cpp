@@ -33,10 +33,14 @@ int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
 const char *methodName(vpLaserConicPose::vpLaserConicMethod method)
 {
   switch (method) {
-  case vpLaserConicPose::PLANE_PAIR: return "PLANE_PAIR";
-  case vpLaserConicPose::PP5: return "PP5";
-  case vpLaserConicPose::PP3: return "PP3";
-  case vpLaserConicPose::GP3: return "GP3";
+  case vpLaserConicPose::PLANE_PAIR:
+    return "PLANE_PAIR";
+  case vpLaserConicPose::PP5:
+    return "PP5";
+  case vpLaserConicPose::PP3:
+    return "PP3";
+  case vpLaserConicPose::GP3:
+    return "GP3";
   }
   return "unknown";
 }
@@ -121,27 +125,32 @@ vpLaserConicPose::vpLaserConicPose()
     m_trials(0), m_conic(3, 3, 0.0), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
     m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_finalFit(FINAL_FIT_DEFAULT), m_computeCovariance(false),
     m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0), m_sigma(0.0), m_coverage(0.0),
-    m_constrainedChosen(false), m_points(), m_calibrationCheck(true),
-    m_mistake(MISTAKE_UNKNOWN)
+    m_constrainedChosen(false), m_points(), m_calibrationCheck(true), m_mistake(MISTAKE_UNKNOWN)
 {
 }
 
 std::string vpLaserConicPose::getStatusMessage(vpLaserConicStatus status)
 {
   switch (status) {
-  case STATUS_NOT_COMPUTED: return "no estimate computed yet";
-  case STATUS_OK: return "plane found";
+  case STATUS_NOT_COMPUTED:
+    return "no estimate computed yet";
+  case STATUS_OK:
+    return "plane found";
   case STATUS_COLLINEAR_POINTS:
     return "all points are collinear: they cannot lie on the image of the laser ellipse";
-  case STATUS_NOT_AN_ELLIPSE: return "the least-squares conic of the points is not an ellipse";
-  case STATUS_NO_CONSENSUS: return "no consensus: no hypothesis is supported by enough points";
+  case STATUS_NOT_AN_ELLIPSE:
+    return "the least-squares conic of the points is not an ellipse";
+  case STATUS_NO_CONSENSUS:
+    return "no consensus: no hypothesis is supported by enough points";
   case STATUS_CAMERA_INSIDE_CONE:
     return "no epipolar tangent to the laser cone: the camera centre lies inside the laser cone";
   case STATUS_NO_PLANE_PAIR:
     return "no ground plane in the plane pair of the image conic: the conic does not match the laser cone "
            "(no real plane pair, or no plane with both optical centres on its side)";
-  case STATUS_PLANE_NOT_FINITE: return "the estimated plane is not finite";
-  case STATUS_PLANE_BEHIND: return "the plane is behind the system: the laser or the camera cannot see its trace there";
+  case STATUS_PLANE_NOT_FINITE:
+    return "the estimated plane is not finite";
+  case STATUS_PLANE_BEHIND:
+    return "the plane is behind the system: the laser or the camera cannot see its trace there";
   case STATUS_SHORT_ARC:
     return "the trace found covers too short an arc of the laser cone: its tilt is weakly constrained";
   case STATUS_CALIBRATION_MISMATCH:
@@ -432,7 +441,7 @@ vsp::laser_robust_fit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicM
 }
 
 vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const std::vector<vpImagePoint> &points,
-                                                                        vpLaserConicMethod method) const
+                                                                         vpLaserConicMethod method) const
 {
   const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
   // The estimate again under each alternative calibration: its misfit when it explains the trace, else -1.
@@ -444,7 +453,7 @@ vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const s
     vsp::laser_robust_fit::Result fit;
     if (!consensus.found || consensus.inliers.size() < needed ||
         vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
-                              finalFitSettings(method, focal), fit) != vsp::laser_robust_fit::Outcome::OK ||
+                                   finalFitSettings(method, focal), fit) != vsp::laser_robust_fit::Outcome::OK ||
         !fit.plane.allFinite() || fractionInFront(normalized, fit.inliers, fit.plane, cone) < 0.5 ||
         !vsp::laser_calibration_check::explained(fit))
       return -1.0;
@@ -475,9 +484,8 @@ bool vpLaserConicPose::failOrMismatch(vpLaserConicStatus status, const std::stri
     m_mistake = suspectedMistake(points, method);
   if (m_mistake == MISTAKE_UNKNOWN)
     return fail(status, details);
-  return fail(STATUS_CALIBRATION_MISMATCH,
-              " (" + getMistakeMessage(m_mistake) + "; with the calibration given: " + getStatusMessage(status) +
-                  details + ")");
+  return fail(STATUS_CALIBRATION_MISMATCH, " (" + getMistakeMessage(m_mistake) + "; with the calibration given: " +
+                                               getStatusMessage(status) + details + ")");
 }
 
 void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result, vpPlane &cPlane)
@@ -512,8 +520,7 @@ void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result
       m_conic[i][j] = pixelConic(i, j);
 }
 
-bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
-                                    vpPlane &cPlane)
+bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpLaserConicMethod method, vpPlane &cPlane)
 {
   checkInput(points, method);
   const PointList normalized = normalizedPoints(points, m_cam);
@@ -538,15 +545,18 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
   vsp::laser_robust_fit::Result result;
   switch (vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
-                                finalFitSettings(method, focal), result)) {
-  case vsp::laser_robust_fit::Outcome::OK: break;
+                                     finalFitSettings(method, focal), result)) {
+  case vsp::laser_robust_fit::Outcome::OK:
+    break;
   case vsp::laser_robust_fit::Outcome::SHORT_ARC: {
     std::ostringstream msg;
     msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
     return failOrMismatch(STATUS_SHORT_ARC, msg.str(), points, method);
   }
-  case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE: return fail(STATUS_NOT_AN_ELLIPSE);
-  case vsp::laser_robust_fit::Outcome::NO_PLANE: return failOrMismatch(STATUS_NO_PLANE_PAIR, "", points, method);
+  case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE:
+    return fail(STATUS_NOT_AN_ELLIPSE);
+  case vsp::laser_robust_fit::Outcome::NO_PLANE:
+    return failOrMismatch(STATUS_NO_PLANE_PAIR, "", points, method);
   }
   if (!result.plane.allFinite())
     return fail(STATUS_PLANE_NOT_FINITE);
@@ -568,8 +578,8 @@ const vpMatrix &computedCovariance(const vpMatrix &covariance, const char *gette
   if (covariance.size() == 0)
     throw vpLaserConicException(vpLaserConicException::notComputedError,
                                 std::string("vpLaserConicPose::") + getter +
-                                  ": no covariance computed; call setCovarianceComputation(true) before a "
-                                  "successful computePlane()");
+                                    ": no covariance computed; call setCovarianceComputation(true) before a "
+                                    "successful computePlane()");
   return covariance;
 }
 } // namespace

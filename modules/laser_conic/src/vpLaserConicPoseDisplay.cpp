@@ -16,12 +16,11 @@
 #include <utility>
 #include <vector>
 
-
 #include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpFont.h>
 #include <visp3/core/vpImageDraw.h>
-#include <visp3/core/vpMath.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMath.h>
 
 #include "laser_lens.h"
 
@@ -71,8 +70,8 @@ vpSegments conicSegments(const vpMatrix &C, const vpCameraParameters &cam, doubl
   // pixel-to-metre model the estimators used; NaN, hence never near the image, where none exists).
   auto toImage = [&cam](double u, double v) {
     double ud = 0.0, vd = 0.0;
-    if (!vsp::laser_lens::pixelOfNormalized(cam, (u - cam.get_u0()) / cam.get_px(), (v - cam.get_v0()) / cam.get_py(), ud,
-                                        vd))
+    if (!vsp::laser_lens::pixelOfNormalized(cam, (u - cam.get_u0()) / cam.get_px(), (v - cam.get_v0()) / cam.get_py(),
+                                            ud, vd))
       ud = vd = std::numeric_limits<double>::quiet_NaN();
     return vpImagePoint(vd, ud);
   };

@@ -41,10 +41,11 @@ void checkPoints(const std::vector<vpImagePoint> &points)
 } // namespace
 
 vpLaserConicSelfCalibration::vpLaserConicSelfCalibration()
-  : m_cam(), m_hasCam(false), m_hasLaser(false), m_estimateAngle(false), m_holdApex(false), m_openingAngle(0.0), m_apexDistance(0.0),
-    m_maxStd(vpMath::rad(0.1)), m_maxRms(3.0), m_maxFrames(40), m_cMl(), m_frames(), m_status(STATUS_NOT_COMPUTED),
-    m_details(), m_covariance(6, 6, 0.0), m_axisStd(0.0), m_apexDirStd(0.0), m_spreadWeak(0.0), m_spreadStrong(0.0),
-    m_rms(0.0), m_sigma(0.0), m_condition(0.0), m_nbPoints(0), m_nbInliers(0), m_used(), m_planes()
+  : m_cam(), m_hasCam(false), m_hasLaser(false), m_estimateAngle(false), m_holdApex(false), m_openingAngle(0.0),
+    m_apexDistance(0.0), m_maxStd(vpMath::rad(0.1)), m_maxRms(3.0), m_maxFrames(40), m_cMl(), m_frames(),
+    m_status(STATUS_NOT_COMPUTED), m_details(), m_covariance(6, 6, 0.0), m_axisStd(0.0), m_apexDirStd(0.0),
+    m_spreadWeak(0.0), m_spreadStrong(0.0), m_rms(0.0), m_sigma(0.0), m_condition(0.0), m_nbPoints(0), m_nbInliers(0),
+    m_used(), m_planes()
 {
 }
 
@@ -132,8 +133,8 @@ unsigned int vpLaserConicSelfCalibration::addFrame(const std::vector<vpImagePoin
 unsigned int vpLaserConicSelfCalibration::addFrame(const std::vector<vpImagePoint> &points, const vpPlane &roughPlane)
 {
   checkPoints(points);
-  const double norm = std::sqrt(vpMath::sqr(roughPlane.getA()) + vpMath::sqr(roughPlane.getB()) +
-                                vpMath::sqr(roughPlane.getC()));
+  const double norm =
+      std::sqrt(vpMath::sqr(roughPlane.getA()) + vpMath::sqr(roughPlane.getB()) + vpMath::sqr(roughPlane.getC()));
   if (!(norm > 0.0) || !std::isfinite(norm) || !(roughPlane.getD() > 0.0) || !std::isfinite(roughPlane.getD()) ||
       !(roughPlane.getC() < 0.0))
     throw vpLaserConicException(vpLaserConicException::badValueError,
@@ -157,15 +158,22 @@ void vpLaserConicSelfCalibration::clearFrames()
 std::string vpLaserConicSelfCalibration::getStatusMessage(vpSelfCalibrationStatus status)
 {
   switch (status) {
-  case STATUS_NOT_COMPUTED: return "not computed";
-  case STATUS_OK: return "ok";
-  case STATUS_NOT_ENOUGH_FRAMES: return "not enough frames with a ground plane (at least 3)";
+  case STATUS_NOT_COMPUTED:
+    return "not computed";
+  case STATUS_OK:
+    return "ok";
+  case STATUS_NOT_ENOUGH_FRAMES:
+    return "not enough frames with a ground plane (at least 3)";
   case STATUS_DEGENERATE_FRAMES:
     return "degenerate frames: their attitudes relative to the ground do not span enough to determine the laser";
-  case STATUS_NO_CONVERGENCE: return "no convergence (iteration limit reached)";
-  case STATUS_SOLVER_FAILURE: return "solver failure or non-finite result";
-  case STATUS_TOO_MANY_OUTLIERS: return "too many outliers: fewer than half the points fit the laser";
-  case STATUS_LARGE_RESIDUALS: return "large residuals: the laser does not fit the traces (camera model, points)";
+  case STATUS_NO_CONVERGENCE:
+    return "no convergence (iteration limit reached)";
+  case STATUS_SOLVER_FAILURE:
+    return "solver failure or non-finite result";
+  case STATUS_TOO_MANY_OUTLIERS:
+    return "too many outliers: fewer than half the points fit the laser";
+  case STATUS_LARGE_RESIDUALS:
+    return "large residuals: the laser does not fit the traces (camera model, points)";
   }
   return "unknown status";
 }

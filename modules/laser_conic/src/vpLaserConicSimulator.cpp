@@ -28,9 +28,9 @@
 #include "laser_sim_sensor.h"
 
 vpLaserConicSimulator::vpLaserConicSimulator()
-  : m_cam(), m_width(0), m_height(0), m_openingAngle(34.0 * M_PI / 180.0), m_cMl(), m_cMg(0, 0, 1, 0, 0, 0),
-    m_seed(0), m_rng(0), m_texture(), m_texelSize(1.0), m_textureX0(0.0), m_textureY0(0.0), m_boardX(0),
-    m_boardY(0), m_boardSquare(0.0), m_rayX(), m_rayY(), m_rayCam(), m_rayValid()
+  : m_cam(), m_width(0), m_height(0), m_openingAngle(34.0 * M_PI / 180.0), m_cMl(), m_cMg(0, 0, 1, 0, 0, 0), m_seed(0),
+    m_rng(0), m_texture(), m_texelSize(1.0), m_textureX0(0.0), m_textureY0(0.0), m_boardX(0), m_boardY(0),
+    m_boardSquare(0.0), m_rayX(), m_rayY(), m_rayCam(), m_rayValid()
 {
 }
 
@@ -319,8 +319,7 @@ void vpLaserConicSimulator::groundFootprint(double &cx, double &cy, double &half
   }
 }
 
-void vpLaserConicSimulator::render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture, double stripeWidth,
-                                   double noise)
+void vpLaserConicSimulator::render(vpImage<vpRGBa> &I, const vpImage<vpRGBa> &texture, double stripeWidth, double noise)
 {
   vpRenderSettings settings;
   settings.stripeWidth = stripeWidth;
@@ -353,9 +352,9 @@ void vpLaserConicSimulator::checkSettings(const vpRenderSettings &s)
                                 "vpLaserConicSimulator: a render setting is negative or not finite (sensor noise, "
                                 "ambient, specular, laser power, white core, bloom, blur, clutter radius, lamp)");
   if (!nonNegative(s.distanceFalloff) || !nonNegative(s.stripeFarFraction) || !(s.stripeFarFraction < 1.0))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the distance fall-off must be finite and >= 0, the stripe's far "
-                                "fraction in [0, 1)");
+    throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicSimulator: the distance fall-off "
+                                                                      "must be finite and >= 0, the stripe's far "
+                                                                      "fraction in [0, 1)");
   if (s.jpegQuality < 0 || s.jpegQuality > 100)
     throw vpLaserConicException(vpLaserConicException::badValueError,
                                 "vpLaserConicSimulator: the JPEG quality must be in [1, 100] (0: no compression)");

@@ -28,9 +28,9 @@ namespace laser_flight
 //! True state of the camera at one time (world z up, ground z = ground height under the camera).
 struct Truth
 {
-  double h, vz, roll, pitch;  //!< the filter's outputs
-  Eigen::Vector3d w, f;       //!< angular velocity and specific force, camera frame
-  Eigen::Vector3d down;       //!< downward ground normal, camera frame
+  double h, vz, roll, pitch; //!< the filter's outputs
+  Eigen::Vector3d w, f;      //!< angular velocity and specific force, camera frame
+  Eigen::Vector3d down;      //!< downward ground normal, camera frame
 };
 
 //! A smooth flight: altitude, horizontal motion and tilts are sums of sinusoids (phases from the seed).
@@ -67,8 +67,8 @@ struct Flight
     const double a = tilt * std::sin(2 * M_PI * tiltFreq * t + phase[3]);
     const double b = tilt * std::sin(2 * M_PI * tiltFreq * 0.8 * t + phase[4]);
     const Eigen::Matrix3d down = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
-    return down * Eigen::AngleAxisd(0.1 * t, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()) *
-           Eigen::AngleAxisd(b, Eigen::Vector3d::UnitY());
+    return down * Eigen::AngleAxisd(0.1 * t, Eigen::Vector3d::UnitZ()) *
+           Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(b, Eigen::Vector3d::UnitY());
   }
   double groundHeight(double t) const { return t >= stepTime ? boxHeight : 0.0; }
 
@@ -141,15 +141,24 @@ struct FrameEvents
   seconds after their exposure, through \e filter. Records every IMU-rate output and every frame.
 */
 inline void fly(const Flight &flight, double duration, unsigned int seed, vpLaserConicFilter &filter,
-                std::vector<Sample> &samples, std::vector<FrameRecord> &frames, const FrameEvents &events = FrameEvents(),
-                double imuRate = 200.0, double frameRate = 30.0, double latency = 0.03, double pixelSigma = 0.5)
+                std::vector<Sample> &samples, std::vector<FrameRecord> &frames,
+                const FrameEvents &events = FrameEvents(), double imuRate = 200.0, double frameRate = 30.0,
+                double latency = 0.03, double pixelSigma = 0.5)
 {
   std::mt19937 rng(seed);
   vpLaserConicImuSimulator imu;
   imu.setSeed(seed + 1);
   imu.drawInitialBias(0.003, 0.03);
   const double dt = 1.0 / imuRate;
-  struct Pending { double t; bool ok; double h, r, p; vpMatrix C; double hTrue; int index; };
+  struct Pending
+  {
+    double t;
+    bool ok;
+    double h, r, p;
+    vpMatrix C;
+    double hTrue;
+    int index;
+  };
   std::vector<Pending> queue;
   int frameIndex = 0;
   double nextFrame = 0.0;

@@ -34,7 +34,10 @@ inline vpCameraParameters camera()
 }
 
 //! The true laser: apex 10 cm beside the camera, axis tilted by a few degrees.
-inline vpHomogeneousMatrix laserPose() { return vpHomogeneousMatrix(0.10, 0.02, 0.0, vpMath::rad(3.0), vpMath::rad(-5.0), 0.0); }
+inline vpHomogeneousMatrix laserPose()
+{
+  return vpHomogeneousMatrix(0.10, 0.02, 0.0, vpMath::rad(3.0), vpMath::rad(-5.0), 0.0);
+}
 
 //! Ground frame (plane Z = 0, +Z towards the camera) for a camera at \e altitude with attitude (roll, pitch).
 inline vpHomogeneousMatrix groundPose(double altitude, double roll, double pitch)
@@ -58,11 +61,11 @@ struct Frame
 struct FlightSettings
 {
   unsigned int frames = 20, points = 1000;
-  double maxTilt = vpMath::rad(15.0);            //!< roll and pitch uniform in +-maxTilt (0: all at tilt0)
-  double roll0 = 0.0, pitch0 = 0.0;              //!< mean attitude
-  double minAltitude = 0.8, maxAltitude = 1.3;   //!< metres
-  double noise = 0.5;                            //!< pixels
-  double outliers = 0.0;                         //!< fraction of points replaced by outliers
+  double maxTilt = vpMath::rad(15.0);          //!< roll and pitch uniform in +-maxTilt (0: all at tilt0)
+  double roll0 = 0.0, pitch0 = 0.0;            //!< mean attitude
+  double minAltitude = 0.8, maxAltitude = 1.3; //!< metres
+  double noise = 0.5;                          //!< pixels
+  double outliers = 0.0;                       //!< fraction of points replaced by outliers
   double openingAngle = kOpening;
   vpHomogeneousMatrix cMl = laserPose();
 };

@@ -126,7 +126,8 @@ public:
         for (int k : it->second) {
           best = std::min(best, vpImagePoint::distance(p, m_points[k]));
           for (int n : {k - 1, k + 1})
-            if (n >= 0 && n < static_cast<int>(m_points.size()) && vpImagePoint::distance(m_points[k], m_points[n]) < 2.0)
+            if (n >= 0 && n < static_cast<int>(m_points.size()) &&
+                vpImagePoint::distance(m_points[k], m_points[n]) < 2.0)
               best = std::min(best, segmentDistance(p, m_points[k], m_points[n]));
         }
       }

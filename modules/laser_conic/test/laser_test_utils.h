@@ -107,8 +107,8 @@ inline bool tracePoint(const Scene &s, double gamma, int nappe, Eigen::Vector3d 
   const vpLaserSolvers::LaserCone cone = toCone(s.rig);
   const double th = cone.halfAngle;
   const Eigen::Vector3d dir =
-      double(nappe) * (cone.cRl * Eigen::Vector3d(std::sin(th) * std::cos(gamma), std::sin(th) * std::sin(gamma),
-                                                  std::cos(th)));
+      double(nappe) *
+      (cone.cRl * Eigen::Vector3d(std::sin(th) * std::cos(gamma), std::sin(th) * std::sin(gamma), std::cos(th)));
   const Eigen::Vector3d n = s.plane.head<3>();
   const double nd = n.dot(dir);
   if (!(nd < 0.0))
@@ -166,8 +166,8 @@ inline bool traceImagePoints(const Scene &s, unsigned int n, std::mt19937 &rng, 
     if (!tracePoint(s, phase + 2.0 * M_PI * k / n, nappe, X))
       return false;
     const vpImagePoint ip = exactPixel(s.rig.cam, X(0) / X(2), X(1) / X(2));
-    if (insideImage && (ip.get_u() < 0.0 || ip.get_v() < 0.0 || ip.get_u() > s.rig.width - 1.0 ||
-                        ip.get_v() > s.rig.height - 1.0))
+    if (insideImage &&
+        (ip.get_u() < 0.0 || ip.get_v() < 0.0 || ip.get_u() > s.rig.width - 1.0 || ip.get_v() > s.rig.height - 1.0))
       return false;
     points.push_back(ip);
   }
@@ -181,8 +181,7 @@ inline Scene randomScene(std::mt19937 &rng, const SceneRanges &r, unsigned int n
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   for (;;) {
     Scene s;
-    const Eigen::Vector3d apex =
-        (r.minBaseline + (r.maxBaseline - r.minBaseline) * u01(rng)) * randomDirection(rng);
+    const Eigen::Vector3d apex = (r.minBaseline + (r.maxBaseline - r.minBaseline) * u01(rng)) * randomDirection(rng);
     const Eigen::Matrix3d cRl =
         randomTilt(rng, r.maxLaserTilt) * Eigen::AngleAxisd(2.0 * M_PI * u01(rng), Eigen::Vector3d::UnitZ());
     s.rig.cMl = toVisp(cRl, apex);

@@ -85,8 +85,8 @@ double axisErrorDeg(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b)
 
 double apexErrorMm(const vpHomogeneousMatrix &a, const vpHomogeneousMatrix &b)
 {
-  return 1000.0 * std::sqrt(std::pow(a[0][3] - b[0][3], 2) + std::pow(a[1][3] - b[1][3], 2) +
-                            std::pow(a[2][3] - b[2][3], 2));
+  return 1000.0 *
+         std::sqrt(std::pow(a[0][3] - b[0][3], 2) + std::pow(a[1][3] - b[1][3], 2) + std::pow(a[2][3] - b[2][3], 2));
 }
 
 vpLaserConicCalibration makeCalibration(const std::vector<vpHomogeneousMatrix> &poses,
@@ -204,8 +204,8 @@ TEST(LaserConicCalibration, CalibratesFromRenderedAndDetectedImages)
   vpHomogeneousMatrix cMl;
   const double rms = calib.calibrate(cMl);
   const double axisErr = axisErrorDeg(cMl, trueLaserPose()), apexErr = apexErrorMm(cMl, trueLaserPose());
-  std::cout << "rendered images: rms " << rms << " m, axis error " << axisErr << " deg, apex error " << apexErr
-            << " mm" << std::endl;
+  std::cout << "rendered images: rms " << rms << " m, axis error " << axisErr << " deg, apex error " << apexErr << " mm"
+            << std::endl;
   // The detected centres are within 0.2 px of the curve, 0.03 px on average (see the detector test), about
   // 15 times better than the 0.5 px noise case above: measured 0.02 mm RMS, 2e-4 deg, 5e-3 mm; the bounds
   // are 5 times tighter than above and still far from the measurements.
@@ -264,7 +264,6 @@ TEST(LaserConicCalibration, BadInputThrows)
   EXPECT_THROW(calib.calibrate(nanPose), vpLaserConicException);
 }
 
-
 namespace
 {
 // Grids at three distances (0.5, 0.8, 1.1 m), three tilts each: the view set a calibration session should have.
@@ -275,8 +274,8 @@ std::vector<vpHomogeneousMatrix> threeDepthPoses()
   for (unsigned int d = 0; d < 3; ++d)
     for (unsigned int k = 0; k < 3; ++k) {
       const double phi = 2.0 * M_PI * (k + 0.3 * d) / 3.0, tilt = vpMath::rad(20.0);
-      poses.push_back(vpHomogeneousMatrix(0.03 * std::cos(phi), 0.03 * std::sin(phi), depths[d],
-                                          tilt * std::cos(phi), tilt * std::sin(phi), vpMath::rad(40.0 * k)));
+      poses.push_back(vpHomogeneousMatrix(0.03 * std::cos(phi), 0.03 * std::sin(phi), depths[d], tilt * std::cos(phi),
+                                          tilt * std::sin(phi), vpMath::rad(40.0 * k)));
     }
   return poses;
 }
@@ -296,7 +295,11 @@ double openingErrorDeg(const vpLaserConicCalibration &calib) { return vpMath::de
 void appendParameters(const vpHomogeneousMatrix &cMl, const vpLaserConicCalibration &calib,
                       std::vector<std::vector<double> > &estimates)
 {
-  const double values[6] = {std::atan2(-cMl[1][2], cMl[2][2]), std::asin(cMl[0][2]), cMl[0][3], cMl[1][3], cMl[2][3],
+  const double values[6] = {std::atan2(-cMl[1][2], cMl[2][2]),
+                            std::asin(cMl[0][2]),
+                            cMl[0][3],
+                            cMl[1][3],
+                            cMl[2][3],
                             calib.getOpeningAngle()};
   estimates.resize(6);
   for (unsigned int k = 0; k < 6; ++k)
@@ -326,9 +329,9 @@ TEST(LaserConicCalibration, EstimatesTheOpeningAngleFromThreeDepths)
   ASSERT_TRUE(calib.compute(cMl)) << calib.getStatusMessage(calib.getStatus()) << " " << calib.getStatusDetails();
   EXPECT_EQ(calib.getStatus(), vpLaserConicCalibration::STATUS_OK);
   const vpColVector sigma = calib.getStdDeviations();
-  std::cout << "opening angle estimated: error " << openingErrorDeg(calib) << " deg (std "
-            << vpMath::deg(sigma[5]) << "), axis " << axisErrorDeg(cMl, trueLaserPose()) << " deg, apex "
-            << apexErrorMm(cMl, trueLaserPose()) << " mm, condition " << calib.getConditionNumber() << std::endl;
+  std::cout << "opening angle estimated: error " << openingErrorDeg(calib) << " deg (std " << vpMath::deg(sigma[5])
+            << "), axis " << axisErrorDeg(cMl, trueLaserPose()) << " deg, apex " << apexErrorMm(cMl, trueLaserPose())
+            << " mm, condition " << calib.getConditionNumber() << std::endl;
   // 1350 points at 0.5 px: the predicted standard deviation of A is 0.003 degree (measured error 0.0042);
   // the target is 0.05.
   EXPECT_LT(std::fabs(openingErrorDeg(calib)), 0.05);
@@ -385,7 +388,8 @@ TEST(LaserConicCalibration, RefusesDegenerateViewSets)
   nearlyOnePlane = {tiltedGridAtDistance(0.8, 0, 0), tiltedGridAtDistance(0.8, 1, 0), tiltedGridAtDistance(0.8, 0, 1)};
   EXPECT_EQ(statusOf(nearlyOnePlane, false), vpLaserConicCalibration::STATUS_DEGENERATE_VIEWS);
   // Planes 3 degrees apart determine the cone for a known angle, but not the angle too (conditioning 2.5e5).
-  const std::vector<vpHomogeneousMatrix> threeDegrees = {tiltedGridAtDistance(0.8, 0, 0), tiltedGridAtDistance(0.8, 3, 0),
+  const std::vector<vpHomogeneousMatrix> threeDegrees = {tiltedGridAtDistance(0.8, 0, 0),
+                                                         tiltedGridAtDistance(0.8, 3, 0),
                                                          tiltedGridAtDistance(0.8, 0, 3)};
   EXPECT_EQ(statusOf(threeDegrees, false), vpLaserConicCalibration::STATUS_OK);
   EXPECT_EQ(statusOf(threeDegrees, true), vpLaserConicCalibration::STATUS_DEGENERATE_VIEWS);
@@ -448,7 +452,8 @@ TEST(LaserConicCalibration, RobustLossRejectsLaserPointsOffTheGrid)
   // A contiguous run of points leaves the grid, as when the trace crosses the board's edge.
   unsigned int nbOutliers = 0;
   for (size_t j = 0; j < points.size(); ++j) {
-    const size_t n = std::min(points[j].size() * 15 / 100, wallPoints[j].size()), start = (7 * j) % (points[j].size() - n);
+    const size_t n = std::min(points[j].size() * 15 / 100, wallPoints[j].size()),
+                 start = (7 * j) % (points[j].size() - n);
     for (size_t i = 0; i < n; ++i, ++nbOutliers)
       points[j][start + i] = wallPoints[j][(start + i) % wallPoints[j].size()];
   }
@@ -549,8 +554,8 @@ TEST(LaserConicCalibration, StandardDeviationsMatchTheMonteCarloSpread)
   }
   for (unsigned int k = 0; k < 6; ++k) {
     const double spread = sampleStd(estimates[k]), ratio = spread / predicted[k];
-    std::cout << "parameter " << k << ": Monte-Carlo std " << spread << ", predicted " << predicted[k]
-              << ", ratio " << ratio << std::endl;
+    std::cout << "parameter " << k << ": Monte-Carlo std " << spread << ", predicted " << predicted[k] << ", ratio "
+              << ratio << std::endl;
     // 30 draws: the sample standard deviation is within about +-13 % (1 sigma) of the true one; +-45 %
     // allows 3.5 sigma.
     EXPECT_GT(ratio, 0.55);

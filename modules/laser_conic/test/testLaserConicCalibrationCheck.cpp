@@ -35,10 +35,10 @@ vpLaserConicPose configured(const laser_test::Rig &rig, Mistake mistake, std::ve
 {
   vpLaserConicPose estimator;
   const vpCameraParameters &c = rig.cam;
-  estimator.setCameraParameters(mistake == Mistake::HALF_RESOLUTION
-                                    ? vpCameraParameters(0.5 * c.get_px(), 0.5 * c.get_py(), 0.5 * c.get_u0(),
-                                                         0.5 * c.get_v0())
-                                    : c);
+  estimator.setCameraParameters(
+      mistake == Mistake::HALF_RESOLUTION
+          ? vpCameraParameters(0.5 * c.get_px(), 0.5 * c.get_py(), 0.5 * c.get_u0(), 0.5 * c.get_v0())
+          : c);
   estimator.setLaser(mistake == Mistake::HALF_ANGLE ? 0.5 * rig.openingAngle : rig.openingAngle,
                      mistake == Mistake::INVERSE_POSE ? rig.cMl.inverse() : rig.cMl);
   if (mistake == Mistake::SWAPPED_UV)

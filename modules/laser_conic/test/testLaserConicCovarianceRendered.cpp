@@ -54,7 +54,8 @@ RenderedNees measure(int frames, unsigned int seed, double inflation)
   for (int k = 0; k < frames; ++k) {
     const double h = 1.05 + 0.75 * u(rng), roll = vpMath::rad(10) * u(rng), pitch = vpMath::rad(10) * u(rng);
     // Ground frame below a camera of that attitude (vpLaserConicPose's convention g = Rx(roll) Ry(pitch) e_z).
-    const vpRotationMatrix cRw = vpRotationMatrix(vpRxyzVector(roll, 0, 0)) * vpRotationMatrix(vpRxyzVector(0, pitch, 0));
+    const vpRotationMatrix cRw =
+        vpRotationMatrix(vpRxyzVector(roll, 0, 0)) * vpRotationMatrix(vpRxyzVector(0, pitch, 0));
     const vpHomogeneousMatrix cMg(cRw * vpTranslationVector(0.3 * u(rng), 0.3 * u(rng), h), cRw);
     sim.setGroundPose(cMg);
     vpLaserConicSimulator::vpRenderSettings settings;

@@ -11,10 +11,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <map>
-#include <string>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <string>
 
 #include <Eigen/Dense>
 
@@ -151,8 +151,9 @@ TEST(LaserConicDetector, MaskMarksTheStripe)
   ASSERT_EQ(mask.getWidth(), kWidth);
   ASSERT_EQ(mask.getHeight(), kHeight);
   for (const vpImagePoint &p : points)
-    EXPECT_EQ(mask[static_cast<unsigned int>(std::lround(p.get_i()))][static_cast<unsigned int>(std::lround(p.get_j()))],
-              255);
+    EXPECT_EQ(
+        mask[static_cast<unsigned int>(std::lround(p.get_i()))][static_cast<unsigned int>(std::lround(p.get_j()))],
+        255);
   for (const vpLaserConicDetector *d : {&other, &assigned}) { // the same mask
     const vpImage<unsigned char> &copy = d->getMask();
     ASSERT_EQ(copy.getSize(), mask.getSize());
@@ -221,9 +222,9 @@ namespace
 //! Quality of a detection against the exact (distorted) centre line.
 struct Quality
 {
-  double coverage = 0.0;     //!< share of the visible trace with a detected point within 1 px
-  double rms = 0.0;          //!< RMS distance (px) to the centre line of the points within 2 px of it
-  double offTrace = 0.0;     //!< share of the points farther than 2 px (distractors, clutter)
+  double coverage = 0.0; //!< share of the visible trace with a detected point within 1 px
+  double rms = 0.0;      //!< RMS distance (px) to the centre line of the points within 2 px of it
+  double offTrace = 0.0; //!< share of the points farther than 2 px (distractors, clutter)
   size_t nbPoints = 0;
 };
 
@@ -275,11 +276,13 @@ Quality evaluate(const HardCase &c, vpLaserConicSimulator &sim, const std::vecto
   // Coverage: trace samples away from the border (the stripe must be seen on both sides) and not hidden.
   std::map<std::pair<int, int>, std::vector<vpImagePoint> > cells;
   for (const vpImagePoint &p : points)
-    cells[std::make_pair(static_cast<int>(std::floor(p.get_u() / 2)), static_cast<int>(std::floor(p.get_v() / 2)))].push_back(p);
+    cells[std::make_pair(static_cast<int>(std::floor(p.get_u() / 2)), static_cast<int>(std::floor(p.get_v() / 2)))]
+        .push_back(p);
   size_t visible = 0, found = 0;
   for (size_t k = 0; k < line.samples().size(); k += 5) {
     const vpImagePoint &t = line.samples()[k];
-    if (t.get_u() < 15 || t.get_v() < 15 || t.get_u() > kWidth - 16 || t.get_v() > kHeight - 16 || occluded(c.settings, t))
+    if (t.get_u() < 15 || t.get_v() < 15 || t.get_u() > kWidth - 16 || t.get_v() > kHeight - 16 ||
+        occluded(c.settings, t))
       continue;
     ++visible;
     bool hit = false;
@@ -321,8 +324,8 @@ Quality runCase(const HardCase &c, unsigned int seed, vpLaserConicDetector &dete
     *detected = points;
   const Quality q = evaluate(c, sim, points);
   std::cout << c.name << ": " << q.nbPoints << " points, coverage " << 100 * q.coverage << " %, RMS " << q.rms
-            << " px, off the trace " << 100 * q.offTrace << " %, threshold " << detector.getThreshold()
-            << " (noise " << detector.getNoiseLevel() << ")" << std::endl;
+            << " px, off the trace " << 100 * q.offTrace << " %, threshold " << detector.getThreshold() << " (noise "
+            << detector.getNoiseLevel() << ")" << std::endl;
   return q;
 }
 
@@ -464,8 +467,8 @@ TEST(LaserConicDetector, RedDistractorsAreRejectedOrLeftToTheRobustEstimators)
   vpPlane plane;
   ASSERT_TRUE(estimator.computePlane(points, vpLaserConicPose::GP3, plane));
   const vpPlane truth = makeSimulator().getGroundPlane();
-  const double angle = std::acos(std::min(1.0, plane.getA() * truth.getA() + plane.getB() * truth.getB() +
-                                                   plane.getC() * truth.getC()));
+  const double angle =
+      std::acos(std::min(1.0, plane.getA() * truth.getA() + plane.getB() * truth.getB() + plane.getC() * truth.getC()));
   EXPECT_LT(std::fabs(plane.getD() - truth.getD()), 2e-3);
   EXPECT_LT(vpMath::deg(angle), 0.2);
 }
@@ -475,8 +478,8 @@ TEST(LaserConicDetector, OccludedTracePartlyOutOfTheImageWithMotionBlur)
   HardCase c;
   c.name = "occluded_blurred";
   c.cMg = vpHomogeneousMatrix(0.25, 0.12, 1.0, vpMath::rad(10), vpMath::rad(-8), 0.3); // trace leaves the image
-  c.settings.occluders.push_back({vpImagePoint(500, 1100), vpImagePoint(450, 1350), vpImagePoint(800, 1450),
-                                  vpImagePoint(850, 1150)});
+  c.settings.occluders.push_back(
+      {vpImagePoint(500, 1100), vpImagePoint(450, 1350), vpImagePoint(800, 1450), vpImagePoint(850, 1150)});
   c.settings.motionBlurLength = 6.0;
   c.settings.motionBlurAngle = vpMath::rad(30);
   c.settings.laserPower = 200.0;
@@ -506,7 +509,8 @@ TEST(LaserConicDetector, FramesWithoutLaserGiveAlmostNoPointAndNoPlane)
   estimator.setCameraParameters(camera());
   estimator.setLaser(kOpening, laserPose());
   estimator.setRansacSeed(3);
-  for (int floor = vpLaserConicSimulator::FLOOR_DARK_TILES; floor <= vpLaserConicSimulator::FLOOR_WHITE_TILES; ++floor) {
+  for (int floor = vpLaserConicSimulator::FLOOR_DARK_TILES; floor <= vpLaserConicSimulator::FLOOR_WHITE_TILES;
+       ++floor) {
     HardCase c;
     c.name = "no_laser_" + std::to_string(floor);
     c.settings.floor = static_cast<vpLaserConicSimulator::vpFloorType>(floor);
@@ -577,7 +581,8 @@ TEST(LaserConicDetector, SearchRegionIgnoresThePreviousFrames)
   vpUniRand rng(46);
   for (unsigned int i = 0; i < noise.getHeight(); ++i)
     for (unsigned int j = 0; j < noise.getWidth(); ++j)
-      noise[i][j] = vpRGBa(static_cast<unsigned char>(rng.uniform(0, 256)), static_cast<unsigned char>(rng.uniform(0, 256)),
+      noise[i][j] = vpRGBa(static_cast<unsigned char>(rng.uniform(0, 256)),
+                           static_cast<unsigned char>(rng.uniform(0, 256)),
                            static_cast<unsigned char>(rng.uniform(0, 256)), 255);
   size_t compared = 0;
   for (double shift : {12.0, 18.0, 24.0, 30.0}) {
@@ -609,7 +614,8 @@ TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
   const std::vector<HardCase> cases = {dimCase(), saturatedCase(), whiteTilesCase(), mosaicCase()};
   const vpLaserConicDetector::vpInstructionSet best = vpLaserConicDetector::getBestInstructionSet();
   std::vector<vpLaserConicDetector::vpInstructionSet> sets = {vpLaserConicDetector::INSTRUCTIONS_SCALAR};
-  for (vpLaserConicDetector::vpInstructionSet set : {vpLaserConicDetector::INSTRUCTIONS_SSE2, vpLaserConicDetector::INSTRUCTIONS_AVX2})
+  for (vpLaserConicDetector::vpInstructionSet set :
+       {vpLaserConicDetector::INSTRUCTIONS_SSE2, vpLaserConicDetector::INSTRUCTIONS_AVX2})
     if (set <= best)
       sets.push_back(set);
   std::cout << "instruction sets compared: " << sets.size() << " (best " << best << ")" << std::endl;
@@ -636,7 +642,7 @@ TEST(LaserConicDetector, InstructionSetsGiveTheSamePoints)
             reference = points;
             referenceThreshold = detector.getThreshold();
             referenceNoise = detector.getNoiseLevel();
-            EXPECT_GT(referenceNoise, 0.0) << c.name; // the noise estimate is compared below
+            EXPECT_GT(referenceNoise, 0.0) << c.name;  // the noise estimate is compared below
             EXPECT_GT(points.size(), 1000u) << c.name; // a trace was found: the comparison means something
             continue;
           }
@@ -711,13 +717,13 @@ TEST(LaserConicDetector, CoarseToFineFindsThePointsOfTheFullSearch)
   HardCase occluded;
   occluded.name = "occluded_blurred";
   occluded.cMg = vpHomogeneousMatrix(0.25, 0.12, 1.0, vpMath::rad(10), vpMath::rad(-8), 0.3);
-  occluded.settings.occluders.push_back({vpImagePoint(500, 1100), vpImagePoint(450, 1350), vpImagePoint(800, 1450),
-                                         vpImagePoint(850, 1150)});
+  occluded.settings.occluders.push_back(
+      {vpImagePoint(500, 1100), vpImagePoint(450, 1350), vpImagePoint(800, 1450), vpImagePoint(850, 1150)});
   occluded.settings.motionBlurLength = 6.0;
   occluded.settings.motionBlurAngle = vpMath::rad(30);
   occluded.settings.laserPower = 200.0;
-  const std::vector<HardCase> cases = {dimCase(), saturatedCase(), whiteTilesCase(), mosaicCase(), distractors,
-                                       occluded};
+  const std::vector<HardCase> cases = {dimCase(),    saturatedCase(), whiteTilesCase(),
+                                       mosaicCase(), distractors,     occluded};
   struct Setting
   {
     double minSegment;

@@ -57,49 +57,48 @@ std::vector<double> frameStatistics(const vpHomogeneousMatrix &actual, unsigned 
 TEST(LaserConicDriftMonitor, FalseAlarmRateOnACorrectFlight)
 {
   for (double rate : {0.001, 0.01}) {
-  vpLaserConicDriftMonitor monitor;
-  monitor.setFalseAlarmRate(rate);
-  std::vector<vpLaserConicDriftMonitor::vpDriftStatus> statuses;
-  const std::vector<double> s = frameStatistics(laserPose(), 2000, 5, &statuses, &monitor);
-  unsigned int windows = 0, alarms = 0;
-  double mean = 0.0, var = 0.0;
-  unsigned int n = 0;
-  for (size_t k = 0; k < s.size(); ++k) {
-    if (std::isfinite(s[k])) {
-      mean += s[k];
-      var += s[k] * s[k];
-      ++n;
+    vpLaserConicDriftMonitor monitor;
+    monitor.setFalseAlarmRate(rate);
+    std::vector<vpLaserConicDriftMonitor::vpDriftStatus> statuses;
+    const std::vector<double> s = frameStatistics(laserPose(), 2000, 5, &statuses, &monitor);
+    unsigned int windows = 0, alarms = 0;
+    double mean = 0.0, var = 0.0;
+    unsigned int n = 0;
+    for (size_t k = 0; k < s.size(); ++k) {
+      if (std::isfinite(s[k])) {
+        mean += s[k];
+        var += s[k] * s[k];
+        ++n;
+      }
+      if (statuses[k] != vpLaserConicDriftMonitor::DRIFT_WARMING_UP) {
+        ++windows;
+        alarms += statuses[k] == vpLaserConicDriftMonitor::DRIFT_SUSPECTED ? 1 : 0;
+      }
     }
-    if (statuses[k] != vpLaserConicDriftMonitor::DRIFT_WARMING_UP) {
-      ++windows;
-      alarms += statuses[k] == vpLaserConicDriftMonitor::DRIFT_SUSPECTED ? 1 : 0;
-    }
-  }
-  mean /= n;
-  var = var / n - mean * mean;
-  std::cout << "frame statistic: mean " << mean << " variance " << var << " (chi2_2: 2, 4); " << alarms << " alarms in "
-            << windows << " windows (" << 100.0 * alarms / windows << " %), threshold " << monitor.getThreshold()
-            << ", skipped " << monitor.getNbSkipped() << std::endl;
-  EXPECT_GT(windows, 1900u);
-  EXPECT_NEAR(mean, 2.0, 0.2);    // chi2_2
-  EXPECT_NEAR(var, 4.0, 0.8);
-  // Measured: 0.4 % at 0.1 %, 2.7 % at 1 %: the frame statistic's mean is 4.6 % above chi2_2's, which the
-  // tail of the window's sum amplifies (and alarms of sliding windows come in runs).
-  if (rate < 0.005)
-    EXPECT_LE(alarms, windows / 100);
-  else
-    EXPECT_LE(alarms, 4 * windows / 100);
+    mean /= n;
+    var = var / n - mean * mean;
+    std::cout << "frame statistic: mean " << mean << " variance " << var << " (chi2_2: 2, 4); " << alarms
+              << " alarms in " << windows << " windows (" << 100.0 * alarms / windows << " %), threshold "
+              << monitor.getThreshold() << ", skipped " << monitor.getNbSkipped() << std::endl;
+    EXPECT_GT(windows, 1900u);
+    EXPECT_NEAR(mean, 2.0, 0.2); // chi2_2
+    EXPECT_NEAR(var, 4.0, 0.8);
+    // Measured: 0.4 % at 0.1 %, 2.7 % at 1 %: the frame statistic's mean is 4.6 % above chi2_2's, which the
+    // tail of the window's sum amplifies (and alarms of sliding windows come in runs).
+    if (rate < 0.005)
+      EXPECT_LE(alarms, windows / 100);
+    else
+      EXPECT_LE(alarms, 4 * windows / 100);
   }
 }
 
 // A mount knocked by 1 degree, or the apex moved by 5 mm across the baseline: detected within 30 frames.
 TEST(LaserConicDriftMonitor, DetectsAKnockedMount)
 {
-  const vpHomogeneousMatrix knocks[] = {
-      laserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(1.0), 0, 0),
-      laserPose() * vpHomogeneousMatrix(0, 0, 0, 0, vpMath::rad(1.0), 0),
-      vpHomogeneousMatrix(0, 0, 0.005, 0, 0, 0) * laserPose(),
-      vpHomogeneousMatrix(0, 0.005, 0, 0, 0, 0) * laserPose()};
+  const vpHomogeneousMatrix knocks[] = {laserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(1.0), 0, 0),
+                                        laserPose() * vpHomogeneousMatrix(0, 0, 0, 0, vpMath::rad(1.0), 0),
+                                        vpHomogeneousMatrix(0, 0, 0.005, 0, 0, 0) * laserPose(),
+                                        vpHomogeneousMatrix(0, 0.005, 0, 0, 0, 0) * laserPose()};
   const char *names[] = {"axis +1 deg about x", "axis +1 deg about y", "apex +5 mm along z", "apex +5 mm along y"};
   for (int k = 0; k < 4; ++k)
     for (unsigned int seed = 1; seed <= 3; ++seed) {
@@ -123,7 +122,8 @@ TEST(LaserConicDriftMonitor, BadSettingsAndSkippedFrames)
   EXPECT_THROW(monitor.setFalseAlarmRate(0.0), vpLaserConicException);
   EXPECT_THROW(monitor.setFalseAlarmRate(std::numeric_limits<double>::quiet_NaN()), vpLaserConicException);
   monitor.setWindow(3);
-  EXPECT_EQ(monitor.addFrame(std::numeric_limits<double>::quiet_NaN(), 0.5, 300), vpLaserConicDriftMonitor::DRIFT_WARMING_UP);
+  EXPECT_EQ(monitor.addFrame(std::numeric_limits<double>::quiet_NaN(), 0.5, 300),
+            vpLaserConicDriftMonitor::DRIFT_WARMING_UP);
   EXPECT_EQ(monitor.addFrame(0.5, 0.5, 3), vpLaserConicDriftMonitor::DRIFT_WARMING_UP);
   EXPECT_EQ(monitor.getNbSkipped(), 2u);
   monitor.addFrame(0.5, 0.5, 300);

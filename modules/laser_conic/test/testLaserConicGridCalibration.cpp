@@ -78,7 +78,8 @@ TEST(LaserConicGridCalibration, GridPoseMatchesTheRenderingWithTheCornersUnderTh
   const vpCameraParameters cam = distortedCamera();
   vpLaserConicGridCalibration grid = makeGrid(cam), noClearance = makeGrid(cam);
   noClearance.setCornerClearance(0.0);
-  const vpHomogeneousMatrix poses[3] = {boardPose(0.6, 18, 0, -15), boardPose(0.8, 0, -18, 5), boardPose(1.0, -12, 10, 20)};
+  const vpHomogeneousMatrix poses[3] = {boardPose(0.6, 18, 0, -15), boardPose(0.8, 0, -18, 5),
+                                        boardPose(1.0, -12, 10, 20)};
   for (const vpHomogeneousMatrix &truth : poses) {
     const vpImage<vpRGBa> I = renderBoard(cam, truth, true);
     ASSERT_EQ(grid.addImage(I), vpLaserConicGridCalibration::VIEW_OK);
@@ -97,10 +98,10 @@ TEST(LaserConicGridCalibration, GridPoseMatchesTheRenderingWithTheCornersUnderTh
     planeErrors(grid.getGridPoses().back(), truth, angle, distance);
     planeErrors(noClearance.getGridPoses().back(), truth, angleAll, distanceAll);
     planeErrors(cMgNoLaser, truth, angleNoLaser, distanceNoLaser);
-    std::cout << "grid " << truth[2][3] << " m: plane " << angle << " deg, " << distance << " mm off (all corners: "
-              << angleAll << " deg, " << distanceAll << " mm; no laser: " << angleNoLaser << " deg, " << distanceNoLaser
-              << " mm), corner RMS " << grid.getReprojectionErrors().back() << " px, largest corner shift by the laser "
-              << maxShift << " px" << std::endl;
+    std::cout << "grid " << truth[2][3] << " m: plane " << angle << " deg, " << distance
+              << " mm off (all corners: " << angleAll << " deg, " << distanceAll << " mm; no laser: " << angleNoLaser
+              << " deg, " << distanceNoLaser << " mm), corner RMS " << grid.getReprojectionErrors().back()
+              << " px, largest corner shift by the laser " << maxShift << " px" << std::endl;
     EXPECT_GT(maxShift, 0.5); // the stripe does move the corners it crosses
     EXPECT_LT(angle, 0.1);
     EXPECT_LT(distance, 0.5);

@@ -43,14 +43,17 @@ Settings fadingRing(double nearPeak, double farPeak)
 }
 
 //! A tilted ground (30 deg): distance and incidence vary along the ring.
-vpHomogeneousMatrix tiltedGround() { return vpHomogeneousMatrix(0.05, -0.03, 1.0, vpMath::rad(30), vpMath::rad(-8), 0.3); }
+vpHomogeneousMatrix tiltedGround()
+{
+  return vpHomogeneousMatrix(0.05, -0.03, 1.0, vpMath::rad(30), vpMath::rad(-8), 0.3);
+}
 
 struct GuidedQuality
 {
-  double coverage3 = 0.0;  //!< share of the ring where the stripe is >= 3 sigma with a point within 1.5 px
-  double precision = 0.0;  //!< share of all the points within 1.5 px of the centre line
-  double rmsGuided = 0.0;  //!< RMS distance (px) of the second pass's points within 1.5 px of the line
-  double guidedOff = 0.0;  //!< share of the second pass's points farther than 1.5 px
+  double coverage3 = 0.0; //!< share of the ring where the stripe is >= 3 sigma with a point within 1.5 px
+  double precision = 0.0; //!< share of all the points within 1.5 px of the centre line
+  double rmsGuided = 0.0; //!< RMS distance (px) of the second pass's points within 1.5 px of the line
+  double guidedOff = 0.0; //!< share of the second pass's points farther than 1.5 px
   size_t points = 0, guided = 0;
 };
 
@@ -88,8 +91,8 @@ GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg,
   q.rmsGuided = guidedOn ? std::sqrt(sum2 / guidedOn) : 0.0;
   q.guidedOff = q.guided ? 1.0 - static_cast<double>(guidedOn) / q.guided : 0.0;
   std::cout << name << ": " << q.points << " points (" << q.guided << " of the second pass), coverage >= 3 sigma "
-            << 100 * q.coverage3 << " %, precision " << q.precision << ", second-pass RMS " << q.rmsGuided
-            << " px (" << 100 * q.guidedOff << " % off)" << std::endl;
+            << 100 * q.coverage3 << " %, precision " << q.precision << ", second-pass RMS " << q.rmsGuided << " px ("
+            << 100 * q.guidedOff << " % off)" << std::endl;
   return q;
 }
 

@@ -20,15 +20,19 @@ using laser_test::Scene;
 namespace
 {
 const vpLaserConicPose::vpLaserConicMethod kAllMethods[] = {vpLaserConicPose::PLANE_PAIR, vpLaserConicPose::PP5,
-                                                             vpLaserConicPose::PP3, vpLaserConicPose::GP3};
+                                                            vpLaserConicPose::PP3, vpLaserConicPose::GP3};
 
 std::string name(vpLaserConicPose::vpLaserConicMethod m)
 {
   switch (m) {
-  case vpLaserConicPose::PLANE_PAIR: return "PLANE_PAIR";
-  case vpLaserConicPose::PP5: return "PP5";
-  case vpLaserConicPose::PP3: return "PP3";
-  case vpLaserConicPose::GP3: return "GP3";
+  case vpLaserConicPose::PLANE_PAIR:
+    return "PLANE_PAIR";
+  case vpLaserConicPose::PP5:
+    return "PP5";
+  case vpLaserConicPose::PP3:
+    return "PP3";
+  case vpLaserConicPose::GP3:
+    return "GP3";
   }
   return "?";
 }
@@ -78,8 +82,8 @@ struct Errors
   }
   void print(const std::string &what) const
   {
-    std::printf("%-34s normal rad median %.2e max %.2e | altitude m median %.2e max %.2e | failures %d\n",
-                what.c_str(), laser_test::median(normal), laser_test::maximum(normal), laser_test::median(altitude),
+    std::printf("%-34s normal rad median %.2e max %.2e | altitude m median %.2e max %.2e | failures %d\n", what.c_str(),
+                laser_test::median(normal), laser_test::maximum(normal), laser_test::median(altitude),
                 laser_test::maximum(altitude), failures);
   }
   //! Prints the errors and checks the exact-data bounds: no failure, median < 1e-9, maximum < 1e-6.
@@ -117,8 +121,8 @@ vpLaserConicPose noisyEstimator(const Scene &s, double sigma, double outliers, u
   Runs one method over random scenes of \e n trace points, with pixel noise \e sigma and a fraction
   \e outliers of outliers. Checks the returned plane is consistent with the altitude/roll/pitch getters.
 */
-Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigned int n, double sigma,
-                double outliers, unsigned int seed, double threshold = 2.0)
+Errors evaluate(vpLaserConicPose::vpLaserConicMethod method, int scenes, unsigned int n, double sigma, double outliers,
+                unsigned int seed, double threshold = 2.0)
 {
   std::mt19937 rng(seed);
   Errors errors;
@@ -193,8 +197,8 @@ struct NoiseRatios
                 "ratio to first-order scale: altitude median %.2f p95 %.2f, normal median %.2f p95 %.2f | "
                 "failures %d\n",
                 what.c_str(), laser_test::median(altitudeMm), laser_test::maximum(altitudeMm),
-                laser_test::median(normalDeg), laser_test::maximum(normalDeg), laser_test::median(altitudeRatio),
-                alt95, laser_test::median(normalRatio), nor95, failures);
+                laser_test::median(normalDeg), laser_test::maximum(normalDeg), laser_test::median(altitudeRatio), alt95,
+                laser_test::median(normalRatio), nor95, failures);
     EXPECT_EQ(failures, 0) << what;
     EXPECT_LT(laser_test::median(altitudeRatio), 3.0) << what;
     EXPECT_LT(alt95, 10.0) << what;
@@ -451,8 +455,7 @@ TEST(LaserConicPose, TooFewOrNonFinitePointsThrow)
   const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 20, points);
   vpLaserConicPose estimator = makeEstimator(s.rig);
   for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
-    const unsigned int needed =
-        (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3u : 5u;
+    const unsigned int needed = (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3u : 5u;
     expectThrowCode(estimator, std::vector<vpImagePoint>(), method, vpLaserConicException::notEnoughPointError);
     expectThrowCode(estimator, std::vector<vpImagePoint>(points.begin(), points.begin() + needed - 1), method,
                     vpLaserConicException::notEnoughPointError);
@@ -663,7 +666,8 @@ TEST(LaserConicPose, CovarianceIsConsistent)
   const Case cases[] = {{vpLaserConicPose::GP3, vpLaserConicPose::FINAL_FIT_CONSTRAINED, 0.0, "GP3 constrained"},
                         {vpLaserConicPose::PP5, vpLaserConicPose::FINAL_FIT_FREE, 0.0, "PP5 free"},
                         {vpLaserConicPose::PP3, vpLaserConicPose::FINAL_FIT_DEFAULT, 0.0, "PP3 default"},
-                        {vpLaserConicPose::GP3, vpLaserConicPose::FINAL_FIT_DEFAULT, 0.3, "GP3 default, 30 % outliers"}};
+                        {vpLaserConicPose::GP3, vpLaserConicPose::FINAL_FIT_DEFAULT, 0.3,
+                         "GP3 default, 30 % outliers"}};
   for (const Case &c : cases) {
     int failures = 0;
     const double nees = meanNees(c.method, c.fit, 1000, 0.5, c.outliers, 900 + c.method, failures);

@@ -94,12 +94,13 @@ TEST(LaserConicSelfCalibration, RecoversTheLaserFromTwentyTiltedFrames)
     double A = 0.0;
     ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusMessage(selfcal.getStatus()) << ": "
                                          << selfcal.getStatusDetails();
-    const double axis = vpMath::deg(axisAngle(cMl, laserPose())), apex = vpMath::deg(apexDirectionAngle(cMl, laserPose()));
+    const double axis = vpMath::deg(axisAngle(cMl, laserPose())),
+                 apex = vpMath::deg(apexDirectionAngle(cMl, laserPose()));
     const double apexMm = 1000.0 * (cMl.getTranslationVector() - laserPose().getTranslationVector()).frobeniusNorm();
-    std::cout << "seed " << seed << ": axis error " << axis << " deg (std " << vpMath::deg(selfcal.getAxisStdDeviation())
-              << "), apex direction " << apex << " deg (std " << vpMath::deg(selfcal.getApexDirectionStdDeviation())
-              << "), apex " << apexMm << " mm, RMS " << selfcal.getRmsPixels() << " px, condition "
-              << selfcal.getConditionNumber() << std::endl;
+    std::cout << "seed " << seed << ": axis error " << axis << " deg (std "
+              << vpMath::deg(selfcal.getAxisStdDeviation()) << "), apex direction " << apex << " deg (std "
+              << vpMath::deg(selfcal.getApexDirectionStdDeviation()) << "), apex " << apexMm << " mm, RMS "
+              << selfcal.getRmsPixels() << " px, condition " << selfcal.getConditionNumber() << std::endl;
     // The noise bound of this flight is about 0.08 deg on the axis (the covariance, checked below):
     // the axis is the part of the laser the traces determine least (see the class description).
     EXPECT_LT(vpMath::deg(selfcal.getAxisStdDeviation()), 0.1);
@@ -176,7 +177,8 @@ TEST(LaserConicSelfCalibration, ComparisonWithTheChessboardCalibration)
   double A = 0.0;
   selfcal.setMaxAngularStdDeviation(vpMath::rad(0.3));
   ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
-  const double gridAxis = vpMath::deg(axisAngle(cMlGrid, laserPose())), selfAxis = vpMath::deg(axisAngle(cMl, laserPose()));
+  const double gridAxis = vpMath::deg(axisAngle(cMlGrid, laserPose())),
+               selfAxis = vpMath::deg(axisAngle(cMl, laserPose()));
   const double gridApex = 1000 * (cMlGrid.getTranslationVector() - laserPose().getTranslationVector()).frobeniusNorm();
   const double selfApex = 1000 * (cMl.getTranslationVector() - laserPose().getTranslationVector()).frobeniusNorm();
   std::cout << "chessboard views: axis " << gridAxis << " deg, apex " << gridApex << " mm, opening angle "
@@ -211,9 +213,9 @@ TEST(LaserConicSelfCalibration, HeldApexDeterminesTheAxis)
   gp3Errors(test, kOpening, s.cMl, altTrue, attTrue);
   gp3Errors(test, A, cMl, altSelf, attSelf);
   std::cout << "apex held: axis error " << vpMath::deg(axisAngle(cMl, s.cMl)) << " deg (std "
-            << vpMath::deg(selfcal.getAxisStdDeviation()) << "); GP3 RMS errors: true laser " << 1000 * altTrue << " mm, "
-            << vpMath::deg(attTrue) << " deg; self-calibrated " << 1000 * altSelf << " mm, " << vpMath::deg(attSelf)
-            << " deg" << std::endl;
+            << vpMath::deg(selfcal.getAxisStdDeviation()) << "); GP3 RMS errors: true laser " << 1000 * altTrue
+            << " mm, " << vpMath::deg(attTrue) << " deg; self-calibrated " << 1000 * altSelf << " mm, "
+            << vpMath::deg(attSelf) << " deg" << std::endl;
   EXPECT_LT(vpMath::deg(axisAngle(cMl, s.cMl)), 4.0 * vpMath::deg(selfcal.getAxisStdDeviation()) + 1e-3);
 }
 
@@ -242,7 +244,8 @@ TEST(LaserConicSelfCalibration, WrongRulerScalesTheAltitudes)
     if (!a.computePlane(f.points, vpLaserConicPose::GP3, pa) || !b.computePlane(f.points, vpLaserConicPose::GP3, pb))
       continue;
     worstRatio = std::max(worstRatio, std::abs(b.getAltitude() / a.getAltitude() - 1.1));
-    worstAttitude = std::max(worstAttitude, std::abs(b.getRoll() - a.getRoll()) + std::abs(b.getPitch() - a.getPitch()));
+    worstAttitude =
+        std::max(worstAttitude, std::abs(b.getRoll() - a.getRoll()) + std::abs(b.getPitch() - a.getPitch()));
   }
   std::cout << "ruler +10 %: altitude ratio within " << worstRatio << " of 1.1, attitude within "
             << vpMath::deg(worstAttitude) << " deg" << std::endl;
@@ -271,7 +274,8 @@ TEST(LaserConicSelfCalibration, KnownAltitudeGivesTheScale)
   gp3Errors(test, kOpening, laserPose(), altTrue, attTrue);
   gp3Errors(test, A, cMl, altSelf, attSelf);
   std::cout << "GP3 RMS errors: true laser " << 1000 * altTrue << " mm, " << vpMath::deg(attTrue)
-            << " deg; self-calibrated with a known altitude " << 1000 * altSelf << " mm, " << vpMath::deg(attSelf) << " deg" << std::endl;
+            << " deg; self-calibrated with a known altitude " << 1000 * altSelf << " mm, " << vpMath::deg(attSelf)
+            << " deg" << std::endl;
 }
 
 // Frames at one attitude (a hover, altitudes within +-5 %) do not determine the laser: refused, with the spread.
@@ -351,7 +355,8 @@ TEST(LaserConicSelfCalibration, RejectsOutlierPoints)
   double A = 0.0;
   ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
   EXPECT_LT(vpMath::deg(axisAngle(cMl, laserPose())), 4.0 * vpMath::deg(selfcal.getAxisStdDeviation()));
-  EXPECT_LT(vpMath::deg(apexDirectionAngle(cMl, laserPose())), 4.0 * vpMath::deg(selfcal.getApexDirectionStdDeviation()));
+  EXPECT_LT(vpMath::deg(apexDirectionAngle(cMl, laserPose())),
+            4.0 * vpMath::deg(selfcal.getApexDirectionStdDeviation()));
   EXPECT_LT(selfcal.getNbInliers(), 0.93 * selfcal.getNbPoints());
   EXPECT_GT(selfcal.getNbInliers(), 0.85 * selfcal.getNbPoints());
 }
@@ -398,9 +403,10 @@ TEST(LaserConicSelfCalibration, ChoosesInformativeFrames)
     if (k % 10 == 0)
       even.push_back(k);
   }
-  const double chosenStd = axisStd(frames, used), tiltedStd = axisStd(frames, lastTwenty), evenStd = axisStd(frames, even);
-  std::cout << used.size() << " frames used; axis error " << vpMath::deg(axisAngle(cMl, laserPose())) << " deg; axis std "
-            << vpMath::deg(chosenStd) << " deg (the 20 tilted frames: " << vpMath::deg(tiltedStd)
+  const double chosenStd = axisStd(frames, used), tiltedStd = axisStd(frames, lastTwenty),
+               evenStd = axisStd(frames, even);
+  std::cout << used.size() << " frames used; axis error " << vpMath::deg(axisAngle(cMl, laserPose()))
+            << " deg; axis std " << vpMath::deg(chosenStd) << " deg (the 20 tilted frames: " << vpMath::deg(tiltedStd)
             << ", 20 evenly spread: " << vpMath::deg(evenStd) << ")" << std::endl;
   EXPECT_EQ(used.size(), 20u);
   EXPECT_NEAR(chosenStd, selfcal.getAxisStdDeviation(), 1e-12);

@@ -68,7 +68,8 @@ TEST(LaserConicSimulator, GroundPlaneFacesTheCamera)
     const vpHomogeneousMatrix cMg = groundPose() * vpHomogeneousMatrix(0, 0, 0, flip, 0, 0);
     vpLaserConicSimulator sim = makeSimulator(cMg);
     const vpPlane plane = sim.getGroundPlane();
-    const double norm = std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
+    const double norm =
+        std::sqrt(plane.getA() * plane.getA() + plane.getB() * plane.getB() + plane.getC() * plane.getC());
     EXPECT_NEAR(norm, 1.0, 1e-12);
     EXPECT_GT(plane.getD(), 0.0); // camera centre on the positive side: n.0 + D > 0
     // The ground origin and a point of the ground X axis lie on the plane.
@@ -391,13 +392,15 @@ TEST(LaserConicSimulator, DistortedTracePointsConvertExactlyToTheTrueTrace)
   ASSERT_GT(points.size(), 600u);
   double worst = 0.0;
   for (const vpImagePoint &p : points)
-    worst = std::max(worst, std::fabs(coneAngleOf(p, distortedCamera(), laserPose(), sim.getGroundPlane()) - 0.5 * kOpening));
+    worst = std::max(worst,
+                     std::fabs(coneAngleOf(p, distortedCamera(), laserPose(), sim.getGroundPlane()) - 0.5 * kOpening));
   EXPECT_LT(worst, 1e-12);
 }
 
 TEST(LaserConicSimulator, DistortedRenderFollowsTheDistortedTrace)
 {
-  vpLaserConicSimulator sim = makeSimulator(vpHomogeneousMatrix(0.05, -0.03, 0.9, vpMath::rad(10), vpMath::rad(-8), 0.3));
+  vpLaserConicSimulator sim =
+      makeSimulator(vpHomogeneousMatrix(0.05, -0.03, 0.9, vpMath::rad(10), vpMath::rad(-8), 0.3));
   sim.setCamera(distortedCamera(), kWidth, kHeight);
   vpImage<vpRGBa> I;
   vpLaserConicSimulator::vpRenderSettings settings;
@@ -411,7 +414,8 @@ TEST(LaserConicSimulator, DistortedRenderFollowsTheDistortedTrace)
     onRed += isRed(at(I, p)) ? 1 : 0;
   EXPECT_EQ(onRed, trace.size());
   // The undistorted trace is elsewhere: a distortion-free render would miss the distorted points.
-  vpLaserConicSimulator pinhole = makeSimulator(vpHomogeneousMatrix(0.05, -0.03, 0.9, vpMath::rad(10), vpMath::rad(-8), 0.3));
+  vpLaserConicSimulator pinhole =
+      makeSimulator(vpHomogeneousMatrix(0.05, -0.03, 0.9, vpMath::rad(10), vpMath::rad(-8), 0.3));
   pinhole.setCamera(vpCameraParameters(1000.0, 1000.0, 805.0, 596.0), kWidth, kHeight);
   vpImage<vpRGBa> J;
   pinhole.render(J, settings);
@@ -513,7 +517,8 @@ TEST(LaserConicSimulator, HardSettingsRenderWhatTheyDescribe)
 
   // No laser: no red at all on the dark floor; occluders hide the floor.
   settings.laserOn = false;
-  settings.occluders.push_back({vpImagePoint(0, 0), vpImagePoint(0, 100), vpImagePoint(100, 100), vpImagePoint(100, 0)});
+  settings.occluders.push_back(
+      {vpImagePoint(0, 0), vpImagePoint(0, 100), vpImagePoint(100, 100), vpImagePoint(100, 0)});
   sim.render(I, settings);
   for (const vpImagePoint &p : trace)
     EXPECT_LT(at(I, p).R, at(I, p).G + 20);

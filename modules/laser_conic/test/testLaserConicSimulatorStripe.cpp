@@ -28,8 +28,7 @@ typedef vpLaserConicSimulator::vpTraceTruth Truth;
 int dominance(const vpRGBa &c) { return static_cast<int>(c.R) - std::max(c.G, c.B); }
 
 //! The frame with and without laser, the same sensor noise in both (same seed, same draws).
-void renderWithAndWithoutLaser(vpLaserConicSimulator &sim, Settings settings, vpImage<vpRGBa> &on,
-                               vpImage<vpRGBa> &off)
+void renderWithAndWithoutLaser(vpLaserConicSimulator &sim, Settings settings, vpImage<vpRGBa> &on, vpImage<vpRGBa> &off)
 {
   sim.setSeed(11);
   sim.render(on, settings);
@@ -63,7 +62,10 @@ Settings fadingSettings(double farFraction)
 }
 
 //! A tilted ground (30 deg) so that distance and incidence vary along the ring.
-vpHomogeneousMatrix tiltedGround() { return vpHomogeneousMatrix(0.05, -0.03, 1.0, vpMath::rad(30), vpMath::rad(-8), 0.3); }
+vpHomogeneousMatrix tiltedGround()
+{
+  return vpHomogeneousMatrix(0.05, -0.03, 1.0, vpMath::rad(30), vpMath::rad(-8), 0.3);
+}
 } // namespace
 
 TEST(LaserConicSimulatorStripe, TraceTruthIsTheCentreLineWithThePeakBrightness)
@@ -111,7 +113,8 @@ TEST(LaserConicSimulatorStripe, FadingRingMeetsItsFarFractionInTheImage)
     // grey levels are rounded (+-1 on R and on G).
     worst = std::max(worst, std::fabs(measured - t.peakDominance) - 0.06 * t.peakDominance);
     (t.falloff > 0.9 ? nearMeasured : farMeasured) += t.falloff > 0.9 || t.falloff < 1.2 * farFraction ? measured : 0.0;
-    (t.falloff > 0.9 ? nearTruth : farTruth) += t.falloff > 0.9 || t.falloff < 1.2 * farFraction ? t.peakDominance : 0.0;
+    (t.falloff > 0.9 ? nearTruth : farTruth) += t.falloff > 0.9 || t.falloff < 1.2 * farFraction ? t.peakDominance
+                                                                                                 : 0.0;
   }
   std::cout << "fall-off " << lo << " - " << hi << ", near side measured/truth " << nearMeasured / nearTruth
             << ", far side " << farMeasured / farTruth << ", worst excess " << worst << " grey levels" << std::endl;
@@ -166,7 +169,8 @@ TEST(LaserConicSimulatorStripe, FallOffFollowsDistanceAndIncidence)
   const std::vector<Truth> steeper = sim.traceTruth(720, s);
   ASSERT_EQ(steeper.size(), truth.size());
   EXPECT_LT(std::min_element(steeper.begin(), steeper.end(),
-                             [](const Truth &a, const Truth &b) { return a.falloff < b.falloff; })->falloff,
+                             [](const Truth &a, const Truth &b) { return a.falloff < b.falloff; })
+                ->falloff,
             1.0);
 }
 
@@ -196,7 +200,8 @@ TEST(LaserConicSimulatorStripe, ReflectanceScalesTheStripeOnAChessboard)
     if (!inside)
       continue;
     const vpImagePoint &p = truth[k].point;
-    const unsigned int i = static_cast<unsigned int>(std::lround(p.get_v())), j = static_cast<unsigned int>(std::lround(p.get_u()));
+    const unsigned int i = static_cast<unsigned int>(std::lround(p.get_v())),
+                       j = static_cast<unsigned int>(std::lround(p.get_u()));
     const double added = static_cast<double>(on[i][j].R) - off[i][j].R;
     if (std::fabs(truth[k].reflectance - 28.0 / 255.0) < 1e-6) {
       black += added;

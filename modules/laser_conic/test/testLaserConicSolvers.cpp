@@ -132,8 +132,8 @@ TEST(LaserConicSolvers, SampsonDistanceOfACircle)
 TEST(LaserConicSolvers, EllipseTest)
 {
   EXPECT_TRUE(isEllipse(Eigen::Vector3d(1.0, 4.0, -1.0).asDiagonal().toDenseMatrix()));
-  EXPECT_TRUE(isEllipse(Eigen::Vector3d(-1.0, -4.0, 1.0).asDiagonal().toDenseMatrix())); // sign-free
-  EXPECT_FALSE(isEllipse(Eigen::Vector3d(1.0, 1.0, 1.0).asDiagonal().toDenseMatrix()));  // no real point
+  EXPECT_TRUE(isEllipse(Eigen::Vector3d(-1.0, -4.0, 1.0).asDiagonal().toDenseMatrix()));  // sign-free
+  EXPECT_FALSE(isEllipse(Eigen::Vector3d(1.0, 1.0, 1.0).asDiagonal().toDenseMatrix()));   // no real point
   EXPECT_FALSE(isEllipse(Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal().toDenseMatrix())); // hyperbola
   EXPECT_FALSE(isEllipse(Eigen::Vector3d(1.0, 0.0, -1.0).asDiagonal().toDenseMatrix()));  // line pair
   EXPECT_FALSE(isEllipse(Eigen::Matrix3d::Zero()));
@@ -368,7 +368,8 @@ int pp3Planes(const HardCase &h, double &best)
   for (int i = 0; i < m; ++i) {
     Eigen::Vector4d plane;
     if (planePair(conics[i], h.cone, plane))
-      best = std::min(best, std::max(laser_test::normalError(plane, h.plane), laser_test::altitudeError(plane, h.plane)));
+      best =
+          std::min(best, std::max(laser_test::normalError(plane, h.plane), laser_test::altitudeError(plane, h.plane)));
   }
   return m;
 }

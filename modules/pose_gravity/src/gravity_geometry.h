@@ -56,19 +56,16 @@ inline double reprojectionError2(const Pose &pose, const Eigen::Vector3d &x, con
 }
 
 //! True when every coefficient of the vector is finite.
-template <typename Derived> inline bool allFinite(const Eigen::MatrixBase<Derived> &v)
-{
-  return v.allFinite();
-}
+template <typename Derived> inline bool allFinite(const Eigen::MatrixBase<Derived> &v) { return v.allFinite(); }
 
 //! Settings of refinePose().
 struct RefineOptions
 {
-  double imageSigma = 1e-3;         //!< image noise, normalized coordinates (whitens the reprojection errors)
-  double cameraGravitySigma = 0.0;  //!< noise of each component of the unit camera gravity (0: exact)
-  double objectGravitySigma = 0.0;  //!< noise of each component of the unit object gravity (0: exact)
+  double imageSigma = 1e-3;               //!< image noise, normalized coordinates (whitens the reprojection errors)
+  double cameraGravitySigma = 0.0;        //!< noise of each component of the unit camera gravity (0: exact)
+  double objectGravitySigma = 0.0;        //!< noise of each component of the unit object gravity (0: exact)
   vpRobustLoss loss = vpRobustLoss::NONE; //!< robust loss on each point's reprojection error
-  double lossScale = 3e-3;          //!< scale of the loss, normalized coordinates
+  double lossScale = 3e-3;                //!< scale of the loss, normalized coordinates
 };
 
 /*!

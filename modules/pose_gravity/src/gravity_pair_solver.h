@@ -71,9 +71,15 @@ struct vpYawFrame
     uprightAxes(gObj, b1o, b2o);
   }
   //! wRc x: a camera vector in the upright camera frame.
-  Eigen::Vector3d upCamera(const Eigen::Vector3d &x) const { return Eigen::Vector3d(b1c.dot(x), b2c.dot(x), gc.dot(x)); }
+  Eigen::Vector3d upCamera(const Eigen::Vector3d &x) const
+  {
+    return Eigen::Vector3d(b1c.dot(x), b2c.dot(x), gc.dot(x));
+  }
   //! wRo X: an object vector in the upright object frame.
-  Eigen::Vector3d upObject(const Eigen::Vector3d &X) const { return Eigen::Vector3d(b1o.dot(X), b2o.dot(X), go.dot(X)); }
+  Eigen::Vector3d upObject(const Eigen::Vector3d &X) const
+  {
+    return Eigen::Vector3d(b1o.dot(X), b2o.dot(X), go.dot(X));
+  }
   //! wRc^T w: an upright camera vector back in the camera frame.
   Eigen::Vector3d toCamera(double wx, double wy, double wz) const { return wx * b1c + wy * b2c + wz * gc; }
   //! cRo = wRc^T Rz wRo for the yaw of cosine \e c and sine \e s.
@@ -104,11 +110,11 @@ struct vpYawLinear
 //! The solved yaw equation of one pair and the linear forms its poses depend on.
 struct vpPairYaw
 {
-  int roots;        //!< 1 (double root) or 2
-  double cs[2][2];  //!< (cos, sin) of the roots, by increasing yaw (the double root twice)
-  vpYawLinear qA;   //!< nn times the depth of A along x_A (positive in front of the camera)
-  vpYawLinear qB;   //!< nn times the depth of B along x_B
-  double h;         //!< 1 / (2 nn)
+  int roots;            //!< 1 (double root) or 2
+  double cs[2][2];      //!< (cos, sin) of the roots, by increasing yaw (the double root twice)
+  vpYawLinear qA;       //!< nn times the depth of A along x_A (positive in front of the camera)
+  vpYawLinear qB;       //!< nn times the depth of B along x_B
+  double h;             //!< 1 / (2 nn)
   double observability; //!< sqrt(a^2 + b^2) / (|n| |d|): how much the pair constrains the yaw (0: not at all, 1: best)
 
   //! Translation cto of the root (c, s), given \e RS = cRo (X_A + X_B).

@@ -120,7 +120,8 @@ void findDuplicates(const std::vector<double> &v, int dim, double tolerance, std
   }
   std::vector<size_t> order(n);
   std::iota(order.begin(), order.end(), size_t(0));
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
   const int offsets = (dim == 1) ? 3 : (dim == 2) ? 9 : 27;
   for (size_t i = 0; i < n; ++i) {
     int best = -1;
@@ -130,8 +131,8 @@ void findDuplicates(const std::vector<double> &v, int dim, double tolerance, std
       for (int d = 0; d < dim; ++d, code /= 3)
         target[d] += code % 3 - 1;
       // The rows of the target cell, by increasing index: only earlier rows can be the first equal one.
-      auto begin = std::lower_bound(order.begin(), order.end(), target,
-                                    [&](size_t a, const Key &k) { return keys[a] < k; });
+      auto begin =
+          std::lower_bound(order.begin(), order.end(), target, [&](size_t a, const Key &k) { return keys[a] < k; });
       for (auto it = begin; it != order.end() && keys[*it] == target && *it < i; ++it) {
         bool within = true;
         for (int d = 0; d < dim; ++d)

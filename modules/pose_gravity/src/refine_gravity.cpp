@@ -14,10 +14,10 @@
 */
 #include <cmath>
 
-#include <ceres/ceres.h>
-#include <ceres/rotation.h>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
 
 #include "gravity_geometry.h"
 
@@ -148,22 +148,22 @@ void buildYawProblem(const Eigen::Matrix3d &wRc, const Eigen::Matrix3d &wRo, con
   const Eigen::Matrix3d A = wRc.transpose();
   for (int i = 0; i < n; ++i)
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<YawReprojection, 2, 1, 3>(
-                               new YawReprojection(A, wRo * X[i], x[i], o.imageSigma)),
+                                 new YawReprojection(A, wRo * X[i], x[i], o.imageSigma)),
                              makeLoss(o), alpha, t);
 }
 
 // The 6-DOF problem on (delta, t) around the rotation R0.
 void buildFullProblem(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
-                      const Eigen::Vector3d *X, int n, const RefineOptions &o, const Eigen::Matrix3d &R0,
-                      double *delta, double *t, ceres::Problem &problem)
+                      const Eigen::Vector3d *X, int n, const RefineOptions &o, const Eigen::Matrix3d &R0, double *delta,
+                      double *t, ceres::Problem &problem)
 {
   for (int i = 0; i < n; ++i)
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FullReprojection, 2, 3, 3>(
-                               new FullReprojection(R0 * X[i], x[i], o.imageSigma)),
+                                 new FullReprojection(R0 * X[i], x[i], o.imageSigma)),
                              makeLoss(o), delta, t);
-  problem.AddResidualBlock(
-    new ceres::AutoDiffCostFunction<GravityPrior, 3, 3>(new GravityPrior(R0 * gObj, gCam, priorSigma(o))), nullptr,
-    delta);
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<GravityPrior, 3, 3>(
+                               new GravityPrior(R0 * gObj, gCam, priorSigma(o))),
+                           nullptr, delta);
 }
 
 bool refineYaw(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
@@ -199,8 +199,8 @@ bool refineFull(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const 
   if (!usable(summary) || !d.allFinite() || !tNew.allFinite())
     return false;
   const double angle = d.norm();
-  const Eigen::Matrix3d dR =
-    (angle > 0.0) ? Eigen::AngleAxisd(angle, d / angle).toRotationMatrix() : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d dR = (angle > 0.0) ? Eigen::AngleAxisd(angle, d / angle).toRotationMatrix()
+                                           : Eigen::Matrix3d::Identity();
   pose.R = dR * pose.R;
   pose.t = tNew;
   return true;
@@ -268,8 +268,7 @@ bool refinePose(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const 
                 Eigen::Matrix<double, 6, 6> *covariance)
 {
   if (n < 2 || !(options.imageSigma > 0.0) || !(options.cameraGravitySigma >= 0.0) ||
-      !(options.objectGravitySigma >= 0.0) || !(options.lossScale > 0.0) || !pose.R.allFinite() ||
-      !pose.t.allFinite())
+      !(options.objectGravitySigma >= 0.0) || !(options.lossScale > 0.0) || !pose.R.allFinite() || !pose.t.allFinite())
     return false;
   Pose refined = pose;
   const bool ok = (priorSigma(options) > 0.0) ? refineFull(gCam, gObj, x, X, n, options, refined)

@@ -111,8 +111,8 @@ vpRotationMatrix vpImuGravity::loadRotation(const std::string &file)
     all.insert(all.end(), values.begin(), values.end());
   }
   if (all.size() != 9 && all.size() != 16)
-    badFile(file, 0, "expected 9 numbers (3x3 rotation) or 16 (4x4 homogeneous matrix), got " +
-                         std::to_string(all.size()));
+    badFile(file, 0,
+            "expected 9 numbers (3x3 rotation) or 16 (4x4 homogeneous matrix), got " + std::to_string(all.size()));
   const size_t stride = (all.size() == 16) ? 4 : 3;
   vpMatrix M(3, 3);
   for (unsigned int r = 0; r < 3; ++r)
@@ -205,7 +205,8 @@ void vpImuGravity::loadCsv(const std::string &file, double timeScale)
     if (!numeric)
       badFile(file, lineNo, "a field is not a number: '" + line + "'");
     if (values.size() != 7)
-      badFile(file, lineNo, "expected 7 columns (timestamp, wx, wy, wz, ax, ay, az), got " + std::to_string(values.size()));
+      badFile(file, lineNo,
+              "expected 7 columns (timestamp, wx, wy, wz, ax, ay, az), got " + std::to_string(values.size()));
     for (unsigned int i = 0; i < 3; ++i) {
       w[i] = values[1 + i];
       a[i] = values[4 + i];

@@ -292,13 +292,14 @@ namespace
 vpPoseGravity::vpPoseGravityStatus solveClosedForm(bool p3p, vpPoseGravity::vpP3PPairRule rule,
                                                    const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
                                                    const std::vector<Eigen::Vector3d> &x,
-                                                   const std::vector<Eigen::Vector3d> &X, double tolerance,
-                                                   Pose &pose, double &error)
+                                                   const std::vector<Eigen::Vector3d> &X, double tolerance, Pose &pose,
+                                                   double &error)
 {
   const bool found =
       p3p ? vpGravitySolvers::p3p(gCam, gObj, x.data(), X.data(), pose,
-                                  rule == vpPoseGravity::P3P_WIDEST_PAIR ? vpGravitySolvers::P3PPairRule::WidestPair
-                                                                         : vpGravitySolvers::P3PPairRule::BestThirdPoint)
+                                  rule == vpPoseGravity::P3P_WIDEST_PAIR
+                                      ? vpGravitySolvers::P3PPairRule::WidestPair
+                                      : vpGravitySolvers::P3PPairRule::BestThirdPoint)
           : vpGravitySolvers::leastSquares(gCam, gObj, x.data(), X.data(), static_cast<int>(x.size()), pose);
   error = std::numeric_limits<double>::infinity();
   if (!found)
@@ -321,11 +322,12 @@ bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMa
   // is still not trusted when it leaves more error than the noise explains (3 sigma of the image and
   // gravity noise) and an alternative fits with less than half of it (the exchange: within twice the noise).
   // A fit within the noise needs no comparison.
-  const double noise = 3.0 * std::sqrt(m_imageStdDev * m_imageStdDev + m_gCamStdDev * m_gCamStdDev +
-                                       m_gObjStdDev * m_gObjStdDev);
+  const double noise =
+      3.0 * std::sqrt(m_imageStdDev * m_imageStdDev + m_gCamStdDev * m_gCamStdDev + m_gObjStdDev * m_gObjStdDev);
   m_mistake = GRAVITY_MISTAKE_NONE;
   if (m_status != STATUS_OK || error > noise) {
-    const struct {
+    const struct
+    {
       Eigen::Vector3d gCam, gObj;
       vpGravityMistake mistake;
       vpPoseGravityStatus status;
@@ -364,11 +366,9 @@ void vpPoseGravity::updateCovariance(const vpHomogeneousMatrix &cMo, const std::
   std::vector<Eigen::Vector3d> x, X;
   collectPoints(m_points, used, x, X);
   Eigen::Matrix<double, 6, 6> covariance;
-  if (!vpGravitySolvers::detail::poseCovariance(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
-                                                static_cast<int>(x.size()),
-                                                refineOptions(m_imageStdDev, m_gCamStdDev, m_gObjStdDev, m_loss,
-                                                              m_lossScale),
-                                                toPose(cMo), covariance))
+  if (!vpGravitySolvers::detail::poseCovariance(
+          toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(), static_cast<int>(x.size()),
+          refineOptions(m_imageStdDev, m_gCamStdDev, m_gObjStdDev, m_loss, m_lossScale), toPose(cMo), covariance))
     return;
   storeMatrix(covariance, m_covariance);
   m_hasCovariance = true;
@@ -384,10 +384,9 @@ bool vpPoseGravity::refinePose(vpHomogeneousMatrix &cMo)
       refineOptions(m_imageStdDev, m_gCamStdDev, m_gObjStdDev, m_loss, m_lossScale);
   Pose pose = toPose(cMo);
   Eigen::Matrix<double, 6, 6> covariance;
-  if (x.size() < 2 ||
-      !vpGravitySolvers::detail::refinePose(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
-                                            static_cast<int>(x.size()), options, pose,
-                                            m_computeCovariance ? &covariance : nullptr)) {
+  if (x.size() < 2 || !vpGravitySolvers::detail::refinePose(toEigen(m_gCam), toEigen(m_gObj), x.data(), X.data(),
+                                                            static_cast<int>(x.size()), options, pose,
+                                                            m_computeCovariance ? &covariance : nullptr)) {
     m_status = STATUS_REFINEMENT_FAILED;
     return false;
   }
@@ -424,21 +423,24 @@ void vpPoseGravity::setConsistencyThreshold(double t)
 void vpPoseGravity::setRansacThreshold(double t)
 {
   if (!(t > 0.0) || !std::isfinite(t))
-    throw vpPoseGravityException(vpPoseGravityException::badParameterError, "vpPoseGravity::setRansacThreshold: threshold must be > 0");
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 "vpPoseGravity::setRansacThreshold: threshold must be > 0");
   m_ransacThreshold = t;
 }
 
 void vpPoseGravity::setRansacMaxTrials(int trials)
 {
   if (trials <= 0)
-    throw vpPoseGravityException(vpPoseGravityException::badParameterError, "vpPoseGravity::setRansacMaxTrials: must be > 0");
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 "vpPoseGravity::setRansacMaxTrials: must be > 0");
   m_ransacMaxTrials = trials;
 }
 
 void vpPoseGravity::setRansacProbability(double p)
 {
   if (!(p > 0.0 && p < 1.0))
-    throw vpPoseGravityException(vpPoseGravityException::badParameterError, "vpPoseGravity::setRansacProbability: must be in (0, 1)");
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 "vpPoseGravity::setRansacProbability: must be in (0, 1)");
   m_ransacProbability = p;
 }
 
@@ -464,7 +466,8 @@ std::vector<vpPoint> vpPoseGravity::getRansacInliers() const
 void vpPoseGravity::setImageStdDev(double sigma)
 {
   if (!(sigma > 0.0) || !std::isfinite(sigma))
-    throw vpPoseGravityException(vpPoseGravityException::badParameterError, "vpPoseGravity::setImageStdDev: must be > 0");
+    throw vpPoseGravityException(vpPoseGravityException::badParameterError,
+                                 "vpPoseGravity::setImageStdDev: must be > 0");
   m_imageStdDev = sigma;
 }
 
@@ -548,7 +551,8 @@ std::string vpPoseGravity::getMistakeMessage(vpGravityMistake mistake)
   case GRAVITY_MISTAKE_SIGN_REVERSED:
     return "the points fit the camera gravity reversed: an accelerometer reading (specific force, pointing up) was "
            "passed as gravity";
-  case GRAVITY_MISTAKE_SWAPPED: return "the points fit the camera and object gravity exchanged";
+  case GRAVITY_MISTAKE_SWAPPED:
+    return "the points fit the camera and object gravity exchanged";
   }
   return "unknown mistake";
 }

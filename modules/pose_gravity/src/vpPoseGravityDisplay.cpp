@@ -25,8 +25,8 @@ void vpPoseGravity::draw(vpImage<unsigned char> &I, const vpHomogeneousMatrix &c
   vpImageDraw::drawFrame(I, cMo, cam, size, grey, thickness);
 }
 
-void vpPoseGravity::draw(vpImage<vpRGBa> &I, const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam,
-                         double size, const vpColor &color, unsigned int thickness)
+void vpPoseGravity::draw(vpImage<vpRGBa> &I, const vpHomogeneousMatrix &cMo, const vpCameraParameters &cam, double size,
+                         const vpColor &color, unsigned int thickness)
 {
   vpImageDraw::drawFrame(I, cMo, cam, size, color, thickness);
 }

@@ -49,8 +49,8 @@ public:
   {
     vpGravitySolvers::P2PCase p2pCase = vpGravitySolvers::P2PCase::NoSolution;
     // Two identical object points (a repeated match) give NoSolution: the sample is skipped.
-    const int count = vpGravitySolvers::detail::solvePairPoses(m_frame, m_x[sample[0]], m_x[sample[1]],
-                                                               m_X[sample[0]], m_X[sample[1]], models, p2pCase);
+    const int count = vpGravitySolvers::detail::solvePairPoses(m_frame, m_x[sample[0]], m_x[sample[1]], m_X[sample[0]],
+                                                               m_X[sample[1]], models, p2pCase);
     // A pose known only up to a ray cannot be scored.
     return (p2pCase == vpGravitySolvers::P2PCase::TwoSolutions) ? count : 0;
   }
@@ -164,8 +164,8 @@ double chanceInlierProbability(const std::vector<Eigen::Vector3d> &x, double tau
 struct ConsensusRule
 {
   vpRansacOptions options;
-  unsigned int minimum;  //!< the user's minimum consensus
-  double significance;   //!< of the chance consensus
+  unsigned int minimum; //!< the user's minimum consensus
+  double significance;  //!< of the chance consensus
 };
 
 /*!
@@ -216,7 +216,8 @@ bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
   if (!found) {
     // The same search with the standard mix-ups of the gravity vectors: a consensus under one of
     // them names the mistake.
-    const struct {
+    const struct
+    {
       vpGravityMistake mistake;
       Eigen::Vector3d gCam, gObj;
     } alternatives[] = {{GRAVITY_MISTAKE_SIGN_REVERSED, -gCam, gObj}, {GRAVITY_MISTAKE_SWAPPED, gObj, gCam}};

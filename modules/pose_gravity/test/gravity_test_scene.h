@@ -53,7 +53,10 @@ inline Eigen::Matrix3d rotationOf(const vpHomogeneousMatrix &M)
   return R;
 }
 
-inline Eigen::Vector3d translationOf(const vpHomogeneousMatrix &M) { return Eigen::Vector3d(M[0][3], M[1][3], M[2][3]); }
+inline Eigen::Vector3d translationOf(const vpHomogeneousMatrix &M)
+{
+  return Eigen::Vector3d(M[0][3], M[1][3], M[2][3]);
+}
 
 //! Pose error: max of the rotation error (Frobenius / sqrt 2, ~ the angle in rad, accurate near 0)
 //! and the translation error relative to the true distance.

@@ -88,10 +88,12 @@ TEST(PoseGravityApi, TooFewPointsThrows)
   expectThrowCode([&] { pose.computePoseCandidates(); }, code, "candidates, 1 point");
   pose.addPoint(s.points[1]);
   EXPECT_NO_THROW(pose.computePoseCandidates());
-  for (vpPoseGravity::vpPoseGravityMethod method : {vpPoseGravity::P3P, vpPoseGravity::LEAST_SQUARES, vpPoseGravity::RANSAC})
+  for (vpPoseGravity::vpPoseGravityMethod method :
+       {vpPoseGravity::P3P, vpPoseGravity::LEAST_SQUARES, vpPoseGravity::RANSAC})
     expectThrowCode([&] { pose.computePose(method, cMo); }, code, "2 points");
   pose.addPoint(s.points[2]);
-  for (vpPoseGravity::vpPoseGravityMethod method : {vpPoseGravity::P3P, vpPoseGravity::LEAST_SQUARES, vpPoseGravity::RANSAC})
+  for (vpPoseGravity::vpPoseGravityMethod method :
+       {vpPoseGravity::P3P, vpPoseGravity::LEAST_SQUARES, vpPoseGravity::RANSAC})
     EXPECT_NO_THROW(pose.computePose(method, cMo));
   pose.clearPoint();
   EXPECT_TRUE(pose.getPoints().empty());

@@ -76,8 +76,8 @@ TEST(PoseGravityChecks, RansacOnPureOutliersFindsNoConsensus)
           EXPECT_EQ(pose.getStatus(), vpPoseGravity::STATUS_NO_CONSENSUS);
         }
       }
-      std::cout << "pure outliers, n = " << n << ", threshold " << (threshold > 0 ? threshold : 4e-3) << ": "
-                << success << " / " << runs << " successes" << std::endl;
+      std::cout << "pure outliers, n = " << n << ", threshold " << (threshold > 0 ? threshold : 4e-3) << ": " << success
+                << " / " << runs << " successes" << std::endl;
       EXPECT_LE(success, runs / 100) << "n = " << n;
     }
   // The significance test is what rejects them: without it a loose threshold finds "consensus".
@@ -166,7 +166,8 @@ TEST(PoseGravityChecks, RansacFiltersRepeatedPoints)
     }
     for (int i = 10; i < 15; ++i)
       points.push_back(s.points[static_cast<size_t>(i)]);
-    for (vpPoseGravity::RANSAC_FILTER_FLAGS flag : {vpPoseGravity::PREFILTER_DEGENERATE_POINTS, vpPoseGravity::NO_FILTER}) {
+    for (vpPoseGravity::RANSAC_FILTER_FLAGS flag :
+         {vpPoseGravity::PREFILTER_DEGENERATE_POINTS, vpPoseGravity::NO_FILTER}) {
       vpPoseGravity pose;
       pose.setCameraGravity(s.gCam);
       pose.setObjectGravity(s.gObj);
@@ -468,13 +469,16 @@ TEST(PoseGravityChecks, RobustRefinementResistsAnOutlier)
     const double angle = gen.uniform(0, 6.283);
     s.points[7].set_x(s.points[7].get_x() + 40 * kPixel * std::cos(angle));
     s.points[7].set_y(s.points[7].get_y() + 40 * kPixel * std::sin(angle));
-    for (vpPoseGravity::vpRobustLoss loss : {vpPoseGravity::LOSS_NONE, vpPoseGravity::LOSS_HUBER, vpPoseGravity::LOSS_CAUCHY}) {
+    for (vpPoseGravity::vpRobustLoss loss :
+         {vpPoseGravity::LOSS_NONE, vpPoseGravity::LOSS_HUBER, vpPoseGravity::LOSS_CAUCHY}) {
       vpPoseGravity pose = estimatorFor(s);
       pose.setImageStdDev(kPixel);
       pose.setRefineLoss(loss, 3 * kPixel);
       vpHomogeneousMatrix cMo = s.cMo;
       ASSERT_TRUE(pose.refinePose(cMo));
-      (loss == vpPoseGravity::LOSS_NONE ? none : loss == vpPoseGravity::LOSS_HUBER ? huber : cauchy)
+      (loss == vpPoseGravity::LOSS_NONE    ? none
+       : loss == vpPoseGravity::LOSS_HUBER ? huber
+                                           : cauchy)
           .push_back(rotationAngle(cMo, s.cMo));
     }
   }

@@ -123,9 +123,9 @@ TEST(PoseGravityNoise, P3PAndLeastSquaresImageNoiseOnly)
   EXPECT_LE(refused, 10);
   p3p.print("P3P, 1 px");
   lsq.print("LEAST_SQUARES 10 points, 1 px");
-  EXPECT_LT(median(p3p.rotation), 0.03);    // measured ~0.015
-  EXPECT_LT(median(p3p.translation), 0.02); // measured ~0.011
-  EXPECT_LT(median(lsq.rotation), 0.008);   // measured ~0.004
+  EXPECT_LT(median(p3p.rotation), 0.03);     // measured ~0.015
+  EXPECT_LT(median(p3p.translation), 0.02);  // measured ~0.011
+  EXPECT_LT(median(lsq.rotation), 0.008);    // measured ~0.004
   EXPECT_LT(median(lsq.translation), 0.007); // measured ~0.003
 }
 

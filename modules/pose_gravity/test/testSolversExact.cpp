@@ -35,7 +35,8 @@ void reportAndCheck(const char *what, const std::vector<double> &errors)
   On kTrials exact scenes from \e seed (scene k has \e nPoints(k) points), \e solve(scene, x, X, pose)
   must return a pose, and the errors must meet the exact-data bounds of reportAndCheck().
 */
-template <typename Count, typename Solve> void checkExactPoses(const char *what, unsigned int seed, Count nPoints, Solve solve)
+template <typename Count, typename Solve>
+void checkExactPoses(const char *what, unsigned int seed, Count nPoints, Solve solve)
 {
   SceneGenerator gen(seed);
   std::vector<double> errors;
@@ -77,21 +78,23 @@ TEST(PoseGravitySolversExact, P2PTruthAmongCandidates)
 
 TEST(PoseGravitySolversExact, P3PGivesTruth)
 {
-  checkExactPoses("P3P", 12, [](int) { return 3; },
-                  [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
-                     vpGravitySolvers::Pose &pose) {
-                    return vpGravitySolvers::p3p(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(), pose);
-                  });
+  checkExactPoses(
+      "P3P", 12, [](int) { return 3; },
+      [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
+         vpGravitySolvers::Pose &pose) {
+        return vpGravitySolvers::p3p(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(), pose);
+      });
 }
 
 TEST(PoseGravitySolversExact, LeastSquaresGivesTruth)
 {
-  checkExactPoses("LEAST_SQUARES", 13, [](int k) { return 3 + k % 8; }, // 3 to 10 points
-                  [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
-                     vpGravitySolvers::Pose &pose) {
-                    return vpGravitySolvers::leastSquares(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(),
-                                                          static_cast<int>(x.size()), pose);
-                  });
+  checkExactPoses(
+      "LEAST_SQUARES", 13, [](int k) { return 3 + k % 8; }, // 3 to 10 points
+      [](const Scene &s, const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
+         vpGravitySolvers::Pose &pose) {
+        return vpGravitySolvers::leastSquares(toEigen(s.gCam), toEigen(s.gObj), x.data(), X.data(),
+                                              static_cast<int>(x.size()), pose);
+      });
 }
 
 TEST(PoseGravitySolversExact, TranslationFromTrueRotation)

@@ -85,8 +85,9 @@ bool referenceBestThirdPoint(const Eigen::Vector3d &gCam, const Eigen::Vector3d 
 
 // P3P with the paper's rule by its definition: pairs by decreasing image distance, first pair with
 // admissible P2P candidates, the candidate with the smallest reprojection error of the third point.
-bool referenceWidestPair(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const std::vector<Eigen::Vector3d> &x,
-                         const std::vector<Eigen::Vector3d> &X, vpGravitySolvers::Pose &pose)
+bool referenceWidestPair(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj,
+                         const std::vector<Eigen::Vector3d> &x, const std::vector<Eigen::Vector3d> &X,
+                         vpGravitySolvers::Pose &pose)
 {
   int order[3] = {0, 1, 2};
   auto dist = [&](int p) { return (x[p] / x[p].z() - x[(p + 1) % 3] / x[(p + 1) % 3].z()).squaredNorm(); };

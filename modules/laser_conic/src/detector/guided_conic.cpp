@@ -42,7 +42,8 @@ struct ConicCoefficients
 };
 
 // Arc (radians) around (uc, vc) covered by the points: 36 sectors of 10 degrees, the occupied ones.
-double sectorCoverage(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices, double uc, double vc)
+double sectorCoverage(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices, double uc,
+                      double vc)
 {
   const double pi = 3.14159265358979323846;
   bool occupied[36] = {false};

@@ -140,7 +140,8 @@ void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossi
 {
   size_t kept = 0;
   for (const Crossing &c : crossings)
-    if (vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(c.point.get_u(), c.point.get_v())) <= GuidedTuning::finalDistance)
+    if (vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(c.point.get_u(), c.point.get_v())) <=
+        GuidedTuning::finalDistance)
       crossings[kept++] = c;
   crossings.resize(kept);
 }

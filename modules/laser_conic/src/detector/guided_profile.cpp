@@ -98,7 +98,10 @@ struct MatchedFilter
 {
   const std::vector<int> &prefix;
   int h, f;
-  double mean(int first, int last) const { return static_cast<double>(prefix[last + 1] - prefix[first]) / (last - first + 1); }
+  double mean(int first, int last) const
+  {
+    return static_cast<double>(prefix[last + 1] - prefix[first]) / (last - first + 1);
+  }
   double background(int k) const
   {
     const int g = GuidedTuning::gap;
@@ -124,7 +127,8 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
     --a;
   while (b + 1 < view.n && view.at(b + 1) > aboveHalf && b - p <= d)
     ++b;
-  if (b - a + 1 > settings.maxWidth || whiteWithoutRedFlanks(view, a, b, settings.saturation, std::max(1, contrast / 2)))
+  if (b - a + 1 > settings.maxWidth ||
+      whiteWithoutRedFlanks(view, a, b, settings.saturation, std::max(1, contrast / 2)))
     return false;
   first = a;
   last = b;
@@ -139,7 +143,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   ProfileResult result;
   const int h = std::max(1, settings.stripeWidth / 2), f = std::max(GuidedTuning::minFlank, h + 1);
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
-  const int lo = static_cast<int>(std::floor(s.pos - s.halfWindow)), hi = static_cast<int>(std::ceil(s.pos + s.halfWindow));
+  const int lo = static_cast<int>(std::floor(s.pos - s.halfWindow)),
+            hi = static_cast<int>(std::ceil(s.pos + s.halfWindow));
   const int reach = h + GuidedTuning::gap + f;
   const int start = std::max(0, lo - reach), end = std::min(lineLength - 1, hi + reach), n = end - start + 1;
   if (n < 2 * reach + 1)

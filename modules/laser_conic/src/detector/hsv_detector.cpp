@@ -144,7 +144,8 @@ void scanColumns(const unsigned char *mask, const unsigned char *weight, int H, 
 
 namespace vsp::laser_detector
 {
-std::vector<vpImagePoint> detectHsv(const vpImage<vpRGBa> &I, const HsvSettings &settings, vpImage<unsigned char> &maskImage)
+std::vector<vpImagePoint> detectHsv(const vpImage<vpRGBa> &I, const HsvSettings &settings,
+                                    vpImage<unsigned char> &maskImage)
 {
   std::vector<vpImagePoint> points;
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());

@@ -30,10 +30,10 @@ typedef std::pair<int, int> Span;
 */
 struct RegionSpans
 {
-  static const int bandShift = 3;              //!< rows per band: 2^bandShift (a shift, not a division, per row)
+  static const int bandShift = 3;               //!< rows per band: 2^bandShift (a shift, not a division, per row)
   static const int bandHeight = 1 << bandShift; //!< rows per band
-  std::vector<Span> spans;     //!< the spans of every band, band after band
-  std::vector<int> bandStart;  //!< first span of each band, plus the end
+  std::vector<Span> spans;                      //!< the spans of every band, band after band
+  std::vector<int> bandStart;                   //!< first span of each band, plus the end
   //! First span of row i.
   const Span *begin(int i) const { return spans.data() + bandStart[static_cast<size_t>(i >> bandShift)]; }
   //! One past the last span of row i.
@@ -43,12 +43,12 @@ struct RegionSpans
 //! Settings of the ridge detector (see vpLaserConicDetector).
 struct RidgeSettings
 {
-  double minContrast;   //!< grey levels
-  double noiseFactor;   //!< threshold = max(minContrast, noiseFactor x noise)
-  int maxWidth;         //!< widest stripe and background distance d, pixels
-  int saturation;       //!< saturated red level
-  double minSegment;    //!< shortest chain, pixels
-  int step;             //!< sampling step of the scan lines
+  double minContrast;                                  //!< grey levels
+  double noiseFactor;                                  //!< threshold = max(minContrast, noiseFactor x noise)
+  int maxWidth;                                        //!< widest stripe and background distance d, pixels
+  int saturation;                                      //!< saturated red level
+  double minSegment;                                   //!< shortest chain, pixels
+  int step;                                            //!< sampling step of the scan lines
   vpLaserConicDetector::vpInstructionSet instructions; //!< one the processor has (never INSTRUCTIONS_BEST)
 };
 
@@ -83,25 +83,25 @@ struct Crossing
 */
 struct RidgeWorkspace
 {
-  std::vector<unsigned char> score;          //!< red-dominance score, H x W
-  std::vector<unsigned char> blockFlags;     //!< per row, per 16 columns: 0xFF when a score reaches the threshold
+  std::vector<unsigned char> score;      //!< red-dominance score, H x W
+  std::vector<unsigned char> blockFlags; //!< per row, per 16 columns: 0xFF when a score reaches the threshold
   std::vector<Candidate> rowPeaks, columnPeaks;
   std::vector<Crossing> crossings;
-  std::vector<int> lastEnd;                  //!< per column, end of the last measured run
-  std::vector<unsigned char> zeros;          //!< W zero scores: the rows beyond the image border
-  std::vector<int> bandStart;                //!< chaining: first sorted crossing of each band of rows, plus the end
-  std::vector<int> order, cursor, parent;    //!< chaining: sorted order, column then band cursors, union-find
+  std::vector<int> lastEnd;                    //!< per column, end of the last measured run
+  std::vector<unsigned char> zeros;            //!< W zero scores: the rows beyond the image border
+  std::vector<int> bandStart;                  //!< chaining: first sorted crossing of each band of rows, plus the end
+  std::vector<int> order, cursor, parent;      //!< chaining: sorted order, column then band cursors, union-find
   std::vector<int> bandOf, columnOf, byColumn; //!< chaining: band and column of each crossing, column order
-  std::vector<double> sortedU, sortedV;      //!< chaining: the crossings' coordinates in sorted order
-  std::vector<int> sortedColumn;             //!< chaining: the crossings' columns in sorted order
-  std::vector<double> minU, maxU, minV, maxV;//!< chain bounding boxes
-  std::vector<unsigned char> keep;           //!< crossings on long chains
-  RegionSpans scoreRegion, searchRegion;     //!< rasterised search region (see vpLaserConicDetector)
-  std::vector<unsigned char> cells;          //!< coarse to fine: the cells near the coarse crossings kept
-  RegionSpans fineRegion;                    //!< coarse to fine: those cells rasterised
+  std::vector<double> sortedU, sortedV;        //!< chaining: the crossings' coordinates in sorted order
+  std::vector<int> sortedColumn;               //!< chaining: the crossings' columns in sorted order
+  std::vector<double> minU, maxU, minV, maxV;  //!< chain bounding boxes
+  std::vector<unsigned char> keep;             //!< crossings on long chains
+  RegionSpans scoreRegion, searchRegion;       //!< rasterised search region (see vpLaserConicDetector)
+  std::vector<unsigned char> cells;            //!< coarse to fine: the cells near the coarse crossings kept
+  RegionSpans fineRegion;                      //!< coarse to fine: those cells rasterised
   std::vector<unsigned char> coarseScore, coarseFlags, coarseZeros; //!< coarse to fine: the coarse columns
-  std::vector<Crossing> guided;              //!< the crossings the guided pass added (see guided_pass.h)
-  std::vector<unsigned char> guidedCells;    //!< guided pass: the cells holding a point found
+  std::vector<Crossing> guided;           //!< the crossings the guided pass added (see guided_pass.h)
+  std::vector<unsigned char> guidedCells; //!< guided pass: the cells holding a point found
   unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
   bool regionValid = false;
 };

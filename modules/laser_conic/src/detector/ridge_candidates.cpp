@@ -83,7 +83,8 @@ candidates32(const unsigned char *v, const unsigned char *far0, const unsigned c
   const __m256i high = _mm256_and_si256(atLeast32(x, bg, threshold), nearTest);
   const __m256i notAbove = _mm256_cmpeq_epi8(_mm256_subs_epu8(x, load32(before)), zero);
   const __m256i notBelow = _mm256_cmpeq_epi8(_mm256_subs_epu8(load32(after), x), zero);
-  return static_cast<unsigned int>(_mm256_movemask_epi8(_mm256_andnot_si256(notAbove, _mm256_and_si256(high, notBelow))));
+  return static_cast<unsigned int>(
+      _mm256_movemask_epi8(_mm256_andnot_si256(notAbove, _mm256_and_si256(high, notBelow))));
 }
 
 // The blocks of 16 columns b, b + 1 (b + 1 <= last) of a row flags: whether one of them has a score reaching
@@ -134,7 +135,8 @@ public:
   {
     const int d = m_d, dn = m_dn;
     if (k >= d && k + 15 + d < W)
-      return candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, m_t, m_th);
+      return candidates16(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, m_t,
+                          m_th);
     unsigned char padded[16 + 2 * 101];
     const int from = k - d - 1, to = std::min(W - 1, k + 16 + d); // [from, to] of the row, clipped below
     std::memset(padded, 0, sizeof(padded));
@@ -167,7 +169,8 @@ __attribute__((target("avx2"))) void rowCandidatesAvx2(const unsigned char *row,
     const int k = 16 * b;
     unsigned int bits;
     if (k >= d && k + 31 + d < W)
-      bits = candidates32(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
+      bits =
+          candidates32(row + k, row + k - d, row + k + d, row + k - dn, row + k + dn, row + k - 1, row + k + 1, t, th);
     else
       bits = (flags[b] ? static_cast<unsigned int>(test(row, W, k)) : 0u) |
              (b + 1 <= last && flags[b + 1] ? static_cast<unsigned int>(test(row, W, k + 16)) << 16 : 0u);
@@ -243,10 +246,10 @@ __attribute__((target("avx2"))) void columnBlocksAvx2(const unsigned char *row, 
       continue;
     const int k = 16 * b;
     unsigned int bits =
-        b + 1 <= lastBlock
-            ? candidates32(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th)
-            : static_cast<unsigned int>(candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k,
-                                                     row + k - stride, row + k + stride, t16, th16));
+        b + 1 <= lastBlock ? candidates32(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride,
+                                          row + k + stride, t, th)
+                           : static_cast<unsigned int>(candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k,
+                                                                    row + k - stride, row + k + stride, t16, th16));
     for (; bits; bits &= bits - 1) {
       const int jj = k + __builtin_ctz(bits);
       if (keep(jj))
@@ -296,7 +299,8 @@ void columnCandidates(const unsigned char *c, const unsigned char *flags, const 
         if (!flags[b])
           continue;
         const int k = 16 * b;
-        int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride, t, th);
+        int bits = candidates16(row + k, up + k, down + k, nearUp + k, nearDown + k, row + k - stride, row + k + stride,
+                                t, th);
         for (; bits; bits &= bits - 1) {
           const int jj = k + __builtin_ctz(bits);
           if (keep(jj))

@@ -18,7 +18,8 @@ int coarseFactor(const RidgeSettings &settings)
 void markCellsAroundKept(RidgeWorkspace &work, int W, int H, int reach)
 {
   const CellGrid grid(W, H);
-  const int cellsAround = (reach + 15) >> 4, bandsAround = (reach + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
+  const int cellsAround = (reach + 15) >> 4,
+            bandsAround = (reach + RegionSpans::bandHeight - 1) >> RegionSpans::bandShift;
   std::vector<unsigned char> &cells = work.cells;
   cells.assign(static_cast<size_t>(grid.columns) * grid.rows, 0);
   for (size_t k = 0; k < work.crossings.size(); ++k) {

@@ -36,7 +36,10 @@ struct CellGrid
     return std::min(rows - 1, std::max(0, static_cast<int>(p.get_v()) >> RegionSpans::bandShift));
   }
   //! Column of the cell of p.
-  int columnOf(const vpImagePoint &p) const { return std::min(columns - 1, std::max(0, static_cast<int>(p.get_u()) >> 4)); }
+  int columnOf(const vpImagePoint &p) const
+  {
+    return std::min(columns - 1, std::max(0, static_cast<int>(p.get_u()) >> 4));
+  }
   //! Index of a cell in a row-major buffer.
   size_t index(int row, int column) const { return static_cast<size_t>(row) * columns + column; }
 };

@@ -38,13 +38,15 @@ __attribute__((target("avx2"))) void noiseSamples4(const unsigned char *row, int
   const __m256i a0 = _mm256_abs_epi32(_mm256_sub_epi32(d0, _mm256_srli_si256(d0, 8)));
   const __m256i a1 = _mm256_abs_epi32(_mm256_sub_epi32(d1, _mm256_srli_si256(d1, 8)));
   // Lanes 0, 4 of a0 then of a1 into the low 128 bits.
-  const __m256i picked = _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(a0, a1), _mm256_setr_epi32(0, 1, 4, 5, 0, 0, 0, 0));
+  const __m256i picked =
+      _mm256_permutevar8x32_epi32(_mm256_unpacklo_epi32(a0, a1), _mm256_setr_epi32(0, 1, 4, 5, 0, 0, 0, 0));
   _mm_storeu_si128(reinterpret_cast<__m128i *>(out), _mm256_castsi256_si128(picked));
 }
 } // namespace
 #endif
 
-double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region, vpLaserConicDetector::vpInstructionSet instructions)
+double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region,
+                     vpLaserConicDetector::vpInstructionSet instructions)
 {
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
   // Four histograms filled in turn, added at the end: most samples fall in a few bins, and consecutive

@@ -58,8 +58,9 @@ bool measuredAcross(const ScanLine &s, int i, int j, int width, int bg, int cont
   if (across.length < width)
     return true;
   const int di = s.alongRow ? d : 0, dj = s.alongRow ? 0 : d;
-  const int acrossBg = std::max(i - di >= 0 && j - dj >= 0 ? s.score[static_cast<size_t>(i - di) * s.W + (j - dj)] : 0,
-                                i + di < s.H && j + dj < s.W ? s.score[static_cast<size_t>(i + di) * s.W + (j + dj)] : 0);
+  const int acrossBg =
+      std::max(i - di >= 0 && j - dj >= 0 ? s.score[static_cast<size_t>(i - di) * s.W + (j - dj)] : 0,
+               i + di < s.H && j + dj < s.W ? s.score[static_cast<size_t>(i + di) * s.W + (j + dj)] : 0);
   return across.maxScore - bg > RidgeTuning::grazingPeakRatio * contrast ||
          RidgeTuning::grazingContrastRatio * contrast < across.maxScore - acrossBg;
 }

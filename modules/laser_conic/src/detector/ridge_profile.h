@@ -24,10 +24,10 @@ namespace vsp::laser_detector
 */
 struct ScanLine
 {
-  const unsigned char *score; //!< the whole score image
-  int W, H;                   //!< its size
-  bool alongRow;              //!< a row (else a column)
-  int line;                   //!< its index
+  const unsigned char *score;                //!< the whole score image
+  int W, H;                                  //!< its size
+  bool alongRow;                             //!< a row (else a column)
+  int line;                                  //!< its index
   const unsigned char *lineScore, *lineRgba; //!< pixel 0 of the line in the score and in the RGBA buffer
   ptrdiff_t stride;                          //!< pixels between two consecutive pixels of the line
   int n;                                     //!< length of the line
@@ -38,8 +38,8 @@ struct ScanLine
       stride(alongRow_ ? 1 : W_), n(alongRow_ ? W_ : H_)
   {
   }
-  int length() const { return n; }                             //!< pixels along the line
-  int at(int pos) const { return lineScore[pos * stride]; }    //!< score of a pixel
+  int length() const { return n; }                          //!< pixels along the line
+  int at(int pos) const { return lineScore[pos * stride]; } //!< score of a pixel
   //! Unclipped red dominance of the pixel (negative for grey or other colours).
   int dominance(int pos) const
   {
@@ -50,8 +50,7 @@ struct ScanLine
 };
 
 //! Outcome of the profile test of a candidate.
-enum Verdict
-{
+enum Verdict {
   ACCEPTED,
   REJECTED, //!< shape, width or white light: mark the run
   IGNORED   //!< not measured by this direction (the other direction crosses more steeply)
@@ -63,8 +62,7 @@ enum Verdict
   lamp's reflection, white tiles) has not. \e Profile: ScanLine, or any type with its length(), red() and
   dominance().
 */
-template <class Profile>
-bool whiteWithoutRedFlanks(const Profile &s, int a, int b, int saturation, int threshold)
+template <class Profile> bool whiteWithoutRedFlanks(const Profile &s, int a, int b, int saturation, int threshold)
 {
   const int n = s.length();
   int firstWhite = -1, lastWhite = -1;

@@ -33,8 +33,8 @@ inline void everyEighthByte(const unsigned char *p, unsigned char *out)
 RidgeScan::RidgeScan(const vpImage<vpRGBa> &I, const RidgeSettings &settings, int threshold, RidgeWorkspace &work,
                      std::vector<StripeRun> &runs)
   : m_rgba(reinterpret_cast<const unsigned char *>(I.bitmap)), m_H(static_cast<int>(I.getHeight())),
-    m_W(static_cast<int>(I.getWidth())), m_flagStride((m_W + 15) >> 4), m_d(settings.maxWidth),
-    m_threshold(threshold), m_settings(settings), m_work(work), m_runs(runs)
+    m_W(static_cast<int>(I.getWidth())), m_flagStride((m_W + 15) >> 4), m_d(settings.maxWidth), m_threshold(threshold),
+    m_settings(settings), m_work(work), m_runs(runs)
 {
   work.score.resize(static_cast<size_t>(m_W) * m_H);
   work.blockFlags.resize(static_cast<size_t>(m_flagStride) * m_H, 0);
@@ -110,9 +110,8 @@ void RidgeScan::scoreRow(int i, const RegionSpans *region)
   }
   // The spans start at multiples of 16 columns (see RegionSpans): the blocks of the flags.
   for (const Span *span = region->begin(i); span != region->end(i); ++span)
-    scoreSpan(m_rgba + 4 * (offset + span->first), &m_work.score[offset + span->first],
-              span->second - span->first + 1, m_settings.saturation, m_threshold, flags + (span->first >> 4),
-              m_settings.instructions);
+    scoreSpan(m_rgba + 4 * (offset + span->first), &m_work.score[offset + span->first], span->second - span->first + 1,
+              m_settings.saturation, m_threshold, flags + (span->first >> 4), m_settings.instructions);
 }
 
 const unsigned char *RidgeScan::flagsOf(int i) const
@@ -135,13 +134,13 @@ void RidgeScan::searchRow(int i, const RegionSpans *region)
 void RidgeScan::searchColumns(int i, const RegionSpans *region, const ColumnSelection &columns)
 {
   if (region == nullptr) {
-    columnCandidates(m_work.score.data(), flagsOf(i), m_work.zeros.data(), m_W, m_H, i, 0, m_W - 1, m_d,
-                     m_threshold, columns, m_settings.instructions, m_work.columnPeaks);
+    columnCandidates(m_work.score.data(), flagsOf(i), m_work.zeros.data(), m_W, m_H, i, 0, m_W - 1, m_d, m_threshold,
+                     columns, m_settings.instructions, m_work.columnPeaks);
     return;
   }
   for (const Span *span = region->begin(i); span != region->end(i); ++span)
-    columnCandidates(m_work.score.data(), flagsOf(i), m_work.zeros.data(), m_W, m_H, i, span->first,
-                     span->second, m_d, m_threshold, columns, m_settings.instructions, m_work.columnPeaks);
+    columnCandidates(m_work.score.data(), flagsOf(i), m_work.zeros.data(), m_W, m_H, i, span->first, span->second, m_d,
+                     m_threshold, columns, m_settings.instructions, m_work.columnPeaks);
 }
 
 void RidgeScan::startCoarseColumns(int coarseStep)
@@ -173,8 +172,8 @@ void RidgeScan::searchCoarseColumns(int i, int coarseStep)
   const int w = coarseStride(coarseStep);
   std::vector<Candidate> &peaks = m_work.columnPeaks;
   const size_t first = peaks.size();
-  columnCandidates(m_work.coarseScore.data(), m_work.coarseFlags.data(), m_work.coarseZeros.data(), w, m_H, i, 0,
-                   w - 1, m_d, m_threshold, ColumnSelection{1, 0}, m_settings.instructions, peaks);
+  columnCandidates(m_work.coarseScore.data(), m_work.coarseFlags.data(), m_work.coarseZeros.data(), w, m_H, i, 0, w - 1,
+                   m_d, m_threshold, ColumnSelection{1, 0}, m_settings.instructions, peaks);
   for (size_t k = first; k < peaks.size(); ++k)
     peaks[k].line *= coarseStep;
 }

@@ -52,7 +52,8 @@ inline unsigned char blockFlag(__m128i s, const ScoreConstants &k)
 }
 
 // Score of the 16 pixels from rgba (16-bit lanes, the same integer arithmetic as scorePixel()) and their flag.
-inline void scoreBlockRamp(const unsigned char *rgba, unsigned char *score, unsigned char *flag, const ScoreConstants &k)
+inline void scoreBlockRamp(const unsigned char *rgba, unsigned char *score, unsigned char *flag,
+                           const ScoreConstants &k)
 {
   __m128i half[2];
   for (int h = 0; h < 2; ++h) {
@@ -89,8 +90,8 @@ inline void scoreBlock(const unsigned char *rgba, unsigned char *score, unsigned
   auto dominance = [&](__m128i a) {
     return _mm_and_si128(_mm_subs_epu8(a, _mm_max_epu8(_mm_srli_epi32(a, 8), _mm_srli_epi32(a, 16))), k.low8);
   };
-  const __m128i s = _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)),
-                                     _mm_packs_epi32(dominance(a2), dominance(a3)));
+  const __m128i s =
+      _mm_packus_epi16(_mm_packs_epi32(dominance(a0), dominance(a1)), _mm_packs_epi32(dominance(a2), dominance(a3)));
   _mm_storeu_si128(reinterpret_cast<__m128i *>(score), s);
   *flag = blockFlag(s, k);
 }
@@ -110,7 +111,8 @@ void scoreSpanSse2(const unsigned char *rgba, unsigned char *score, int n, int s
 // R - max(G, B) of 8 RGBA pixels, saturated at 0, in byte 0 of their 32-bit lanes (the others 0).
 __attribute__((target("avx2"))) inline __m256i dominance8(__m256i a, __m256i low8)
 {
-  return _mm256_and_si256(_mm256_subs_epu8(a, _mm256_max_epu8(_mm256_srli_epi32(a, 8), _mm256_srli_epi32(a, 16))), low8);
+  return _mm256_and_si256(_mm256_subs_epu8(a, _mm256_max_epu8(_mm256_srli_epi32(a, 8), _mm256_srli_epi32(a, 16))),
+                          low8);
 }
 
 // scoreSpanScalar() 32 pixels at a time (AVX2), on processors that have it (see scoreSpan()).

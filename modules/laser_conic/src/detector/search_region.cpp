@@ -23,20 +23,25 @@ void markBlocks(const std::vector<vpImagePoint> &region, double margin, double m
   // (every point is within a cell diagonal, 0.36 margin, of the point marked for its cell, so the band
   // reaches at least m - 0.36 margin around every point).
   const double cellSize = std::max(1.0, 0.25 * margin);
-  const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2, cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
+  const int cellColumns = static_cast<int>((W + 2 * m) / cellSize) + 2,
+            cellRows = static_cast<int>((H + 2 * m) / cellSize) + 2;
   std::vector<unsigned char> used(static_cast<size_t>(cellColumns) * cellRows, 0);
   for (const vpImagePoint &p : region) {
     const double u = p.get_u(), v = p.get_v();
     if (u < -m || v < -m || u > W - 1 + m || v > H - 1 + m)
       continue; // the square does not meet the image
-    unsigned char &cell = used[static_cast<size_t>((v + m) / cellSize) * cellColumns + static_cast<size_t>((u + m) / cellSize)];
+    unsigned char &cell =
+        used[static_cast<size_t>((v + m) / cellSize) * cellColumns + static_cast<size_t>((u + m) / cellSize)];
     if (cell)
       continue;
     cell = 1;
-    const int i0 = std::max(0, static_cast<int>(std::floor(v - m))), i1 = std::min(H - 1, static_cast<int>(std::ceil(v + m)));
-    const int j0 = std::max(0, static_cast<int>(std::floor(u - m))), j1 = std::min(W - 1, static_cast<int>(std::ceil(u + m)));
+    const int i0 = std::max(0, static_cast<int>(std::floor(v - m))),
+              i1 = std::min(H - 1, static_cast<int>(std::ceil(v + m)));
+    const int j0 = std::max(0, static_cast<int>(std::floor(u - m))),
+              j1 = std::min(W - 1, static_cast<int>(std::ceil(u + m)));
     for (int bi = i0 / blockH; bi <= i1 / blockH; ++bi)
-      std::fill(&marked[static_cast<size_t>(bi) * nbX + j0 / blockW], &marked[static_cast<size_t>(bi) * nbX + j1 / blockW] + 1, 1);
+      std::fill(&marked[static_cast<size_t>(bi) * nbX + j0 / blockW],
+                &marked[static_cast<size_t>(bi) * nbX + j1 / blockW] + 1, 1);
   }
 }
 
@@ -129,7 +134,8 @@ void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int s
   std::vector<unsigned char> marked;
   markBlocks(region, margin, margin, H, W, nbX, marked);
   blocksToSpans(marked, nbX, W, searched);
-  blocksToSpans(dilateBlocks(marked, nbX, (reach + 15) / 16, (reach + RegionSpans::bandHeight - 1) / RegionSpans::bandHeight),
+  blocksToSpans(dilateBlocks(marked, nbX, (reach + 15) / 16,
+                             (reach + RegionSpans::bandHeight - 1) / RegionSpans::bandHeight),
                 nbX, W, scored);
 }
 } // namespace vsp::laser_detector

@@ -88,13 +88,13 @@ class VISP_EXPORT vpLaserConicCalibration
 public:
   //! Outcome of the last compute() (or calibrate()).
   typedef enum {
-    STATUS_NOT_COMPUTED,     //!< compute() not called yet, or views changed since
-    STATUS_OK,               //!< calibrated; the covariance and standard deviations are available
-    STATUS_NOT_ENOUGH_VIEWS, //!< fewer than 2 views: one conic does not determine the cone reliably
-    STATUS_DEGENERATE_VIEWS, //!< the views do not determine the cone: all the grids in one plane, or
-                             //!< ill-conditioned normal equations (see setMaxConditionNumber())
-    STATUS_NO_CONVERGENCE,   //!< Levenberg-Marquardt stopped at the iteration limit
-    STATUS_SOLVER_FAILURE,   //!< Ceres failed or the result is not finite
+    STATUS_NOT_COMPUTED,      //!< compute() not called yet, or views changed since
+    STATUS_OK,                //!< calibrated; the covariance and standard deviations are available
+    STATUS_NOT_ENOUGH_VIEWS,  //!< fewer than 2 views: one conic does not determine the cone reliably
+    STATUS_DEGENERATE_VIEWS,  //!< the views do not determine the cone: all the grids in one plane, or
+                              //!< ill-conditioned normal equations (see setMaxConditionNumber())
+    STATUS_NO_CONVERGENCE,    //!< Levenberg-Marquardt stopped at the iteration limit
+    STATUS_SOLVER_FAILURE,    //!< Ceres failed or the result is not finite
     STATUS_TOO_MANY_OUTLIERS, //!< fewer than half the points are within 3 loss scales of the cone
     STATUS_LARGE_RESIDUALS    //!< the inliers' RMS exceeds setMaxRmsPixels(): the cone does not fit the points
   } vpLaserConicCalibrationStatus;

@@ -29,11 +29,11 @@ struct RidgeWorkspace;
 //! A stripe run measured by vpLaserConicDetector (the diagnostic mask getMask() is drawn from them).
 struct vpLaserConicDetectorRun
 {
-  bool alongRow;   //!< measured along row \e line (else along column \e line)
-  int line;        //!< row or column index
-  int first;       //!< first pixel of the half-maximum run along the line
-  int last;        //!< last pixel of the half-maximum run along the line
-  bool accepted;   //!< a returned point (else a rejected candidate)
+  bool alongRow; //!< measured along row \e line (else along column \e line)
+  int line;      //!< row or column index
+  int first;     //!< first pixel of the half-maximum run along the line
+  int last;      //!< last pixel of the half-maximum run along the line
+  bool accepted; //!< a returned point (else a rejected candidate)
 };
 
 /*!
@@ -121,8 +121,7 @@ class VISP_EXPORT vpLaserConicDetector
 {
 public:
   //! Detection method.
-  enum vpDetectionMethod
-  {
+  enum vpDetectionMethod {
     DETECTION_RIDGE, //!< ridge of the red-dominance score, adaptive threshold (default)
     DETECTION_HSV    //!< fixed HSV thresholds (historical)
   };
@@ -132,8 +131,7 @@ public:
     gives the same points; the library is built for any x86-64 processor and picks the AVX2 code at run
     time when the processor has it.
   */
-  enum vpInstructionSet
-  {
+  enum vpInstructionSet {
     INSTRUCTIONS_SCALAR, //!< plain C++ (reference)
     INSTRUCTIONS_SSE2,   //!< 16 pixels at a time (every x86-64 processor)
     INSTRUCTIONS_AVX2,   //!< 32 pixels at a time where it pays (processors with AVX2)
@@ -311,11 +309,12 @@ private:
   class VISP_EXPORT vpWorkspace
   {
   public:
-    vpWorkspace();                                     //!< empty buffers
-    vpWorkspace(const vpWorkspace &other);             //!< empty buffers, the last detection's crossings copied
-    vpWorkspace &operator=(const vpWorkspace &other);  //!< keeps its buffers, forgets its rasterised region, copies the crossings
-    ~vpWorkspace();                                    //!< frees the buffers
-    vsp::laser_detector::RidgeWorkspace &get() { return *m_work; } //!< the buffers
+    vpWorkspace();                         //!< empty buffers
+    vpWorkspace(const vpWorkspace &other); //!< empty buffers, the last detection's crossings copied
+    vpWorkspace &
+    operator=(const vpWorkspace &other); //!< keeps its buffers, forgets its rasterised region, copies the crossings
+    ~vpWorkspace();                      //!< frees the buffers
+    vsp::laser_detector::RidgeWorkspace &get() { return *m_work; }             //!< the buffers
     const vsp::laser_detector::RidgeWorkspace &get() const { return *m_work; } //!< the buffers (read only)
 
   private:
@@ -339,17 +338,18 @@ private:
   unsigned int m_regionGeneration; //!< changes with the region or the stripe width: the rasterisation is then redone
   mutable vpLaserConicImageMember<unsigned char> m_mask; //!< drawn from m_runs by getMask() when m_maskDirty
   mutable bool m_maskDirty;
-  unsigned int m_height, m_width;        //!< size of the last image
+  unsigned int m_height, m_width; //!< size of the last image
   double m_threshold, m_noise;
-  bool m_guided;                //!< the guided pass runs after the first
+  bool m_guided; //!< the guided pass runs after the first
   double m_guidedMargin, m_guidedFactor;
   unsigned int m_guidedStep;
-  unsigned int m_guidedCount;   //!< points of the last detection from the guided pass
-  int m_stripeWidth;            //!< observed stripe width of the last detection (0: none yet)
-  bool m_regionIsConic;         //!< the search region is m_regionConic (else the points m_region)
+  unsigned int m_guidedCount; //!< points of the last detection from the guided pass
+  int m_stripeWidth;          //!< observed stripe width of the last detection (0: none yet)
+  bool m_regionIsConic;       //!< the search region is m_regionConic (else the points m_region)
   vpMatrix m_regionConic;
   vpWorkspace m_work; //!< score, block flags, candidates, crossings, chaining and rasterised region of the ridge method
-  std::vector<vpLaserConicDetectorRun> m_runs; //!< rejected candidate runs of the last ridge detection (its crossings are in m_work)
+  std::vector<vpLaserConicDetectorRun>
+      m_runs; //!< rejected candidate runs of the last ridge detection (its crossings are in m_work)
 };
 
 #endif

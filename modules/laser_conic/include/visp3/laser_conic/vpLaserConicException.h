@@ -23,12 +23,12 @@ class VISP_EXPORT vpLaserConicException : public vpException
 public:
   //! Error codes.
   enum errorCodeEnum {
-    badLaserError = 1,     //!< opening angle out of (0, pi), non-finite or degenerate laser pose
-    badCameraError,        //!< camera parameters unset or not positive
-    notEnoughPointError,   //!< fewer points than the method needs
-    badPointError,         //!< non-finite coordinates
-    badValueError,         //!< any other invalid setting
-    notComputedError       //!< a result asked for that the last computation did not produce (e.g. a covariance not requested)
+    badLaserError = 1,   //!< opening angle out of (0, pi), non-finite or degenerate laser pose
+    badCameraError,      //!< camera parameters unset or not positive
+    notEnoughPointError, //!< fewer points than the method needs
+    badPointError,       //!< non-finite coordinates
+    badValueError,       //!< any other invalid setting
+    notComputedError //!< a result asked for that the last computation did not produce (e.g. a covariance not requested)
   };
   //! Builds the exception with a code and a message.
   vpLaserConicException(int errorCode, const std::string &msg) : vpException(errorCode, msg) {}

@@ -79,15 +79,15 @@ public:
 
   //! Outcome of one addFrame() / addMissingFrame().
   typedef enum {
-    FRAME_ACCEPTED,        //!< the frame updated the state
-    FRAME_INITIALISED,     //!< the frame initialised (or re-initialised) the state
-    FRAME_REJECTED,        //!< gated out: Mahalanobis distance above the gate (getLastMahalanobis())
-    FRAME_GROUND_STEP,     //!< a change of ground: the altitude was re-initialised from the frame
-    FRAME_MISSING,         //!< a frame without a plane (addMissingFrame())
-    FRAME_TOO_OLD,         //!< older than setMaxLatency() or than the kept history
-    FRAME_OUT_OF_ORDER,    //!< older than a frame already used
-    FRAME_AHEAD_OF_IMU,    //!< after the last IMU sample: add the IMU samples first
-    FRAME_BAD_INPUT        //!< a non-finite value, or a covariance that is not symmetric positive definite
+    FRAME_ACCEPTED,     //!< the frame updated the state
+    FRAME_INITIALISED,  //!< the frame initialised (or re-initialised) the state
+    FRAME_REJECTED,     //!< gated out: Mahalanobis distance above the gate (getLastMahalanobis())
+    FRAME_GROUND_STEP,  //!< a change of ground: the altitude was re-initialised from the frame
+    FRAME_MISSING,      //!< a frame without a plane (addMissingFrame())
+    FRAME_TOO_OLD,      //!< older than setMaxLatency() or than the kept history
+    FRAME_OUT_OF_ORDER, //!< older than a frame already used
+    FRAME_AHEAD_OF_IMU, //!< after the last IMU sample: add the IMU samples first
+    FRAME_BAD_INPUT     //!< a non-finite value, or a covariance that is not symmetric positive definite
   } vpFrameStatus;
 
   //! Outcome of one addImu().

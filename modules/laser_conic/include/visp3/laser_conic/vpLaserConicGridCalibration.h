@@ -65,9 +65,9 @@ class VISP_EXPORT vpLaserConicGridCalibration
 public:
   //! Outcome of addImage() for one image.
   typedef enum {
-    VIEW_OK,            //!< grid found, pose computed, laser points added to the calibration
-    VIEW_NO_GRID,       //!< the chessboard was not found
-    VIEW_BAD_GRID_POSE, //!< the corner reprojection error exceeds setMaxReprojectionError()
+    VIEW_OK,              //!< grid found, pose computed, laser points added to the calibration
+    VIEW_NO_GRID,         //!< the chessboard was not found
+    VIEW_BAD_GRID_POSE,   //!< the corner reprojection error exceeds setMaxReprojectionError()
     VIEW_FEW_LASER_POINTS //!< fewer than 5 laser points on the board
   } vpGridViewStatus;
 
@@ -135,7 +135,8 @@ public:
     The points of \e laserPoints whose back-projection on the grid plane of \e cMg lies within the board area
     (see setGridMargin()).
   */
-  std::vector<vpImagePoint> pointsOnGrid(const vpHomogeneousMatrix &cMg, const std::vector<vpImagePoint> &laserPoints) const;
+  std::vector<vpImagePoint> pointsOnGrid(const vpHomogeneousMatrix &cMg,
+                                         const std::vector<vpImagePoint> &laserPoints) const;
 
   //! One-line explanation of a view status.
   static std::string getViewStatusMessage(vpGridViewStatus status);

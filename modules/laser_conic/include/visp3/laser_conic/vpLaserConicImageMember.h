@@ -21,8 +21,8 @@
 */
 template <class Type> struct vpLaserConicImageMember
 {
-  vpImage<Type> image;                  //!< the image
-  vpLaserConicImageMember() = default;  //!< empty image
+  vpImage<Type> image;                 //!< the image
+  vpLaserConicImageMember() = default; //!< empty image
   //! Copies \e other's image when it has pixels.
   vpLaserConicImageMember(const vpLaserConicImageMember &other) : image() { copyFrom(other); }
   //! Copies \e other's image when it has pixels, else empties this one.

@@ -83,8 +83,8 @@ public:
     constrained fit explains the trace best is named (getMistakeMessage() says it in words).
   */
   typedef enum {
-    MISTAKE_UNKNOWN,               //!< no mismatch, or none of the alternatives explains the trace
-    MISTAKE_HALF_OPENING_ANGLE,    //!< the trace fits twice the opening angle: the half angle was given for the full one
+    MISTAKE_UNKNOWN,            //!< no mismatch, or none of the alternatives explains the trace
+    MISTAKE_HALF_OPENING_ANGLE, //!< the trace fits twice the opening angle: the half angle was given for the full one
     MISTAKE_DOUBLED_OPENING_ANGLE, //!< the trace fits half the opening angle: twice the full angle was given
     MISTAKE_INVERSE_LASER_POSE,    //!< the trace fits the inverse laser pose: lMc was given for cMl
     MISTAKE_SWAPPED_UV,            //!< the trace fits with u and v exchanged: the image points are (v, u)

@@ -72,8 +72,7 @@ class VISP_EXPORT vpLaserConicSimulator
 {
 public:
   //! Procedural floors, defined at ground coordinates (they depend on the seed only).
-  enum vpFloorType
-  {
+  enum vpFloorType {
     FLOOR_DARK_TILES,  //!< dark grey tiles (3 cm, grey 25-70) with a fine grain: the default
     FLOOR_BRIGHT_GREY, //!< plain bright grey concrete (V about 40-110 under ambient 1) with a soft mottling
     FLOOR_MOSAIC,      //!< colourful mosaic of warm-toned patches (orange, brown, ochre, brick, beige)
@@ -81,8 +80,7 @@ public:
   };
 
   //! Kind of a red distractor lying on the ground.
-  enum vpDistractorShape
-  {
+  enum vpDistractorShape {
     DISTRACTOR_DISC,      //!< disc of diameter \e size
     DISTRACTOR_RECTANGLE, //!< axis-aligned (ground frame) square of side \e size
     DISTRACTOR_LINE       //!< segment from (x, y) to (x2, y2), \e size wide (a red cable, a painted line)
@@ -136,19 +134,19 @@ public:
     //! Seed of the floor and of the clutter (negative: the simulator's seed, setSeed()); a fixed value keeps
     //! the scene of a sequence while setSeed() changes the sensor noise from frame to frame.
     int sceneSeed = -1;
-    double ambient = 1.0;      //!< multiplier of the floor (and distractor) brightness, >= 0
-    double specular = 0.0;     //!< peak grey level of the lamp's specular reflection on the floor, >= 0
-    double shininess = 60.0;   //!< Phong exponent of that reflection (larger: smaller highlight), > 0
-    double lampX = 0.3;        //!< lamp position in the ground frame: x, metres
-    double lampY = 0.2;        //!< lamp position in the ground frame: y, metres
-    double lampZ = 2.5;        //!< lamp height above the ground, metres
+    double ambient = 1.0;    //!< multiplier of the floor (and distractor) brightness, >= 0
+    double specular = 0.0;   //!< peak grey level of the lamp's specular reflection on the floor, >= 0
+    double shininess = 60.0; //!< Phong exponent of that reflection (larger: smaller highlight), > 0
+    double lampX = 0.3;      //!< lamp position in the ground frame: x, metres
+    double lampY = 0.2;      //!< lamp position in the ground frame: y, metres
+    double lampZ = 2.5;      //!< lamp height above the ground, metres
 
-    bool laserOn = true;        //!< false renders a frame without laser (e.g. the laser is pulsed)
-    double laserPower = 330.0;  //!< red light added at the stripe centre, grey levels before clipping, >= 0
-    double stripeWidth = 3.0;   //!< full width at half maximum of the stripe profile, pixels, > 0
-    double whiteCore = 0.0;     //!< gain of the white light added where the red exceeds 255 (saturated core), >= 0
-    double bloom = 0.0;         //!< amplitude of a wide halo around the stripe, relative to laserPower, >= 0
-    double bloomWidth = 8.0;    //!< full width at half maximum of the halo, pixels, > 0
+    bool laserOn = true;       //!< false renders a frame without laser (e.g. the laser is pulsed)
+    double laserPower = 330.0; //!< red light added at the stripe centre, grey levels before clipping, >= 0
+    double stripeWidth = 3.0;  //!< full width at half maximum of the stripe profile, pixels, > 0
+    double whiteCore = 0.0;    //!< gain of the white light added where the red exceeds 255 (saturated core), >= 0
+    double bloom = 0.0;        //!< amplitude of a wide halo around the stripe, relative to laserPower, >= 0
+    double bloomWidth = 8.0;   //!< full width at half maximum of the halo, pixels, > 0
     /*!
       Exponent p of the stripe's fall-off with the distance d from the laser apex to the lit ground point:
       the light varies as \f$ d^{-p} \f$ (2: inverse square; 0, the default: no fall-off), >= 0.
@@ -197,9 +195,9 @@ public:
   */
   struct vpTraceTruth
   {
-    vpImagePoint point; //!< image point of the exact (distorted) centre line of the stripe, pixels
-    double gamma = 0.0; //!< cone angle of the ray, radians
-    double falloff = 1.0; //!< brightness factor along the ring in (0, 1] (1 on the brightest visible part)
+    vpImagePoint point;       //!< image point of the exact (distorted) centre line of the stripe, pixels
+    double gamma = 0.0;       //!< cone angle of the ray, radians
+    double falloff = 1.0;     //!< brightness factor along the ring in (0, 1] (1 on the brightest visible part)
     double reflectance = 1.0; //!< red reflectance of the surface there (1 without reflectanceScaled)
     /*!
       Peak red dominance R - max(G, B) that the stripe adds to the background across the curve, grey levels:
@@ -400,13 +398,13 @@ private:
   vpHomogeneousMatrix m_cMl, m_cMg;
   unsigned int m_seed;
   std::mt19937 m_rng;
-  vpLaserConicImageMember<vpRGBa> m_texture; //!< texture of setGroundTexture()
+  vpLaserConicImageMember<vpRGBa> m_texture;    //!< texture of setGroundTexture()
   double m_texelSize, m_textureX0, m_textureY0; //!< its placement
-  unsigned int m_boardX, m_boardY;          //!< chessboard squares (0: none)
-  double m_boardSquare;                     //!< chessboard square size, metres
-  std::vector<float> m_rayX, m_rayY;        //!< ray map of updateRayMap()
-  vpCameraParameters m_rayCam;              //!< camera of the ray map
-  std::vector<unsigned char> m_rayValid;    //!< 1 where the model has an inverse at that pixel
+  unsigned int m_boardX, m_boardY;              //!< chessboard squares (0: none)
+  double m_boardSquare;                         //!< chessboard square size, metres
+  std::vector<float> m_rayX, m_rayY;            //!< ray map of updateRayMap()
+  vpCameraParameters m_rayCam;                  //!< camera of the ray map
+  std::vector<unsigned char> m_rayValid;        //!< 1 where the model has an inverse at that pixel
 };
 
 #endif

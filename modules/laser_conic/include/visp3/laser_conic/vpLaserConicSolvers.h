@@ -33,7 +33,7 @@ struct LaserCone
 {
   Eigen::Matrix3d cRl = Eigen::Matrix3d::Identity(); //!< orientation of the laser frame (axis = third column)
   Eigen::Vector3d apex = Eigen::Vector3d::Zero();    //!< cone apex (laser centre) in the camera frame
-  double halfAngle = 0.0;                             //!< half opening angle theta, in (0, pi/2)
+  double halfAngle = 0.0;                            //!< half opening angle theta, in (0, pi/2)
 };
 
 //! Cone quadric D (4x4, paper eq. 8-9) of the laser in the camera frame.
@@ -91,14 +91,14 @@ VISP_EXPORT int gp3Planes(const Eigen::Vector2d points[3], const LaserCone &cone
   \return false (plane untouched) on invalid input; otherwise the plane is the refined one (never worse).
 */
 VISP_EXPORT bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane,
-                 int iterations = 20);
+                             int iterations = 20);
 
 /*!
   refinePlane() minimising the weighted sum of squared Sampson distances (weights >= 0, one per point;
   nullptr for unit weights): the step of an iteratively reweighted least-squares (IRLS) refit.
 */
 VISP_EXPORT bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
-                         Eigen::Vector4d &plane, int iterations = 20);
+                                     Eigen::Vector4d &plane, int iterations = 20);
 
 /*!
   Plane of a ground attitude: altitude h (d), roll and pitch as in altitudeRollPitch() (its inverse):

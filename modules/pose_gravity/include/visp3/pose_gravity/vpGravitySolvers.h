@@ -45,12 +45,11 @@ struct Pose
 };
 
 //! Outcome of the two-point solver (Lemma 1 of the paper).
-enum class P2PCase
-{
-  TwoSolutions,   //!< distinct image points: the two roots of the yaw equation; one pose when it has a double root or when cheirality discards a root.
+enum class P2PCase {
+  TwoSolutions, //!< distinct image points: the two roots of the yaw equation; one pose when it has a double root or when cheirality discards a root.
   UniqueRotation, //!< both image points on one ray not parallel to gravity: rotation unique, translation known only up to that ray.
-  Undetermined,   //!< the yaw is not observable from the pair: both image points on one ray parallel to gravity (Lemma 1), or a vertical object segment, or two horizontal rays; infinitely many poses.
-  NoSolution      //!< no admissible pose: identical object points, non-finite data, measurements inconsistent beyond noise, or both roots behind the camera.
+  Undetermined, //!< the yaw is not observable from the pair: both image points on one ray parallel to gravity (Lemma 1), or a vertical object segment, or two horizontal rays; infinitely many poses.
+  NoSolution //!< no admissible pose: identical object points, non-finite data, measurements inconsistent beyond noise, or both roots behind the camera.
 };
 
 /*!
@@ -93,11 +92,10 @@ VISP_EXPORT Eigen::Matrix3d uprightRotation(const Eigen::Vector3d &g);
   and point 0 is taken as the nearer one. A ray parallel to gravity gives Undetermined.
 */
 VISP_EXPORT int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[2],
-        const Eigen::Vector3d X[2], std::array<Pose, 2> &poses, P2PCase *p2pCase = nullptr);
+                    const Eigen::Vector3d X[2], std::array<Pose, 2> &poses, P2PCase *p2pCase = nullptr);
 
 //! Which point pair P3P solves (see p3p()).
-enum class P3PPairRule
-{
+enum class P3PPairRule {
   BestThirdPoint, //!< all three pairs solved; the pose whose third point reprojects best (default).
   WidestPair      //!< the paper's rule: the pair farthest apart in the image, the others only if it has no solution.
 };
@@ -126,7 +124,7 @@ enum class P3PPairRule
   \return true when a pose was found.
 */
 VISP_EXPORT bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[3],
-         const Eigen::Vector3d X[3], Pose &pose, P3PPairRule rule = P3PPairRule::BestThirdPoint);
+                     const Eigen::Vector3d X[3], Pose &pose, P3PPairRule rule = P3PPairRule::BestThirdPoint);
 
 /*!
   Least squares on n >= 3 points, closed form at each step: the best minimum of the algebraic cost,
@@ -159,7 +157,7 @@ VISP_EXPORT bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, c
   vertical line) or data are not finite.
 */
 VISP_EXPORT bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
-                  const Eigen::Vector3d *X, int n, Pose &pose, int reweightingPasses = 2);
+                              const Eigen::Vector3d *X, int n, Pose &pose, int reweightingPasses = 2);
 
 /*!
   Translation of the pose given its rotation: linear least squares on n >= 2 points of the
@@ -170,7 +168,7 @@ VISP_EXPORT bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d
   \return false when the rays are all parallel (translation unobservable along them).
 */
 VISP_EXPORT bool translationFromRotation(const Eigen::Matrix3d &R, const Eigen::Vector3d *x, const Eigen::Vector3d *X,
-                             int n, Eigen::Vector3d &t);
+                                         int n, Eigen::Vector3d &t);
 } // namespace vpGravitySolvers
 
 #endif

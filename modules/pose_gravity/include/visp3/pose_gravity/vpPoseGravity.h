@@ -81,24 +81,24 @@ class VISP_EXPORT vpPoseGravity
 public:
   //! Pose estimation methods.
   typedef enum {
-    P3P,           //!< P3P on the first three points: P2P on the pair chosen by setP3PPairRule(), the third point selects and checks.
+    P3P, //!< P3P on the first three points: P2P on the pair chosen by setP3PPairRule(), the third point selects and checks.
     LEAST_SQUARES, //!< least squares on all n >= 3 points: global minimum of the inverse-depth reweighted cost (1-DOF rotation + translation).
-    RANSAC         //!< 2-point RANSAC on n >= 3 points with local optimisation; see setRansacThreshold() and setRansacNbInliersToReachConsensus().
+    RANSAC //!< 2-point RANSAC on n >= 3 points with local optimisation; see setRansacThreshold() and setRansacNbInliersToReachConsensus().
   } vpPoseGravityMethod;
 
   //! What the last computation found (see getStatus()).
   typedef enum {
-    STATUS_NOT_COMPUTED,        //!< nothing computed yet.
-    STATUS_OK,                  //!< a pose (or two candidates) was found.
+    STATUS_NOT_COMPUTED,            //!< nothing computed yet.
+    STATUS_OK,                      //!< a pose (or two candidates) was found.
     STATUS_COINCIDENT_IMAGE_POINTS, //!< Lemma 1, second case: both image points on one ray not parallel to gravity; rotation unique, translation only up to the ray.
-    STATUS_VERTICAL_RAY,        //!< Lemma 1, third case: both image points on one ray parallel to gravity; infinitely many poses. Also reported when the yaw is unobservable from the pair for another reason (vertical object segment, both rays horizontal).
-    STATUS_NO_SOLUTION,         //!< the measurements admit no pose (e.g. too inconsistent for the trigonometric equation).
-    STATUS_NO_CONSENSUS,        //!< RANSAC found no model whose inliers are more than setRansacNbInliersToReachConsensus() and than chance explains.
-    STATUS_REFINEMENT_FAILED,   //!< refinePose() did not converge or moved a point behind the camera; the input pose was left unchanged.
+    STATUS_VERTICAL_RAY, //!< Lemma 1, third case: both image points on one ray parallel to gravity; infinitely many poses. Also reported when the yaw is unobservable from the pair for another reason (vertical object segment, both rays horizontal).
+    STATUS_NO_SOLUTION,  //!< the measurements admit no pose (e.g. too inconsistent for the trigonometric equation).
+    STATUS_NO_CONSENSUS, //!< RANSAC found no model whose inliers are more than setRansacNbInliersToReachConsensus() and than chance explains.
+    STATUS_REFINEMENT_FAILED, //!< refinePose() did not converge or moved a point behind the camera; the input pose was left unchanged.
     STATUS_INCONSISTENT_GRAVITY, //!< the best pose leaves points beyond setConsistencyThreshold(): wrong IMU-to-camera rotation, IMU in motion, wrong matches or outliers (use RANSAC).
     STATUS_GRAVITY_SIGN_REVERSED, //!< the points fit a pose only with one of the two gravity vectors reversed: an accelerometer reading (specific force, pointing up) was passed as gravity (which points down).
-    STATUS_BEHIND_CAMERA,       //!< the best pose puts a used point behind the camera.
-    STATUS_GRAVITY_SWAPPED      //!< the points fit a pose only with the camera and object gravity exchanged.
+    STATUS_BEHIND_CAMERA,         //!< the best pose puts a used point behind the camera.
+    STATUS_GRAVITY_SWAPPED        //!< the points fit a pose only with the camera and object gravity exchanged.
   } vpPoseGravityStatus;
 
   /*!
@@ -131,7 +131,7 @@ public:
 
   //! Filtering of degenerate points before RANSAC, as vpPose::RANSAC_FILTER_FLAGS.
   typedef enum {
-    NO_FILTER,                  //!< points used as given; a sample of two identical object points is skipped.
+    NO_FILTER, //!< points used as given; a sample of two identical object points is skipped.
     PREFILTER_DEGENERATE_POINTS //!< points whose object or image coordinates repeat an earlier point's (within 1e-12 relative) are left out (default).
   } RANSAC_FILTER_FLAGS;
 

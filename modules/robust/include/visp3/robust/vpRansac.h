@@ -28,11 +28,11 @@
 */
 struct vpRansacOptions
 {
-  double threshold = 1.0;   //!< Inlier threshold on the residual returned by the estimator (same unit).
-  double probability = 0.99; //!< Confidence p that one all-inlier sample was drawn (paper eq. 28).
-  int maxTrials = 1000;      //!< Hard cap on the number of minimal samples.
-  int minTrials = 0;         //!< Samples drawn at least, whatever the adaptive count says.
-  unsigned int seed = 0;     //!< Seed of the sampler: the same seed gives the same result.
+  double threshold = 1.0;        //!< Inlier threshold on the residual returned by the estimator (same unit).
+  double probability = 0.99;     //!< Confidence p that one all-inlier sample was drawn (paper eq. 28).
+  int maxTrials = 1000;          //!< Hard cap on the number of minimal samples.
+  int minTrials = 0;             //!< Samples drawn at least, whatever the adaptive count says.
+  unsigned int seed = 0;         //!< Seed of the sampler: the same seed gives the same result.
   bool localOptimisation = true; //!< Refit each new best model on its inliers (LO-RANSAC).
   /*!
     Refits of the local optimisation at most: a refit that gathers more inliers than the model it
@@ -72,11 +72,11 @@ constexpr int vpRansacPretestBlock = 16;
 */
 struct vpRansacReport
 {
-  int trials = 0;              //!< Minimal samples drawn.
-  int models = 0;              //!< Hypotheses scored (a sample may give several, or none).
-  int inlierCount = 0;         //!< Inliers of the returned model.
-  double score = 0.0;          //!< Sum of truncated squared residuals of the returned model (lower is better).
-  std::vector<int> inliers;    //!< Indices of the inliers of the returned model.
+  int trials = 0;           //!< Minimal samples drawn.
+  int models = 0;           //!< Hypotheses scored (a sample may give several, or none).
+  int inlierCount = 0;      //!< Inliers of the returned model.
+  double score = 0.0;       //!< Sum of truncated squared residuals of the returned model (lower is better).
+  std::vector<int> inliers; //!< Indices of the inliers of the returned model.
 };
 
 /*!
@@ -294,7 +294,8 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, type
   for (int round = 0; round < rounds; ++round) {
     const int before = bestScore.first;
     typename Estimator::Model refit = best;
-    if (!estimator.refine(bestInliers, refit) || !challenge(estimator, refit, thr2, best, bestScore, bestInliers, scratch))
+    if (!estimator.refine(bestInliers, refit) ||
+        !challenge(estimator, refit, thr2, best, bestScore, bestInliers, scratch))
       return;
     if (bestScore.first <= before)
       return;
@@ -396,8 +397,8 @@ private:
   describe it.
 */
 template <class Estimator>
-bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
-                  typename Estimator::Model &best, vpRansacReport &report)
+bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options, typename Estimator::Model &best,
+                  vpRansacReport &report)
 {
   using Model = typename Estimator::Model;
   constexpr int s = Estimator::kSampleSize;
@@ -430,8 +431,7 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options,
         continue;
       if (options.localOptimisation && bestScore.first > s &&
           bestScore.first > (1.0 + options.localOptimisationGain) * optimisedCount) {
-        vsp::detail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers,
-                                       scratch);
+        vsp::detail::localOptimisation(estimator, options.localRounds, thr2, best, bestScore, report.inliers, scratch);
         optimisedCount = bestScore.first;
       }
       needed = vpRansacTrialCount(options.probability, 1.0 - double(bestScore.first) / n, s, options.maxTrials);
