@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies, then runs every check of the project, each as a stage:
 #   format      scripts/check_format.sh: the sources as .clang-format says
+#   structure   scripts/check_structure.sh: no library function over 80 lines, no library file over 600
 #   build+ctest everything built in build/ (or VSP_BUILD_DIR) with the tests on, the whole ctest suite
 #   clang-tidy  .clang-tidy on the library sources (modules/*/src), run-clang-tidy -j<cores>; any finding fails
 #   sanitizers  the libraries and their module tests built with ASan + UBSan (VSP_ENABLE_SANITIZERS) in
@@ -9,7 +10,7 @@
 # and the exit status is non-zero when any stage failed.
 # Usage: bash scripts/test.sh [extra cmake options of the main build]   (as root, or with sudo available)
 # Skip stages in a quick local run (the default, and CI, runs them all): VSP_SKIP_FORMAT=1,
-# VSP_SKIP_TIDY=1, VSP_SKIP_SANITIZERS=1. Parallel jobs: VSP_JOBS (default: the number of cores).
+# VSP_SKIP_STRUCTURE=1, VSP_SKIP_TIDY=1, VSP_SKIP_SANITIZERS=1. Parallel jobs: VSP_JOBS (default: the number of cores).
 # The build folder is always configured with the tests on, whatever an earlier configuration (e.g. of
 # another script) left in its cache, and the run fails when ctest finds no test.
 # VSP_CONTRIB_BUILD=1 also builds a minimal ViSP with the modules as contrib modules and runs their
@@ -26,6 +27,8 @@ if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCH
 
 summary=()
 failed=0
+passed_stages=0
+failed_stages=0
 # stage NAME COMMAND...: runs the command, records its status and wall time.
 stage() {
   local name="$1"; shift
@@ -34,7 +37,11 @@ stage() {
   echo "==== $name"
   "$@" || status=$?
   local verdict="ok"
-  if [ "$status" -ne 0 ]; then verdict="FAILED (status $status)"; failed=1; fi
+  if [ "$status" -ne 0 ]; then
+    verdict="FAILED (status $status)"; failed=1; failed_stages=$((failed_stages + 1))
+  else
+    passed_stages=$((passed_stages + 1))
+  fi
   summary+=("$(printf '%-12s %-22s %4d s' "$name" "$verdict" $((SECONDS - start)))")
 }
 skipped() { summary+=("$(printf '%-12s %-22s' "$1" "skipped ($2=1)")"); }
@@ -80,6 +87,8 @@ sanitizers() {
 
 if [ "${VSP_SKIP_FORMAT:-0}" = 1 ]; then skipped format VSP_SKIP_FORMAT; else
   stage format bash "$here/scripts/check_format.sh"; fi
+if [ "${VSP_SKIP_STRUCTURE:-0}" = 1 ]; then skipped structure VSP_SKIP_STRUCTURE; else
+  stage structure bash "$here/scripts/check_structure.sh"; fi
 stage build+ctest build_and_ctest "$@"
 if [ "${VSP_SKIP_TIDY:-0}" = 1 ]; then skipped clang-tidy VSP_SKIP_TIDY; else stage clang-tidy clang_tidy; fi
 if [ "${VSP_SKIP_SANITIZERS:-0}" = 1 ]; then skipped sanitizers VSP_SKIP_SANITIZERS; else
@@ -92,6 +101,7 @@ fi
 echo
 echo "==== summary (scripts/test.sh)"
 printf '%s\n' "${summary[@]}"
+echo "stages: $passed_stages passed, $failed_stages failed"
 if [ "$failed" -ne 0 ]; then
   echo "scripts/test.sh: FAILED (see the stages above)"
   exit 1
