@@ -290,6 +290,15 @@ Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserCo
 }
 
 //! \e points with u and v exchanged.
+// A ground plane closer to the camera centre than a tenth of the baseline leaves the camera and the
+// laser apex on the ground: no ring could be imaged there. A wrong calibration (e.g. the half opening
+// angle) can make the fit collapse onto such a plane, which must not be returned as an altitude.
+bool passesThroughTheRig(const Eigen::Vector4d &plane, const vpLaserSolvers::LaserCone &cone)
+{
+  const double normal = plane.head<3>().norm();
+  return std::fabs(plane(3)) < 0.1 * cone.apex.norm() * normal;
+}
+
 std::vector<vpImagePoint> swappedUV(const std::vector<vpImagePoint> &points)
 {
   std::vector<vpImagePoint> out(points.size());
@@ -482,6 +491,8 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     return fail(STATUS_PLANE_NOT_FINITE);
   if (fractionInFront(normalized, result.inliers, result.plane, cone) < 0.5)
     return failOrMismatch(STATUS_PLANE_BEHIND, "", points, method);
+  if (passesThroughTheRig(result.plane, cone))
+    return failOrMismatch(STATUS_PLANE_BEHIND, " (the plane passes through the camera and laser)", points, method);
   if (m_calibrationCheck && !vsp::laser_calibration_check::explained(result))
     return failCalibration(points, method, result);
 

@@ -72,8 +72,8 @@ public:
     STATUS_CAMERA_INSIDE_CONE, //!< PP3 only: no epipolar tangent, the camera centre lies inside the laser cone
     STATUS_NO_PLANE_PAIR,      //!< the plane pair of the conic has no ground plane
     STATUS_PLANE_NOT_FINITE,   //!< the estimated plane is not finite
-    STATUS_PLANE_BEHIND,       //!< the plane is behind the system (its trace cannot be seen there)
-    STATUS_SHORT_ARC,          //!< the trace found covers too short an arc (setArcCoverageThreshold())
+    STATUS_PLANE_BEHIND, //!< the plane is behind the system, or within a tenth of the baseline of the camera (its trace cannot be seen there)
+    STATUS_SHORT_ARC,           //!< the trace found covers too short an arc (setArcCoverageThreshold())
     STATUS_CALIBRATION_MISMATCH //!< the calibration cannot explain the trace (setCalibrationCheck(), getSuspectedMistake())
   } vpLaserConicStatus;
 
