@@ -177,9 +177,10 @@ void sequenceStatuses(const std::string &sequence, std::map<int, int> &right, st
   vpCameraParameters cam;
   vpXmlParserCamera parser;
   if (parser.parse(cam, folder + "/camera.xml", "Camera", vpCameraParameters::perspectiveProjWithDistortion) !=
-      vpXmlParserCamera::SEQUENCE_OK)
+      vpXmlParserCamera::SEQUENCE_OK) {
     EXPECT_EQ(parser.parse(cam, folder + "/camera.xml", "Camera", vpCameraParameters::perspectiveProjWithoutDistortion),
               vpXmlParserCamera::SEQUENCE_OK);
+  }
   double angle = 0.0;
   vpHomogeneousMatrix cMl;
   EXPECT_TRUE(readLaser(folder + "/laser.txt", angle, cMl));
