@@ -197,12 +197,12 @@ bool frameResiduals(const Frame &frame, const Eigen::Vector3d &plane, const Lase
   }
   // The conic's scale is arbitrary (the Sampson distance ignores it): normalise for the rounding.
   double norm = 0.0;
-  for (int k = 0; k < 6; ++k)
-    norm = std::max(norm, std::abs(c[k]));
+  for (double ck : c)
+    norm = std::max(norm, std::abs(ck));
   if (!(norm > 0.0) || !std::isfinite(norm))
     return false;
-  for (int k = 0; k < 6; ++k)
-    c[k] /= norm;
+  for (double &ck : c)
+    ck /= norm;
   dc /= norm; // the Sampson distance is invariant under scale: dropping d(norm) only moves ds along c, where it is 0
   bool ok = true;
   for (size_t i = 0; i < frame.points.size(); ++i) {

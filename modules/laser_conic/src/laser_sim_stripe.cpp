@@ -49,6 +49,7 @@ bool occluded(const std::vector<std::vector<vpImagePoint> > &occluders, double u
     if (polygon.size() < 3)
       continue;
     std::vector<cv::Point2f> contour;
+    contour.reserve(polygon.size());
     for (const vpImagePoint &p : polygon)
       contour.push_back(
           cv::Point2f(static_cast<float>(std::lround(p.get_u())), static_cast<float>(std::lround(p.get_v()))));

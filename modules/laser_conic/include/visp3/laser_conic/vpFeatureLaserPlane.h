@@ -45,10 +45,10 @@ public:
   //! Level ground at 1 m.
   vpFeatureLaserPlane();
   //! Default destructor.
-  virtual ~vpFeatureLaserPlane() {}
+  ~vpFeatureLaserPlane() override {}
 
   //! Resets to level ground at 1 m.
-  void init();
+  void init() override;
   /*!
     From the altitude (m, > 0), roll and pitch (rad, vpLaserConicPose's convention).
     \exception vpLaserConicException::badValueError on a non-finite value or an altitude <= 0.
@@ -77,19 +77,19 @@ public:
   static unsigned int selectGy() { return FEATURE_LINE[2]; }
 
   //! Interaction matrix of the selected rows (see the class description).
-  vpMatrix interaction(unsigned int select = FEATURE_ALL);
+  vpMatrix interaction(unsigned int select = FEATURE_ALL) override;
   //! s - s* on the selected rows.
-  vpColVector error(const vpBasicFeature &s_star, unsigned int select = FEATURE_ALL);
+  vpColVector error(const vpBasicFeature &s_star, unsigned int select = FEATURE_ALL) override;
   //! Prints the selected rows.
-  void print(unsigned int select = FEATURE_ALL) const;
+  void print(unsigned int select = FEATURE_ALL) const override;
   //! A copy allocated with new.
-  vpFeatureLaserPlane *duplicate() const;
+  vpFeatureLaserPlane *duplicate() const override;
   //! Writes altitude, roll and pitch in the top-left corner of the image (the feature has no image position).
   void display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color = vpColor::green,
-               unsigned int thickness = 1) const;
+               unsigned int thickness = 1) const override;
   //! display() on a colour image.
   void display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color = vpColor::green,
-               unsigned int thickness = 1) const;
+               unsigned int thickness = 1) const override;
 
 private:
   double m_gz;
