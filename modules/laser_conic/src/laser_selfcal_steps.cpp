@@ -345,12 +345,15 @@ std::string Steps::degeneracyDetails(const StepsOutcome &out, const LaserVector 
      << " deg (RMS about their mean, weakest direction; strongest " << vpMath::deg(out.spreadStrong)
      << " deg); standard deviations: axis " << vpMath::deg(out.axisStd) << " deg, apex direction "
      << vpMath::deg(out.apexDirStd) << " deg; condition number " << out.condition;
-  unsigned int known = 0;
+  // The images leave a one-parameter family of cones (the angle traded against the axis) and the scale: two lengths
+  // fix both (known altitudes, and the apex distance when it is given or held).
+  unsigned int lengths = m_solve.free[kScale] ? 0 : 1;
   for (const Frame &f : m_frames)
-    known += f.fixedAltitude ? 1 : 0;
-  if (m_solve.free[kAngle] && (known < 2 || std::abs(weakest(kAngle)) > 0.3))
+    lengths += f.fixedAltitude ? 1 : 0;
+  if (m_solve.free[kAngle] && (lengths < 2 || std::abs(weakest(kAngle)) > 0.3))
     os << "; the opening angle is not determined by the images (any cone with the same epipolar tangents fits): "
-          "hold it (no estimation) or give known altitudes of frames at different attitudes";
+          "hold it (no estimation) or give a second length: known altitudes of two frames at different altitudes, "
+          "or one with the apex distance";
   return os.str();
 }
 

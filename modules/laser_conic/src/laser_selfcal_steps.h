@@ -43,18 +43,13 @@ struct StepsSettings
   double maxStd = 0.0; //!< observability limit (rad) on the axis; twice it on the apex direction
 };
 
-//! What the steps produce (the facade copies it).
-struct StepsOutcome
+//! What the steps produce: the facade's figures (copied as a whole) and the result.
+struct StepsOutcome : vpLaserConicSelfCalibration::Figures
 {
   vpLaserConicSelfCalibration::vpSelfCalibrationStatus status = vpLaserConicSelfCalibration::STATUS_NOT_COMPUTED;
   std::string details;
   vpHomogeneousMatrix cMl;
   double openingAngle = 0.0;
-  vpMatrix covariance = vpMatrix(6, 6, 0.0);
-  double axisStd = 0.0, apexDirStd = 0.0, spreadWeak = 0.0, spreadStrong = 0.0, rms = 0.0, sigma = 0.0, condition = 0.0;
-  unsigned int nbPoints = 0, nbInliers = 0;
-  std::vector<bool> used;
-  std::vector<vpPlane> planes;
 };
 
 //! The steps of one self-calibration.

@@ -43,9 +43,7 @@ void checkPoints(const std::vector<vpImagePoint> &points)
 vpLaserConicSelfCalibration::vpLaserConicSelfCalibration()
   : m_cam(), m_hasCam(false), m_hasLaser(false), m_estimateAngle(false), m_holdApex(false), m_openingAngle(0.0),
     m_apexDistance(0.0), m_maxStd(vpMath::rad(0.1)), m_maxRms(3.0), m_maxFrames(40), m_cMl(), m_frames(),
-    m_status(STATUS_NOT_COMPUTED), m_details(), m_covariance(6, 6, 0.0), m_axisStd(0.0), m_apexDirStd(0.0),
-    m_spreadWeak(0.0), m_spreadStrong(0.0), m_rms(0.0), m_sigma(0.0), m_condition(0.0), m_nbPoints(0), m_nbInliers(0),
-    m_used(), m_planes()
+    m_status(STATUS_NOT_COMPUTED), m_details(), m_fig()
 {
 }
 
@@ -182,7 +180,7 @@ vpColVector vpLaserConicSelfCalibration::getStdDeviations() const
 {
   vpColVector s(6, 0.0);
   for (unsigned int i = 0; i < 6; ++i)
-    s[i] = std::sqrt(std::max(0.0, m_covariance[i][i]));
+    s[i] = std::sqrt(std::max(0.0, m_fig.covariance[i][i]));
   return s;
 }
 
@@ -217,9 +215,7 @@ bool vpLaserConicSelfCalibration::compute(vpHomogeneousMatrix &cMl, double &open
   checkReady();
   m_status = STATUS_NOT_COMPUTED;
   m_details.clear();
-  m_covariance = vpMatrix(6, 6, 0.0);
-  m_axisStd = m_apexDirStd = m_spreadWeak = m_spreadStrong = m_rms = m_sigma = m_condition = 0.0;
-  m_nbPoints = m_nbInliers = 0;
+  m_fig = Figures();
   return solve(cMl, openingAngle);
 }
 
@@ -241,23 +237,12 @@ bool vpLaserConicSelfCalibration::solve(vpHomogeneousMatrix &cMl, double &openin
   settings.maxFrames = m_maxFrames;
   settings.maxStd = m_maxStd;
   const StepsOutcome out = steps.run(inputs, settings);
-  m_used = out.used;
-  m_planes = out.planes;
-  m_covariance = out.covariance;
-  m_axisStd = out.axisStd;
-  m_apexDirStd = out.apexDirStd;
-  m_spreadWeak = out.spreadWeak;
-  m_spreadStrong = out.spreadStrong;
-  m_rms = out.rms;
-  m_sigma = out.sigma;
-  m_condition = out.condition;
-  m_nbPoints = out.nbPoints;
-  m_nbInliers = out.nbInliers;
+  m_fig = out; // the figures as a whole (the outcome's base)
   if (out.status != STATUS_OK)
     return fail(static_cast<vpSelfCalibrationStatus>(out.status), out.details);
-  if (m_rms > m_maxRms) {
+  if (m_fig.rms > m_maxRms) {
     std::ostringstream os;
-    os << "inlier RMS " << m_rms << " px > " << m_maxRms << " px";
+    os << "inlier RMS " << m_fig.rms << " px > " << m_maxRms << " px";
     return fail(STATUS_LARGE_RESIDUALS, os.str());
   }
   cMl = out.cMl;

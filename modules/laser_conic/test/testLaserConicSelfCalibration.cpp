@@ -11,6 +11,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -53,6 +54,17 @@ std::vector<Frame> testFrames(FlightSettings s, unsigned int frames, unsigned in
 
 double trueApexDistance() { return laserPose().getTranslationVector().frobeniusNorm(); }
 
+//! Indices of the lowest and of the highest frame: the two known altitudes of the two-length protocol.
+std::pair<size_t, size_t> altitudeExtremes(const std::vector<Frame> &frames)
+{
+  size_t lo = 0, hi = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    lo = frames[k].altitude < frames[lo].altitude ? k : lo;
+    hi = frames[k].altitude > frames[hi].altitude ? k : hi;
+  }
+  return std::make_pair(lo, hi);
+}
+
 //! RMS altitude (m) and attitude (rad) errors of GP3 on \e frames with the laser (A, cMl).
 void gp3Errors(const std::vector<Frame> &frames, double A, const vpHomogeneousMatrix &cMl, double &altitudeRms,
                double &attitudeRms, double *altitudeRatio = nullptr)
@@ -79,54 +91,158 @@ void gp3Errors(const std::vector<Frame> &frames, double A, const vpHomogeneousMa
   if (altitudeRatio)
     *altitudeRatio = ratio / n;
 }
+
+//! Self-calibration of \e frames with the scale from known altitudes: of frame 0 (one length), or of the lowest
+//! and the highest frames (two lengths: the protocol that fixes the family of cones, see the class description).
+vpLaserConicSelfCalibration knownAltitudeSelfCal(const std::vector<Frame> &frames, bool twoLengths)
+{
+  vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, 0.0);
+  if (twoLengths) {
+    const std::pair<size_t, size_t> range = altitudeExtremes(frames);
+    selfcal.setKnownAltitude(static_cast<unsigned int>(range.first), frames[range.first].truth.getD());
+    selfcal.setKnownAltitude(static_cast<unsigned int>(range.second), frames[range.second].truth.getD());
+  } else {
+    selfcal.setKnownAltitude(0, frames[0].truth.getD());
+  }
+  return selfcal;
+}
+
+//! GP3 altitudes of \e frames with the laser (A, cMl), NaN where GP3 finds no plane.
+std::vector<double> gp3Altitudes(const std::vector<Frame> &frames, double A, const vpHomogeneousMatrix &cMl)
+{
+  vpLaserConicPose estimator;
+  estimator.setCameraParameters(camera());
+  estimator.setLaser(A, cMl);
+  std::vector<double> h(frames.size(), std::numeric_limits<double>::quiet_NaN());
+  vpPlane plane;
+  for (size_t i = 0; i < frames.size(); ++i)
+    if (estimator.computePlane(frames[i].points, vpLaserConicPose::GP3, plane))
+      h[i] = estimator.getAltitude();
+  return h;
+}
+
+/*!
+  RMS altitude error (m) that the calibration covariance \e C (alpha, beta, apex, A: getCovarianceMatrix())
+  predicts for GP3 on the noise-free frames \e clean: sqrt(mean g^T C g), g the derivative of GP3's altitude
+  with respect to the laser parameters at the truth (central differences).
+*/
+double predictedCalibrationAltitude(const std::vector<Frame> &clean, const vpMatrix &C)
+{
+  const vpColVector z = laserPose().getRotationMatrix().getCol(2);
+  const vpTranslationVector t = laserPose().getTranslationVector();
+  const double p0[6] = {std::atan2(-z[1], z[2]), std::asin(z[0]), t[0], t[1], t[2], kOpening};
+  std::vector<vpColVector> g(clean.size(), vpColVector(6, 0.0));
+  for (unsigned int k = 0; k < 6; ++k) {
+    const double step = (k < 2 || k == 5) ? 1e-5 : 1e-6;
+    std::vector<double> side[2];
+    for (int sgn = 0; sgn < 2; ++sgn) {
+      double p[6];
+      std::copy(p0, p0 + 6, p);
+      p[k] += sgn ? -step : step;
+      const vpRotationMatrix R =
+          vpRotationMatrix(vpRxyzVector(p[0], 0, 0)) * vpRotationMatrix(vpRxyzVector(0, p[1], 0));
+      side[sgn] = gp3Altitudes(clean, p[5], vpHomogeneousMatrix(vpTranslationVector(p[2], p[3], p[4]), R));
+    }
+    for (size_t i = 0; i < clean.size(); ++i)
+      g[i][k] = (side[0][i] - side[1][i]) / (2.0 * step);
+  }
+  double sum = 0.0;
+  unsigned int n = 0;
+  for (const vpColVector &gi : g) {
+    const double v = vpColVector::dotProd(gi, C * gi);
+    if (std::isfinite(v)) {
+      sum += v;
+      ++n;
+    }
+  }
+  return std::sqrt(sum / n);
+}
 } // namespace
 
-// The figures of the requirement: 20 frames, roll/pitch +-15 deg, 1000 points, 0.5 px, distorted lens.
+// The figures of the requirement: 20 frames, roll/pitch +-15 deg, 1000 points, 0.5 px, distorted lens, one
+// length (a known altitude). The computed standard deviation (first order: the Cramer-Rao bound of the
+// protocol, 0.07-0.08 deg) is what the protocol allows. Over 30 flights (seeds 1001-1030) the RMS axis error was
+// 1.16 times it (0.088 deg): along the family of cones the problem is nonlinear (the angle is stationary in the
+// axis tilt near phi = 90 deg), the errors have heavier tails than the first order says; 24 of the 30 were within
+// 0.1 deg. Hence the bound: 3 standard deviations of the actual spread, 3.5 computed ones.
 TEST(LaserConicSelfCalibration, RecoversTheLaserFromTwentyTiltedFrames)
 {
   FlightSettings s;
-  double worstAxis = 0.0, worstApex = 0.0, worstApexMm = 0.0;
-  for (unsigned int seed = 1; seed <= 3; ++seed) {
+  double worstAxis = 0.0, worstApex = 0.0;
+  unsigned int within = 0;
+  const unsigned int flights = 5;
+  for (unsigned int seed = 1; seed <= flights; ++seed) {
     const std::vector<Frame> frames = flight(s, seed);
-    vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, 0.0);
-    selfcal.setKnownAltitude(0, frames[0].truth.getD());
+    vpLaserConicSelfCalibration selfcal = knownAltitudeSelfCal(frames, false);
     vpHomogeneousMatrix cMl;
     double A = 0.0;
     ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusMessage(selfcal.getStatus()) << ": "
                                          << selfcal.getStatusDetails();
     const double axis = vpMath::deg(axisAngle(cMl, laserPose())),
                  apex = vpMath::deg(apexDirectionAngle(cMl, laserPose()));
-    const double apexMm = 1000.0 * (cMl.getTranslationVector() - laserPose().getTranslationVector()).frobeniusNorm();
-    std::cout << "seed " << seed << ": axis error " << axis << " deg (std "
-              << vpMath::deg(selfcal.getAxisStdDeviation()) << "), apex direction " << apex << " deg (std "
-              << vpMath::deg(selfcal.getApexDirectionStdDeviation()) << "), apex " << apexMm << " mm, RMS "
-              << selfcal.getRmsPixels() << " px, condition " << selfcal.getConditionNumber() << std::endl;
-    // The noise bound of this flight is about 0.08 deg on the axis (the covariance, checked below):
-    // the axis is the part of the laser the traces determine least (see the class description).
-    EXPECT_LT(vpMath::deg(selfcal.getAxisStdDeviation()), 0.1);
-    EXPECT_LT(vpMath::deg(selfcal.getApexDirectionStdDeviation()), 0.12);
-    EXPECT_DOUBLE_EQ(A, kOpening); // held: the images do not determine it (see OpeningAngleIsNotObservable)
+    const double axisStd = vpMath::deg(selfcal.getAxisStdDeviation()),
+                 apexStd = vpMath::deg(selfcal.getApexDirectionStdDeviation());
+    std::cout << "seed " << seed << ": axis error " << axis << " deg (std " << axisStd << "), apex direction " << apex
+              << " deg (std " << apexStd << "), RMS " << selfcal.getRmsPixels() << " px, condition "
+              << selfcal.getConditionNumber() << std::endl;
+    EXPECT_GT(axisStd, 0.04); // the bound of this protocol (see the class description): the 0.1 deg is not a
+    EXPECT_LT(axisStd, 0.1);  // matter of the solver
+    EXPECT_LT(apexStd, 0.12);
+    EXPECT_DOUBLE_EQ(A, kOpening);                  // held: the images do not determine it
     EXPECT_NEAR(selfcal.getRmsPixels(), 0.5, 0.05); // Sampson distance: the noise across the trace
-    // The covariance agrees with the errors: within 4 standard deviations.
-    EXPECT_LT(axis, 4.0 * vpMath::deg(selfcal.getAxisStdDeviation()) + 1e-3);
-    EXPECT_LT(apex, 4.0 * vpMath::deg(selfcal.getApexDirectionStdDeviation()) + 1e-3);
+    EXPECT_LT(axis, 3.5 * axisStd);
+    EXPECT_LT(apex, 3.5 * apexStd);
+    within += axis < 0.1 ? 1 : 0;
     worstAxis = std::max(worstAxis, axis);
     worstApex = std::max(worstApex, apex);
-    worstApexMm = std::max(worstApexMm, apexMm);
   }
-  std::cout << "worst of 3 flights: axis " << worstAxis << " deg, apex direction " << worstApex << " deg, apex "
-            << worstApexMm << " mm" << std::endl;
+  std::cout << "one length: axis within 0.1 deg in " << within << " of " << flights << " flights; worst axis "
+            << worstAxis << " deg, apex direction " << worstApex << " deg" << std::endl;
 }
 
-// GP-3 on new frames after the self-calibration, against GP-3 with the true laser and with the guess.
+// Protocols that reach 0.1 deg at 3 standard deviations: a second length (known altitudes of the lowest and the
+// highest frames, 0.5 m apart), or the same 20 frames over altitudes of 0.4-2.5 m with one length.
+TEST(LaserConicSelfCalibration, AxisWithinATenthOfADegree)
+{
+  for (int protocol = 0; protocol < 2; ++protocol) {
+    FlightSettings s;
+    if (protocol == 1) {
+      s.minAltitude = 0.4;
+      s.maxAltitude = 2.5;
+    }
+    double worst = 0.0, worstStd = 0.0;
+    for (unsigned int seed = 1; seed <= 4; ++seed) {
+      const std::vector<Frame> frames = flight(s, seed);
+      vpLaserConicSelfCalibration selfcal = knownAltitudeSelfCal(frames, protocol == 0);
+      vpHomogeneousMatrix cMl;
+      double A = 0.0;
+      ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
+      const double axis = vpMath::deg(axisAngle(cMl, laserPose())),
+                   std3 = 3.0 * vpMath::deg(selfcal.getAxisStdDeviation());
+      EXPECT_LT(std3, 0.1);
+      EXPECT_LT(axis, std3);
+      EXPECT_LT(vpMath::deg(apexDirectionAngle(cMl, laserPose())),
+                3.0 * vpMath::deg(selfcal.getApexDirectionStdDeviation()));
+      worst = std::max(worst, axis);
+      worstStd = std::max(worstStd, std3 / 3.0);
+    }
+    std::cout << (protocol == 0 ? "two known altitudes" : "altitudes 0.4-2.5 m, one known") << ": worst axis error "
+              << worst << " deg, largest std " << worstStd << " deg" << std::endl;
+  }
+}
+
+// GP-3 on new frames after the self-calibration with one length, against GP-3 with the true laser and with the
+// guess; the ratio agrees with the one the calibration covariance predicts.
 TEST(LaserConicSelfCalibration, Gp3ErrorsAfterSelfCalibration)
 {
   FlightSettings s;
   const std::vector<Frame> frames = flight(s, 11);
   const std::vector<Frame> test = testFrames(s, 60, 12);
-  // Scale from one known altitude: the altitude/axis trade-off the images leave is fixed by it.
-  vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, 0.0);
-  selfcal.setKnownAltitude(0, frames[0].truth.getD());
+  FlightSettings clean = s;
+  clean.noise = 0.0;
+  const std::vector<Frame> cleanTest = testFrames(clean, 30, 12);
+  // Scale from one known altitude.
+  vpLaserConicSelfCalibration selfcal = knownAltitudeSelfCal(frames, false);
   vpHomogeneousMatrix cMl;
   double A = 0.0;
   ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
@@ -140,20 +256,60 @@ TEST(LaserConicSelfCalibration, Gp3ErrorsAfterSelfCalibration)
   gp3Errors(test, A, cMl, altSelf, attSelf);
   gp3Errors(test, ARuler, cMlRuler, altRuler, attRuler);
   gp3Errors(test, kOpening, roughGuess(), altGuess, attGuess);
+  const double predSelf = predictedCalibrationAltitude(cleanTest, selfcal.getCovarianceMatrix()),
+               predRuler = predictedCalibrationAltitude(cleanTest, ruler.getCovarianceMatrix());
   std::cout << "GP3 RMS errors: true laser " << 1000 * altTrue << " mm, " << vpMath::deg(attTrue)
-            << " deg; self-calibrated, known altitude " << 1000 * altSelf << " mm, " << vpMath::deg(attSelf)
-            << " deg; self-calibrated, ruler " << 1000 * altRuler << " mm, " << vpMath::deg(attRuler)
-            << " deg; initial guess " << 1000 * altGuess << " mm, " << vpMath::deg(attGuess) << " deg" << std::endl;
-  // Measured: attitude 1.44x with a known altitude and with a ruler (0.20 deg against 0.14); altitude 6.6x
-  // with a known altitude (4.8 mm against 0.72 mm at 1 m; 2.2x on the flight of KnownAltitudeGivesTheScale),
-  // 23x with a ruler (17 mm): what 20 frames of 1000 points determine of the axis (0.08 deg) moves the
-  // triangulated altitude by about h^2 / baseline times that angle. The 1.2x of a single-frame GP-3 needs far
-  // more frames (the standard deviations fall as 1 / sqrt(frames)).
+            << " deg; self-calibrated, known altitude " << 1000 * altSelf << " mm (calibration part predicted "
+            << 1000 * predSelf << " mm), " << vpMath::deg(attSelf) << " deg; self-calibrated, ruler " << 1000 * altRuler
+            << " mm (predicted " << 1000 * predRuler << " mm), " << vpMath::deg(attRuler) << " deg; initial guess "
+            << 1000 * altGuess << " mm, " << vpMath::deg(attGuess) << " deg" << std::endl;
+  // One length leaves the family of cones fixed only by the held angle (see the class description): the
+  // calibration part of the altitude error is several times GP-3's own noise, as the covariance predicts.
+  EXPECT_GT(predSelf, 2.0 * altTrue);
+  EXPECT_GT(predRuler, 10.0 * altTrue);
+  EXPECT_LT(altSelf, 3.0 * std::hypot(altTrue, predSelf));
+  EXPECT_LT(altRuler, 3.0 * std::hypot(altTrue, predRuler));
   EXPECT_LT(attSelf, 1.6 * attTrue);
   EXPECT_LT(attRuler, 1.6 * attTrue);
-  EXPECT_LT(altSelf, 0.06 * altGuess);
-  EXPECT_LT(altRuler, 0.25 * altGuess);
   EXPECT_GT(altGuess, 20.0 * altTrue); // the guess is bad enough for the test to mean something
+}
+
+// The protocol that meets 1.2x: 20 frames (+-15 deg, 0.8-1.3 m) with the altitudes of the lowest and the highest
+// frame known. Over 4 flights, the RMS ratio of GP-3's altitude error to the true calibration's, and the ratio the
+// calibration covariance predicts (the expected value), are within 1.2.
+TEST(LaserConicSelfCalibration, Gp3WithinTwentyPercentWithTwoLengths)
+{
+  FlightSettings s;
+  const std::vector<Frame> test = testFrames(s, 60, 12);
+  FlightSettings clean = s;
+  clean.noise = 0.0;
+  const std::vector<Frame> cleanTest = testFrames(clean, 30, 12);
+  double altTrue, attTrue;
+  gp3Errors(test, kOpening, laserPose(), altTrue, attTrue);
+  double sumRatio2 = 0.0, sumPredicted2 = 0.0;
+  const unsigned int flights = 4;
+  for (unsigned int seed = 1; seed <= flights; ++seed) {
+    const std::vector<Frame> frames = flight(s, 200 + seed);
+    vpLaserConicSelfCalibration selfcal = knownAltitudeSelfCal(frames, true);
+    vpHomogeneousMatrix cMl;
+    double A = 0.0;
+    ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
+    double alt, att;
+    gp3Errors(test, A, cMl, alt, att);
+    const double predicted = predictedCalibrationAltitude(cleanTest, selfcal.getCovarianceMatrix());
+    std::cout << "seed " << seed << ": GP3 altitude RMS " << 1000 * alt << " mm (true laser " << 1000 * altTrue
+              << " mm, ratio " << alt / altTrue << "; predicted ratio " << std::hypot(1.0, predicted / altTrue)
+              << "), attitude " << vpMath::deg(att) << " deg (true " << vpMath::deg(attTrue) << ")" << std::endl;
+    EXPECT_LT(alt / altTrue, 1.35); // one flight: the calibration error is one draw
+    EXPECT_LT(att, 1.2 * attTrue);
+    sumRatio2 += vpMath::sqr(alt / altTrue);
+    sumPredicted2 += 1.0 + vpMath::sqr(predicted / altTrue);
+  }
+  const double ratio = std::sqrt(sumRatio2 / flights), predicted = std::sqrt(sumPredicted2 / flights);
+  std::cout << "two lengths: altitude RMS ratio " << ratio << " over " << flights << " flights (predicted " << predicted
+            << ")" << std::endl;
+  EXPECT_LT(ratio, 1.2);
+  EXPECT_LT(predicted, 1.2);
 }
 
 // The same frames calibrated as chessboard views (the ground poses known, vpLaserConicCalibration) and by
@@ -318,9 +474,77 @@ TEST(LaserConicSelfCalibration, SmallTiltSaysHowMuchSpreadIsMissing)
   EXPECT_NE(selfcal.getStatusDetails().find("of spread needed"), std::string::npos);
 }
 
-// The opening angle is not observable from images (only the epipolar tangents are): estimating it with a
-// ruler only is refused; with known altitudes of tilted frames it is determined.
-TEST(LaserConicSelfCalibration, OpeningAngleIsNotObservableFromImagesAlone)
+//! The cone of the one-parameter family of \e laser's that share its apex and its two tangent planes through the
+//! camera centre, with the full opening angle \e A: its axis turned in the bisector plane (see the class description).
+static vpHomogeneousMatrix familyMember(const vpHomogeneousMatrix &laser, double A0, double A, double &phi,
+                                        double &phiA)
+{
+  const vpColVector P = laser.getTranslationVector(), u = laser.getRotationMatrix().getCol(2);
+  const vpColVector l = P / P.frobeniusNorm();
+  phi = std::acos(vpColVector::dotProd(u, l)); // axis to the camera-apex line
+  // The tangent planes contain l at the angle psi0 from the bisector plane span(l, u): sin(A/2) = sin(phi) cos(psi0).
+  const double sinPhiA = std::sin(0.5 * A) * std::sin(phi) / std::sin(0.5 * A0);
+  phiA = phi > M_PI / 2 ? M_PI - std::asin(sinPhiA) : std::asin(sinPhiA); // the member on the same side of 90 deg
+  const vpColVector k = vpColVector::crossProd(l, u).normalize();
+  const vpThetaUVector turn(k[0] * (phiA - phi), k[1] * (phiA - phi), k[2] * (phiA - phi));
+  return vpHomogeneousMatrix(vpTranslationVector(P), vpRotationMatrix(turn) * laser.getRotationMatrix());
+}
+
+// The opening angle is not observable from images of a plane: the cones with the same apex and the same two
+// tangent planes through the camera centre explain every trace exactly, each with its own planes. Noise-free
+// frames, the angle held 0.05 and 0.2 degree too small: the fit is exact (0 px) with the axis of the predicted
+// family member, and the altitudes are wrong (a held angle error is not seen in the residuals).
+TEST(LaserConicSelfCalibration, WrongHeldAngleIsExplainedByTheConeFamily)
+{
+  FlightSettings s;
+  s.noise = 0.0;
+  const std::vector<Frame> frames = flight(s, 61);
+  for (double dA : {-0.05, -0.2}) {
+    const double A = kOpening + vpMath::rad(dA);
+    double phi = 0.0, phiA = 0.0;
+    const vpHomogeneousMatrix member = familyMember(laserPose(), kOpening, A, phi, phiA);
+    vpLaserConicSelfCalibration selfcal;
+    selfcal.setCameraParameters(camera());
+    selfcal.setLaser(A, laserPose()); // the true apex and axis, the angle off
+    selfcal.setApexHeld(true);
+    selfcal.setMaxAngularStdDeviation(vpMath::rad(10.0));
+    for (const Frame &f : frames)
+      selfcal.addFrame(f.points);
+    vpHomogeneousMatrix cMl;
+    double Aout = 0.0;
+    ASSERT_TRUE(selfcal.compute(cMl, Aout)) << selfcal.getStatusDetails();
+    const double h = selfcal.getFramePlanes()[0].getD(), hTrue = frames[0].truth.getD();
+    std::cout << "held angle " << dA << " deg: RMS " << selfcal.getRmsPixels() << " px; axis turned "
+              << vpMath::deg(axisAngle(cMl, laserPose())) << " deg (family member " << vpMath::deg(phiA - phi)
+              << " deg, first order tan(phi) / (2 tan(A/2)) dA = "
+              << std::tan(phi) / (2.0 * std::tan(0.5 * kOpening)) * dA << " deg, phi " << vpMath::deg(phi)
+              << " deg); altitude of frame 0 " << h << " m (true " << hTrue << ")" << std::endl;
+    EXPECT_LT(selfcal.getRmsPixels(), 1e-3);                                  // exact fit: nothing in the images tells
+    EXPECT_LT(vpMath::deg(axisAngle(cMl, member)), 1e-3);                     // the predicted member of the family
+    EXPECT_GT(vpMath::deg(axisAngle(cMl, laserPose())), 10.0 * std::abs(dA)); // the axis moved far more
+    EXPECT_LT(vpMath::deg(apexDirectionAngle(cMl, laserPose())), 1e-6);       // held
+    EXPECT_GT(std::abs(h / hTrue - 1.0), 0.05);                               // altitudes off by >= 5 %
+  }
+  // A flight with noise, the angle estimated: the normal matrix of (axis, apex direction, angle) is singular
+  // (the family's tangent direction), but regular with the angle held.
+  s.noise = 0.5;
+  vpLaserConicSelfCalibration selfcal = makeSelfCal(flight(s, 61), trueApexDistance());
+  selfcal.setOpeningAngleEstimation(true);
+  vpHomogeneousMatrix cMl;
+  double A = 0.0;
+  EXPECT_FALSE(selfcal.compute(cMl, A));
+  const double freeCondition = selfcal.getConditionNumber();
+  selfcal.setOpeningAngleEstimation(false);
+  EXPECT_TRUE(selfcal.compute(cMl, A));
+  std::cout << "condition number: angle estimated " << freeCondition << ", held " << selfcal.getConditionNumber()
+            << std::endl;
+  EXPECT_GT(freeCondition, 1e13);
+  EXPECT_LT(selfcal.getConditionNumber(), 1e7);
+}
+
+// Estimating the angle with a ruler only is refused; a second length (here two known altitudes of frames at
+// different heights: the family and the scale are two unknowns) determines it.
+TEST(LaserConicSelfCalibration, OpeningAngleNeedsTwoLengths)
 {
   FlightSettings s;
   const std::vector<Frame> frames = flight(s, 61);
@@ -333,15 +557,18 @@ TEST(LaserConicSelfCalibration, OpeningAngleIsNotObservableFromImagesAlone)
   std::cout << selfcal.getStatusDetails() << std::endl;
   EXPECT_NE(selfcal.getStatusDetails().find("opening angle is not determined"), std::string::npos);
 
-  for (unsigned int k = 0; k < frames.size(); k += 4)
-    selfcal.setKnownAltitude(k, frames[k].truth.getD());
-  const bool ok = selfcal.compute(cMl, A);
-  std::cout << "with 5 known altitudes: " << selfcal.getStatusMessage(selfcal.getStatus()) << " "
-            << selfcal.getStatusDetails() << " angle error " << vpMath::deg(A - kOpening) << " deg, std "
-            << vpMath::deg(selfcal.getStdDeviations()[5]) << std::endl;
-  ASSERT_TRUE(ok);
+  vpLaserConicSelfCalibration two = makeSelfCal(frames, 0.0);
+  two.setOpeningAngleEstimation(true);
+  const std::pair<size_t, size_t> range = altitudeExtremes(frames);
+  two.setKnownAltitude(static_cast<unsigned int>(range.first), frames[range.first].truth.getD());
+  two.setKnownAltitude(static_cast<unsigned int>(range.second), frames[range.second].truth.getD());
+  ASSERT_TRUE(two.compute(cMl, A)) << two.getStatusDetails();
+  std::cout << "with 2 known altitudes (" << frames[range.first].altitude << ", " << frames[range.second].altitude
+            << " m): angle error " << vpMath::deg(A - kOpening) << " deg, std "
+            << vpMath::deg(two.getStdDeviations()[5]) << std::endl;
+  EXPECT_LT(std::abs(vpMath::deg(A - kOpening)), 3.0 * vpMath::deg(two.getStdDeviations()[5]));
   EXPECT_LT(std::abs(vpMath::deg(A - kOpening)), 0.05);
-  EXPECT_LT(vpMath::deg(axisAngle(cMl, laserPose())), 4.0 * vpMath::deg(selfcal.getAxisStdDeviation()) + 1e-3);
+  EXPECT_LT(vpMath::deg(axisAngle(cMl, laserPose())), 3.0 * vpMath::deg(two.getAxisStdDeviation()) + 1e-3);
 }
 
 // 10 % outliers in every frame: rejected.

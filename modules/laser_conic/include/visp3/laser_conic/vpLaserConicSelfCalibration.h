@@ -21,6 +21,11 @@
 #include <visp3/core/vpPlane.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
+namespace vpLaserSelfCal
+{
+struct StepsOutcome;
+}
+
 /*!
   \ingroup group_laser_conic
   \brief Self-calibration of the laser cone (axis, apex, optionally opening angle) from the laser
@@ -220,41 +225,53 @@ public:
     RSS / (N - p) times the inverse of the normal matrix with the planes eliminated. Also computed when the
     frames were refused as degenerate (then possibly huge).
   */
-  vpMatrix getCovarianceMatrix() const { return m_covariance; }
+  vpMatrix getCovarianceMatrix() const { return m_fig.covariance; }
   //! Square roots of the diagonal of getCovarianceMatrix().
   vpColVector getStdDeviations() const;
   //! Standard deviation (rad) of the direction of the cone axis (both components, RMS sum).
-  double getAxisStdDeviation() const { return m_axisStd; }
+  double getAxisStdDeviation() const { return m_fig.axisStd; }
   //! Standard deviation (rad) of the direction of the apex seen from the camera centre.
-  double getApexDirectionStdDeviation() const { return m_apexDirStd; }
+  double getApexDirectionStdDeviation() const { return m_fig.apexDirStd; }
   /*!
     Spread of the attitudes (roll, pitch) of the frames used, rad: RMS deviation from their mean along
     the weakest (\e weakest) and strongest (\e strongest) direction.
   */
   void getAttitudeSpread(double &weakest, double &strongest) const
   {
-    weakest = m_spreadWeak;
-    strongest = m_spreadStrong;
+    weakest = m_fig.spreadWeak;
+    strongest = m_fig.spreadStrong;
   }
   //! RMS residual (pixels, undistorted image) of the inliers of the last compute().
-  double getRmsPixels() const { return m_rms; }
+  double getRmsPixels() const { return m_fig.rms; }
   //! Residual scale (pixels, MAD) of the last compute().
-  double getResidualScale() const { return m_sigma; }
+  double getResidualScale() const { return m_fig.sigma; }
   //! Points of the frames used, and inliers among them.
-  unsigned int getNbPoints() const { return m_nbPoints; }
+  unsigned int getNbPoints() const { return m_fig.nbPoints; }
   //! Inliers of the last compute() (within 3 residual scales).
-  unsigned int getNbInliers() const { return m_nbInliers; }
+  unsigned int getNbInliers() const { return m_fig.nbInliers; }
   //! For each frame added, true when it entered the joint problem of the last compute().
-  std::vector<bool> getFrameUsed() const { return m_used; }
+  std::vector<bool> getFrameUsed() const { return m_fig.used; }
   /*!
     Ground plane of each frame added (camera frame, normal towards the camera) after the last compute():
     the jointly fitted plane for the frames used, the initial one for the others (zero when none).
   */
-  std::vector<vpPlane> getFramePlanes() const { return m_planes; }
+  std::vector<vpPlane> getFramePlanes() const { return m_fig.planes; }
   //! Condition number of the laser normal matrix (parameters scaled to radians) of the last compute().
-  double getConditionNumber() const { return m_condition; }
+  double getConditionNumber() const { return m_fig.condition; }
 
 private:
+  //! What the last compute() measured (the getters read it), filled by the steps of the solve.
+  struct Figures
+  {
+    vpMatrix covariance = vpMatrix(6, 6, 0.0);
+    double axisStd = 0.0, apexDirStd = 0.0, spreadWeak = 0.0, spreadStrong = 0.0, rms = 0.0, sigma = 0.0,
+           condition = 0.0;
+    unsigned int nbPoints = 0, nbInliers = 0;
+    std::vector<bool> used;
+    std::vector<vpPlane> planes;
+  };
+  friend struct vpLaserSelfCal::StepsOutcome;
+
   struct FrameData
   {
     std::vector<vpImagePoint> points;
@@ -275,11 +292,7 @@ private:
 
   vpSelfCalibrationStatus m_status;
   std::string m_details;
-  vpMatrix m_covariance;
-  double m_axisStd, m_apexDirStd, m_spreadWeak, m_spreadStrong, m_rms, m_sigma, m_condition;
-  unsigned int m_nbPoints, m_nbInliers;
-  std::vector<bool> m_used;
-  std::vector<vpPlane> m_planes;
+  Figures m_fig;
 };
 
 #endif
