@@ -48,12 +48,15 @@ vpCommandLine commandLine(Options &o)
   vpCommandLine cli(
       "--from-sequence --camera camera.xml [--camera-name Camera]\n"
       "          (--points points.csv | --images DIR | --list images.txt) --laser previous.yaml\n"
-      "          [--opening-angle-deg A] (--apex-distance M | --previous-baseline | --hold-apex |\n"
-      "          --known-altitude FRAME:H)"
+      "          [--opening-angle-deg A] [--apex-distance M | --previous-baseline | --hold-apex]\n"
+      "          [--known-altitude FRAME:H[,FRAME:H...]] (at least one of them)\n"
       "          [--estimate-opening-angle] [--max-frames N] [--max-std-deg D] --output laser.yaml [--report FILE]",
       "Laser/camera self-calibration from ordinary frames of the ground at different attitudes (no chessboard).\n"
-      "Images determine the cone but for its scale: give one length (apex distance, the previous\n"
-      "calibration's baseline, or one frame's altitude). A length off by x % gives altitudes off by x %.");
+      "Images determine the cone but for its scale and for a one-parameter family of cones (the opening\n"
+      "angle traded against the axis): give one length (apex distance, the previous calibration's baseline,\n"
+      "or one frame's altitude) and the opening angle is held; give two (two frames' altitudes at different\n"
+      "heights, or an apex constraint and one altitude) and the axis is far better determined, the angle\n"
+      "can be estimated. A length off by x % gives altitudes off by x %.");
   cli.addFlag("--from-sequence", o.sequence, "the sequence mode (this usage)");
   cli.addString("--camera", o.camera, "FILE", "intrinsics in vpXmlParserCamera format (with distortion if it has it)");
   cli.addString("--camera-name", o.cameraName, "NAME", "camera name in that file (default Camera)");
@@ -67,9 +70,10 @@ vpCommandLine commandLine(Options &o)
                 vpCommandLine::POSITIVE);
   cli.addFlag("--previous-baseline", o.previousBaseline, "scale: the apex distance of the --laser file");
   cli.addFlag("--hold-apex", o.holdApex, "scale: the apex of the --laser file, held (only the axis estimated)");
-  cli.addString("--known-altitude", o.knownAltitude, "FRAME:H", "scale: altitude H (metres) of frame FRAME");
+  cli.addString("--known-altitude", o.knownAltitude, "FRAME:H[,FRAME:H...]",
+                "scale: altitude H (metres) of frame FRAME; several frames at different heights are the second length");
   cli.addFlag("--estimate-opening-angle", o.estimateOpening,
-              "estimate the opening angle (needs known altitudes of several tilted frames)");
+              "estimate the opening angle (needs two lengths: two known altitudes, or an apex constraint and one)");
   cli.addUnsigned("--max-frames", o.maxFrames, "N", "frames kept by information (default 40)", 3);
   cli.addDouble("--max-std-deg", o.maxStdDeg, "D",
                 "refuse when the axis standard deviation exceeds D degrees (apex direction 2 D; default 0.1)",
@@ -159,6 +163,22 @@ bool requested(int argc, char **argv)
   return false;
 }
 
+//! Parses FRAME:H[,FRAME:H...] (frame numbers, positive altitudes); false on anything else.
+bool parseKnownAltitudes(const std::string &text, std::map<unsigned int, double> &known)
+{
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const std::string::size_type colon = item.find(':');
+    double f = -1.0, h = 0.0;
+    if (colon == std::string::npos || !vpCsvTools::toDouble(item.substr(0, colon), f) || f < 0.0 ||
+        f != std::floor(f) || !vpCsvTools::toDouble(item.substr(colon + 1), h) || !(h > 0.0))
+      return false;
+    known[static_cast<unsigned int>(f)] = h;
+  }
+  return !known.empty();
+}
+
 int run(int argc, char **argv)
 {
   Options o;
@@ -167,26 +187,17 @@ int run(int argc, char **argv)
     return cli.exitStatus();
   if ((cli.given("--points") ? 1 : 0) + (cli.given("--images") ? 1 : 0) + (cli.given("--list") ? 1 : 0) != 1)
     return cli.fail("give exactly one of --points FILE, --images DIR and --list FILE");
-  const int scales = (cli.given("--apex-distance") ? 1 : 0) + (o.previousBaseline ? 1 : 0) + (o.holdApex ? 1 : 0) +
-                     (cli.given("--known-altitude") ? 1 : 0);
-  if (scales == 0)
+  const int apexScales = (cli.given("--apex-distance") ? 1 : 0) + (o.previousBaseline ? 1 : 0) + (o.holdApex ? 1 : 0);
+  if (apexScales == 0 && !cli.given("--known-altitude"))
     return cli.fail("no scale constraint: images do not determine the apex distance; give --apex-distance M, "
                     "--previous-baseline, --hold-apex or --known-altitude FRAME:H");
-  if (scales > 1)
-    return cli.fail("give one scale constraint only (--apex-distance, --previous-baseline, --hold-apex or "
-                    "--known-altitude)");
-  unsigned int knownFrame = 0;
-  double knownAltitude = 0.0;
-  if (cli.given("--known-altitude")) {
-    const std::string::size_type colon = o.knownAltitude.find(':');
-    double f = -1.0;
-    if (colon == std::string::npos || !vpCsvTools::toDouble(o.knownAltitude.substr(0, colon), f) || f < 0.0 ||
-        f != std::floor(f) || !vpCsvTools::toDouble(o.knownAltitude.substr(colon + 1), knownAltitude) ||
-        !(knownAltitude > 0.0))
-      return cli.fail("--known-altitude expects FRAME:H (a frame number, a positive altitude in metres), got '" +
-                      o.knownAltitude + "'");
-    knownFrame = static_cast<unsigned int>(f);
-  }
+  if (apexScales > 1)
+    return cli.fail("give one apex constraint only (--apex-distance, --previous-baseline or --hold-apex)");
+  std::map<unsigned int, double> known;
+  if (cli.given("--known-altitude") && !parseKnownAltitudes(o.knownAltitude, known))
+    return cli.fail("--known-altitude expects FRAME:H[,FRAME:H...] (frame numbers, positive altitudes in metres), "
+                    "got '" +
+                    o.knownAltitude + "'");
 
   std::string error;
   vpCameraParameters cam;
@@ -221,20 +232,21 @@ int run(int argc, char **argv)
   selfcal.setApexHeld(o.holdApex);
   if (o.previousBaseline)
     selfcal.setApexDistance(previous.cMl.getTranslationVector().frobeniusNorm());
-  bool knownAdded = false;
+  size_t knownAdded = 0;
   for (const std::pair<const unsigned int, std::vector<vpImagePoint> > &f : frames) {
     if (f.second.size() < 5) {
       report << "frame " << f.first << ": " << f.second.size() << " laser points, left out\n";
       continue;
     }
     const unsigned int index = selfcal.addFrame(f.second);
-    if (cli.given("--known-altitude") && f.first == knownFrame) {
-      selfcal.setKnownAltitude(index, knownAltitude);
-      knownAdded = true;
+    const std::map<unsigned int, double>::const_iterator k = known.find(f.first);
+    if (k != known.end()) {
+      selfcal.setKnownAltitude(index, k->second);
+      ++knownAdded;
     }
   }
-  if (cli.given("--known-altitude") && !knownAdded)
-    return cli.fail("--known-altitude: frame " + std::to_string(knownFrame) + " has no usable laser trace");
+  if (knownAdded < known.size())
+    return cli.fail("--known-altitude: a frame given has no usable laser trace");
   vpHomogeneousMatrix cMl;
   double A = 0.0;
   bool ok = false;

@@ -9,6 +9,7 @@
   the scale constraint, observability refusals, outliers, frame selection and bad input.
 */
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <limits>
 #include <utility>
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <visp3/core/vpMath.h>
+#include <visp3/core/vpTime.h>
 #include <visp3/laser_conic/vpLaserConicCalibration.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 #include <visp3/laser_conic/vpLaserConicSelfCalibration.h>
@@ -714,4 +716,87 @@ TEST(LaserConicSelfCalibration, BadInput)
   EXPECT_FALSE(two.compute(kept, A));
   EXPECT_EQ(two.getStatus(), vpLaserConicSelfCalibration::STATUS_NOT_ENOUGH_FRAMES);
   EXPECT_EQ(kept[0][3], roughGuess()[0][3]);
+}
+
+namespace
+{
+//! One protocol of the study below: a flight and the lengths given.
+struct Protocol
+{
+  const char *name;
+  unsigned int frames, maxFrames, flights;
+  double minAltitude, maxAltitude, tiltDeg;
+  int lengths; //!< 0: ruler; 1: frame 0's altitude; 2: the lowest and highest frames' altitudes; 3: ruler + lowest
+};
+
+void studyRow(const Protocol &p, const std::vector<Frame> &test, const std::vector<Frame> &cleanTest, double altTrue)
+{
+  FlightSettings s;
+  s.frames = p.frames;
+  s.minAltitude = p.minAltitude;
+  s.maxAltitude = p.maxAltitude;
+  s.maxTilt = vpMath::rad(p.tiltDeg);
+  double axis2 = 0.0, std2 = 0.0, ratio2 = 0.0, predicted2 = 0.0, ms = 0.0;
+  unsigned int within = 0;
+  for (unsigned int seed = 1; seed <= p.flights; ++seed) {
+    const std::vector<Frame> frames = flight(s, 1000 + seed);
+    vpLaserConicSelfCalibration selfcal = p.lengths == 0 || p.lengths == 3
+                                              ? makeSelfCal(frames, trueApexDistance())
+                                              : knownAltitudeSelfCal(frames, p.lengths == 2);
+    if (p.lengths == 3) {
+      const size_t lowest = altitudeExtremes(frames).first;
+      selfcal.setKnownAltitude(static_cast<unsigned int>(lowest), frames[lowest].truth.getD());
+    }
+    selfcal.setMaxFrames(p.maxFrames);
+    selfcal.setMaxAngularStdDeviation(vpMath::rad(5.0));
+    vpHomogeneousMatrix cMl;
+    double A = 0.0;
+    const double t0 = vpTime::measureTimeMs();
+    ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
+    ms += vpTime::measureTimeMs() - t0;
+    const double axis = vpMath::deg(axisAngle(cMl, laserPose()));
+    double alt, att;
+    gp3Errors(test, A, cMl, alt, att);
+    const double predicted = predictedCalibrationAltitude(cleanTest, selfcal.getCovarianceMatrix());
+    axis2 += axis * axis;
+    std2 += vpMath::sqr(vpMath::deg(selfcal.getAxisStdDeviation()));
+    within += axis < 0.1 ? 1 : 0;
+    ratio2 += vpMath::sqr(alt / altTrue);
+    predicted2 += 1.0 + vpMath::sqr(predicted / altTrue);
+  }
+  const double n = p.flights;
+  std::printf("| %s | %.3f | %.3f | %u/%u | %.2f | %.2f | %.0f |\n", p.name, std::sqrt(std2 / n), std::sqrt(axis2 / n),
+              within, p.flights, std::sqrt(ratio2 / n), std::sqrt(predicted2 / n), ms / n);
+}
+} // namespace
+
+// The protocol study of the class description (disabled: about 30 s; run with
+// --gtest_also_run_disabled_tests --gtest_filter='*ProtocolStudy*'). Per protocol: the computed axis standard
+// deviation (RMS over the flights), the RMS axis error, the flights within 0.1 deg, the RMS ratio of GP-3's
+// altitude error on 60 new frames to the true laser's, the ratio the covariance predicts, the time of compute().
+TEST(LaserConicSelfCalibration, DISABLED_ProtocolStudy)
+{
+  FlightSettings s;
+  const std::vector<Frame> test = testFrames(s, 60, 12);
+  FlightSettings clean = s;
+  clean.noise = 0.0;
+  const std::vector<Frame> cleanTest = testFrames(clean, 30, 12);
+  double altTrue, attTrue;
+  gp3Errors(test, kOpening, laserPose(), altTrue, attTrue);
+  const Protocol protocols[] = {
+      {"20 frames, +-15 deg, 0.8-1.3 m, one known altitude", 20, 40, 30, 0.8, 1.3, 15.0, 1},
+      {"same, ruler", 20, 40, 3, 0.8, 1.3, 15.0, 0},
+      {"same, +-25 deg", 20, 40, 3, 0.8, 1.3, 25.0, 1},
+      {"same, 0.4-2.5 m", 20, 40, 3, 0.4, 2.5, 15.0, 1},
+      {"100 frames, all used", 100, 100, 2, 0.8, 1.3, 15.0, 1},
+      {"200 frames, all used", 200, 200, 2, 0.8, 1.3, 15.0, 1},
+      {"500 frames, 40 chosen by information", 500, 40, 2, 0.8, 1.3, 15.0, 1},
+      {"500 frames, all used", 500, 500, 2, 0.8, 1.3, 15.0, 1},
+      {"20 frames, two known altitudes (lowest, highest)", 20, 40, 4, 0.8, 1.3, 15.0, 2},
+      {"20 frames, ruler + lowest frame's altitude", 20, 40, 4, 0.8, 1.3, 15.0, 3},
+  };
+  std::printf("| protocol | axis std (deg) | axis error RMS (deg) | within 0.1 deg | GP-3 altitude ratio | predicted | "
+              "ms |\n|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const Protocol &p : protocols)
+    studyRow(p, test, cleanTest, altTrue);
 }

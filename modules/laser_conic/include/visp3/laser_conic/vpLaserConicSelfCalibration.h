@@ -43,41 +43,63 @@ struct StepsOutcome;
   - \b Scale: scaling the scene about the camera centre (apex and ground together) leaves every image
     unchanged: the apex distance is never seen. One length must be given: the apex distance
     (setApexDistance(): a ruler, or the baseline of the previous calibration), the altitude of at
-    least one frame (setKnownAltitude(): the better one, see Accuracy) or the whole apex (setApexHeld()).
+    least one frame (setKnownAltitude(); a second length determines the axis far better, see below) or the whole apex (setApexHeld()).
     An error of the given length is an error of the same ratio on every altitude measured afterwards (a ruler off by 10 % gives altitudes off by 10 %; roll, pitch and
     the axis are unaffected).
-  - \b Opening angle: the only constraint the cone puts on the image of a trace is its tangency to
-    the two epipolar lines (the lines through the image of the apex tangent to every trace, Sec. 5.2):
-    every conic tangent to them is the trace of the cone on some plane. Hence the images determine these
-    two lines (4 numbers: the apex direction and two angles) and nothing more: the cones with the same apex
-    whose tangent planes through the camera centre are the same (a one-parameter family: wider cones with
-    their axis turned accordingly) explain the images equally well, each with its own planes. The opening
-    angle is therefore \b held at the given value (the manufacturer's or a chessboard calibration's), and
-    the axis is determined with it. Estimating it (setOpeningAngleEstimation(true)) needs altitudes of
-    frames at different attitudes (setKnownAltitude() on several frames: 5 of 20 in the tests give it to
-    0.007 degree); otherwise compute() refuses with STATUS_DEGENERATE_FRAMES and says so. A wrong held
-    angle turns the recovered axis (the tangent planes are kept) and biases the altitudes: take it from the
-    previous calibration.
+  - \b Opening angle, and the axis tilt towards the apex: the cone's tangent planes through the camera centre
+    O contain the line from O to the apex; their images are the two lines from the image of the apex tangent
+    to every trace (Sec. 5.2), whatever the plane. They are the only constraint the cone puts on a trace:
+    the conics tangent to two lines are a 3-parameter set, the planes too, so every such conic is the trace
+    on some plane. Hence the images determine 4 numbers of the cone (the apex direction, and the two angles
+    psi0 of the tangent planes about the O-apex line) out of its 5 scale-free ones. The fifth is a
+    one-parameter \b family of cones with the same apex and the same tangent planes, each explaining every
+    image exactly with its own planes: with phi the angle of the axis to the O-apex line, the axis turns in
+    the plane of that line and the axis (towards or away from the apex) as the full angle A changes, with
+    \f$ \sin(A/2) = \sin\phi \cos\psi_0 \f$, i.e. \f$ d\phi = \tan\phi \, dA / (2 \tan(A/2)) \f$.
+    The axis component out of that plane and the apex direction are determined with any angle.
+    testLaserConicSelfCalibration (WrongHeldAngleIsExplainedByTheConeFamily) checks it: noise-free frames,
+    the angle held 0.05 degree too small, fit to 3e-13 px by the predicted member, axis turned 0.79 degree
+    (phi = 95.5 degrees for its rig: 17 times the angle error), altitudes 15 % off; the normal matrix with the
+    angle free has condition number 3e15. So:
+    - with \b one length (the apex distance, the held apex or one known altitude) the angle must be \b held
+      (setLaser(): a chessboard calibration's value). Only the held value breaks the family then, through
+      \f$ dA/d\phi = 2 \cos\phi \cos\psi_0 / \cos(A/2) \f$, which vanishes for an axis perpendicular to
+      the O-apex line (phi = 90 degrees): the axis tilt towards the apex is the weakest direction, its
+      standard deviation is \f$ |\tan\phi| \tan\psi_0 \f$ times that of the tangent-plane angles
+      (34 for the rig of the tests), and an error of the held angle turns the axis by the factor above;
+    - with \b two lengths (known altitudes of two frames at different heights, or the apex distance or held
+      apex and one known altitude), the family and the scale are both fixed (the family's altitude change
+      is not a scaling): the axis is known 10-30 times better and the angle can be estimated
+      (setOpeningAngleEstimation(true); otherwise compute() refuses with STATUS_DEGENERATE_FRAMES).
   - \b Attitudes: the frames must be tilted relative to the ground in two directions (roll and pitch);
     altitude differences help too. Frames all at one attitude and nearly one altitude (a hover) do not
     determine the cone. compute() evaluates the covariance of the laser parameters and refuses with
     STATUS_DEGENERATE_FRAMES when the axis would be known worse than setMaxAngularStdDeviation() (the apex
     direction worse than twice it); getStatusDetails() then gives the spread of the frames' attitudes and
     the spread needed (the standard deviations scale as the inverse of the spread).
-  - \b Accuracy: the weakest combination is a tilt of the axis towards the apex traded against the
-    altitudes of all the planes; it is what limits the altitudes measured afterwards (an axis error
-    \f$ \delta \f$ moves a triangulated altitude by about \f$ h^2 \delta / b \f$, b the baseline).
-    Measured (testLaserConicSelfCalibration: 34 degree laser 10 cm beside a 1000 px camera with barrel
-    distortion, 20 frames with roll and pitch uniform in +-15 degrees at 0.8-1.3 m, 1000 points per
-    frame, 0.5 px noise): axis and apex direction standard deviations about 0.08 and 0.09 degree (errors
-    0.05-0.17 and 0.08-0.16 degree over 3 flights); GP3 on new frames afterwards: roll/pitch RMS 1.1-1.4
-    times that of the true calibration, altitude RMS 2-7 times (1.6-4.8 mm against 0.7 mm at 1 m) with one
-    known altitude as the scale, 23 times (17 mm) with the apex distance as the scale (with 300 points
-    per frame, altitudes biased by up to 6 %: prefer a known altitude, or setApexHeld() after a knock).
-    With the apex held at a trusted previous calibration (setApexHeld(), a knocked mount), 40 frames of 300 points give the
-    axis to 0.014 degree. The same frames used as chessboard views (planes known, vpLaserConicCalibration)
-    give the axis to 0.007 degree: a chessboard calibration stays the reference; the self-calibration
-    repairs a calibration in the field and tells when it is needed (vpLaserConicDriftMonitor).
+  - \b Accuracy (testLaserConicSelfCalibration, DISABLED_ProtocolStudy for the table of the tutorial: 34
+    degree laser 10 cm beside a 1000 px camera with barrel distortion, roll and pitch uniform in +-15
+    degrees at 0.8-1.3 m, 1000 points per frame, 0.5 px noise). An axis error \f$ \delta \f$ along the
+    family moves a triangulated altitude by about \f$ h^2 \delta / b \f$ (b the baseline), less the part
+    a known altitude absorbs. The covariance (getCovarianceMatrix()) propagated through GP3 predicts the
+    altitude error GP3 makes afterwards to within about 20 %:
+    | frames and lengths | axis std | GP3 altitude RMS / true laser's |
+    |---|---:|---:|
+    | 20, one known altitude (30 flights) | 0.076 deg (0.1 deg met in 24 of 30) | 5.8 (predicted 4.7) |
+    | 20, ruler | 0.074 deg | 23 |
+    | 20 at 0.4-2.5 m, one known altitude | 0.023 deg | 3.0 |
+    | 100 / 200 / 500 (all used), one known altitude | 0.034 / 0.024 / 0.015 deg | 2.2 / 2.3 / 1.4 |
+    | 40 chosen by information among 500 | 0.034 deg | 3.1 |
+    | 20, \b two known altitudes (0.5 m apart) | 0.006 deg | \b 1.09 |
+    | 20, ruler and one known altitude | 0.002 deg | 1.09 |
+    With one length the 1.2x of GP3 with the true laser needs about 1300-1400 frames of 1000 points (the
+    calibration part falls as 1 / sqrt(frames)); with two lengths 20 frames suffice. Roll and pitch after
+    self-calibration are within 1.0-1.4 times those of the true laser in every case.
+    With the apex held at a trusted previous calibration (setApexHeld(), a knocked mount), 40 frames of 300
+    points give the axis to 0.014 degree. The same frames used as chessboard views (planes known,
+    vpLaserConicCalibration) give the axis to 0.007 degree and estimate the angle: a chessboard calibration
+    stays the reference; the self-calibration repairs a calibration in the field and tells when it is needed
+    (vpLaserConicDriftMonitor).
 
   <b>Steps of compute().</b>
   -# each frame's plane is estimated with vpLaserConicPose (GP3, RANSAC, the initial laser) unless the
@@ -97,9 +119,10 @@ struct StepsOutcome;
   vpLaserConicSelfCalibration selfcal;
   selfcal.setCameraParameters(cam);                    // with distortion if the camera has it
   selfcal.setLaser(vpMath::rad(34), cMlPrevious);      // initial guess: previous calibration or a drawing
-  selfcal.setApexDistance(0.1);                        // the one length: ruler, or the previous baseline
+  selfcal.setApexDistance(0.1);                        // a length: ruler, or the previous baseline
   for (const std::vector<vpImagePoint> &trace : traces) // laser points of ordinary frames of the ground
     selfcal.addFrame(trace);
+  selfcal.setKnownAltitude(0, 0.312);                  // a second length: the altitude of frame 0 (e.g. landed)
   vpHomogeneousMatrix cMl;
   double openingAngle;
   if (selfcal.compute(cMl, openingAngle))
@@ -161,8 +184,9 @@ public:
   */
   void setApexHeld(bool hold) { m_holdApex = hold; }
   /*!
-    Estimate the opening angle too (default false: held at setLaser()'s value). Only altitudes of
-    frames at different attitudes determine it (see the class description).
+    Estimate the opening angle too (default false: held at setLaser()'s value). Only two lengths determine
+    it: known altitudes of two frames at different heights, or the apex distance (or held apex) and one known
+    altitude (see the class description); with fewer compute() refuses with STATUS_DEGENERATE_FRAMES.
   */
   void setOpeningAngleEstimation(bool estimate) { m_estimateAngle = estimate; }
   /*!
