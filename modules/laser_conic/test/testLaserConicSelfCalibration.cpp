@@ -159,6 +159,23 @@ double predictedCalibrationAltitude(const std::vector<Frame> &clean, const vpMat
   }
   return std::sqrt(sum / n);
 }
+
+//! New frames of a flight to run GP3 on after a calibration: noisy (60, 300 points) with GP3's errors under the
+//! true laser, and noise-free (30) for the propagation of a calibration covariance.
+struct Gp3Reference
+{
+  std::vector<Frame> test, clean;
+  double altitudeRms = 0.0, attitudeRms = 0.0;
+};
+
+void gp3Reference(const FlightSettings &s, Gp3Reference &ref)
+{
+  ref.test = testFrames(s, 60, 12);
+  FlightSettings clean = s;
+  clean.noise = 0.0;
+  ref.clean = testFrames(clean, 30, 12);
+  gp3Errors(ref.test, kOpening, laserPose(), ref.altitudeRms, ref.attitudeRms);
+}
 } // namespace
 
 // The figures of the requirement: 20 frames, roll/pitch +-15 deg, 1000 points, 0.5 px, distorted lens, one
@@ -239,10 +256,9 @@ TEST(LaserConicSelfCalibration, Gp3ErrorsAfterSelfCalibration)
 {
   FlightSettings s;
   const std::vector<Frame> frames = flight(s, 11);
-  const std::vector<Frame> test = testFrames(s, 60, 12);
-  FlightSettings clean = s;
-  clean.noise = 0.0;
-  const std::vector<Frame> cleanTest = testFrames(clean, 30, 12);
+  Gp3Reference ref;
+  gp3Reference(s, ref);
+  const std::vector<Frame> &test = ref.test, &cleanTest = ref.clean;
   // Scale from one known altitude.
   vpLaserConicSelfCalibration selfcal = knownAltitudeSelfCal(frames, false);
   vpHomogeneousMatrix cMl;
@@ -253,8 +269,8 @@ TEST(LaserConicSelfCalibration, Gp3ErrorsAfterSelfCalibration)
   vpHomogeneousMatrix cMlRuler;
   double ARuler = 0.0;
   ASSERT_TRUE(ruler.compute(cMlRuler, ARuler)) << ruler.getStatusDetails();
-  double altTrue, attTrue, altSelf, attSelf, altRuler, attRuler, altGuess, attGuess;
-  gp3Errors(test, kOpening, laserPose(), altTrue, attTrue);
+  const double altTrue = ref.altitudeRms, attTrue = ref.attitudeRms;
+  double altSelf, attSelf, altRuler, attRuler, altGuess, attGuess;
   gp3Errors(test, A, cMl, altSelf, attSelf);
   gp3Errors(test, ARuler, cMlRuler, altRuler, attRuler);
   gp3Errors(test, kOpening, roughGuess(), altGuess, attGuess);
@@ -282,12 +298,10 @@ TEST(LaserConicSelfCalibration, Gp3ErrorsAfterSelfCalibration)
 TEST(LaserConicSelfCalibration, Gp3WithinTwentyPercentWithTwoLengths)
 {
   FlightSettings s;
-  const std::vector<Frame> test = testFrames(s, 60, 12);
-  FlightSettings clean = s;
-  clean.noise = 0.0;
-  const std::vector<Frame> cleanTest = testFrames(clean, 30, 12);
-  double altTrue, attTrue;
-  gp3Errors(test, kOpening, laserPose(), altTrue, attTrue);
+  Gp3Reference ref;
+  gp3Reference(s, ref);
+  const std::vector<Frame> &test = ref.test, &cleanTest = ref.clean;
+  const double altTrue = ref.altitudeRms, attTrue = ref.attitudeRms;
   double sumRatio2 = 0.0, sumPredicted2 = 0.0;
   const unsigned int flights = 4;
   for (unsigned int seed = 1; seed <= flights; ++seed) {
@@ -777,12 +791,8 @@ void studyRow(const Protocol &p, const std::vector<Frame> &test, const std::vect
 TEST(LaserConicSelfCalibration, DISABLED_ProtocolStudy)
 {
   FlightSettings s;
-  const std::vector<Frame> test = testFrames(s, 60, 12);
-  FlightSettings clean = s;
-  clean.noise = 0.0;
-  const std::vector<Frame> cleanTest = testFrames(clean, 30, 12);
-  double altTrue, attTrue;
-  gp3Errors(test, kOpening, laserPose(), altTrue, attTrue);
+  Gp3Reference ref;
+  gp3Reference(s, ref);
   const Protocol protocols[] = {
       {"20 frames, +-15 deg, 0.8-1.3 m, one known altitude", 20, 40, 30, 0.8, 1.3, 15.0, 1},
       {"same, ruler", 20, 40, 3, 0.8, 1.3, 15.0, 0},
@@ -798,5 +808,5 @@ TEST(LaserConicSelfCalibration, DISABLED_ProtocolStudy)
   std::printf("| protocol | axis std (deg) | axis error RMS (deg) | within 0.1 deg | GP-3 altitude ratio | predicted | "
               "ms |\n|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Protocol &p : protocols)
-    studyRow(p, test, cleanTest, altTrue);
+    studyRow(p, ref.test, ref.clean, ref.altitudeRms);
 }
