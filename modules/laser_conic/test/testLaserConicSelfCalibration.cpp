@@ -558,8 +558,8 @@ TEST(LaserConicSelfCalibration, WrongHeldAngleIsExplainedByTheConeFamily)
   EXPECT_LT(selfcal.getConditionNumber(), 1e7);
 }
 
-// Estimating the angle with a ruler only is refused; a second length (here two known altitudes of frames at
-// different heights: the family and the scale are two unknowns) determines it.
+// Estimating the angle with a ruler only is refused; a second length (two known altitudes of frames at different
+// heights, or the ruler and one known altitude: the family and the scale are two unknowns) determines it.
 TEST(LaserConicSelfCalibration, OpeningAngleNeedsTwoLengths)
 {
   FlightSettings s;
@@ -585,6 +585,14 @@ TEST(LaserConicSelfCalibration, OpeningAngleNeedsTwoLengths)
   EXPECT_LT(std::abs(vpMath::deg(A - kOpening)), 3.0 * vpMath::deg(two.getStdDeviations()[5]));
   EXPECT_LT(std::abs(vpMath::deg(A - kOpening)), 0.05);
   EXPECT_LT(vpMath::deg(axisAngle(cMl, laserPose())), 3.0 * vpMath::deg(two.getAxisStdDeviation()) + 1e-3);
+
+  // The ruler and one known altitude are two lengths too.
+  selfcal.setKnownAltitude(static_cast<unsigned int>(range.first), frames[range.first].truth.getD());
+  ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
+  std::cout << "with the ruler and 1 known altitude: angle error " << vpMath::deg(A - kOpening) << " deg, std "
+            << vpMath::deg(selfcal.getStdDeviations()[5]) << std::endl;
+  EXPECT_LT(std::abs(vpMath::deg(A - kOpening)), 3.0 * vpMath::deg(selfcal.getStdDeviations()[5]));
+  EXPECT_LT(std::abs(vpMath::deg(A - kOpening)), 0.05);
 }
 
 // 10 % outliers in every frame: rejected.
