@@ -310,6 +310,7 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, type
 template <class Estimator> class Pretest
 {
 public:
+  //! The subset for \e n data: none when \e n is under four times the pretest size (a full count is then cheap).
   Pretest(int n, const vpRansacOptions &options)
     : m_size(options.pretestSize > 0 && n >= 4 * options.pretestSize
                  ? (options.pretestSize + vpRansacPretestBlock - 1) / vpRansacPretestBlock * vpRansacPretestBlock
