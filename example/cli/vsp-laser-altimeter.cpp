@@ -505,7 +505,15 @@ int run(int argc, char **argv)
     std::cout << summary << std::endl;
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
             << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
-  if (!truth.empty()) {
+  if (!truth.empty() && compared == 0) {
+    // Nothing compared is not an error of 0 mm: a bound given cannot pass on it.
+    std::cout << "against " << options.truth << ": no frame with a plane and a ground truth" << std::endl;
+    if (options.maxAltitudeError > 0.0) {
+      std::cerr << argv[0] << ": --max-altitude-error " << options.maxAltitudeError
+                << " mm cannot be checked: no frame with a plane to compare" << std::endl;
+      return EXIT_FAILURE;
+    }
+  } else if (!truth.empty()) {
     std::cout << "against " << options.truth << ": " << compared
               << " frames with a plane and a ground truth, worst errors " << 1000.0 * worstAltitude << " mm altitude, "
               << vpMath::deg(worstRoll) << " deg roll, " << vpMath::deg(worstPitch) << " deg pitch" << std::endl;
