@@ -179,7 +179,7 @@ struct SequenceRun
 
 /*!
   GP3 on every frame of a shipped sequence, with its calibration (runs[0]), the half opening angle
-  (runs[1]) and the inverse laser pose, lMc for cMl (runs[2]).
+  (runs[1]), the inverse laser pose, lMc for cMl (runs[2]), and u and v swapped in the points (runs[3]).
 */
 std::vector<SequenceRun> sequenceStatuses(const std::string &sequence)
 {
@@ -201,15 +201,20 @@ std::vector<SequenceRun> sequenceStatuses(const std::string &sequence)
   vpLaserConicDetector detector;
   const std::vector<std::pair<double, vpHomogeneousMatrix> > rigs = {{angle, cMl},
                                                                      {0.5 * angle, cMl},
-                                                                     {angle, cMl.inverse()}};
+                                                                     {angle, cMl.inverse()},
+                                                                     {angle, cMl}};
   const vpLaserConicPose::vpLaserConicMistake expected[] = {vpLaserConicPose::MISTAKE_UNKNOWN,
                                                             vpLaserConicPose::MISTAKE_HALF_OPENING_ANGLE,
-                                                            vpLaserConicPose::MISTAKE_INVERSE_LASER_POSE};
+                                                            vpLaserConicPose::MISTAKE_INVERSE_LASER_POSE,
+                                                            vpLaserConicPose::MISTAKE_SWAPPED_UV};
   std::vector<SequenceRun> runs(rigs.size());
   for (size_t frame = 0; frame < images.size(); ++frame) {
     vpImage<vpRGBa> I;
     vpImageIo::read(I, images[frame]);
     const std::vector<vpImagePoint> points = detector.detect(I);
+    std::vector<vpImagePoint> swapped = points;
+    for (vpImagePoint &p : swapped)
+      p.set_uv(p.get_v(), p.get_u());
     for (size_t r = 0; r < rigs.size(); ++r) {
       if (points.size() < 3) {
         ++runs[r].statuses[-1];
@@ -219,7 +224,7 @@ std::vector<SequenceRun> sequenceStatuses(const std::string &sequence)
       estimator.setCameraParameters(cam);
       estimator.setLaser(rigs[r].first, rigs[r].second);
       vpPlane plane;
-      if (estimator.computePlane(points, vpLaserConicPose::GP3, plane))
+      if (estimator.computePlane(r == 3 ? swapped : points, vpLaserConicPose::GP3, plane))
         runs[r].accepted.push_back(static_cast<int>(frame));
       ++runs[r].statuses[estimator.getStatus()];
       runs[r].named += estimator.getSuspectedMistake() == expected[r] ? 1 : 0;
@@ -230,8 +235,9 @@ std::vector<SequenceRun> sequenceStatuses(const std::string &sequence)
 } // namespace
 
 // The shipped sequences (157 frames, rendered with detector bias, blur, saturation): no frame refused
-// with the right calibration; with the half opening angle (17 deg for 34) or the inverse laser pose
-// (lMc given for cMl) almost every frame that has a trace is refused, and named; none gives a plane.
+// with the right calibration; with the half opening angle (17 deg for 34), the inverse laser pose
+// (lMc given for cMl) or u and v swapped, almost every frame that has a trace is refused, and named;
+// none gives a plane.
 TEST(LaserConicCalibrationCheck, ShippedSequences)
 {
   for (const std::string sequence : {"laser_hard", "laser_sequence"}) {
@@ -245,7 +251,7 @@ TEST(LaserConicCalibrationCheck, ShippedSequences)
     std::printf("%s: %d frames, %zu ok, %d refused as a calibration mismatch (right calibration)\n", sequence.c_str(),
                 frames, runs[0].accepted.size(), right);
     EXPECT_LE(200 * right, frames) << sequence;
-    const char *names[] = {"", "half opening angle", "inverse laser pose"};
+    const char *names[] = {"", "half opening angle", "inverse laser pose", "u and v swapped"};
     for (size_t r = 1; r < runs.size(); ++r) {
       const int refused = runs[r].statuses.count(vpLaserConicPose::STATUS_CALIBRATION_MISMATCH)
                               ? runs[r].statuses.at(vpLaserConicPose::STATUS_CALIBRATION_MISMATCH)
