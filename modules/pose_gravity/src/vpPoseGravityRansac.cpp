@@ -207,7 +207,7 @@ bool exchangeExplainsMore(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gO
                           const std::vector<int> &inliers, const Pose &stated, const ConsensusRule &rule, double noise)
 {
   // The tilt the exchange makes, seen from the stated pose (gCam = R gObj): R gCam against gObj. It is
-  // nothing when the two vectors are equal, and when the rotation is a half turn about a horizontal axis.
+  // nothing when the two vectors are equal (in their frames), and when the rotation is a half turn.
   if ((stated.R * gCam - gObj).norm() <= noise)
     return false;
   const GravityRansacEstimator exchanged(gObj, gCam, x, X);
