@@ -22,7 +22,7 @@
   image was processed (frames without a plane, and unreadable images, say why in their status), 1 on a
   usage, file or format error, an image whose size is not the camera file's, a failed write (nothing is
   left half written: the CSV is written to a temporary file renamed when complete), or when
-  --max-altitude-error is exceeded. Status calibration_mismatch: the laser/camera calibration cannot
+  --max-altitude-error is exceeded or cannot be checked (no frame with a plane). Status calibration_mismatch: the laser/camera calibration cannot
   explain the trace (vpLaserConicPose::STATUS_CALIBRATION_MISMATCH); when most frames get it, one line on
   stderr names the suspected mistake.
 */
@@ -131,7 +131,8 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
   cli.addString("--truth", options.truth, "FILE",
                 "groundtruth.csv (vpLaserRigIo format, images matched by file name): print the errors");
   cli.addDouble("--max-altitude-error", options.maxAltitudeError, "MM",
-                "with --truth: exit status 1 when an altitude error exceeds MM millimetres (default 0: no check)",
+                "with --truth: exit status 1 when an altitude error exceeds MM millimetres, or when no frame has a "
+                "plane to compare (default 0: no check)",
                 vpCommandLine::NON_NEGATIVE);
   fusion.addOptions(cli); // IMU-rate output, vpLaserFlightFusion.h
   cli.require({"--camera", "--laser", "--output"});
@@ -505,7 +506,15 @@ int run(int argc, char **argv)
     std::cout << summary << std::endl;
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
             << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
-  if (!truth.empty()) {
+  if (!truth.empty() && compared == 0) {
+    // Nothing compared is not an error of 0 mm: a bound given cannot pass on it.
+    std::cout << "against " << options.truth << ": no frame with a plane and a ground truth" << std::endl;
+    if (options.maxAltitudeError > 0.0) {
+      std::cerr << argv[0] << ": --max-altitude-error " << options.maxAltitudeError
+                << " mm cannot be checked: no frame with a plane to compare" << std::endl;
+      return EXIT_FAILURE;
+    }
+  } else if (!truth.empty()) {
     std::cout << "against " << options.truth << ": " << compared
               << " frames with a plane and a ground truth, worst errors " << 1000.0 * worstAltitude << " mm altitude, "
               << vpMath::deg(worstRoll) << " deg roll, " << vpMath::deg(worstPitch) << " deg pitch" << std::endl;

@@ -30,6 +30,12 @@ bool explained(const vsp::laser_robust_fit::Result &result)
   return !(m > tolerance(result)); // NaN: no constrained fit to judge
 }
 
+bool suspect(const vsp::laser_robust_fit::Result &result)
+{
+  const double m = misfit(result);
+  return m > kSuspectFactor * std::max(result.sigma, result.rmsFree) && m > 0.5;
+}
+
 namespace
 {
 //! The intrinsics of an image \e scale times larger (another resolution of the same camera).
@@ -48,7 +54,8 @@ vpCameraParameters scaled(const vpCameraParameters &cam, double scale)
 
 vpLaserConicPose::vpLaserConicMistake diagnose(double openingAngle, const vpHomogeneousMatrix &cMl,
                                                const vpCameraParameters &cam,
-                                               const std::function<double(const Alternative &)> &fits)
+                                               const std::function<double(const Alternative &)> &fits,
+                                               double *bestMisfit)
 {
   std::vector<Alternative> alternatives;
   if (2.0 * openingAngle < M_PI)
@@ -59,14 +66,16 @@ vpLaserConicPose::vpLaserConicMistake diagnose(double openingAngle, const vpHomo
   alternatives.push_back({vpLaserConicPose::MISTAKE_CAMERA_RESOLUTION, openingAngle, cMl, scaled(cam, 2.0), false});
   alternatives.push_back({vpLaserConicPose::MISTAKE_CAMERA_RESOLUTION, openingAngle, cMl, scaled(cam, 0.5), false});
   vpLaserConicPose::vpLaserConicMistake best = vpLaserConicPose::MISTAKE_UNKNOWN;
-  double bestMisfit = std::numeric_limits<double>::infinity();
+  double smallest = std::numeric_limits<double>::infinity();
   for (const Alternative &alternative : alternatives) {
     const double m = fits(alternative);
-    if (m >= 0.0 && m < bestMisfit) {
-      bestMisfit = m;
+    if (m >= 0.0 && m < smallest) {
+      smallest = m;
       best = alternative.mistake;
     }
   }
+  if (bestMisfit)
+    *bestMisfit = smallest;
   return best;
 }
 } // namespace vsp::laser_calibration_check

@@ -169,9 +169,19 @@ bool readLaser(const std::string &file, double &angle, vpHomogeneousMatrix &cMl)
   return row == 4;
 }
 
-//! Statuses of GP3 on every frame of a shipped sequence, with its opening angle (\e right) and half of it (\e half).
-void sequenceStatuses(const std::string &sequence, std::map<int, int> &right, std::map<int, int> &half,
-                      int &namedHalfAngle)
+//! Statuses of GP3 on a shipped sequence with one calibration, and how often the mistake \e named was named.
+struct SequenceRun
+{
+  std::map<int, int> statuses; //!< frames per status (-1: fewer than 3 trace points)
+  int named = 0;               //!< frames whose suspected mistake is the one expected
+  std::vector<int> accepted;   //!< frames with a plane
+};
+
+/*!
+  GP3 on every frame of a shipped sequence, with its calibration (runs[0]), the half opening angle
+  (runs[1]), the inverse laser pose, lMc for cMl (runs[2]), and u and v swapped in the points (runs[3]).
+*/
+std::vector<SequenceRun> sequenceStatuses(const std::string &sequence)
 {
   const std::string folder = std::string(VSP_DATA_DIR) + "/" + sequence;
   vpCameraParameters cam;
@@ -189,51 +199,73 @@ void sequenceStatuses(const std::string &sequence, std::map<int, int> &right, st
     images.push_back(entry.path().string());
   std::sort(images.begin(), images.end());
   vpLaserConicDetector detector;
-  vpLaserConicPose estimator, mistaken;
-  estimator.setCameraParameters(cam);
-  estimator.setLaser(angle, cMl);
-  mistaken.setCameraParameters(cam);
-  mistaken.setLaser(0.5 * angle, cMl);
-  namedHalfAngle = 0;
-  for (const std::string &image : images) {
+  const std::vector<std::pair<double, vpHomogeneousMatrix> > rigs = {{angle, cMl},
+                                                                     {0.5 * angle, cMl},
+                                                                     {angle, cMl.inverse()},
+                                                                     {angle, cMl}};
+  const vpLaserConicPose::vpLaserConicMistake expected[] = {vpLaserConicPose::MISTAKE_UNKNOWN,
+                                                            vpLaserConicPose::MISTAKE_HALF_OPENING_ANGLE,
+                                                            vpLaserConicPose::MISTAKE_INVERSE_LASER_POSE,
+                                                            vpLaserConicPose::MISTAKE_SWAPPED_UV};
+  std::vector<SequenceRun> runs(rigs.size());
+  for (size_t frame = 0; frame < images.size(); ++frame) {
     vpImage<vpRGBa> I;
-    vpImageIo::read(I, image);
+    vpImageIo::read(I, images[frame]);
     const std::vector<vpImagePoint> points = detector.detect(I);
-    vpPlane plane;
-    if (points.size() < 3) {
-      ++right[-1];
-      ++half[-1];
-      continue;
+    std::vector<vpImagePoint> swapped = points;
+    for (vpImagePoint &p : swapped)
+      p.set_uv(p.get_v(), p.get_u());
+    for (size_t r = 0; r < rigs.size(); ++r) {
+      if (points.size() < 3) {
+        ++runs[r].statuses[-1];
+        continue;
+      }
+      vpLaserConicPose estimator;
+      estimator.setCameraParameters(cam);
+      estimator.setLaser(rigs[r].first, rigs[r].second);
+      vpPlane plane;
+      if (estimator.computePlane(r == 3 ? swapped : points, vpLaserConicPose::GP3, plane))
+        runs[r].accepted.push_back(static_cast<int>(frame));
+      ++runs[r].statuses[estimator.getStatus()];
+      runs[r].named += estimator.getSuspectedMistake() == expected[r] ? 1 : 0;
     }
-    estimator.computePlane(points, vpLaserConicPose::GP3, plane);
-    ++right[estimator.getStatus()];
-    mistaken.computePlane(points, vpLaserConicPose::GP3, plane);
-    ++half[mistaken.getStatus()];
-    namedHalfAngle += mistaken.getSuspectedMistake() == vpLaserConicPose::MISTAKE_HALF_OPENING_ANGLE ? 1 : 0;
   }
+  return runs;
 }
 } // namespace
 
 // The shipped sequences (157 frames, rendered with detector bias, blur, saturation): no frame refused
-// with the right calibration; with the half opening angle (17 deg for 34) almost every frame that has a
-// trace is refused, and named; none gives a plane.
+// with the right calibration; with the half opening angle (17 deg for 34), the inverse laser pose
+// (lMc given for cMl) or u and v swapped, almost every frame that has a trace is refused, and named;
+// none gives a plane.
 TEST(LaserConicCalibrationCheck, ShippedSequences)
 {
   for (const std::string sequence : {"laser_hard", "laser_sequence"}) {
-    int named = 0;
-    std::map<int, int> right, half;
-    sequenceStatuses(sequence, right, half, named);
+    const std::vector<SequenceRun> runs = sequenceStatuses(sequence);
     int frames = 0;
-    for (const auto &s : right)
+    for (const auto &s : runs[0].statuses)
       frames += s.second;
-    std::printf("%s: %d frames, %d ok, %d refused as a calibration mismatch (right calibration)\n", sequence.c_str(),
-                frames, right[vpLaserConicPose::STATUS_OK], right[vpLaserConicPose::STATUS_CALIBRATION_MISMATCH]);
-    EXPECT_LE(200 * right[vpLaserConicPose::STATUS_CALIBRATION_MISMATCH], frames) << sequence;
-    std::printf("%s, half opening angle: %d ok, %d refused, %d named the half angle\n", sequence.c_str(),
-                half[vpLaserConicPose::STATUS_OK], half[vpLaserConicPose::STATUS_CALIBRATION_MISMATCH], named);
-    // No plane at all: the frames the check let through collapsed onto planes through the rig (altitudes of
-    // micrometres, rolls of 110 deg), which STATUS_PLANE_BEHIND now refuses.
-    EXPECT_EQ(half[vpLaserConicPose::STATUS_OK], 0) << sequence;
-    EXPECT_GE(named, 8 * half[vpLaserConicPose::STATUS_CALIBRATION_MISMATCH] / 10) << sequence;
+    const int right = runs[0].statuses.count(vpLaserConicPose::STATUS_CALIBRATION_MISMATCH)
+                          ? runs[0].statuses.at(vpLaserConicPose::STATUS_CALIBRATION_MISMATCH)
+                          : 0;
+    std::printf("%s: %d frames, %zu ok, %d refused as a calibration mismatch (right calibration)\n", sequence.c_str(),
+                frames, runs[0].accepted.size(), right);
+    EXPECT_LE(200 * right, frames) << sequence;
+    const char *names[] = {"", "half opening angle", "inverse laser pose", "u and v swapped"};
+    for (size_t r = 1; r < runs.size(); ++r) {
+      const int refused = runs[r].statuses.count(vpLaserConicPose::STATUS_CALIBRATION_MISMATCH)
+                              ? runs[r].statuses.at(vpLaserConicPose::STATUS_CALIBRATION_MISMATCH)
+                              : 0;
+      std::printf("%s, %s: %zu ok, %d refused, %d named\n", sequence.c_str(), names[r], runs[r].accepted.size(),
+                  refused, runs[r].named);
+      for (int frame : runs[r].accepted)
+        std::printf("  frame %d gives a plane with the %s\n", frame, names[r]);
+      // No plane at all. With the half angle, frames the misfit test let through collapsed onto planes
+      // through the rig (STATUS_PLANE_BEHIND now refuses them); with the inverse pose, 2 frames of
+      // laser_hard gave planes 0.7 m off whose misfit the noise did not explain but the tolerance for
+      // imperfect calibrations did (see laser_calibration_check.h).
+      EXPECT_TRUE(runs[r].accepted.empty()) << sequence << ", " << names[r];
+      EXPECT_GE(runs[r].named, 8 * refused / 10) << sequence << ", " << names[r];
+    }
   }
 }

@@ -38,7 +38,7 @@ TEST(PoseGravityMistakes, SwappedGravityIsRefusedAndNamed)
   const int runs = 300;
   for (vpPoseGravity::vpPoseGravityMethod method : {vpPoseGravity::P3P, vpPoseGravity::LEAST_SQUARES})
     for (double noise : {0.0, kPixel}) {
-      int wrongAccepted = 0, named = 0, distinct = 0;
+      int wrongAccepted = 0, withinNoise = 0, named = 0, distinct = 0;
       for (int k = 0; k < runs; ++k) {
         Scene s = gen.scene(method == vpPoseGravity::P3P ? 3 : 8);
         gen.addImageNoise(s.points, noise);
@@ -50,28 +50,42 @@ TEST(PoseGravityMistakes, SwappedGravityIsRefusedAndNamed)
         vpPoseGravity pose = estimatorFor(s);
         vpHomogeneousMatrix cMo;
         const bool ok = pose.computePose(method, cMo);
-        wrongAccepted += ok && rotationDegrees(cMo, s.cMo) > 10.0;
+        if (ok && rotationDegrees(cMo, s.cMo) > 10.0) {
+          // The stated vectors fit the points within the noise the estimator assumes (3 sigma,
+          // setImageStdDev(), 1e-3 by default), as the exchanged ones do: three points cannot tell them.
+          const double rms = std::sqrt(pose.computeResidual(cMo) / 3.0);
+          std::cout << "  scene " << k << ": " << rotationDegrees(cMo, s.cMo) << " deg off, accepted at "
+                    << rms / kPixel << " px rms" << std::endl;
+          (rms <= 3.0 * 1e-3 ? withinNoise : wrongAccepted) += 1; // the default setImageStdDev()
+        }
         named += pose.getStatus() == vpPoseGravity::STATUS_GRAVITY_SWAPPED &&
                  pose.getSuspectedMistake() == vpPoseGravity::GRAVITY_MISTAKE_SWAPPED;
       }
       std::cout << (method == vpPoseGravity::P3P ? "P3P" : "LEAST_SQUARES 8 points") << ", noise " << noise / kPixel
-                << " px, gravity swapped: wrong pose accepted " << wrongAccepted << " / " << distinct << ", named "
-                << named << std::endl;
-      // Measured: 0-3 wrong poses accepted of 300 (P3P: its two redundant equations cannot always tell).
-      EXPECT_LE(wrongAccepted, distinct * 3 / 200);
+                << " px, gravity swapped: wrong pose accepted " << wrongAccepted << " / " << distinct
+                << ", accepted within the noise " << withinNoise << ", named " << named << std::endl;
+      // Measured: P3P accepts 3 of 300 poses 10 to 146 deg off, at 0 and at 1 px; each fits its three
+      // points within 3 sigma, as the exchanged vectors do (two redundant equations): both hypotheses
+      // fit, and one frame cannot tell them apart (1 % of the exchanged-vector scenes). Comparing the
+      // two hypotheses from one sigma on would keep none at 0 px, but refuses 13 of 2000 right P3P
+      // estimates at 1 px (0.65 %, PoseGravityNoise), beyond the 0.5 % allowed. None is accepted beyond
+      // the noise; 8 points never accept one.
+      EXPECT_EQ(wrongAccepted, 0);
+      EXPECT_LE(withinNoise, distinct * 3 / 200);
       EXPECT_GE(named, distinct * 9 / 10);
     }
 }
 
-// RANSAC with the camera gravity reversed or the vectors exchanged: no consensus, and the mistake
-// under which one exists is named. Right vectors: a pose, no mistake.
-TEST(PoseGravityMistakes, RansacNoConsensusNamesTheMistake)
+// RANSAC with the camera gravity reversed or the vectors exchanged: no pose, and the mistake is named
+// (STATUS_NO_CONSENSUS naming the alternative under which a consensus exists, or STATUS_GRAVITY_SWAPPED
+// when a consensus exists under the exchanged vectors too but they fit it markedly better).
+TEST(PoseGravityMistakes, RansacNamesTheMistake)
 {
   SceneGenerator gen(302);
   const int runs = 100;
   for (vpPoseGravity::vpGravityMistake mistake :
        {vpPoseGravity::GRAVITY_MISTAKE_SIGN_REVERSED, vpPoseGravity::GRAVITY_MISTAKE_SWAPPED}) {
-    int noConsensus = 0, named = 0, distinct = 0;
+    int refused = 0, named = 0, distinct = 0, wrongAccepted = 0, withinNoise = 0;
     for (int k = 0; k < runs; ++k) {
       Scene s = gen.scene(20);
       gen.addImageNoise(s.points, kPixel);
@@ -85,18 +99,36 @@ TEST(PoseGravityMistakes, RansacNoConsensusNamesTheMistake)
       vpPoseGravity pose = estimatorFor(s);
       pose.setRansacSeed(static_cast<unsigned int>(k));
       vpHomogeneousMatrix cMo;
-      if (!pose.computePose(vpPoseGravity::RANSAC, cMo) && pose.getStatus() == vpPoseGravity::STATUS_NO_CONSENSUS) {
-        ++noConsensus;
-        named += pose.getSuspectedMistake() == mistake;
+      // The tilt the exchange makes to the true pose (deg): cRo applied to the exchanged object vector.
+      const double tilt =
+          std::acos(std::max(-1.0, std::min(1.0, (rotationOf(s.cMo) * toEigen(s.gObj)).dot(toEigen(s.gCam))))) * 180.0 /
+          M_PI;
+      if (pose.computePose(vpPoseGravity::RANSAC, cMo)) {
+        // 20 points at 1 px leave about 0.1 deg (PoseGravityNoise): 1 deg is beyond the noise, unless the
+        // exchange itself tilts the truth by less than 1 deg (about 1 px on a 1 m object at 2 to 8 m):
+        // then both hypotheses fit within the noise.
+        if (rotationDegrees(cMo, s.cMo) > 1.0) {
+          (tilt > 1.0 ? wrongAccepted : withinNoise) += 1;
+          std::cout << "  scene " << k << ": a pose " << rotationDegrees(cMo, s.cMo)
+                    << " deg off accepted, exchange tilt " << tilt << " deg" << std::endl;
+        }
+        continue;
       }
+      ++refused;
+      named += pose.getSuspectedMistake() == mistake;
     }
-    std::cout << "RANSAC 20 points, 1 px, " << vpPoseGravity::getMistakeMessage(mistake) << ": no consensus "
-              << noConsensus << " / " << distinct << ", named " << named << std::endl;
-    // Measured: the reversed sign never reaches a consensus (100/100); the exchanged vectors do in 20 of
-    // these 100 scenes (a 1 m object whose yaw and translation absorb the wrong tilt within 3.2 px):
-    // there RANSAC returns a wrong pose, a limit of what the points can tell.
-    EXPECT_GE(noConsensus, distinct * (mistake == vpPoseGravity::GRAVITY_MISTAKE_SWAPPED ? 75 : 95) / 100);
-    EXPECT_GE(named, noConsensus * 9 / 10);
+    std::cout << "RANSAC 20 points, 1 px, " << vpPoseGravity::getMistakeMessage(mistake) << ": refused " << refused
+              << " / " << distinct << ", named " << named << ", wrong pose accepted " << wrongAccepted
+              << ", within the noise " << withinNoise << std::endl;
+    // Measured: the reversed sign never reaches a consensus (100/100). The exchanged vectors reach one
+    // in 20 of these 100 scenes (a 1 m object whose yaw and translation absorb the wrong tilt within
+    // 3.2 px); the comparison with the exchanged hypothesis on that consensus (STATUS_GRAVITY_SWAPPED)
+    // refuses 18 of them; of the 2 accepted, one is 0.8 deg off, one 1.2 deg off where the exchange
+    // tilts the truth by 0.9 deg (both hypotheses fit within the noise).
+    EXPECT_EQ(wrongAccepted, 0);
+    EXPECT_LE(withinNoise, 1);
+    EXPECT_GE(refused, distinct * 95 / 100);
+    EXPECT_GE(named, refused * 9 / 10);
   }
   // Right vectors: every run finds its pose, none names a mistake.
   int diagnosed = 0, found = 0;

@@ -177,7 +177,10 @@ public:
     at 0.5 px noise). A misfit above 30 times the noise scale (max(getResidualScale(), getFreeRms()))
     and above 3 px is refused with STATUS_CALIBRATION_MISMATCH: the usual mistakes (half opening angle,
     lMc for cMl, u and v swapped, intrinsics of another camera or resolution) leave tens of pixels, and
-    the free fit would then give a confidently wrong plane. The standard mistakes are tried (getSuspectedMistake()). false: no check,
+    the free fit would then give a confidently wrong plane. A misfit above one noise scale is refused
+    too when a standard mistake explains the trace with less than half of it (lMc for cMl on a
+    fading ring: 14 px at 0.6 px noise, within the tolerance). The standard mistakes are tried
+    (getSuspectedMistake()). false: no check,
     the behaviour of FINAL_FIT_SELECT alone (the free fit is used when the constrained one is rejected).
   */
   void setCalibrationCheck(bool enable) { m_calibrationCheck = enable; }
@@ -387,17 +390,29 @@ private:
   vpRansacOptions ransacOptions(double focal) const;
   //! Settings of the final fit (laser_robust_fit.h) of \e method.
   vsp::laser_robust_fit::Settings finalFitSettings(vpLaserConicMethod method, double focal) const;
-  //! STATUS_CALIBRATION_MISMATCH naming the standard mistake that explains the trace of \e result.
-  bool failCalibration(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
-                       const vsp::laser_robust_fit::Result &result);
+  //! STATUS_CALIBRATION_MISMATCH naming \e mistake (the alternative left \e alternativeMisfit pixels).
+  bool failCalibration(vpLaserConicMistake mistake, const vsp::laser_robust_fit::Result &result,
+                       double alternativeMisfit);
+  /*!
+    The calibration check of a final fit (setCalibrationCheck()): false, with
+    STATUS_CALIBRATION_MISMATCH, when the misfit is beyond the tolerance, or beyond the noise with a
+    standard mistake explaining the trace markedly better.
+  */
+  bool checkCalibration(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
+                        const vsp::laser_robust_fit::Result &result);
   /*!
     A failure of the given calibration (no consensus, no plane, short arc, plane behind): reported as
     STATUS_CALIBRATION_MISMATCH when a standard mistake explains the trace, as \e status otherwise.
   */
   bool failOrMismatch(vpLaserConicStatus status, const std::string &details, const std::vector<vpImagePoint> &points,
                       vpLaserConicMethod method);
-  //! The standard mistake under which \e method explains \e points (setCalibrationCheck()).
-  vpLaserConicMistake suspectedMistake(const std::vector<vpImagePoint> &points, vpLaserConicMethod method) const;
+  /*!
+    The standard mistake under which \e method explains \e points (setCalibrationCheck()); \e misfit
+    receives its misfit. \e strict: only an alternative whose trace has \e minTrace points at least
+    and whose misfit is within the noise (as a right calibration's) counts.
+  */
+  vpLaserConicMistake suspectedMistake(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
+                                       double *misfit = nullptr, bool strict = false, size_t minTrace = 0) const;
   //! Keeps a successful final fit: plane, attitude, inliers, fit statistics, covariances, pixel conic.
   void storeEstimate(const vsp::laser_robust_fit::Result &result, vpPlane &cPlane);
 };

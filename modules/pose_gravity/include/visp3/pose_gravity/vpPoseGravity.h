@@ -98,7 +98,7 @@ public:
     STATUS_INCONSISTENT_GRAVITY, //!< the best pose leaves points beyond setConsistencyThreshold(): wrong IMU-to-camera rotation, IMU in motion, wrong matches or outliers (use RANSAC).
     STATUS_GRAVITY_SIGN_REVERSED, //!< the points fit a pose only with one of the two gravity vectors reversed: an accelerometer reading (specific force, pointing up) was passed as gravity (which points down).
     STATUS_BEHIND_CAMERA,         //!< the best pose puts a used point behind the camera.
-    STATUS_GRAVITY_SWAPPED        //!< the points fit a pose only with the camera and object gravity exchanged.
+    STATUS_GRAVITY_SWAPPED //!< the points fit a pose only with the camera and object gravity exchanged (RANSAC: the exchange explains more of them).
   } vpPoseGravityStatus;
 
   /*!
@@ -325,7 +325,12 @@ public:
     The standard mistake that explains the last failure: for P3P and LEAST_SQUARES the one their
     status names (STATUS_GRAVITY_SIGN_REVERSED, STATUS_GRAVITY_SWAPPED); after STATUS_NO_CONSENSUS of
     RANSAC, the alternative gravity under which a consensus exists (the same loop, threshold and
-    significance). GRAVITY_MISTAKE_NONE after a success or when no alternative fits. A wrong or
+    significance); after STATUS_GRAVITY_SWAPPED of RANSAC (a consensus exists, but the exchanged
+    vectors explain more of the points than chance explains), GRAVITY_MISTAKE_SWAPPED. Limits: P3P
+    keeps about 1 % of exchanged-vector scenes, where the stated vectors fit the three points within
+    3 times the image noise as the exchanged ones do (one frame cannot tell them); RANSAC accepts an
+    exchange that tilts the pose by less than about a degree. GRAVITY_MISTAKE_NONE after a success or
+    when no alternative fits. A wrong or
     missing IMU-to-sensor rotation is not among the alternatives (the class only sees the rotated
     vectors): STATUS_INCONSISTENT_GRAVITY, or a consensus under no alternative, points to it.
   */
