@@ -53,6 +53,56 @@ double sectorCoverage(const vsp::laser_estimators::PointList &points, const std:
   }
   return static_cast<double>(std::count(occupied, occupied + 36, true)) * (2.0 * pi / 36.0);
 }
+
+// A point of the second pass in the frame of the conic: its unit normal, its signed offset along it (first
+// order: F / |grad F|) and its angle around the centre (the order along the curve).
+struct OnConic
+{
+  double u, v, nu, nv, offset, angle;
+};
+
+// The offset at s = 0 of the straight line fitted to the (s, offset) pairs within GuidedTuning::smoothOutlier
+// of their median; false when fewer than GuidedTuning::smoothMinPoints remain.
+bool fitOffset(std::vector<std::pair<double, double> > &pairs, std::vector<double> &scratch, double &offset)
+{
+  scratch.clear();
+  for (const auto &p : pairs)
+    scratch.push_back(p.second);
+  std::nth_element(scratch.begin(), scratch.begin() + scratch.size() / 2, scratch.end());
+  const double median = scratch[scratch.size() / 2];
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, t0 = 0.0, t1 = 0.0;
+  for (const auto &p : pairs)
+    if (std::fabs(p.second - median) <= GuidedTuning::smoothOutlier) {
+      s0 += 1.0, s1 += p.first, s2 += p.first * p.first, t0 += p.second, t1 += p.first * p.second;
+    }
+  if (s0 < GuidedTuning::smoothMinPoints)
+    return false;
+  const double det = s0 * s2 - s1 * s1;
+  offset = det > 1e-9 * s0 * s2 ? (s2 * t0 - s1 * t1) / det : t0 / s0;
+  return true;
+}
+
+// The neighbours of point order[p] within GuidedTuning::smoothRadius pixels along the sorted points (both
+// ways, around the ring), as (position along the tangent, offset) pairs, itself included.
+void neighbours(const std::vector<OnConic> &points, const std::vector<int> &order, size_t p,
+                std::vector<std::pair<double, double> > &pairs)
+{
+  const OnConic &c = points[static_cast<size_t>(order[p])];
+  const size_t n = order.size();
+  pairs.assign(1, std::make_pair(0.0, c.offset));
+  size_t walked = 0; // points taken forward: backward stops before them (a ring shorter than the window)
+  for (int direction : {1, -1})
+    for (size_t step = 1; step + walked < n; ++step) {
+      const size_t q = direction > 0 ? (p + step) % n : (p + n - step) % n;
+      const OnConic &o = points[static_cast<size_t>(order[q])];
+      const double du = o.u - c.u, dv = o.v - c.v;
+      if (du * du + dv * dv > GuidedTuning::smoothRadius * GuidedTuning::smoothRadius)
+        break;
+      pairs.push_back(std::make_pair(du * -c.nv + dv * c.nu, o.offset));
+      if (direction > 0)
+        ++walked;
+    }
+}
 } // namespace
 
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, Eigen::Matrix3d &C,
@@ -118,6 +168,38 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   if (!k.centre(uc, vc) || std::hypot(uc - 0.5 * W, vc - 0.5 * H) > 4.0 * diagonal)
     return false; // a huge ellipse: a few straight pieces, not a ring
   return sectorCoverage(all, inliers, uc, vc) >= pi / 3.0;
+}
+
+void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
+{
+  const ConicCoefficients k(C);
+  double uc = 0.0, vc = 0.0;
+  if (crossings.size() < static_cast<size_t>(GuidedTuning::smoothMinPoints) || !k.centre(uc, vc))
+    return;
+  std::vector<OnConic> points;
+  std::vector<int> order;
+  for (const Crossing &x : crossings) {
+    const double u = x.point.get_u(), v = x.point.get_v();
+    const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e, norm = std::hypot(fu, fv);
+    const double F = k.a * u * u + 2.0 * k.b * u * v + k.c * v * v + 2.0 * k.d * u + 2.0 * k.e * v + k.f;
+    if (!(norm > 0.0))
+      return;
+    order.push_back(static_cast<int>(points.size()));
+    points.push_back(OnConic{u, v, fu / norm, fv / norm, F / (2.0 * norm), std::atan2(v - vc, u - uc)});
+  }
+  std::sort(order.begin(), order.end(), [&](int p, int q) { return points[p].angle < points[q].angle; });
+  std::vector<std::pair<double, double> > pairs;
+  std::vector<double> scratch, shifts(points.size(), 0.0);
+  for (size_t p = 0; p < order.size(); ++p) {
+    neighbours(points, order, p, pairs);
+    double offset = 0.0;
+    const OnConic &c = points[static_cast<size_t>(order[p])];
+    if (fitOffset(pairs, scratch, offset))
+      shifts[static_cast<size_t>(order[p])] = offset - c.offset;
+  }
+  // Moved once all the fits are done: each fit reads the offsets as measured.
+  for (size_t i = 0; i < crossings.size(); ++i)
+    crossings[i].point = vpImagePoint(points[i].v + shifts[i] * points[i].nv, points[i].u + shifts[i] * points[i].nu);
 }
 
 bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step, std::vector<GuidedSample> &samples)

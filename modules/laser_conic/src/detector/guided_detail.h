@@ -45,6 +45,20 @@ struct GuidedTuning
   //! Side (2^cellShift pixels) of the cells that record where points were found (a sample near one is not
   //! measured again).
   static constexpr int cellShift = 2;
+  //! A sample is known (not measured again) when a point found lies within knownAlong pixels of it along
+  //! the predicted curve (half the spacing of the profiles, rounded up) and within knownAcross pixels across
+  //! it (the prediction's error): a sample just beyond the end of a first-pass chain is measured.
+  static constexpr double knownAlong = 1.0;
+  //! See knownAlong (under 2^cellShift - knownAlong: the cells searched are those around the sample's).
+  static constexpr double knownAcross = 3.0;
+  //! The centres of the second pass are regularised along the curve: their offsets to the final conic are
+  //! replaced by a straight-line fit of the offsets of the points within smoothRadius pixels (the true
+  //! centre line is smooth over that length; the noise of one profile is not).
+  static constexpr double smoothRadius = 20.0;
+  //! Points a regularised centre needs in its neighbourhood (itself included), else it is left as measured.
+  static constexpr int smoothMinPoints = 5;
+  //! Offsets (pixels) farther than this from their neighbourhood's median are left out of its fit.
+  static constexpr double smoothOutlier = 1.0;
   //! Image lines averaged into one profile (the line of the sample and its neighbours, shifted along the
   //! predicted curve): the noise falls by sqrt(lines), so a stripe 3 times the background noise stands out.
   static constexpr int lines = 3;
@@ -86,6 +100,13 @@ struct ProfileBuffers
   std::vector<int> value, dominance, prefix, diffs;
   std::vector<unsigned char> red;
 };
+
+/*!
+  Regularises the centres of \e crossings (the second pass's points) along the conic C: each point is moved
+  along the normal of C so that its offset to C is that of a straight line fitted to the offsets of the points
+  within GuidedTuning::smoothRadius pixels (see GuidedTuning::smoothRadius).
+*/
+void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings);
 
 //! Measures the profile of sample s in the RGBA image I.
 ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,

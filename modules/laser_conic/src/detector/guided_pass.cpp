@@ -15,31 +15,47 @@ namespace vsp::laser_detector
 {
 namespace
 {
-// Cells of 2^cellShift pixels that hold a point found (by either pass).
+// The points found (by either pass), in lists per cell of 2^cellShift pixels.
 class FoundCells
 {
 public:
-  FoundCells(int W, int H, std::vector<unsigned char> &cells)
-    : m_columns((W >> GuidedTuning::cellShift) + 1), m_rows((H >> GuidedTuning::cellShift) + 1), m_cells(cells)
+  FoundCells(int W, int H, RidgeWorkspace &work)
+    : m_columns((W >> GuidedTuning::cellShift) + 1), m_rows((H >> GuidedTuning::cellShift) + 1),
+      m_heads(work.guidedCells), m_next(work.guidedNext), m_points(work.guidedFound)
   {
-    m_cells.assign(static_cast<size_t>(m_columns) * m_rows, 0);
+    m_heads.assign(static_cast<size_t>(m_columns) * m_rows, -1);
+    m_next.clear();
+    m_points.clear();
   }
   void mark(const vpImagePoint &p)
   {
     int a = 0, b = 0;
-    if (cellOf(p.get_u(), p.get_v(), a, b))
-      m_cells[static_cast<size_t>(b) * m_columns + a] = 1;
+    if (!cellOf(p.get_u(), p.get_v(), a, b))
+      return;
+    int &head = m_heads[static_cast<size_t>(b) * m_columns + a];
+    m_next.push_back(head);
+    head = static_cast<int>(m_points.size());
+    m_points.push_back(p);
   }
-  // Whether a point lies in the cell of (u, v) or a neighbouring one.
-  bool near(double u, double v) const
+  // Whether a point found lies on the profile of sample s: within GuidedTuning::knownAlong pixels of it along
+  // the predicted curve and GuidedTuning::knownAcross across it.
+  bool covers(const GuidedSample &s) const
   {
+    const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
     int a = 0, b = 0;
     if (!cellOf(u, v, a, b))
       return false;
+    const double norm = std::hypot(s.slope, 1.0);
+    const double tu = (s.alongRow ? s.slope : 1.0) / norm, tv = (s.alongRow ? 1.0 : s.slope) / norm;
     for (int y = std::max(0, b - 1); y <= std::min(m_rows - 1, b + 1); ++y)
       for (int x = std::max(0, a - 1); x <= std::min(m_columns - 1, a + 1); ++x)
-        if (m_cells[static_cast<size_t>(y) * m_columns + x])
-          return true;
+        for (int k = m_heads[static_cast<size_t>(y) * m_columns + x]; k >= 0; k = m_next[static_cast<size_t>(k)]) {
+          const double du = m_points[static_cast<size_t>(k)].get_u() - u,
+                       dv = m_points[static_cast<size_t>(k)].get_v() - v;
+          if (std::fabs(du * tu + dv * tv) <= GuidedTuning::knownAlong &&
+              std::fabs(du * tv - dv * tu) <= GuidedTuning::knownAcross)
+            return true;
+        }
     return false;
   }
 
@@ -53,7 +69,8 @@ private:
     return a < m_columns && b < m_rows;
   }
   int m_columns, m_rows;
-  std::vector<unsigned char> &m_cells;
+  std::vector<int> &m_heads, &m_next;
+  std::vector<vpImagePoint> &m_points;
 };
 
 // Whether (u, v) lies in the spans of \e limit (everywhere when null).
@@ -118,13 +135,21 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   close();
 }
 
-// Least-squares ellipse through the points (an even subsample of a few hundred).
+// Least-squares ellipse through the points (an even subsample of a few hundred). The points are sorted
+// first: the same points in any order (the first pass's order depends on how it searched) give the same
+// ellipse, to the last bit, and so the same regularised centres (smoothAlongCurve()).
 bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
 {
-  std::vector<Eigen::Vector2d> sample;
-  const size_t stride = std::max<size_t>(1, points.size() / 600);
-  for (size_t k = 0; k < points.size(); k += stride)
-    sample.push_back(Eigen::Vector2d(points[k].get_u(), points[k].get_v()));
+  std::vector<Eigen::Vector2d> all, sample;
+  all.reserve(points.size());
+  for (const vpImagePoint &p : points)
+    all.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
+  std::sort(all.begin(), all.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
+    return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
+  });
+  const size_t stride = std::max<size_t>(1, all.size() / 600);
+  for (size_t k = 0; k < all.size(); k += stride)
+    sample.push_back(all[k]);
   Eigen::Matrix3d c;
   if (sample.size() < 5 || !vpLaserSolvers::fitConic(sample.data(), static_cast<int>(sample.size()), c) ||
       !vpLaserSolvers::isEllipse(c))
@@ -162,7 +187,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   report = GuidedReport();
   work.guided.clear();
   const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
-  FoundCells found(W, H, work.guidedCells);
+  FoundCells found(W, H, work);
   for (const vpImagePoint &p : anchors)
     found.mark(p);
   std::vector<vpImagePoint> fitPoints = anchors;
@@ -183,7 +208,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     for (size_t i = 0; i < samples.size(); ++i) {
       const GuidedSample &s = samples[i];
       const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
-      if (found.near(u, v))
+      if (found.covers(s))
         state[i] = KNOWN;
       else if (inLimit(limit, H, u, v)) {
         results[i] = measureProfile(I, s, settings, buffers);
@@ -201,11 +226,14 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
         found.mark(results[i].crossing.point);
         ++added;
       }
-    // The coverage stops growing, or no better prediction.
-    if (added == 0 || !refit(fitPoints, C))
+    // The coverage stops growing, or no better prediction. Refitted even then: the final conic is the
+    // points' (sorted) fit, whatever the order the first pass returned its points in.
+    const bool refitted = refit(fitPoints, C);
+    if (added == 0 || !refitted)
       break;
   }
   keepOnTheFinalCurve(C, work.guided);
+  smoothAlongCurve(C, work.guided);
   for (const Crossing &c : work.guided)
     points.push_back(c.point);
   report.added = static_cast<int>(work.guided.size());

@@ -78,13 +78,16 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
 }
 
 // Robust noise of the profile: 1.4826 MAD / sqrt(2) of the differences two pixels apart (as the first
-// pass's global estimate, see ridge_noise.h), at least GuidedTuning::noiseFloor per line summed.
-double profileNoise(ProfileBuffers &b, int n, int lines)
+// pass's global estimate, see ridge_noise.h), at least GuidedTuning::noiseFloor per line summed. The
+// differences that touch [skipFirst, skipLast] (the candidate stripe and its tails) are left out: a bright
+// stripe's own edges would raise the threshold it is tested against.
+double profileNoise(ProfileBuffers &b, int n, int lines, int skipFirst, int skipLast)
 {
   const double floor = GuidedTuning::noiseFloor * std::sqrt(static_cast<double>(lines));
   b.diffs.clear();
   for (int k = 0; k + 2 < n; ++k)
-    b.diffs.push_back(std::abs(b.value[k + 2] - b.value[k]));
+    if (k + 2 < skipFirst || k > skipLast)
+      b.diffs.push_back(std::abs(b.value[k + 2] - b.value[k]));
   if (b.diffs.empty())
     return floor;
   std::nth_element(b.diffs.begin(), b.diffs.begin() + b.diffs.size() / 2, b.diffs.end());
@@ -162,7 +165,9 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
       best = k;
     }
   }
-  result.noise = profileNoise(buffers, n, lines);
+  const int tails = h + GuidedTuning::gap + 1;
+  result.noise = best < 0 ? profileNoise(buffers, n, lines, n, n)
+                          : profileNoise(buffers, n, lines, best - tails, best + tails);
   result.threshold = std::max(GuidedTuning::minResponse * lines,
                               settings.factor * result.noise * std::sqrt(1.0 / (2 * h + 1) + 1.0 / f));
   double centre = 0.0;
