@@ -110,23 +110,28 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 {
   // 150 grey levels near, 15 far (7.5 sigma): the first pass, whose threshold is 5 times the noise of the
   // whole image over the stripe width, keeps the bright arcs (73 % of the ring); the second pass the rest:
-  // measured 99.2-99.5 %, precision 1. The second pass's centres on the dim side, behind JPEG's halved
-  // chroma resolution, are off by 0.39-0.42 px RMS (their noise: 15 grey levels of peak over a dominance
-  // noise of about 2.6, three lines averaged).
+  // measured 100 %, precision 1, second-pass RMS 0.17-0.18 px (the bounds: 95 %, 0.98, 0.3 px).
+  // Measured one profile at a time the dim side's centres were off by 0.39-0.42 px RMS; JPEG alone (no
+  // sensor noise) left 0.45 px: its error follows the 8 x 8 blocks, so only the regularisation along 20 px
+  // of arc averages it out (within 8 px it did not).
   for (unsigned int seed : {70u, 71u}) {
     vpLaserConicDetector detector;
     const GuidedQuality q = runGuided("fading_dark", tiltedGround(), fadingRing(150.0, 15.0), seed, detector);
-    expectGuided(q, 0.95, 0.45);
+    expectGuided(q, 0.95, 0.3);
     EXPECT_GT(q.guided, 100u); // the first pass alone misses the far side
   }
 }
 
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
-  // 40 near, 4 far (2 sigma): of the part of the ring at 3 sigma or more, measured 92.4 % found, precision
-  // 0.995, second-pass RMS 0.48 px.
+  // 40 near, 4 far (2 sigma): of the part of the ring at 3 sigma or more, measured 94.1 % found, precision
+  // 0.997, second-pass RMS 0.245 px. The 95 % is not reached: what is missed lies between 3 and 3.3
+  // sigma, where JPEG at quality 90 leaves a matched-filter response of 0-2 grey levels per line (it rounds
+  // the weak chroma detail away; without JPEG 99.1 % is found). The bound is the measured level. The
+  // Cramer-Rao bound of one profile there (Gaussian stripe of 3 px FWHM, peak 6 over a dominance noise of
+  // 2.6, three lines) is 0.30 px: the regularisation along the curve is what brings the RMS under it.
   vpLaserConicDetector detector;
-  expectGuided(runGuided("faint", tiltedGround(), fadingRing(40.0, 4.0), 72, detector), 0.9, 0.5);
+  expectGuided(runGuided("faint", tiltedGround(), fadingRing(40.0, 4.0), 72, detector), 0.93, 0.3);
 }
 
 TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLight)
@@ -136,10 +141,13 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   s.ambient = 0.6;
   s.reflectanceScaled = true;
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured
-  // 84.6 % of the ring at 3 sigma or more (the first pass alone: see the log), precision 0.983, second-pass
-  // RMS 0.55 px.
+  // 89.1 % of the ring at 3 sigma or more (the first pass alone: see the log), precision 0.990, second-pass
+  // RMS 0.40 px. The 95 % and 0.3 px are not reached; the bounds are the measured levels. What is
+  // missed lies along the patches' edges: where the stripe runs along a step of the floor's red, its
+  // profile is a step, not a stripe, and the first pass's points there (which the second pass does not
+  // measure again) are 1.5-2 px off the line.
   vpLaserConicDetector detector;
-  expectGuided(runGuided("fading_mosaic", tiltedGround(), s, 73, detector), 0.82, 0.6);
+  expectGuided(runGuided("fading_mosaic", tiltedGround(), s, 73, detector), 0.88, 0.45);
 }
 
 TEST(LaserConicGuidedSearch, DistractorsStayOut)
@@ -152,17 +160,18 @@ TEST(LaserConicGuidedSearch, DistractorsStayOut)
                    Distractor::line(-0.3, 0.2, 0.1, 0.3, 0.004)};
   s.clutter = 80;
   s.clutterRadius = 0.5;
-  // Measured: 94.3 % of the ring at 3 sigma (the first pass alone much less), 2.4 % of the second pass's
-  // points off the line, and the precision of all the points that of the first pass alone.
+  // Measured: 96.8 % of the ring at 3 sigma (the first pass alone 78.3 %), 0.2 % of the second pass's
+  // points off the line, second-pass RMS 0.41 px, and the precision of all the points that of the first
+  // pass alone or better (0.845 against 0.816: the cable's points are the first pass's).
   vpLaserConicDetector detector, firstPass;
   firstPass.setGuidedSearch(false);
   const GuidedQuality q = runGuided("fading_distractors", tiltedGround(), s, 74, detector);
   const GuidedQuality first = runGuided("fading_distractors_first_pass", tiltedGround(), s, 74, firstPass);
-  EXPECT_GE(q.coverage3, 0.92);
+  EXPECT_GE(q.coverage3, 0.95);
   EXPECT_GT(q.coverage3, first.coverage3 + 0.05);
-  EXPECT_LE(q.guidedOff, 0.03);
+  EXPECT_LE(q.guidedOff, 0.02);
   EXPECT_GE(q.precision, first.precision - 0.005);
-  EXPECT_LE(q.rmsGuided, 0.6);
+  EXPECT_LE(q.rmsGuided, 0.45);
 }
 
 TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
@@ -179,8 +188,8 @@ TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
       Cv[i][j] = C(i, j);
   vpLaserConicDetector tracker;
   tracker.setSearchRegion(Cv, 20.0);
-  // Measured: 99.9 % of the ring, precision 0.9996, RMS 0.27 px (the bright side is measured by the
-  // guided pass too).
+  // Measured: 100 % of the ring, precision 1, RMS 0.11 px (the bright side is measured by the guided pass
+  // too).
   const GuidedQuality q = runGuided("tracked", cMg, fadingRing(150.0, 15.0), 75, tracker);
   expectGuided(q, 0.95, 0.3);
   EXPECT_EQ(q.guided, q.points); // every point from the guided search

@@ -61,8 +61,8 @@ struct OnConic
   double u, v, nu, nv, offset, angle;
 };
 
-// The offset at s = 0 of the straight line fitted to the (s, offset) pairs within GuidedTuning::smoothOutlier
-// of their median; false when fewer than GuidedTuning::smoothMinPoints remain.
+// The offset at s = 0 of the straight line fitted to the (s, offset) pairs within RidgeTuning::guidedSmoothOutlier
+// of their median; false when fewer than RidgeTuning::guidedSmoothMinPoints remain.
 bool fitOffset(std::vector<std::pair<double, double> > &pairs, std::vector<double> &scratch, double &offset)
 {
   scratch.clear();
@@ -72,17 +72,17 @@ bool fitOffset(std::vector<std::pair<double, double> > &pairs, std::vector<doubl
   const double median = scratch[scratch.size() / 2];
   double s0 = 0.0, s1 = 0.0, s2 = 0.0, t0 = 0.0, t1 = 0.0;
   for (const auto &p : pairs)
-    if (std::fabs(p.second - median) <= GuidedTuning::smoothOutlier) {
+    if (std::fabs(p.second - median) <= RidgeTuning::guidedSmoothOutlier) {
       s0 += 1.0, s1 += p.first, s2 += p.first * p.first, t0 += p.second, t1 += p.first * p.second;
     }
-  if (s0 < GuidedTuning::smoothMinPoints)
+  if (s0 < RidgeTuning::guidedSmoothMinPoints)
     return false;
   const double det = s0 * s2 - s1 * s1;
   offset = det > 1e-9 * s0 * s2 ? (s2 * t0 - s1 * t1) / det : t0 / s0;
   return true;
 }
 
-// The neighbours of point order[p] within GuidedTuning::smoothRadius pixels along the sorted points (both
+// The neighbours of point order[p] within RidgeTuning::guidedSmoothRadius pixels along the sorted points (both
 // ways, around the ring), as (position along the tangent, offset) pairs, itself included.
 void neighbours(const std::vector<OnConic> &points, const std::vector<int> &order, size_t p,
                 std::vector<std::pair<double, double> > &pairs)
@@ -96,7 +96,7 @@ void neighbours(const std::vector<OnConic> &points, const std::vector<int> &orde
       const size_t q = direction > 0 ? (p + step) % n : (p + n - step) % n;
       const OnConic &o = points[static_cast<size_t>(order[q])];
       const double du = o.u - c.u, dv = o.v - c.v;
-      if (du * du + dv * dv > GuidedTuning::smoothRadius * GuidedTuning::smoothRadius)
+      if (du * du + dv * dv > RidgeTuning::guidedSmoothRadius * RidgeTuning::guidedSmoothRadius)
         break;
       pairs.push_back(std::make_pair(du * -c.nv + dv * c.nu, o.offset));
       if (direction > 0)
@@ -174,7 +174,7 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
 {
   const ConicCoefficients k(C);
   double uc = 0.0, vc = 0.0;
-  if (crossings.size() < static_cast<size_t>(GuidedTuning::smoothMinPoints) || !k.centre(uc, vc))
+  if (crossings.size() < static_cast<size_t>(RidgeTuning::guidedSmoothMinPoints) || !k.centre(uc, vc))
     return;
   std::vector<OnConic> points;
   std::vector<int> order;

@@ -20,7 +20,7 @@ class FoundCells
 {
 public:
   FoundCells(int W, int H, RidgeWorkspace &work)
-    : m_columns((W >> GuidedTuning::cellShift) + 1), m_rows((H >> GuidedTuning::cellShift) + 1),
+    : m_columns((W >> RidgeTuning::guidedCellShift) + 1), m_rows((H >> RidgeTuning::guidedCellShift) + 1),
       m_heads(work.guidedCells), m_next(work.guidedNext), m_points(work.guidedFound)
   {
     m_heads.assign(static_cast<size_t>(m_columns) * m_rows, -1);
@@ -37,8 +37,8 @@ public:
     head = static_cast<int>(m_points.size());
     m_points.push_back(p);
   }
-  // Whether a point found lies on the profile of sample s: within GuidedTuning::knownAlong pixels of it along
-  // the predicted curve and GuidedTuning::knownAcross across it.
+  // Whether a point found lies on the profile of sample s: within RidgeTuning::guidedKnownAlong pixels of it along
+  // the predicted curve and RidgeTuning::guidedKnownAcross across it.
   bool covers(const GuidedSample &s) const
   {
     const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
@@ -52,8 +52,8 @@ public:
         for (int k = m_heads[static_cast<size_t>(y) * m_columns + x]; k >= 0; k = m_next[static_cast<size_t>(k)]) {
           const double du = m_points[static_cast<size_t>(k)].get_u() - u,
                        dv = m_points[static_cast<size_t>(k)].get_v() - v;
-          if (std::fabs(du * tu + dv * tv) <= GuidedTuning::knownAlong &&
-              std::fabs(du * tv - dv * tu) <= GuidedTuning::knownAcross)
+          if (std::fabs(du * tu + dv * tv) <= RidgeTuning::guidedKnownAlong &&
+              std::fabs(du * tv - dv * tu) <= RidgeTuning::guidedKnownAcross)
             return true;
         }
     return false;
@@ -64,8 +64,8 @@ private:
   {
     if (!(u >= 0.0 && v >= 0.0))
       return false;
-    a = static_cast<int>(u) >> GuidedTuning::cellShift;
-    b = static_cast<int>(v) >> GuidedTuning::cellShift;
+    a = static_cast<int>(u) >> RidgeTuning::guidedCellShift;
+    b = static_cast<int>(v) >> RidgeTuning::guidedCellShift;
     return a < m_columns && b < m_rows;
   }
   int m_columns, m_rows;
@@ -90,8 +90,8 @@ bool inLimit(const RegionSpans *limit, int H, double u, double v)
 enum SampleState { MISSED, FOUND, KNOWN };
 
 // The pieces of curve along the samples (in their order): runs of found samples, broken by more than
-// GuidedTuning::maxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
-// kept when it touches a known point (a sample near a point already found) or has GuidedTuning::minRun
+// RidgeTuning::guidedMaxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
+// kept when it touches a known point (a sample near a point already found) or has RidgeTuning::guidedMinRun
 // points; \e keep marks the found samples of the kept pieces.
 void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
                           std::vector<unsigned char> &keep)
@@ -104,7 +104,7 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   size_t lastIndex = 0;
   bool afterKnown = false;
   auto close = [&]() {
-    if (anchored || static_cast<int>(piece.size()) >= GuidedTuning::minRun)
+    if (anchored || static_cast<int>(piece.size()) >= RidgeTuning::guidedMinRun)
       for (size_t k : piece)
         keep[k] = 1;
     piece.clear();
@@ -119,7 +119,8 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
       lastIndex = i;
     } else if (state[i] == FOUND) {
       // Next to a known point the offset is that point's, within the fit's inlier threshold of the curve.
-      const double allowed = (afterKnown ? 2.0 : GuidedTuning::maxJump) + GuidedTuning::perSampleJump * (i - lastIndex);
+      const double allowed =
+          (afterKnown ? 2.0 : RidgeTuning::guidedMaxJump) + RidgeTuning::guidedPerSampleJump * (i - lastIndex);
       if ((anchored || !piece.empty()) && std::fabs(results[i].offset - lastOffset) > allowed)
         close();
       piece.push_back(i);
@@ -127,7 +128,7 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
       misses = 0;
       lastOffset = results[i].offset;
       lastIndex = i;
-    } else if (++misses > GuidedTuning::maxMisses) {
+    } else if (++misses > RidgeTuning::guidedMaxMisses) {
       close();
       afterKnown = false;
     }
@@ -158,7 +159,7 @@ bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
   return true;
 }
 
-// Drops the crossings farther than GuidedTuning::finalDistance pixels (Sampson distance) from the conic C
+// Drops the crossings farther than RidgeTuning::guidedFinalDistance pixels (Sampson distance) from the conic C
 // refitted on all the points: a piece that continued the prediction of an early, extrapolated fit but not
 // the curve that all the points make (a stripe-like texture near the curve).
 void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
@@ -166,7 +167,7 @@ void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossi
   size_t kept = 0;
   for (const Crossing &c : crossings)
     if (vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(c.point.get_u(), c.point.get_v())) <=
-        GuidedTuning::finalDistance)
+        RidgeTuning::guidedFinalDistance)
       crossings[kept++] = c;
   crossings.resize(kept);
 }
@@ -199,7 +200,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   ProfileBuffers buffers;
   Eigen::Matrix3d C = prediction;
   report.ran = true;
-  for (int iteration = 0; iteration < GuidedTuning::maxIterations; ++iteration) {
+  for (int iteration = 0; iteration < RidgeTuning::guidedMaxIterations; ++iteration) {
     if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
       break;
     ++report.iterations;
@@ -237,8 +238,8 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   for (const Crossing &c : work.guided)
     points.push_back(c.point);
   report.added = static_cast<int>(work.guided.size());
-  report.noise = median(noises) / std::sqrt(static_cast<double>(GuidedTuning::lines));
-  report.threshold = median(thresholds) / GuidedTuning::lines;
+  report.noise = median(noises) / std::sqrt(static_cast<double>(RidgeTuning::guidedLines));
+  report.threshold = median(thresholds) / RidgeTuning::guidedLines;
 }
 
 int observedStripeWidth(const RidgeWorkspace &work, int fallback)

@@ -24,7 +24,8 @@
 namespace vsp::laser_detector
 {
 struct RidgeWorkspace;
-}
+struct GuidedSettings;
+} // namespace vsp::laser_detector
 
 //! A stripe run measured by vpLaserConicDetector (the diagnostic mask getMask() is drawn from them).
 struct vpLaserConicDetectorRun
@@ -325,6 +326,8 @@ private:
   void rasteriseRegion(int H, int W);
   //! The first pass (over the search region of points, if any), then the guided pass if enabled.
   std::vector<vpImagePoint> detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion);
+  //! The settings of the guided pass with the band half-width \e margin (pixels), the others from this detector's.
+  vsp::laser_detector::GuidedSettings guidedSettings(double margin) const;
   //! The guided pass along the conic search region; false when it found too few points (track lost).
   bool trackConic(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points);
 
