@@ -54,6 +54,13 @@ struct ProfileBuffers
 };
 
 /*!
+  About \e target of \e points (all of them when fewer), chosen by their position (a hash of their pixel) and
+  sorted by row then column: the same points in any order give the same subsample in the same order, and so
+  the same fit to the last bit.
+*/
+void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, std::vector<Eigen::Vector2d> &sample);
+
+/*!
   Regularises the centres of \e crossings (the second pass's points) along the conic C: each point is moved
   along the normal of C so that its offset to C is that of a straight line fitted to the offsets of the points
   within RidgeTuning::guidedSmoothRadius pixels (see RidgeTuning::guidedSmoothRadius).

@@ -45,7 +45,7 @@ public:
     int a = 0, b = 0;
     if (!cellOf(u, v, a, b))
       return false;
-    const double norm = std::hypot(s.slope, 1.0);
+    const double norm = std::sqrt(s.slope * s.slope + 1.0); // not std::hypot: a call per sample
     const double tu = (s.alongRow ? s.slope : 1.0) / norm, tv = (s.alongRow ? 1.0 : s.slope) / norm;
     for (int y = std::max(0, b - 1); y <= std::min(m_rows - 1, b + 1); ++y)
       for (int x = std::max(0, a - 1); x <= std::min(m_columns - 1, a + 1); ++x)
@@ -136,21 +136,13 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   close();
 }
 
-// Least-squares ellipse through the points (an even subsample of a few hundred). The points are sorted
-// first: the same points in any order (the first pass's order depends on how it searched) give the same
-// ellipse, to the last bit, and so the same regularised centres (smoothAlongCurve()).
+// Least-squares ellipse through the points (a subsample of a few hundred). The subsample is chosen by
+// position and sorted: the same points in any order (the first pass's order depends on how it searched) give
+// the same ellipse, to the last bit, and so the same regularised centres (smoothAlongCurve()).
 bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
 {
-  std::vector<Eigen::Vector2d> all, sample;
-  all.reserve(points.size());
-  for (const vpImagePoint &p : points)
-    all.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
-  std::sort(all.begin(), all.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
-    return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
-  });
-  const size_t stride = std::max<size_t>(1, all.size() / 600);
-  for (size_t k = 0; k < all.size(); k += stride)
-    sample.push_back(all[k]);
+  std::vector<Eigen::Vector2d> sample;
+  positionSubsample(points, 600, sample);
   Eigen::Matrix3d c;
   if (sample.size() < 5 || !vpLaserSolvers::fitConic(sample.data(), static_cast<int>(sample.size()), c) ||
       !vpLaserSolvers::isEllipse(c))
