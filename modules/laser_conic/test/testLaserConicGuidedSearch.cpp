@@ -208,3 +208,92 @@ TEST(LaserConicGuidedSearch, SettingsAreCheckedAndTheSecondPassCanBeTurnedOff)
   EXPECT_EQ(off.guided, 0u);
   EXPECT_LT(off.coverage3, 0.95); // what the second pass is for
 }
+
+namespace
+{
+//! Whether the image point \e p (undistorted camera \e cam) sees the ground \e cMg inside the rectangle
+//! [lo, hiX] x [lo, hiY] of ground coordinates.
+bool seesRectangle(const vpCameraParameters &cam, const vpHomogeneousMatrix &cMg, const vpImagePoint &p, double lo,
+                   double hiX, double hiY)
+{
+  const vpColVector ray({(p.get_u() - cam.get_u0()) / cam.get_px(), (p.get_v() - cam.get_v0()) / cam.get_py(), 1.0});
+  const vpColVector n({cMg[0][2], cMg[1][2], cMg[2][2]}), t({cMg[0][3], cMg[1][3], cMg[2][3]});
+  const double lambda = vpColVector::dotProd(n, t) / vpColVector::dotProd(n, ray);
+  const vpHomogeneousMatrix gMc = cMg.inverse();
+  const vpColVector Pc = lambda * ray;
+  double g[2];
+  for (unsigned int i = 0; i < 2; ++i)
+    g[i] = gMc[i][0] * Pc[0] + gMc[i][1] * Pc[1] + gMc[i][2] * Pc[2] + gMc[i][3];
+  return g[0] >= lo && g[0] <= hiX && g[1] >= lo && g[1] <= hiY;
+}
+} // namespace
+
+TEST(LaserConicGuidedSearch, ChessboardViewsWithReflectanceScaledLight)
+{
+  // Calibration views as a camera sees them: the laser light scaled by the paper's reflectance (a near-white
+  // core on the white squares, a dark red stripe on the black ones), a board of 12 x 9 squares of 5 cm at
+  // 0.6, 0.8 and 1.0 m tilted by 18 degrees four ways (the views of vsp-make-laser-calibration-images), noise
+  // 2, JPEG 90. The share of the trace on the board (half a square inside its edge) that the detector keeps
+  // at its defaults, each view.
+  const unsigned int squaresX = 12, squaresY = 9;
+  const double square = 0.05;
+  const vpHomogeneousMatrix centre(0.5 * squaresX * square, 0.5 * squaresY * square, 0, 0, 0, 0);
+  unsigned int seed = 80;
+  double worst = 1.0;
+  for (double d : {0.6, 0.8, 1.0})
+    for (const std::pair<double, double> &tilt : {std::make_pair(18.0, 0.0), std::make_pair(0.0, 18.0),
+                                                  std::make_pair(-18.0, 0.0), std::make_pair(0.0, -18.0)}) {
+      const vpHomogeneousMatrix cMg =
+          vpHomogeneousMatrix(0.05, 0.0, d, vpMath::rad(tilt.first), vpMath::rad(tilt.second), 0.2) * centre.inverse();
+      vpLaserConicSimulator sim = makeSimulator(cMg, seed++);
+      sim.setGroundChessboard(squaresX, squaresY, square);
+      Settings s;
+      s.reflectanceScaled = true;
+      s.whiteCore = 0.6;
+      s.laserPower = 400.0 * 255.0 / 215.0; // 400 grey levels on the white squares (albedo 215)
+      s.noise = 2.0;
+      s.jpegQuality = 90;
+      vpImage<vpRGBa> I;
+      sim.render(I, s);
+      dumpIfRequested("chessboard_" + std::to_string(seed - 1), I);
+      vpLaserConicDetector detector;
+      const std::vector<vpImagePoint> points = detector.detect(I);
+      std::vector<vpLaserConicSimulator::vpTraceTruth> onBoard;
+      for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(6000, s))
+        if (seesRectangle(camera(), cMg, t.point, 0.5 * square, (squaresX - 0.5) * square, (squaresY - 0.5) * square))
+          onBoard.push_back(t);
+      const double kept = vpLaserConicSimulator::stripeCoverage(onBoard, points, 3.0, 1.5);
+      std::cout << "board at " << d << " m, tilt (" << tilt.first << ", " << tilt.second << "): " << points.size()
+                << " points (" << detector.getGuidedPointCount() << " of the second pass), " << onBoard.size()
+                << " truth samples on the board, " << 100 * kept << " % of the trace on the board kept" << std::endl;
+      EXPECT_GT(onBoard.size(), 500u); // the ring crosses the board
+      // The points off the line (within 1.5 px): those of the second pass, and all against the first pass alone.
+      const TraceLine line(sim);
+      vpLaserConicDetector firstPass;
+      firstPass.setGuidedSearch(false);
+      const std::vector<vpImagePoint> firstPoints = firstPass.detect(I);
+      const size_t guided = detector.getGuidedPointCount();
+      size_t off = 0, guidedOff = 0, firstOff = 0;
+      for (size_t k = 0; k < points.size(); ++k) {
+        const bool isOff = line.distance(points[k]) > 1.5;
+        off += isOff ? 1 : 0;
+        guidedOff += isOff && k >= points.size() - guided ? 1 : 0;
+      }
+      for (const vpImagePoint &p : firstPoints)
+        firstOff += line.distance(p) > 1.5 ? 1 : 0;
+      const double precision = 1.0 - static_cast<double>(off) / points.size(),
+                   firstPrecision = 1.0 - static_cast<double>(firstOff) / firstPoints.size();
+      std::cout << "  precision " << precision << " (first pass alone " << firstPrecision << "), second pass "
+                << guidedOff << " of " << guided << " off" << std::endl;
+      // Measured: the precision of the first pass alone (0.94-0.99: its points at the squares' corners), the
+      // second pass 0.2-3.5 % off.
+      EXPECT_GE(precision, firstPrecision - 0.005);
+      EXPECT_LE(guidedOff, guided / 25);
+      worst = std::min(worst, kept);
+    }
+  // Measured: 97.7-99.4 % of the trace on the board kept (the issue: >= 90 %), every view. Before the flank
+  // test of the second pass took one line's noise as its scale, 77-94 %: the white cores on the white squares
+  // (pink flanks of 10-20 grey levels of red) were refused as white light.
+  std::cout << "worst view: " << 100 * worst << " %" << std::endl;
+  EXPECT_GE(worst, 0.9);
+}

@@ -113,9 +113,10 @@ struct MatchedFilter
   double response(int k) const { return mean(k - h, k + h) - background(k); }
 };
 
-// The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile.
+// The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile. A
+// saturated core is a laser's when its flanks' red dominance (one line) reaches \e flankThreshold.
 bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k, const GuidedSettings &settings,
-                    int &first, int &last, double &centre)
+                    int flankThreshold, int &first, int &last, double &centre)
 {
   int p = std::max(0, k - filter.h - 1);
   for (int j = p; j <= std::min(view.n - 1, k + filter.h + 1); ++j)
@@ -130,8 +131,7 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
     --a;
   while (b + 1 < view.n && view.at(b + 1) > aboveHalf && b - p <= d)
     ++b;
-  if (b - a + 1 > settings.maxWidth ||
-      whiteWithoutRedFlanks(view, a, b, settings.saturation, std::max(1, contrast / 2)))
+  if (b - a + 1 > settings.maxWidth || whiteWithoutRedFlanks(view, a, b, settings.saturation, flankThreshold))
     return false;
   first = a;
   last = b;
@@ -172,8 +172,13 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                               settings.factor * result.noise * std::sqrt(1.0 / (2 * h + 1) + 1.0 / f));
   double centre = 0.0;
   int first = 0, last = 0;
+  // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
+  // in the sum of the lines, refused every white core with pink flanks: the laser on white paper.)
+  const int flankThreshold =
+      static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse,
+                                          settings.factor * result.noise / std::sqrt(static_cast<double>(lines)))));
   if (best < 0 || bestResponse < result.threshold ||
-      !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, first, last, centre))
+      !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, flankThreshold, first, last, centre))
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
   // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here).
