@@ -21,6 +21,20 @@ void check(bool ok, const char *message)
     throw vpLaserConicException(vpLaserConicException::badValueError, std::string("vpLaserConicDetector: ") + message);
 }
 
+// \e value if it is finite and > 0, else the error \e message.
+double positive(double value, const char *message)
+{
+  check(std::isfinite(value) && value > 0.0, message);
+  return value;
+}
+
+// \e value if it is > 0, else the error \e message.
+unsigned int positive(unsigned int value, const char *message)
+{
+  check(value > 0, message);
+  return value;
+}
+
 } // namespace
 
 vpLaserConicDetector::vpLaserConicDetector()
@@ -89,26 +103,22 @@ void vpLaserConicDetector::setMinSegmentLength(double pixels)
 
 void vpLaserConicDetector::setGuidedMargin(double pixels)
 {
-  check(std::isfinite(pixels) && pixels > 0.0, "the guided search margin must be positive and finite");
-  m_guidedMargin = pixels;
+  m_guidedMargin = positive(pixels, "the guided search margin must be positive and finite");
 }
 
 void vpLaserConicDetector::setGuidedStep(unsigned int lines)
 {
-  check(lines > 0, "the guided search step must be positive");
-  m_guidedStep = lines;
+  m_guidedStep = positive(lines, "the guided search step must be positive");
 }
 
 void vpLaserConicDetector::setGuidedThresholdFactor(double factor)
 {
-  check(std::isfinite(factor) && factor > 0.0, "the guided search threshold factor must be positive and finite");
-  m_guidedFactor = factor;
+  m_guidedFactor = positive(factor, "the guided search threshold factor must be positive and finite");
 }
 
 void vpLaserConicDetector::setSamplingStep(unsigned int step)
 {
-  check(step > 0, "the sampling step must be positive");
-  m_step = step;
+  m_step = positive(step, "the sampling step must be positive");
 }
 
 vpLaserConicDetector::vpInstructionSet vpLaserConicDetector::getBestInstructionSet()
@@ -224,6 +234,16 @@ Eigen::Matrix3d toEigen(const vpMatrix &C)
 }
 } // namespace
 
+vsp::laser_detector::GuidedSettings vpLaserConicDetector::guidedSettings(double margin) const
+{
+  return {margin,
+          static_cast<int>(m_guidedStep),
+          m_guidedFactor,
+          static_cast<int>(m_maxStripeWidth),
+          static_cast<int>(m_saturationLevel),
+          m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
+}
+
 std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion)
 {
   const vsp::laser_detector::RidgeSettings settings = {m_minContrast,
@@ -253,12 +273,7 @@ std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<
   anchors.reserve(inliers.size());
   for (int k : inliers)
     anchors.push_back(points[static_cast<size_t>(k)]);
-  const vsp::laser_detector::GuidedSettings guided = {m_guidedMargin,
-                                                      static_cast<int>(m_guidedStep),
-                                                      m_guidedFactor,
-                                                      static_cast<int>(m_maxStripeWidth),
-                                                      static_cast<int>(m_saturationLevel),
-                                                      m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
+  const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin);
   vsp::laser_detector::GuidedReport guidedReport;
   const size_t before = points.size();
   vsp::laser_detector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work,
@@ -272,12 +287,7 @@ bool vpLaserConicDetector::trackConic(const vpImage<vpRGBa> &I, std::vector<vpIm
   vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   work.crossings.clear();
   work.keep.clear();
-  const vsp::laser_detector::GuidedSettings guided = {m_regionMargin,
-                                                      static_cast<int>(m_guidedStep),
-                                                      m_guidedFactor,
-                                                      static_cast<int>(m_maxStripeWidth),
-                                                      static_cast<int>(m_saturationLevel),
-                                                      m_stripeWidth > 0 ? m_stripeWidth : kDefaultStripeWidth};
+  const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_regionMargin);
   vsp::laser_detector::GuidedReport report;
   points.clear();
   vsp::laser_detector::guidedPass(I, guided, toEigen(m_regionConic), std::vector<vpImagePoint>(), nullptr, points, work,

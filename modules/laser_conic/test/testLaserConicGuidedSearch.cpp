@@ -110,23 +110,28 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 {
   // 150 grey levels near, 15 far (7.5 sigma): the first pass, whose threshold is 5 times the noise of the
   // whole image over the stripe width, keeps the bright arcs (73 % of the ring); the second pass the rest:
-  // measured 99.2-99.5 %, precision 1. The second pass's centres on the dim side, behind JPEG's halved
-  // chroma resolution, are off by 0.39-0.42 px RMS (their noise: 15 grey levels of peak over a dominance
-  // noise of about 2.6, three lines averaged).
+  // measured 100 %, precision 1, second-pass RMS 0.17-0.18 px (the issue's bounds: 95 %, 0.98, 0.3 px).
+  // Measured one profile at a time the dim side's centres were off by 0.39-0.42 px RMS; JPEG alone (no
+  // sensor noise) left 0.45 px: its error follows the 8 x 8 blocks, so only the regularisation along 20 px
+  // of arc averages it out (within 8 px it did not).
   for (unsigned int seed : {70u, 71u}) {
     vpLaserConicDetector detector;
     const GuidedQuality q = runGuided("fading_dark", tiltedGround(), fadingRing(150.0, 15.0), seed, detector);
-    expectGuided(q, 0.95, 0.45);
+    expectGuided(q, 0.95, 0.3);
     EXPECT_GT(q.guided, 100u); // the first pass alone misses the far side
   }
 }
 
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
-  // 40 near, 4 far (2 sigma): of the part of the ring at 3 sigma or more, measured 92.4 % found, precision
-  // 0.995, second-pass RMS 0.48 px.
+  // 40 near, 4 far (2 sigma): of the part of the ring at 3 sigma or more, measured 94.1 % found, precision
+  // 0.997, second-pass RMS 0.23 px. The issue's 95 % is not reached: what is missed lies between 3 and 3.3
+  // sigma, where JPEG at quality 90 leaves a matched-filter response of 0-2 grey levels per line (it rounds
+  // the weak chroma detail away; without JPEG 99.1 % is found). The bound is the measured level. The
+  // Cramer-Rao bound of one profile there (Gaussian stripe of 3 px FWHM, peak 6 over a dominance noise of
+  // 2.6, three lines) is 0.30 px: the regularisation along the curve is what brings the RMS under it.
   vpLaserConicDetector detector;
-  expectGuided(runGuided("faint", tiltedGround(), fadingRing(40.0, 4.0), 72, detector), 0.9, 0.5);
+  expectGuided(runGuided("faint", tiltedGround(), fadingRing(40.0, 4.0), 72, detector), 0.93, 0.3);
 }
 
 TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLight)
@@ -136,10 +141,13 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   s.ambient = 0.6;
   s.reflectanceScaled = true;
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured
-  // 84.6 % of the ring at 3 sigma or more (the first pass alone: see the log), precision 0.983, second-pass
-  // RMS 0.55 px.
+  // 89.1 % of the ring at 3 sigma or more (the first pass alone: see the log), precision 0.989, second-pass
+  // RMS 0.42 px. The issue's 95 % and 0.3 px are not reached; the bounds are the measured levels. What is
+  // missed lies along the patches' edges: where the stripe runs along a step of the floor's red, its
+  // profile is a step, not a stripe, and the first pass's points there (which the second pass does not
+  // measure again) are 1.5-2 px off the line.
   vpLaserConicDetector detector;
-  expectGuided(runGuided("fading_mosaic", tiltedGround(), s, 73, detector), 0.82, 0.6);
+  expectGuided(runGuided("fading_mosaic", tiltedGround(), s, 73, detector), 0.88, 0.45);
 }
 
 TEST(LaserConicGuidedSearch, DistractorsStayOut)
@@ -152,17 +160,18 @@ TEST(LaserConicGuidedSearch, DistractorsStayOut)
                    Distractor::line(-0.3, 0.2, 0.1, 0.3, 0.004)};
   s.clutter = 80;
   s.clutterRadius = 0.5;
-  // Measured: 94.3 % of the ring at 3 sigma (the first pass alone much less), 2.4 % of the second pass's
-  // points off the line, and the precision of all the points that of the first pass alone.
+  // Measured: 97.2 % of the ring at 3 sigma (the first pass alone 78.3 %), none of the second pass's
+  // points off the line, second-pass RMS 0.34 px, and the precision of all the points that of the first
+  // pass alone or better (0.845 against 0.816: the cable's points are the first pass's).
   vpLaserConicDetector detector, firstPass;
   firstPass.setGuidedSearch(false);
   const GuidedQuality q = runGuided("fading_distractors", tiltedGround(), s, 74, detector);
   const GuidedQuality first = runGuided("fading_distractors_first_pass", tiltedGround(), s, 74, firstPass);
-  EXPECT_GE(q.coverage3, 0.92);
+  EXPECT_GE(q.coverage3, 0.95);
   EXPECT_GT(q.coverage3, first.coverage3 + 0.05);
-  EXPECT_LE(q.guidedOff, 0.03);
+  EXPECT_LE(q.guidedOff, 0.02);
   EXPECT_GE(q.precision, first.precision - 0.005);
-  EXPECT_LE(q.rmsGuided, 0.6);
+  EXPECT_LE(q.rmsGuided, 0.45);
 }
 
 TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
@@ -179,8 +188,8 @@ TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
       Cv[i][j] = C(i, j);
   vpLaserConicDetector tracker;
   tracker.setSearchRegion(Cv, 20.0);
-  // Measured: 99.9 % of the ring, precision 0.9996, RMS 0.27 px (the bright side is measured by the
-  // guided pass too).
+  // Measured: 100 % of the ring, precision 1, RMS 0.11 px (the bright side is measured by the guided pass
+  // too).
   const GuidedQuality q = runGuided("tracked", cMg, fadingRing(150.0, 15.0), 75, tracker);
   expectGuided(q, 0.95, 0.3);
   EXPECT_EQ(q.guided, q.points); // every point from the guided search
@@ -198,4 +207,93 @@ TEST(LaserConicGuidedSearch, SettingsAreCheckedAndTheSecondPassCanBeTurnedOff)
   const GuidedQuality off = runGuided("first_pass_only", tiltedGround(), fadingRing(150.0, 15.0), 70, detector);
   EXPECT_EQ(off.guided, 0u);
   EXPECT_LT(off.coverage3, 0.95); // what the second pass is for
+}
+
+namespace
+{
+//! Whether the image point \e p (undistorted camera \e cam) sees the ground \e cMg inside the rectangle
+//! [lo, hiX] x [lo, hiY] of ground coordinates.
+bool seesRectangle(const vpCameraParameters &cam, const vpHomogeneousMatrix &cMg, const vpImagePoint &p, double lo,
+                   double hiX, double hiY)
+{
+  const vpColVector ray({(p.get_u() - cam.get_u0()) / cam.get_px(), (p.get_v() - cam.get_v0()) / cam.get_py(), 1.0});
+  const vpColVector n({cMg[0][2], cMg[1][2], cMg[2][2]}), t({cMg[0][3], cMg[1][3], cMg[2][3]});
+  const double lambda = vpColVector::dotProd(n, t) / vpColVector::dotProd(n, ray);
+  const vpHomogeneousMatrix gMc = cMg.inverse();
+  const vpColVector Pc = lambda * ray;
+  double g[2];
+  for (unsigned int i = 0; i < 2; ++i)
+    g[i] = gMc[i][0] * Pc[0] + gMc[i][1] * Pc[1] + gMc[i][2] * Pc[2] + gMc[i][3];
+  return g[0] >= lo && g[0] <= hiX && g[1] >= lo && g[1] <= hiY;
+}
+} // namespace
+
+TEST(LaserConicGuidedSearch, ChessboardViewsWithReflectanceScaledLight)
+{
+  // Calibration views as a camera sees them: the laser light scaled by the paper's reflectance (a near-white
+  // core on the white squares, a dark red stripe on the black ones), a board of 12 x 9 squares of 5 cm at
+  // 0.6, 0.8 and 1.0 m tilted by 18 degrees four ways (the views of vsp-make-laser-calibration-images), noise
+  // 2, JPEG 90. The share of the trace on the board (half a square inside its edge) that the detector keeps
+  // at its defaults, each view.
+  const unsigned int squaresX = 12, squaresY = 9;
+  const double square = 0.05;
+  const vpHomogeneousMatrix centre(0.5 * squaresX * square, 0.5 * squaresY * square, 0, 0, 0, 0);
+  unsigned int seed = 80;
+  double worst = 1.0;
+  for (double d : {0.6, 0.8, 1.0})
+    for (const std::pair<double, double> &tilt : {std::make_pair(18.0, 0.0), std::make_pair(0.0, 18.0),
+                                                  std::make_pair(-18.0, 0.0), std::make_pair(0.0, -18.0)}) {
+      const vpHomogeneousMatrix cMg =
+          vpHomogeneousMatrix(0.05, 0.0, d, vpMath::rad(tilt.first), vpMath::rad(tilt.second), 0.2) * centre.inverse();
+      vpLaserConicSimulator sim = makeSimulator(cMg, seed++);
+      sim.setGroundChessboard(squaresX, squaresY, square);
+      Settings s;
+      s.reflectanceScaled = true;
+      s.whiteCore = 0.6;
+      s.laserPower = 400.0 * 255.0 / 215.0; // 400 grey levels on the white squares (albedo 215)
+      s.noise = 2.0;
+      s.jpegQuality = 90;
+      vpImage<vpRGBa> I;
+      sim.render(I, s);
+      dumpIfRequested("chessboard_" + std::to_string(seed - 1), I);
+      vpLaserConicDetector detector;
+      const std::vector<vpImagePoint> points = detector.detect(I);
+      std::vector<vpLaserConicSimulator::vpTraceTruth> onBoard;
+      for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(6000, s))
+        if (seesRectangle(camera(), cMg, t.point, 0.5 * square, (squaresX - 0.5) * square, (squaresY - 0.5) * square))
+          onBoard.push_back(t);
+      const double kept = vpLaserConicSimulator::stripeCoverage(onBoard, points, 3.0, 1.5);
+      std::cout << "board at " << d << " m, tilt (" << tilt.first << ", " << tilt.second << "): " << points.size()
+                << " points (" << detector.getGuidedPointCount() << " of the second pass), " << onBoard.size()
+                << " truth samples on the board, " << 100 * kept << " % of the trace on the board kept" << std::endl;
+      EXPECT_GT(onBoard.size(), 500u); // the ring crosses the board
+      // The points off the line (within 1.5 px): those of the second pass, and all against the first pass alone.
+      const TraceLine line(sim);
+      vpLaserConicDetector firstPass;
+      firstPass.setGuidedSearch(false);
+      const std::vector<vpImagePoint> firstPoints = firstPass.detect(I);
+      const size_t guided = detector.getGuidedPointCount();
+      size_t off = 0, guidedOff = 0, firstOff = 0;
+      for (size_t k = 0; k < points.size(); ++k) {
+        const bool isOff = line.distance(points[k]) > 1.5;
+        off += isOff ? 1 : 0;
+        guidedOff += isOff && k >= points.size() - guided ? 1 : 0;
+      }
+      for (const vpImagePoint &p : firstPoints)
+        firstOff += line.distance(p) > 1.5 ? 1 : 0;
+      const double precision = 1.0 - static_cast<double>(off) / points.size(),
+                   firstPrecision = 1.0 - static_cast<double>(firstOff) / firstPoints.size();
+      std::cout << "  precision " << precision << " (first pass alone " << firstPrecision << "), second pass "
+                << guidedOff << " of " << guided << " off" << std::endl;
+      // Measured: the precision of the first pass alone (0.94-0.99: its points at the squares' corners), the
+      // second pass 0.2-3.5 % off.
+      EXPECT_GE(precision, firstPrecision - 0.005);
+      EXPECT_LE(guidedOff, guided / 25);
+      worst = std::min(worst, kept);
+    }
+  // Measured: 97.7-99.4 % of the trace on the board kept (the issue: >= 90 %), every view. Before the flank
+  // test of the second pass took one line's noise as its scale, 77-94 %: the white cores on the white squares
+  // (pink flanks of 10-20 grey levels of red) were refused as white light.
+  std::cout << "worst view: " << 100 * worst << " %" << std::endl;
+  EXPECT_GE(worst, 0.9);
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <visp3/robust/vpRansac.h>
 
@@ -53,7 +54,121 @@ double sectorCoverage(const vsp::laser_estimators::PointList &points, const std:
   }
   return static_cast<double>(std::count(occupied, occupied + 36, true)) * (2.0 * pi / 36.0);
 }
+
+// A point of the second pass in the frame of the conic: its unit normal, its signed offset along it (first
+// order: F / |grad F|) and its angle around the centre (the order along the curve).
+struct OnConic
+{
+  double u, v, nu, nv, offset, angle;
+};
+
+// Straight-line fits offset = a + b x over windows of a sequence of (x, offset) pairs, x increasing: prefix
+// sums, so that each window costs the same whatever its length.
+class WindowFits
+{
+public:
+  // The sums over the pairs k with use[k].
+  void build(const std::vector<double> &x, const std::vector<double> &offset, const std::vector<unsigned char> &use)
+  {
+    const size_t m = x.size();
+    m_sums.assign(5 * (m + 1), 0.0);
+    for (size_t k = 0; k < m; ++k) {
+      const double w = use[k] ? 1.0 : 0.0,
+                   terms[5] = {w, w * x[k], w * x[k] * x[k], w * offset[k], w * x[k] * offset[k]};
+      for (int j = 0; j < 5; ++j)
+        m_sums[5 * (k + 1) + j] = m_sums[5 * k + j] + terms[j];
+    }
+  }
+  // The fit over pairs [first, last] at x0; false with fewer than RidgeTuning::guidedSmoothMinPoints pairs.
+  bool at(size_t first, size_t last, double x0, double &value) const
+  {
+    double S[5];
+    for (int j = 0; j < 5; ++j)
+      S[j] = m_sums[5 * (last + 1) + j] - m_sums[5 * first + j];
+    if (S[0] < RidgeTuning::guidedSmoothMinPoints)
+      return false;
+    // Centred on x0: sums of (x - x0), (x - x0)^2, (x - x0) offset.
+    const double c1 = S[1] - S[0] * x0, c2 = S[2] - 2.0 * x0 * S[1] + x0 * x0 * S[0], e1 = S[4] - x0 * S[3];
+    const double det = S[0] * c2 - c1 * c1;
+    value = det > 1e-9 * S[0] * c2 ? (c2 * S[3] - c1 * e1) / det : S[3] / S[0];
+    return true;
+  }
+
+private:
+  std::vector<double> m_sums;
+};
+
+// The points in their order along the curve, as positions of a sequence (with, on a closed ring, the points
+// within RidgeTuning::guidedSmoothRadius of the seam repeated beyond it): \e sequence the point of each
+// position, \e arc its arc length (the chords between consecutive points, so a gap is long), \e first the
+// position of the first point.
+void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence, std::vector<double> &arc,
+                 size_t &first)
+{
+  std::vector<int> order(points.size());
+  for (size_t k = 0; k < order.size(); ++k)
+    order[k] = static_cast<int>(k);
+  std::sort(order.begin(), order.end(), [&](int p, int q) { return points[p].angle < points[q].angle; });
+  const size_t n = order.size();
+  std::vector<double> along(n, 0.0);
+  auto chord = [&](int p, int q) {
+    return std::sqrt(std::pow(points[p].u - points[q].u, 2) + std::pow(points[p].v - points[q].v, 2));
+  };
+  for (size_t k = 1; k < n; ++k)
+    along[k] = along[k - 1] + chord(order[k - 1], order[k]);
+  const double R = RidgeTuning::guidedSmoothRadius, length = along[n - 1] + chord(order[n - 1], order[0]);
+  const bool closed = chord(order[n - 1], order[0]) <= R && length > 4.0 * R;
+  sequence.clear();
+  arc.clear();
+  for (size_t k = 0; closed && k < n; ++k)
+    if (along[k] - length >= -R) {
+      sequence.push_back(order[k]);
+      arc.push_back(along[k] - length);
+    }
+  first = sequence.size();
+  for (size_t k = 0; k < n; ++k) {
+    sequence.push_back(order[k]);
+    arc.push_back(along[k]);
+  }
+  for (size_t k = 0; closed && k < n && along[k] + length <= along[n - 1] + R; ++k) {
+    sequence.push_back(order[k]);
+    arc.push_back(along[k] + length);
+  }
+}
+
+// The straight-line fit of the offsets within RidgeTuning::guidedSmoothRadius of arc length, at each point
+// of the sequence from position \e first on (NaN where too few points).
+void fitWindows(const WindowFits &fits, const std::vector<double> &arc, size_t first, size_t count,
+                std::vector<double> &values)
+{
+  values.assign(count, std::numeric_limits<double>::quiet_NaN());
+  size_t lo = 0, hi = 0;
+  for (size_t i = first; i < first + count; ++i) {
+    while (arc[i] - arc[lo] > RidgeTuning::guidedSmoothRadius)
+      ++lo;
+    while (hi + 1 < arc.size() && arc[hi + 1] - arc[i] <= RidgeTuning::guidedSmoothRadius)
+      ++hi;
+    double value = 0.0;
+    if (fits.at(lo, hi, arc[i], value))
+      values[i - first] = value;
+  }
+}
 } // namespace
+
+void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, std::vector<Eigen::Vector2d> &sample)
+{
+  sample.clear();
+  const unsigned int stride = static_cast<unsigned int>(std::max<size_t>(1, points.size() / target));
+  for (const vpImagePoint &p : points) {
+    const unsigned int iu = static_cast<unsigned int>(std::max(0.0, p.get_u())),
+                       iv = static_cast<unsigned int>(std::max(0.0, p.get_v()));
+    if (((iu * 73856093u) ^ (iv * 19349663u)) % stride == 0)
+      sample.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
+  }
+  std::sort(sample.begin(), sample.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
+    return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
+  });
+}
 
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, Eigen::Matrix3d &C,
                      std::vector<int> &inliers)
@@ -64,19 +179,13 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   // RANSAC on a subsample (a few hundred points locate the trace as well as all of them), the inliers and
   // the refit on every point. The subsample is chosen by position and sorted: the same points in any order
   // give the same ellipse (the first pass's order depends on how it searched).
-  const unsigned int stride = static_cast<unsigned int>(std::max<size_t>(1, points.size() / 300));
   vsp::laser_estimators::PointList all, sample;
   all.reserve(points.size());
-  for (const vpImagePoint &p : points) {
+  for (const vpImagePoint &p : points)
     all.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
-    const unsigned int iu = static_cast<unsigned int>(std::max(0.0, p.get_u())),
-                       iv = static_cast<unsigned int>(std::max(0.0, p.get_v()));
-    if (((iu * 73856093u) ^ (iv * 19349663u)) % stride == 0)
-      sample.push_back(all.back());
-  }
-  std::sort(sample.begin(), sample.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
-    return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
-  });
+  std::vector<Eigen::Vector2d> picked;
+  positionSubsample(points, 300, picked);
+  sample.assign(picked.begin(), picked.end());
   // Most frames hold the trace alone: the least-squares ellipse of the subsample then fits nearly all of it,
   // and RANSAC (a singular value decomposition per sample) is needed only when it does not.
   const double threshold = 2.0; // pixels: the first pass's centres are within a few tenths of the trace
@@ -120,6 +229,43 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   return sectorCoverage(all, inliers, uc, vc) >= pi / 3.0;
 }
 
+void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
+{
+  const ConicCoefficients k(C);
+  double uc = 0.0, vc = 0.0;
+  if (crossings.size() < static_cast<size_t>(RidgeTuning::guidedSmoothMinPoints) || !k.centre(uc, vc))
+    return;
+  std::vector<OnConic> points;
+  for (const Crossing &x : crossings) {
+    const double u = x.point.get_u(), v = x.point.get_v();
+    const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e, norm = std::sqrt(fu * fu + fv * fv);
+    const double F = k.a * u * u + 2.0 * k.b * u * v + k.c * v * v + 2.0 * k.d * u + 2.0 * k.e * v + k.f;
+    if (!(norm > 0.0))
+      return;
+    points.push_back(OnConic{u, v, fu / norm, fv / norm, F / (2.0 * norm), std::atan2(v - vc, u - uc)});
+  }
+  std::vector<int> sequence;
+  std::vector<double> arc, offset, fitted;
+  size_t first = 0;
+  arcSequence(points, sequence, arc, first);
+  for (int p : sequence)
+    offset.push_back(points[static_cast<size_t>(p)].offset);
+  // A fit on every point, then again without those farther than RidgeTuning::guidedSmoothOutlier from it.
+  std::vector<unsigned char> use(sequence.size(), 1);
+  WindowFits fits;
+  fits.build(arc, offset, use);
+  fitWindows(fits, arc, 0, sequence.size(), fitted);
+  for (size_t i = 0; i < sequence.size(); ++i)
+    use[i] = std::fabs(offset[i] - fitted[i]) <= RidgeTuning::guidedSmoothOutlier ? 1 : 0; // NaN: left out
+  fits.build(arc, offset, use);
+  fitWindows(fits, arc, first, points.size(), fitted);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const OnConic &c = points[static_cast<size_t>(sequence[first + i])];
+    const double shift = std::isfinite(fitted[i]) ? fitted[i] - c.offset : 0.0;
+    crossings[static_cast<size_t>(sequence[first + i])].point = vpImagePoint(c.v + shift * c.nv, c.u + shift * c.nu);
+  }
+}
+
 bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step, std::vector<GuidedSample> &samples)
 {
   samples.clear();
@@ -134,7 +280,7 @@ bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step
   // across it, the line crosses the curve at 45 degrees or more.
   auto add = [&](bool alongRow, int t, double x) {
     const double u = alongRow ? x : t, v = alongRow ? t : x;
-    const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e, norm = std::hypot(fu, fv);
+    const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e, norm = std::sqrt(fu * fu + fv * fv);
     const double along = std::fabs(alongRow ? fu : fv), across = std::fabs(alongRow ? fv : fu);
     if (!(norm > 0.0) || along < across || (!alongRow && along == across))
       return;

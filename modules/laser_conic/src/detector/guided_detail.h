@@ -15,44 +15,10 @@
 #include <Eigen/Core>
 
 #include "guided_pass.h"
+#include "ridge_tuning.h"
 
 namespace vsp::laser_detector
 {
-//! The fixed rules of the guided pass.
-struct GuidedTuning
-{
-  //! Noise floor (grey levels) of a profile: 8-bit quantisation and JPEG leave at least this much, and a
-  //! flat profile (a clipped dark floor) must not make every bump significant.
-  static constexpr double noiseFloor = 0.5;
-  //! Smallest matched-filter response (grey levels) whatever the noise: two quantisation steps.
-  static constexpr double minResponse = 2.0;
-  //! Pixels between the stripe box and its background boxes of the matched filter (the stripe's tails).
-  static constexpr int gap = 1;
-  //! A kept piece of curve is anchored to a point already found, or has at least this many points.
-  static constexpr int minRun = 8;
-  //! Consecutive samples without a point that still leave a piece of curve unbroken.
-  static constexpr int maxMisses = 3;
-  //! Largest change (pixels) of the offset to the prediction between consecutive points of a piece,
-  //! plus perSampleJump per sample between them: the prediction is smooth, so is the true curve.
-  static constexpr double maxJump = 1.0;
-  //! See maxJump.
-  static constexpr double perSampleJump = 0.5;
-  //! Largest distance (pixels) of a second-pass point to the conic refitted on all the points: the first
-  //! pass's inlier threshold (its centres are within a few tenths of a pixel of a conic trace).
-  static constexpr double finalDistance = 2.0;
-  //! Refits at most: the coverage stops growing after two or three on every case seen.
-  static constexpr int maxIterations = 4;
-  //! Side (2^cellShift pixels) of the cells that record where points were found (a sample near one is not
-  //! measured again).
-  static constexpr int cellShift = 2;
-  //! Image lines averaged into one profile (the line of the sample and its neighbours, shifted along the
-  //! predicted curve): the noise falls by sqrt(lines), so a stripe 3 times the background noise stands out.
-  static constexpr int lines = 3;
-  //! Pixels of background on each side of the matched filter's stripe box, at least: the longer, the less
-  //! noisy the background level.
-  static constexpr int minFlank = 4;
-};
-
 //! One sample of the predicted conic: a profile along row (alongRow) or column `line` around `pos`.
 struct GuidedSample
 {
@@ -86,6 +52,20 @@ struct ProfileBuffers
   std::vector<int> value, dominance, prefix, diffs;
   std::vector<unsigned char> red;
 };
+
+/*!
+  About \e target of \e points (all of them when fewer), chosen by their position (a hash of their pixel) and
+  sorted by row then column: the same points in any order give the same subsample in the same order, and so
+  the same fit to the last bit.
+*/
+void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, std::vector<Eigen::Vector2d> &sample);
+
+/*!
+  Regularises the centres of \e crossings (the second pass's points) along the conic C: each point is moved
+  along the normal of C so that its offset to C is that of a straight line fitted to the offsets of the points
+  within RidgeTuning::guidedSmoothRadius pixels (see RidgeTuning::guidedSmoothRadius).
+*/
+void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings);
 
 //! Measures the profile of sample s in the RGBA image I.
 ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,

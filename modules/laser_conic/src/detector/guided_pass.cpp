@@ -15,31 +15,47 @@ namespace vsp::laser_detector
 {
 namespace
 {
-// Cells of 2^cellShift pixels that hold a point found (by either pass).
+// The points found (by either pass), in lists per cell of 2^cellShift pixels.
 class FoundCells
 {
 public:
-  FoundCells(int W, int H, std::vector<unsigned char> &cells)
-    : m_columns((W >> GuidedTuning::cellShift) + 1), m_rows((H >> GuidedTuning::cellShift) + 1), m_cells(cells)
+  FoundCells(int W, int H, RidgeWorkspace &work)
+    : m_columns((W >> RidgeTuning::guidedCellShift) + 1), m_rows((H >> RidgeTuning::guidedCellShift) + 1),
+      m_heads(work.guidedCells), m_next(work.guidedNext), m_points(work.guidedFound)
   {
-    m_cells.assign(static_cast<size_t>(m_columns) * m_rows, 0);
+    m_heads.assign(static_cast<size_t>(m_columns) * m_rows, -1);
+    m_next.clear();
+    m_points.clear();
   }
   void mark(const vpImagePoint &p)
   {
     int a = 0, b = 0;
-    if (cellOf(p.get_u(), p.get_v(), a, b))
-      m_cells[static_cast<size_t>(b) * m_columns + a] = 1;
+    if (!cellOf(p.get_u(), p.get_v(), a, b))
+      return;
+    int &head = m_heads[static_cast<size_t>(b) * m_columns + a];
+    m_next.push_back(head);
+    head = static_cast<int>(m_points.size());
+    m_points.push_back(p);
   }
-  // Whether a point lies in the cell of (u, v) or a neighbouring one.
-  bool near(double u, double v) const
+  // Whether a point found lies on the profile of sample s: within RidgeTuning::guidedKnownAlong pixels of it along
+  // the predicted curve and RidgeTuning::guidedKnownAcross across it.
+  bool covers(const GuidedSample &s) const
   {
+    const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
     int a = 0, b = 0;
     if (!cellOf(u, v, a, b))
       return false;
+    const double norm = std::sqrt(s.slope * s.slope + 1.0); // not std::hypot: a call per sample
+    const double tu = (s.alongRow ? s.slope : 1.0) / norm, tv = (s.alongRow ? 1.0 : s.slope) / norm;
     for (int y = std::max(0, b - 1); y <= std::min(m_rows - 1, b + 1); ++y)
       for (int x = std::max(0, a - 1); x <= std::min(m_columns - 1, a + 1); ++x)
-        if (m_cells[static_cast<size_t>(y) * m_columns + x])
-          return true;
+        for (int k = m_heads[static_cast<size_t>(y) * m_columns + x]; k >= 0; k = m_next[static_cast<size_t>(k)]) {
+          const double du = m_points[static_cast<size_t>(k)].get_u() - u,
+                       dv = m_points[static_cast<size_t>(k)].get_v() - v;
+          if (std::fabs(du * tu + dv * tv) <= RidgeTuning::guidedKnownAlong &&
+              std::fabs(du * tv - dv * tu) <= RidgeTuning::guidedKnownAcross)
+            return true;
+        }
     return false;
   }
 
@@ -48,12 +64,13 @@ private:
   {
     if (!(u >= 0.0 && v >= 0.0))
       return false;
-    a = static_cast<int>(u) >> GuidedTuning::cellShift;
-    b = static_cast<int>(v) >> GuidedTuning::cellShift;
+    a = static_cast<int>(u) >> RidgeTuning::guidedCellShift;
+    b = static_cast<int>(v) >> RidgeTuning::guidedCellShift;
     return a < m_columns && b < m_rows;
   }
   int m_columns, m_rows;
-  std::vector<unsigned char> &m_cells;
+  std::vector<int> &m_heads, &m_next;
+  std::vector<vpImagePoint> &m_points;
 };
 
 // Whether (u, v) lies in the spans of \e limit (everywhere when null).
@@ -73,8 +90,8 @@ bool inLimit(const RegionSpans *limit, int H, double u, double v)
 enum SampleState { MISSED, FOUND, KNOWN };
 
 // The pieces of curve along the samples (in their order): runs of found samples, broken by more than
-// GuidedTuning::maxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
-// kept when it touches a known point (a sample near a point already found) or has GuidedTuning::minRun
+// RidgeTuning::guidedMaxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
+// kept when it touches a known point (a sample near a point already found) or has RidgeTuning::guidedMinRun
 // points; \e keep marks the found samples of the kept pieces.
 void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
                           std::vector<unsigned char> &keep)
@@ -87,7 +104,7 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   size_t lastIndex = 0;
   bool afterKnown = false;
   auto close = [&]() {
-    if (anchored || static_cast<int>(piece.size()) >= GuidedTuning::minRun)
+    if (anchored || static_cast<int>(piece.size()) >= RidgeTuning::guidedMinRun)
       for (size_t k : piece)
         keep[k] = 1;
     piece.clear();
@@ -102,7 +119,8 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
       lastIndex = i;
     } else if (state[i] == FOUND) {
       // Next to a known point the offset is that point's, within the fit's inlier threshold of the curve.
-      const double allowed = (afterKnown ? 2.0 : GuidedTuning::maxJump) + GuidedTuning::perSampleJump * (i - lastIndex);
+      const double allowed =
+          (afterKnown ? 2.0 : RidgeTuning::guidedMaxJump) + RidgeTuning::guidedPerSampleJump * (i - lastIndex);
       if ((anchored || !piece.empty()) && std::fabs(results[i].offset - lastOffset) > allowed)
         close();
       piece.push_back(i);
@@ -110,7 +128,7 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
       misses = 0;
       lastOffset = results[i].offset;
       lastIndex = i;
-    } else if (++misses > GuidedTuning::maxMisses) {
+    } else if (++misses > RidgeTuning::guidedMaxMisses) {
       close();
       afterKnown = false;
     }
@@ -118,13 +136,13 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   close();
 }
 
-// Least-squares ellipse through the points (an even subsample of a few hundred).
+// Least-squares ellipse through the points (a subsample of a few hundred). The subsample is chosen by
+// position and sorted: the same points in any order (the first pass's order depends on how it searched) give
+// the same ellipse, to the last bit, and so the same regularised centres (smoothAlongCurve()).
 bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
 {
   std::vector<Eigen::Vector2d> sample;
-  const size_t stride = std::max<size_t>(1, points.size() / 600);
-  for (size_t k = 0; k < points.size(); k += stride)
-    sample.push_back(Eigen::Vector2d(points[k].get_u(), points[k].get_v()));
+  positionSubsample(points, 600, sample);
   Eigen::Matrix3d c;
   if (sample.size() < 5 || !vpLaserSolvers::fitConic(sample.data(), static_cast<int>(sample.size()), c) ||
       !vpLaserSolvers::isEllipse(c))
@@ -133,7 +151,7 @@ bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
   return true;
 }
 
-// Drops the crossings farther than GuidedTuning::finalDistance pixels (Sampson distance) from the conic C
+// Drops the crossings farther than RidgeTuning::guidedFinalDistance pixels (Sampson distance) from the conic C
 // refitted on all the points: a piece that continued the prediction of an early, extrapolated fit but not
 // the curve that all the points make (a stripe-like texture near the curve).
 void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
@@ -141,7 +159,7 @@ void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossi
   size_t kept = 0;
   for (const Crossing &c : crossings)
     if (vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(c.point.get_u(), c.point.get_v())) <=
-        GuidedTuning::finalDistance)
+        RidgeTuning::guidedFinalDistance)
       crossings[kept++] = c;
   crossings.resize(kept);
 }
@@ -162,7 +180,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   report = GuidedReport();
   work.guided.clear();
   const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
-  FoundCells found(W, H, work.guidedCells);
+  FoundCells found(W, H, work);
   for (const vpImagePoint &p : anchors)
     found.mark(p);
   std::vector<vpImagePoint> fitPoints = anchors;
@@ -174,7 +192,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   ProfileBuffers buffers;
   Eigen::Matrix3d C = prediction;
   report.ran = true;
-  for (int iteration = 0; iteration < GuidedTuning::maxIterations; ++iteration) {
+  for (int iteration = 0; iteration < RidgeTuning::guidedMaxIterations; ++iteration) {
     if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
       break;
     ++report.iterations;
@@ -183,7 +201,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     for (size_t i = 0; i < samples.size(); ++i) {
       const GuidedSample &s = samples[i];
       const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
-      if (found.near(u, v))
+      if (found.covers(s))
         state[i] = KNOWN;
       else if (inLimit(limit, H, u, v)) {
         results[i] = measureProfile(I, s, settings, buffers);
@@ -201,16 +219,19 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
         found.mark(results[i].crossing.point);
         ++added;
       }
-    // The coverage stops growing, or no better prediction.
-    if (added == 0 || !refit(fitPoints, C))
+    // The coverage stops growing, or no better prediction. Refitted even then: the final conic is the
+    // points' (sorted) fit, whatever the order the first pass returned its points in.
+    const bool refitted = refit(fitPoints, C);
+    if (added == 0 || !refitted)
       break;
   }
   keepOnTheFinalCurve(C, work.guided);
+  smoothAlongCurve(C, work.guided);
   for (const Crossing &c : work.guided)
     points.push_back(c.point);
   report.added = static_cast<int>(work.guided.size());
-  report.noise = median(noises) / std::sqrt(static_cast<double>(GuidedTuning::lines));
-  report.threshold = median(thresholds) / GuidedTuning::lines;
+  report.noise = median(noises) / std::sqrt(static_cast<double>(RidgeTuning::guidedLines));
+  report.threshold = median(thresholds) / RidgeTuning::guidedLines;
 }
 
 int observedStripeWidth(const RidgeWorkspace &work, int fallback)

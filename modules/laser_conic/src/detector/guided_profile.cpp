@@ -31,7 +31,7 @@ struct ProfileView
 // Reads pixels [start, start + n) of the sample's line into the buffers: the score where the red channel is
 // in the saturation ramp (a saturated core is a plateau of 255, as in the first pass), the unclipped red
 // dominance elsewhere (the matched filter and the noise estimate are then linear in the sensor's noise: a
-// clipped dark floor would hide both), summed over GuidedTuning::lines lines shifted along the predicted
+// clipped dark floor would hide both), summed over RidgeTuning::guidedLines lines shifted along the predicted
 // curve; the red channel and dominance of the sample's own line; the prefix sums. Returns the lines summed.
 int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, ProfileBuffers &b)
 {
@@ -44,11 +44,11 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
   const int lineCount = static_cast<int>(s.alongRow ? I.getHeight() : I.getWidth());
   const ptrdiff_t stride = s.alongRow ? 4 : 4 * W;
-  const int rampStart = saturation - RidgeTuning::saturationRamp, half = GuidedTuning::lines / 2;
+  const int rampStart = saturation - RidgeTuning::saturationRamp, half = RidgeTuning::guidedLines / 2;
   // The lines summed and where they start (pixel 0 of the profile on each); a line is summed pixel by pixel
   // with the others, so that a column profile reads each image row once (the columns side by side share
   // their cache lines).
-  const unsigned char *first[2 * GuidedTuning::lines + 1];
+  const unsigned char *first[2 * RidgeTuning::guidedLines + 1];
   int used = 0, centre = -1;
   for (int j = -half; j <= half; ++j) {
     const int line = s.line + j, from = start + static_cast<int>(std::lround(j * s.slope));
@@ -78,13 +78,16 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
 }
 
 // Robust noise of the profile: 1.4826 MAD / sqrt(2) of the differences two pixels apart (as the first
-// pass's global estimate, see ridge_noise.h), at least GuidedTuning::noiseFloor per line summed.
-double profileNoise(ProfileBuffers &b, int n, int lines)
+// pass's global estimate, see ridge_noise.h), at least RidgeTuning::guidedNoiseFloor per line summed. The
+// differences that touch [skipFirst, skipLast] (the candidate stripe and its tails) are left out: a bright
+// stripe's own edges would raise the threshold it is tested against.
+double profileNoise(ProfileBuffers &b, int n, int lines, int skipFirst, int skipLast)
 {
-  const double floor = GuidedTuning::noiseFloor * std::sqrt(static_cast<double>(lines));
+  const double floor = RidgeTuning::guidedNoiseFloor * std::sqrt(static_cast<double>(lines));
   b.diffs.clear();
   for (int k = 0; k + 2 < n; ++k)
-    b.diffs.push_back(std::abs(b.value[k + 2] - b.value[k]));
+    if (k + 2 < skipFirst || k > skipLast)
+      b.diffs.push_back(std::abs(b.value[k + 2] - b.value[k]));
   if (b.diffs.empty())
     return floor;
   std::nth_element(b.diffs.begin(), b.diffs.begin() + b.diffs.size() / 2, b.diffs.end());
@@ -104,15 +107,16 @@ struct MatchedFilter
   }
   double background(int k) const
   {
-    const int g = GuidedTuning::gap;
+    const int g = RidgeTuning::guidedGap;
     return std::max(mean(k - h - g - f, k - h - g - 1), mean(k + h + g + 1, k + h + g + f));
   }
   double response(int k) const { return mean(k - h, k + h) - background(k); }
 };
 
-// The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile.
+// The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile. A
+// saturated core is a laser's when its flanks' red dominance (one line) reaches \e flankThreshold.
 bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k, const GuidedSettings &settings,
-                    int &first, int &last, double &centre)
+                    int flankThreshold, int &first, int &last, double &centre)
 {
   int p = std::max(0, k - filter.h - 1);
   for (int j = p; j <= std::min(view.n - 1, k + filter.h + 1); ++j)
@@ -127,8 +131,7 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
     --a;
   while (b + 1 < view.n && view.at(b + 1) > aboveHalf && b - p <= d)
     ++b;
-  if (b - a + 1 > settings.maxWidth ||
-      whiteWithoutRedFlanks(view, a, b, settings.saturation, std::max(1, contrast / 2)))
+  if (b - a + 1 > settings.maxWidth || whiteWithoutRedFlanks(view, a, b, settings.saturation, flankThreshold))
     return false;
   first = a;
   last = b;
@@ -141,11 +144,11 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                              ProfileBuffers &buffers)
 {
   ProfileResult result;
-  const int h = std::max(1, settings.stripeWidth / 2), f = std::max(GuidedTuning::minFlank, h + 1);
+  const int h = std::max(1, settings.stripeWidth / 2), f = std::max(RidgeTuning::guidedMinFlank, h + 1);
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
   const int lo = static_cast<int>(std::floor(s.pos - s.halfWindow)),
             hi = static_cast<int>(std::ceil(s.pos + s.halfWindow));
-  const int reach = h + GuidedTuning::gap + f;
+  const int reach = h + RidgeTuning::guidedGap + f;
   const int start = std::max(0, lo - reach), end = std::min(lineLength - 1, hi + reach), n = end - start + 1;
   if (n < 2 * reach + 1)
     return result;
@@ -162,13 +165,20 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
       best = k;
     }
   }
-  result.noise = profileNoise(buffers, n, lines);
-  result.threshold = std::max(GuidedTuning::minResponse * lines,
+  const int tails = h + RidgeTuning::guidedGap + 1;
+  result.noise = best < 0 ? profileNoise(buffers, n, lines, n, n)
+                          : profileNoise(buffers, n, lines, best - tails, best + tails);
+  result.threshold = std::max(RidgeTuning::guidedMinResponse * lines,
                               settings.factor * result.noise * std::sqrt(1.0 / (2 * h + 1) + 1.0 / f));
   double centre = 0.0;
   int first = 0, last = 0;
+  // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
+  // in the sum of the lines, refused every white core with pink flanks: the laser on white paper.)
+  const int flankThreshold =
+      static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse,
+                                          settings.factor * result.noise / std::sqrt(static_cast<double>(lines)))));
   if (best < 0 || bestResponse < result.threshold ||
-      !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, first, last, centre))
+      !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, flankThreshold, first, last, centre))
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
   // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here).

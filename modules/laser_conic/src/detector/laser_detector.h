@@ -100,8 +100,9 @@ struct RidgeWorkspace
   std::vector<unsigned char> cells;            //!< coarse to fine: the cells near the coarse crossings kept
   RegionSpans fineRegion;                      //!< coarse to fine: those cells rasterised
   std::vector<unsigned char> coarseScore, coarseFlags, coarseZeros; //!< coarse to fine: the coarse columns
-  std::vector<Crossing> guided;           //!< the crossings the guided pass added (see guided_pass.h)
-  std::vector<unsigned char> guidedCells; //!< guided pass: the cells holding a point found
+  std::vector<Crossing> guided;             //!< the crossings the guided pass added (see guided_pass.h)
+  std::vector<int> guidedCells, guidedNext; //!< guided pass: per cell its last point found, and the previous one's
+  std::vector<vpImagePoint> guidedFound;    //!< guided pass: the points found (both passes), in cell lists
   unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
   bool regionValid = false;
 };

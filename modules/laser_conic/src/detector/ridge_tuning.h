@@ -4,8 +4,8 @@
  */
 /*!
   \file ridge_tuning.h
-  \brief The fixed shape rules of the ridge detector (internal header), named in one place: each is a
-  property of a laser stripe seen by a camera, not a setting a user would change.
+  \brief The fixed shape rules of the ridge detector and of its conic-guided pass (internal header), named
+  in one place: each is a property of a laser stripe seen by a camera, not a setting a user would change.
 */
 #ifndef VP_LASER_RIDGE_TUNING_H
 #define VP_LASER_RIDGE_TUNING_H
@@ -65,6 +65,52 @@ struct RidgeTuning
   //! The fine lines are searched around the kept coarse crossings up to half the bridge reach plus this
   //! many pixels: the fine crossings between two linked coarse ones, and the stripe's width about them.
   static constexpr int fineReachExtra = 4;
+
+  // --- Guided pass (guided_*.cpp) ---
+  //! Noise floor (grey levels) of a profile: 8-bit quantisation and JPEG leave at least this much, and a
+  //! flat profile (a clipped dark floor) must not make every bump significant.
+  static constexpr double guidedNoiseFloor = 0.5;
+  //! Smallest matched-filter response (grey levels) whatever the noise: two quantisation steps.
+  static constexpr double guidedMinResponse = 2.0;
+  //! Pixels between the stripe box and its background boxes of the matched filter (the stripe's tails).
+  static constexpr int guidedGap = 1;
+  //! A kept piece of curve is anchored to a point already found, or has at least this many points.
+  static constexpr int guidedMinRun = 8;
+  //! Consecutive samples without a point that still leave a piece of curve unbroken.
+  static constexpr int guidedMaxMisses = 3;
+  //! Largest change (pixels) of the offset to the prediction between consecutive points of a piece,
+  //! plus guidedPerSampleJump per sample between them: the prediction is smooth, so is the true curve.
+  static constexpr double guidedMaxJump = 1.0;
+  //! See guidedMaxJump.
+  static constexpr double guidedPerSampleJump = 0.5;
+  //! Largest distance (pixels) of a second-pass point to the conic refitted on all the points: the first
+  //! pass's inlier threshold (its centres are within a few tenths of a pixel of a conic trace).
+  static constexpr double guidedFinalDistance = 2.0;
+  //! Refits at most: the coverage stops growing after two or three on every case seen.
+  static constexpr int guidedMaxIterations = 4;
+  //! Side (2^guidedCellShift pixels) of the cells that record where points were found (a sample near one is not
+  //! measured again).
+  static constexpr int guidedCellShift = 2;
+  //! A sample is known (not measured again) when a point found lies within guidedKnownAlong pixels of it along
+  //! the predicted curve (half the spacing of the profiles, rounded up) and within guidedKnownAcross pixels across
+  //! it (the prediction's error): a sample just beyond the end of a first-pass chain is measured.
+  static constexpr double guidedKnownAlong = 1.0;
+  //! See guidedKnownAlong (under 2^guidedCellShift - guidedKnownAlong: the cells searched are those around the sample's).
+  static constexpr double guidedKnownAcross = 3.0;
+  //! The centres of the second pass are regularised along the curve: their offsets to the final conic are
+  //! replaced by a straight-line fit of the offsets of the points within guidedSmoothRadius pixels (the true
+  //! centre line is smooth over that length; the noise of one profile is not).
+  static constexpr double guidedSmoothRadius = 20.0;
+  //! Points a regularised centre needs in its neighbourhood (itself included), else it is left as measured.
+  static constexpr int guidedSmoothMinPoints = 5;
+  //! Offsets (pixels) farther than this from their neighbourhood's median are left out of its fit.
+  static constexpr double guidedSmoothOutlier = 1.0;
+  //! Image guidedLines averaged into one profile (the line of the sample and its neighbours, shifted along the
+  //! predicted curve): the noise falls by sqrt(guidedLines), so a stripe 3 times the background noise stands out.
+  static constexpr int guidedLines = 3;
+  //! Pixels of background on each side of the matched filter's stripe box, at least: the longer, the less
+  //! noisy the background level.
+  static constexpr int guidedMinFlank = 4;
 };
 } // namespace vsp::laser_detector
 

@@ -24,7 +24,8 @@
 namespace vsp::laser_detector
 {
 struct RidgeWorkspace;
-}
+struct GuidedSettings;
+} // namespace vsp::laser_detector
 
 //! A stripe run measured by vpLaserConicDetector (the diagnostic mask getMask() is drawn from them).
 struct vpLaserConicDetectorRun
@@ -81,17 +82,21 @@ struct vpLaserConicDetectorRun
   floor patches). After it, an ellipse is fitted robustly to the points kept (RANSAC on five-point conics,
   2 px), provided at least 30 of them agree over an arc of 60 degrees or more, and the image is searched
   along that predicted curve: on every setGuidedStep()-th row (where the curve is closer to vertical) and
-  column (elsewhere) it crosses, where no point is known yet, a profile of the red dominance across the
+  column (elsewhere) it crosses, where no point lies on it yet, a profile of the red dominance across the
   curve within setGuidedMargin() pixels of it, averaged over three neighbouring lines shifted along the
   curve, goes through a matched filter for a stripe of the observed width (the median half-maximum width
   of the first pass's crossings) whose response must exceed setGuidedThresholdFactor() times its own noise,
   measured along that profile (robust spread, as above): a threshold local to the profile instead of the
   global contrast. Around the best response, the first pass's shape tests (width, white light) and
-  sub-pixel centre apply. Only pieces of curve that continue it are kept: runs of found profiles whose
+  sub-pixel centre apply (a saturated core needs red flanks out of one line's noise by the same factor).
+  Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
-  times). The points of this pass follow those of the first pass in the list returned
-  (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
+  times). Last, the centres of this pass are regularised along the curve: each one's offset to the final
+  ellipse is replaced by a straight-line fit of the offsets over 20 px of arc around it (offsets more than
+  1 px from a first fit left out), since one profile's centre is noisy (sensor noise, JPEG's 8 x 8 blocks)
+  but the centre line is smooth. The points of this pass follow those of the first pass in the list
+  returned (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
   and have a stripe's profile.
 
   A search region (setSearchRegion()) restricts the search to a band around the predicted curve: faster,
@@ -193,7 +198,8 @@ public:
   //! Shortest kept chain, pixels.
   double getMinSegmentLength() const { return m_minSegmentLength; }
   /*!
-    Scans one row/column every \e step (1 = every line); default 1.
+    Scans one row/column every \e step (1 = every line); default 1. The guided pass has its own step
+    (setGuidedStep()): with the default 1 it measures the lines between.
     \exception vpLaserConicException::badValueError on 0.
   */
   void setSamplingStep(unsigned int step);
@@ -325,6 +331,8 @@ private:
   void rasteriseRegion(int H, int W);
   //! The first pass (over the search region of points, if any), then the guided pass if enabled.
   std::vector<vpImagePoint> detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion);
+  //! The settings of the guided pass with the band half-width \e margin (pixels), the others from this detector's.
+  vsp::laser_detector::GuidedSettings guidedSettings(double margin) const;
   //! The guided pass along the conic search region; false when it found too few points (track lost).
   bool trackConic(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points);
 
