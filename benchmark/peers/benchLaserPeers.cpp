@@ -455,6 +455,22 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
     }
     const double trackNs = vspBench::medianNsPerCall([&](int i) { whole(tracked[i], i); }, nImages, 9, 0.5);
     const double trackSparseNs = vspBench::medianNsPerCall([&](int i) { whole(trackedSparse[i], i); }, nImages, 9, 0.5);
+    // The tracking rows' two stages apart: the guided pass alone, and GP-3 alone on the points it returns.
+    std::vector<std::vector<vpImagePoint> > trackedPoints(images.size());
+    for (int i = 0; i < nImages; ++i)
+      trackedPoints[i] = tracked[i].detect(images[i]);
+    const double trackDetectNs = vspBench::medianNsPerCall(
+        [&](int i) { vspBench::consume(static_cast<double>(tracked[i].detect(images[i]).size())); }, nImages, 9, 0.5);
+    const double trackGp3Ns = vspBench::medianNsPerCall(
+        [&](int i) {
+          vpPlane plane;
+          try {
+            estimator.computePlane(trackedPoints[i], vpLaserConicPose::GP3, plane);
+          } catch (const vpException &) {
+          }
+          vspBench::consume(plane.getD());
+        },
+        nImages, 9, 0.5);
     const std::string problem = "1600x1200, " + floor.first;
     frame.rows.push_back(row(problem, "OpenCV cvtColor BGR->HSV", cvtNs, cvtNs, false, -1.0));
     frame.rows.push_back(row(problem, "ours vpLaserConicDetector::detect", detectNs, cvtNs, true, -1.0));
@@ -463,6 +479,8 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
     frame.rows.push_back(row(problem, "ours detect (previous conic, 20 px) + GP-3", trackNs, cvtNs, true, -1.0));
     frame.rows.push_back(
         row(problem, "ours detect (previous conic, 20 px, every 3rd line) + GP-3", trackSparseNs, cvtNs, true, -1.0));
+    frame.rows.push_back(row(problem, "ours detect alone (previous conic, 20 px)", trackDetectNs, cvtNs, true, -1.0));
+    frame.rows.push_back(row(problem, "ours GP-3 alone (previous conic's points)", trackGp3Ns, cvtNs, true, -1.0));
     worstWhole = std::max(worstWhole, wholeNs / cvtNs);
   }
   // The target is a ratio: the worst floor's ratio, on the dark floor's cvtColor scale.
