@@ -10,6 +10,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/LU>
+
 #include <visp3/robust/vpRansac.h>
 
 #include "../laser_estimators.h"
@@ -41,6 +43,17 @@ struct ConicCoefficients
     return std::isfinite(u) && std::isfinite(v);
   }
 };
+
+// Least-squares conic through the listed points, kept only if it is an ellipse (isImageEllipse()).
+bool fitImageEllipse(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices,
+                     Eigen::Matrix3d &c)
+{
+  vsp::laser_estimators::PointList subset;
+  subset.reserve(indices.size());
+  for (int i : indices)
+    subset.push_back(points[static_cast<size_t>(i)]);
+  return vpLaserSolvers::fitConic(subset.data(), static_cast<int>(subset.size()), c) && isImageEllipse(c);
+}
 
 // Arc (radians) around (uc, vc) covered by the points: 36 sectors of 10 degrees, the occupied ones.
 double sectorCoverage(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices, double uc,
@@ -155,6 +168,18 @@ void fitWindows(const WindowFits &fits, const std::vector<double> &arc, size_t f
 }
 } // namespace
 
+bool isImageEllipse(const Eigen::Matrix3d &C)
+{
+  const Eigen::Matrix3d S = 0.5 * (C + C.transpose());
+  const double scale = S.topLeftCorner<2, 2>().cwiseAbs().maxCoeff();
+  if (!(scale > 0.0) || !std::isfinite(scale) || !S.allFinite())
+    return false;
+  const Eigen::Matrix3d s = S / scale;
+  const double det2 = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
+  // Definite 2x2 block: bounded; real and non-degenerate when det(C) has the sign opposite to C11.
+  return det2 > 1e-12 && s(0, 0) * s.determinant() < 0.0;
+}
+
 void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, std::vector<Eigen::Vector2d> &sample)
 {
   sample.clear();
@@ -192,7 +217,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   std::vector<int> everyone(sample.size());
   for (size_t k = 0; k < sample.size(); ++k)
     everyone[k] = static_cast<int>(k);
-  bool fitted = vsp::laser_estimators::fitEllipseOn(sample, everyone, C);
+  bool fitted = fitImageEllipse(sample, everyone, C);
   if (fitted) {
     size_t close = 0;
     for (const Eigen::Vector2d &p : sample)
@@ -218,7 +243,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
     for (int k = 0; k < static_cast<int>(all.size()); ++k)
       if (vpLaserSolvers::sampsonDistance(C, all[k]) <= threshold)
         inliers.push_back(k);
-    if (static_cast<int>(inliers.size()) < minInliers || !vsp::laser_estimators::fitEllipseOn(all, inliers, C))
+    if (static_cast<int>(inliers.size()) < minInliers || !fitImageEllipse(all, inliers, C))
       return false;
   }
   const ConicCoefficients k(C);
@@ -269,7 +294,7 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
 bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step, std::vector<GuidedSample> &samples)
 {
   samples.clear();
-  if (!vpLaserSolvers::isEllipse(C))
+  if (!isImageEllipse(C))
     return false;
   const ConicCoefficients k(C);
   double uc = 0.0, vc = 0.0;
