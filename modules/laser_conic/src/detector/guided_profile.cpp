@@ -77,6 +77,27 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
   return used;
 }
 
+// The element of rank size / 2 of \e values (>= 0, not empty), as std::nth_element would place it: by
+// counting when it is small (the differences of a profile's background mostly are: a few hundred
+// nanoseconds of nth_element per profile were a quarter of the tracking mode's time), else by nth_element.
+int middleValue(std::vector<int> &values)
+{
+  constexpr int bins = 128;
+  int count[bins] = {0};
+  for (int v : values)
+    if (v < bins)
+      ++count[v];
+  const int rank = static_cast<int>(values.size() / 2);
+  int below = 0;
+  for (int v = 0; v < bins; ++v) {
+    below += count[v];
+    if (below > rank)
+      return v;
+  }
+  std::nth_element(values.begin(), values.begin() + rank, values.end());
+  return values[static_cast<size_t>(rank)];
+}
+
 // Robust noise of the profile: 1.4826 MAD / sqrt(2) of the differences two pixels apart (as the first
 // pass's global estimate, see ridge_noise.h), at least RidgeTuning::guidedNoiseFloor per line summed. The
 // differences that touch [skipFirst, skipLast] (the candidate stripe and its tails) are left out: a bright
@@ -90,8 +111,7 @@ double profileNoise(ProfileBuffers &b, int n, int lines, int skipFirst, int skip
       b.diffs.push_back(std::abs(b.value[k + 2] - b.value[k]));
   if (b.diffs.empty())
     return floor;
-  std::nth_element(b.diffs.begin(), b.diffs.begin() + b.diffs.size() / 2, b.diffs.end());
-  const double mad = b.diffs[b.diffs.size() / 2];
+  const double mad = middleValue(b.diffs);
   return std::max(floor, 1.4826 * mad / std::sqrt(2.0));
 }
 
