@@ -131,6 +131,35 @@ struct MatchedFilter
     return std::max(mean(k - h - g - f, k - h - g - 1), mean(k + h + g + 1, k + h + g + f));
   }
   double response(int k) const { return mean(k - h, k + h) - background(k); }
+  // response(k) x (2h + 1) f, exact in integers: a larger one is a larger response (by 1 / ((2h + 1) f),
+  // far beyond rounding), so the best response is among the best of these.
+  long long scaledResponse(int k) const
+  {
+    const int g = RidgeTuning::guidedGap;
+    const long long stripe = prefix[k + h + 1] - prefix[k - h];
+    const long long left = prefix[k - h - g] - prefix[k - h - g - f],
+                    right = prefix[k + h + g + f + 1] - prefix[k + h + g + 1];
+    return stripe * f - std::max(left, right) * (2 * h + 1);
+  }
+  // The first k of [first, last] with the largest response(k) (-1 when empty): the largest scaled response
+  // in integers first, the doubles only where it is reached (the same k as comparing every response(k)).
+  int best(int first, int last, double &bestResponse) const
+  {
+    long long top = 0;
+    for (int k = first; k <= last; ++k)
+      top = k == first ? scaledResponse(k) : std::max(top, scaledResponse(k));
+    int found = -1;
+    bestResponse = -1e30;
+    for (int k = first; k <= last; ++k)
+      if (scaledResponse(k) == top) {
+        const double r = response(k);
+        if (r > bestResponse) {
+          bestResponse = r;
+          found = k;
+        }
+      }
+    return found;
+  }
 };
 
 // The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile. A
@@ -176,15 +205,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (lines == 0)
     return result;
   const MatchedFilter filter{buffers.prefix, h, f};
-  int best = -1;
   double bestResponse = -1e30;
-  for (int k = std::max(reach, lo - start); k <= std::min(n - 1 - reach, hi - start); ++k) {
-    const double r = filter.response(k);
-    if (r > bestResponse) {
-      bestResponse = r;
-      best = k;
-    }
-  }
+  const int best = filter.best(std::max(reach, lo - start), std::min(n - 1 - reach, hi - start), bestResponse);
   const int tails = h + RidgeTuning::guidedGap + 1;
   result.noise = best < 0 ? profileNoise(buffers, n, lines, n, n)
                           : profileNoise(buffers, n, lines, best - tails, best + tails);
