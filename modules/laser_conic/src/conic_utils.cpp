@@ -36,10 +36,14 @@ double sampsonDistance(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
 
 bool isEllipse(const Eigen::Matrix3d &c)
 {
-  const double scale = c.cwiseAbs().maxCoeff();
-  if (!(scale > 0.0) || !std::isfinite(scale))
+  const Eigen::Matrix3d sym = 0.5 * (c + c.transpose());
+  // The threshold is relative to the quadratic part, not to the largest coefficient: the constant term of a
+  // conic in pixel coordinates grows as the square of its centre's distance to the origin (10^6 times the
+  // quadratic terms at the centre of a 1600x1200 image), and a ring there is still an ellipse.
+  const double scale = sym.topLeftCorner<2, 2>().cwiseAbs().maxCoeff();
+  if (!(scale > 0.0) || !std::isfinite(scale) || !sym.allFinite())
     return false;
-  const Eigen::Matrix3d s = c / scale;
+  const Eigen::Matrix3d s = sym / scale;
   const double det2 = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
   // Definite 2x2 block: bounded conic; real and non-degenerate when det(c) has the sign opposite to c11.
   return det2 > 1e-12 && s(0, 0) * s.determinant() < 0.0;

@@ -42,8 +42,8 @@ vpLaserConicDetector::vpLaserConicDetector()
     m_saturationLevel(250), m_step(1), m_instructions(INSTRUCTIONS_BEST), m_maxHueLow(10), m_minHueHigh(170),
     m_minSaturation(80), m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(),
     m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0), m_noise(0.0), m_guided(true), m_guidedMargin(12.0),
-    m_guidedFactor(3.5), m_guidedStep(1), m_guidedCount(0), m_stripeWidth(0), m_regionIsConic(false), m_regionConic(),
-    m_work(), m_runs()
+    m_guidedFactor(3.5), m_guidedStep(1), m_guidedCount(0), m_stripeWidth(0), m_regionIsConic(false),
+    m_regionConic(3, 3, 0.0), m_work(), m_runs()
 {
 }
 

@@ -686,7 +686,7 @@ TEST(LaserConicSelfCalibration, FramesWithRoughPlanes)
   double A = 0.0;
   ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
   EXPECT_LT(vpMath::deg(axisAngle(cMl, laserPose())), 4.0 * vpMath::deg(selfcal.getAxisStdDeviation()));
-  const vpPlane &plane = selfcal.getFramePlanes()[3];
+  const vpPlane plane = selfcal.getFramePlanes()[3]; // a copy: the vector is returned by value
   vpLaserConicSelfCalibration searched = makeSelfCal(frames, trueApexDistance());
   searched.setMaxAngularStdDeviation(vpMath::rad(0.3));
   vpHomogeneousMatrix cMlSearched;

@@ -139,6 +139,26 @@ TEST(LaserConicSolvers, EllipseTest)
   EXPECT_FALSE(isEllipse(Eigen::Matrix3d::Zero()));
 }
 
+TEST(LaserConicSolvers, EllipseTestInPixelCoordinates)
+{
+  // A ring of radii 300 and 200 px centred at (800, 600), the middle of a 1600x1200 image: the constant term
+  // (about 1.5e5 x the quadratic ones once divided by the radii) must not hide the quadratic part's test.
+  const double a = 300.0, b = 200.0, u0 = 800.0, v0 = 600.0;
+  Eigen::Matrix3d T = Eigen::Matrix3d::Identity(); // centred coordinates from pixels
+  T(0, 2) = -u0;
+  T(1, 2) = -v0;
+  const Eigen::Matrix3d centred = Eigen::Vector3d(1.0 / (a * a), 1.0 / (b * b), -1.0).asDiagonal();
+  const Eigen::Matrix3d pixels = T.transpose() * centred * T;
+  EXPECT_TRUE(isEllipse(pixels));
+  EXPECT_TRUE(isEllipse(1e6 * pixels)); // scale-free
+  // The same translation applied to a hyperbola and to an imaginary ellipse keeps them refused.
+  EXPECT_FALSE(isEllipse(T.transpose() * Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal().toDenseMatrix() * T));
+  EXPECT_FALSE(isEllipse(T.transpose() * Eigen::Vector3d(1.0, 1.0, 1.0).asDiagonal().toDenseMatrix() * T));
+  Eigen::Matrix3d withNan = pixels;
+  withNan(2, 2) = std::nan("");
+  EXPECT_FALSE(isEllipse(withNan));
+}
+
 TEST(LaserConicSolvers, FitConicOnFiveExactPoints)
 {
   std::mt19937 rng(3);

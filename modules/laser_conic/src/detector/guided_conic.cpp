@@ -44,7 +44,7 @@ struct ConicCoefficients
   }
 };
 
-// Least-squares conic through the listed points, kept only if it is an ellipse (isImageEllipse()).
+// Least-squares conic through the listed points, kept only if it is an ellipse (vpLaserSolvers::isEllipse()).
 bool fitImageEllipse(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices,
                      Eigen::Matrix3d &c)
 {
@@ -52,7 +52,7 @@ bool fitImageEllipse(const vsp::laser_estimators::PointList &points, const std::
   subset.reserve(indices.size());
   for (int i : indices)
     subset.push_back(points[static_cast<size_t>(i)]);
-  return vpLaserSolvers::fitConic(subset.data(), static_cast<int>(subset.size()), c) && isImageEllipse(c);
+  return vpLaserSolvers::fitConic(subset.data(), static_cast<int>(subset.size()), c) && vpLaserSolvers::isEllipse(c);
 }
 
 // Arc (radians) around (uc, vc) covered by the points: 36 sectors of 10 degrees, the occupied ones.
@@ -168,18 +168,6 @@ void fitWindows(const WindowFits &fits, const std::vector<double> &arc, size_t f
 }
 } // namespace
 
-bool isImageEllipse(const Eigen::Matrix3d &C)
-{
-  const Eigen::Matrix3d S = 0.5 * (C + C.transpose());
-  const double scale = S.topLeftCorner<2, 2>().cwiseAbs().maxCoeff();
-  if (!(scale > 0.0) || !std::isfinite(scale) || !S.allFinite())
-    return false;
-  const Eigen::Matrix3d s = S / scale;
-  const double det2 = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
-  // Definite 2x2 block: bounded; real and non-degenerate when det(C) has the sign opposite to C11.
-  return det2 > 1e-12 && s(0, 0) * s.determinant() < 0.0;
-}
-
 void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, std::vector<Eigen::Vector2d> &sample)
 {
   sample.clear();
@@ -294,7 +282,7 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
 bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step, std::vector<GuidedSample> &samples)
 {
   samples.clear();
-  if (!isImageEllipse(C))
+  if (!vpLaserSolvers::isEllipse(C))
     return false;
   const ConicCoefficients k(C);
   double uc = 0.0, vc = 0.0;

@@ -32,15 +32,6 @@ struct GuidedSample
 };
 
 /*!
-  Whether the conic C (pixel coordinates) is a real, non-degenerate ellipse. Unlike vpLaserSolvers::isEllipse(),
-  whose determinant threshold is relative to the largest coefficient, the test is relative to the quadratic
-  part itself: the constant term of an image conic grows as the square of its centre's distance to the origin
-  (about 10^6 times the quadratic terms at the centre of a 1600x1200 image), which made every ring of a large
-  image fail that threshold.
-*/
-bool isImageEllipse(const Eigen::Matrix3d &C);
-
-/*!
   The crossings of the conic C with every step-th row (where it crosses the rows more steeply than the
   columns) and column (elsewhere) of a W x H image, sorted along the curve. False when C is no ellipse.
 */

@@ -145,7 +145,7 @@ bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
   positionSubsample(points, 600, sample);
   Eigen::Matrix3d c;
   if (sample.size() < 5 || !vpLaserSolvers::fitConic(sample.data(), static_cast<int>(sample.size()), c) ||
-      !isImageEllipse(c))
+      !vpLaserSolvers::isEllipse(c))
     return false;
   C = c;
   return true;

@@ -223,8 +223,9 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
       !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, flankThreshold, first, last, centre))
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
-  // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here).
-  if (best > 0 && best + 1 < n) {
+  // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here). Its
+  // neighbours need their background boxes inside the profile too: [reach, n - 1 - reach].
+  if (best - 1 >= reach && best + 1 <= n - 1 - reach) {
     const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
     const double curvature = r0 - 2.0 * bestResponse + r2;
     if (curvature < 0.0)

@@ -73,8 +73,8 @@ struct Candidate
 struct Crossing
 {
   vpImagePoint point;
-  bool alongRow;
-  int line, first, last;
+  bool alongRow = true;
+  int line = 0, first = 0, last = 0;
 };
 
 /*!

@@ -354,6 +354,8 @@ private:
   unsigned int m_guidedCount; //!< points of the last detection from the guided pass
   int m_stripeWidth;          //!< observed stripe width of the last detection (0: none yet)
   bool m_regionIsConic;       //!< the search region is m_regionConic (else the points m_region)
+  //! The predicted conic (pixels) when m_regionIsConic, else 3x3 zeros: never empty, since ViSP 3.5 copies an
+  //! empty matrix from a null pointer (copying a detector would then be undefined).
   vpMatrix m_regionConic;
   vpWorkspace m_work; //!< score, block flags, candidates, crossings, chaining and rasterised region of the ridge method
   std::vector<vpLaserConicDetectorRun>

@@ -112,7 +112,11 @@ VISP_EXPORT Eigen::Matrix3d conicFromPlane(const Eigen::Vector4d &plane, const L
 //! First-order geometric (Sampson) distance of an image point to a conic, in the units of the point.
 VISP_EXPORT double sampsonDistance(const Eigen::Matrix3d &c, const Eigen::Vector2d &p);
 
-//! True when the conic is a real ellipse (upper-left 2x2 block definite, and real points).
+/*!
+  True when the conic is a real, non-degenerate ellipse (upper-left 2x2 block definite, and real points), in
+  any coordinates: normalized, or pixels with the ellipse anywhere in a large image (the test is relative to
+  the quadratic part).
+*/
 VISP_EXPORT bool isEllipse(const Eigen::Matrix3d &c);
 
 /*!
