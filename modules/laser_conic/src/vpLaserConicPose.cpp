@@ -333,8 +333,10 @@ void vpLaserConicPose::resetEstimate(const std::vector<vpImagePoint> &points)
   m_inliers.clear();
   m_trials = 0;
   m_status = STATUS_NOT_COMPUTED;
-  m_covariance.resize(0, 0);
-  m_planeCovariance.resize(0, 0);
+  // Emptied by moving an empty matrix in: ViSP 3.5's resize(0, 0) frees the data, then memsets the null
+  // pointer it got back (undefined behaviour, reported by UBSan).
+  m_covariance = vpMatrix();
+  m_planeCovariance = vpMatrix();
   m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
   m_constrainedChosen = false;
   m_points = points;
