@@ -92,6 +92,9 @@ if [ "${VSP_SKIP_STRUCTURE:-0}" = 1 ]; then skipped structure VSP_SKIP_STRUCTURE
 stage build+ctest build_and_ctest "$@"
 if [ "${VSP_SKIP_TIDY:-0}" = 1 ]; then skipped clang-tidy VSP_SKIP_TIDY; else stage clang-tidy clang_tidy; fi
 # The sanitizer stage is opt-in until it has a verified clean run on the present code (VSP_SANITIZERS=1).
+# Its first run (CHANGELOG.md, Unreleased, "Sanitizers") left four reports to fix first: three in the
+# detector (a read past the guided profile, an unset Crossing copied, an empty vpMatrix member copied) and a
+# dangling reference in testLaserConicSelfCalibration.cpp.
 if [ "${VSP_SANITIZERS:-0}" != 1 ] || [ "${VSP_SKIP_SANITIZERS:-0}" = 1 ]; then summary+=("$(printf '%-12s %-22s' sanitizers 'off (VSP_SANITIZERS=1 runs it)')"); else
   stage sanitizers sanitizers; fi
 if [ "${VSP_CONTRIB_BUILD:-0}" = 1 ]; then

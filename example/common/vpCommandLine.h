@@ -121,4 +121,25 @@ private:
   int m_exitStatus;
 };
 
+/*!
+  The main() of a program whose options are a struct: \e declare fills it with the defaults' command
+  line (`vpCommandLine commandLine(Options &)`), the command line is parsed, then run(options, cli) does
+  the work and returns the exit status. After `--help` or a bad command line, the command line's exit
+  status is returned and run() is not called.
+
+  \code
+  int main(int argc, char **argv) { return vpRunProgram(argc, argv, commandLine, run); }
+  \endcode
+*/
+template <typename Options>
+int vpRunProgram(int argc, char **argv, vpCommandLine (*declare)(Options &),
+                 int (*run)(Options &, const vpCommandLine &))
+{
+  Options options; // the command line refers to its fields: it stays here while run() works
+  vpCommandLine cli = declare(options);
+  if (!cli.parse(argc, argv))
+    return cli.exitStatus();
+  return run(options, cli);
+}
+
 #endif

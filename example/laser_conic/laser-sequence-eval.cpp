@@ -190,15 +190,9 @@ void writeResults(const Options &opt, const vpLaserDataset &dataset, const std::
     plot.write(opt.output + "/sequence_" + names[q] + ".png");
   }
 }
-} // namespace
-
-int main(int argc, char **argv)
+//! The program's work once its options are read; returns its exit status.
+int run(Options &opt, const vpCommandLine &)
 {
-  Options opt;
-  vpCommandLine cli = commandLine(opt);
-  if (!cli.parse(argc, argv)) {
-    return cli.exitStatus();
-  }
   vpLaserDataset dataset;
   std::string error;
   if (!vpLaserRigIo::readDataset(opt.data, dataset, error)) {
@@ -349,3 +343,6 @@ int main(int argc, char **argv)
   std::cout << (failed ? "CHECK FAILED" : "All checks passed") << std::endl;
   return failed ? EXIT_FAILURE : EXIT_SUCCESS;
 }
+} // namespace
+
+int main(int argc, char **argv) { return vpRunProgram(argc, argv, commandLine, run); }

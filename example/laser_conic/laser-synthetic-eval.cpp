@@ -637,15 +637,9 @@ void resolveTrialCounts(const vpCommandLine &cli, Options &opt)
     opt.outlierTrials = opt.trials;
   }
 }
-} // namespace
-
-int main(int argc, char **argv)
+//! The program's work once its options are read; returns its exit status.
+int run(Options &opt, const vpCommandLine &cli)
 {
-  Options opt;
-  vpCommandLine cli = commandLine(opt);
-  if (!cli.parse(argc, argv)) {
-    return cli.exitStatus();
-  }
   resolveTrialCounts(cli, opt);
   try {
     vpIoTools::makeDirectory(opt.output);
@@ -689,3 +683,6 @@ int main(int argc, char **argv)
   }
   return EXIT_SUCCESS;
 }
+} // namespace
+
+int main(int argc, char **argv) { return vpRunProgram(argc, argv, commandLine, run); }

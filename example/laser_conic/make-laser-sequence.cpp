@@ -497,15 +497,9 @@ vpCommandLine commandLine(Options &opt)
                 vpCommandLine::NON_NEGATIVE);
   return cli;
 }
-} // namespace
-
-int main(int argc, char **argv)
+//! The program's work once its options are read; returns its exit status.
+int run(Options &opt, const vpCommandLine &)
 {
-  Options opt;
-  vpCommandLine cli = commandLine(opt);
-  if (!cli.parse(argc, argv)) {
-    return cli.exitStatus();
-  }
   if (opt.output.empty())
     opt.output = std::string(VSP_DATA_DIR) + (opt.hard ? "/laser_hard" : "/laser_sequence");
   if (opt.frames == 0)
@@ -646,3 +640,6 @@ int main(int argc, char **argv)
   }
   return EXIT_SUCCESS;
 }
+} // namespace
+
+int main(int argc, char **argv) { return vpRunProgram(argc, argv, commandLine, run); }

@@ -273,35 +273,50 @@ bool estimateFrame(const vpImage<vpRGBa> &I, vpLaserConicDetector &detector, vpL
 }
 //! [Frame]
 
+//! A curve of the flight record: its legend, its values at the record's times and its colour.
+struct Curve
+{
+  std::string name;
+  const std::vector<double> *values;
+  vpColor color;
+};
+
+//! A plot of curves of the flight record against time, at the size of every plot of this tutorial.
+vpPngPlot timePlot(const std::string &title, const std::string &yLabel, const std::vector<double> &t,
+                   const std::vector<Curve> &curves)
+{
+  vpPngPlot plot(title, "time (s)", yLabel, 800, 420);
+  for (const Curve &c : curves)
+    plot.addCurve(c.name, t, *c.values, c.color);
+  return plot;
+}
+
 void writePlots(const Record &r, const std::string &dir)
 {
-  vpPngPlot altitude("Altitude: truth and filter (200 Hz), GP-3 per frame", "time (s)", "altitude (m)", 800, 420);
-  altitude.addCurve("truth", r.t, r.hTrue, vpColor::black);
-  altitude.addCurve("filter", r.t, r.hEst, vpColor::red);
+  vpPngPlot altitude = timePlot("Altitude: truth and filter (200 Hz), GP-3 per frame", "altitude (m)", r.t,
+                                {{"truth", &r.hTrue, vpColor::black}, {"filter", &r.hEst, vpColor::red}});
   altitude.addPoints("GP-3 frames", r.frameT, r.frameH, vpColor::blue);
   altitude.write(vpIoTools::createFilePath(dir, "laser-servo-landing-altitude.png"));
 
-  vpPngPlot error("Altitude error of the filter and its 3-sigma band", "time (s)", "error (mm)", 800, 420);
-  error.addCurve("filter - truth", r.t, r.errH, vpColor::red);
-  error.addCurve("+3 sigma", r.t, r.err3s, vpColor::gray);
-  error.addCurve("-3 sigma", r.t, r.errM3s, vpColor::gray);
+  vpPngPlot error = timePlot("Altitude error of the filter and its 3-sigma band", "error (mm)", r.t,
+                             {{"filter - truth", &r.errH, vpColor::red},
+                              {"+3 sigma", &r.err3s, vpColor::gray},
+                              {"-3 sigma", &r.errM3s, vpColor::gray}});
   error.setYRange(-15, 15);
   error.write(vpIoTools::createFilePath(dir, "laser-servo-landing-altitude-error.png"));
 
-  vpPngPlot speed("Vertical speed", "time (s)", "speed (m/s)", 800, 420);
-  speed.addCurve("truth", r.t, r.vzTrue, vpColor::black);
-  speed.addCurve("filter", r.t, r.vzEst, vpColor::red);
-  speed.write(vpIoTools::createFilePath(dir, "laser-servo-landing-speed.png"));
+  timePlot("Vertical speed", "speed (m/s)", r.t,
+           {{"truth", &r.vzTrue, vpColor::black}, {"filter", &r.vzEst, vpColor::red}})
+      .write(vpIoTools::createFilePath(dir, "laser-servo-landing-speed.png"));
 
-  vpPngPlot attitude("Attitude", "time (s)", "angle (deg)", 800, 420);
-  attitude.addCurve("roll truth", r.t, r.rollTrue, vpColor::black);
-  attitude.addCurve("roll filter", r.t, r.rollEst, vpColor::red);
-  attitude.addCurve("pitch truth", r.t, r.pitchTrue, vpColor::gray);
-  attitude.addCurve("pitch filter", r.t, r.pitchEst, vpColor::blue);
-  attitude.write(vpIoTools::createFilePath(dir, "laser-servo-landing-attitude.png"));
+  timePlot("Attitude", "angle (deg)", r.t,
+           {{"roll truth", &r.rollTrue, vpColor::black},
+            {"roll filter", &r.rollEst, vpColor::red},
+            {"pitch truth", &r.pitchTrue, vpColor::gray},
+            {"pitch filter", &r.pitchEst, vpColor::blue}})
+      .write(vpIoTools::createFilePath(dir, "laser-servo-landing-attitude.png"));
 
-  vpPngPlot servo("Servo error |s - s*|", "time (s)", "error", 800, 420);
-  servo.addCurve("task error", r.t, r.servoError, vpColor::red);
+  vpPngPlot servo = timePlot("Servo error |s - s*|", "error", r.t, {{"task error", &r.servoError, vpColor::red}});
   servo.setLogY(true);
   servo.write(vpIoTools::createFilePath(dir, "laser-servo-landing-servo-error.png"));
 }

@@ -4,18 +4,28 @@
  */
 /*!
   \file laser_value_check.h
-  \brief Private checks of the numbers the laser_conic setters take: a vpLaserConicException
-  (badValueError) with the caller's message when the value is out of range.
+  \brief Private checks of the values the laser_conic setters take: a vpLaserConicException
+  (badValueError unless said otherwise) with the caller's message when the value is refused. Every
+  setter of the module checks its value through these, so that a check is written once.
 */
 #ifndef VP_LASER_VALUE_CHECK_H
 #define VP_LASER_VALUE_CHECK_H
 
 #include <cmath>
+#include <string>
 
 #include <visp3/laser_conic/vpLaserConicException.h>
 
 namespace vsp::laser_value_check
 {
+//! Throws vpLaserConicException with \e code and \e message unless \e ok (the checks that are not ranges).
+inline void require(bool ok, const std::string &message,
+                    vpLaserConicException::errorCodeEnum code = vpLaserConicException::badValueError)
+{
+  if (!ok)
+    throw vpLaserConicException(code, message);
+}
+
 //! Throws vpLaserConicException::badValueError with \e message unless \e value is finite and > 0.
 inline void requirePositive(double value, const char *message)
 {

@@ -53,17 +53,15 @@ void vpLaserConicCalibration::setRobustLoss(vpLaserConicLoss loss, double scale)
 {
   vsp::laser_value_check::requireNonNegative(scale, "vpLaserConicCalibration: the robust loss scale must be finite and "
                                                     ">= 0 (0: automatic)");
-  if (loss != LOSS_NONE && loss != LOSS_HUBER && loss != LOSS_CAUCHY)
-    throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicCalibration: unknown robust loss");
+  vsp::laser_value_check::require(loss == LOSS_NONE || loss == LOSS_HUBER || loss == LOSS_CAUCHY,
+                                  "vpLaserConicCalibration: unknown robust loss");
   m_loss = loss;
   m_userLossScale = scale;
 }
 
 void vpLaserConicCalibration::setMaxIterations(int maxIterations)
 {
-  if (maxIterations <= 0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicCalibration: the iteration limit must be positive");
+  vsp::laser_value_check::require(maxIterations > 0, "vpLaserConicCalibration: the iteration limit must be positive");
   m_maxIterations = maxIterations;
 }
 
@@ -76,9 +74,8 @@ void vpLaserConicCalibration::setMaxRmsPixels(double maxRms)
 
 void vpLaserConicCalibration::setMaxConditionNumber(double maxCondition)
 {
-  if (!(maxCondition > 1.0))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicCalibration: the largest condition number must be greater than 1");
+  vsp::laser_value_check::require(maxCondition > 1.0,
+                                  "vpLaserConicCalibration: the largest condition number must be greater than 1");
   m_maxCondition = maxCondition;
 }
 

@@ -2,9 +2,10 @@
  * ViSP sensor-aided pose estimation.
  * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
  */
-// vpLaserConicFilter: status messages and the IMU CSV reader (vpImuGravity's layout, mirrored here so that
-// the laser module does not depend on the gravity module).
+// vpLaserConicFilter: status messages and the IMU CSV reader (vpImuGravity's layout; the row loop is the robust
+// module's vpReadNumericCsv(), so that the laser module does not depend on the gravity module).
 #include <visp3/laser_conic/vpLaserConicFilter.h>
+#include <visp3/robust/vpNumericCsv.h>
 
 #include <cerrno>
 #include <cmath>
@@ -20,12 +21,6 @@ void badFile(const std::string &file, size_t line, const std::string &what)
     where += ":" + std::to_string(line);
   throw vpLaserConicException(vpLaserConicException::badValueError,
                               "vpLaserConicFilter::loadImuCsv: " + where + ": " + what);
-}
-
-bool blankOrComment(const std::string &line)
-{
-  const size_t first = line.find_first_not_of(" \t\r");
-  return first == std::string::npos || line[first] == '#';
 }
 
 //! Splits a line on commas (spaces around fields allowed); false when a field is not a finite number.
@@ -62,33 +57,18 @@ std::vector<vpLaserConicFilter::vpImuSample> vpLaserConicFilter::loadImuCsv(cons
   if (!in)
     badFile(file, 0, "cannot open the IMU file");
   std::vector<vpImuSample> samples;
-  std::vector<double> values;
-  std::string line;
-  size_t lineNo = 0;
-  bool first = true;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (blankOrComment(line))
-      continue;
-    const bool numeric = parseNumbers(line, values);
-    if (!numeric && first) { // a header line
-      first = false;
-      continue;
-    }
-    first = false;
-    if (!numeric)
-      badFile(file, lineNo, "a field is not a number: '" + line + "'");
-    if (values.size() != 7)
-      badFile(file, lineNo,
-              "expected 7 columns (timestamp, wx, wy, wz, ax, ay, az), got " + std::to_string(values.size()));
-    vpImuSample s;
-    s.t = values[0] * timeScale;
-    for (int i = 0; i < 3; ++i) {
-      s.gyro[i] = values[1 + i];
-      s.acc[i] = values[4 + i];
-    }
-    samples.push_back(s);
-  }
+  vpReadNumericCsv(
+      in, 7, "timestamp, wx, wy, wz, ax, ay, az", parseNumbers,
+      [&](size_t, const std::vector<double> &values) {
+        vpImuSample s;
+        s.t = values[0] * timeScale;
+        for (int i = 0; i < 3; ++i) {
+          s.gyro[i] = values[1 + i];
+          s.acc[i] = values[4 + i];
+        }
+        samples.push_back(s);
+      },
+      [&](size_t lineNo, const std::string &what) { badFile(file, lineNo, what); });
   if (samples.empty())
     badFile(file, 0, "no IMU sample");
   return samples;

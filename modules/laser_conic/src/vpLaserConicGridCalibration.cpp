@@ -32,10 +32,9 @@ void vpLaserConicGridCalibration::setCameraParameters(const vpCameraParameters &
 
 void vpLaserConicGridCalibration::setChessboard(unsigned int squaresX, unsigned int squaresY, double squareSize)
 {
-  if (squaresX < 3 || squaresY < 3 || !std::isfinite(squareSize) || !(squareSize > 0.0))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicGridCalibration: the chessboard needs at least 3 x 3 squares of a "
-                                "positive, finite size");
+  vsp::laser_value_check::require(squaresX >= 3 && squaresY >= 3 && std::isfinite(squareSize) && squareSize > 0.0,
+                                  "vpLaserConicGridCalibration: the chessboard needs at least 3 x 3 squares of a "
+                                  "positive, finite size");
   m_squaresX = squaresX;
   m_squaresY = squaresY;
   m_squareSize = squareSize;

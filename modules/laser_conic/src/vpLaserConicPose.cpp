@@ -30,21 +30,6 @@ int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
   return (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3 : 5;
 }
 
-const char *methodName(vpLaserConicPose::vpLaserConicMethod method)
-{
-  switch (method) {
-  case vpLaserConicPose::PLANE_PAIR:
-    return "PLANE_PAIR";
-  case vpLaserConicPose::PP5:
-    return "PP5";
-  case vpLaserConicPose::PP3:
-    return "PP3";
-  case vpLaserConicPose::GP3:
-    return "GP3";
-  }
-  return "unknown";
-}
-
 //! True when all points lie on one line (or one point), up to rounding.
 bool allCollinear(const PointList &points)
 {
@@ -127,6 +112,21 @@ vpLaserConicPose::vpLaserConicPose()
     m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0), m_sigma(0.0), m_coverage(0.0),
     m_constrainedChosen(false), m_points(), m_calibrationCheck(true), m_mistake(MISTAKE_UNKNOWN)
 {
+}
+
+std::string vpLaserConicPose::getMethodName(vpLaserConicMethod method)
+{
+  switch (method) {
+  case PLANE_PAIR:
+    return "PLANE_PAIR";
+  case PP5:
+    return "PP5";
+  case PP3:
+    return "PP3";
+  case GP3:
+    return "GP3";
+  }
+  return "unknown";
 }
 
 std::string vpLaserConicPose::getStatusMessage(vpLaserConicStatus status)
@@ -321,7 +321,7 @@ void vpLaserConicPose::checkInput(const std::vector<vpImagePoint> &points, vpLas
   const int needed = requiredPoints(method);
   if (points.size() < static_cast<size_t>(needed)) {
     std::ostringstream msg;
-    msg << "vpLaserConicPose: method " << methodName(method) << " needs at least " << needed << " points, got "
+    msg << "vpLaserConicPose: method " << getMethodName(method) << " needs at least " << needed << " points, got "
         << points.size();
     throw vpLaserConicException(vpLaserConicException::notEnoughPointError, msg.str());
   }
@@ -333,8 +333,10 @@ void vpLaserConicPose::resetEstimate(const std::vector<vpImagePoint> &points)
   m_inliers.clear();
   m_trials = 0;
   m_status = STATUS_NOT_COMPUTED;
-  m_covariance.resize(0, 0);
-  m_planeCovariance.resize(0, 0);
+  // Emptied by moving an empty matrix in: ViSP 3.5's resize(0, 0) frees the data, then memsets the null
+  // pointer it got back (undefined behaviour, reported by UBSan).
+  m_covariance = vpMatrix();
+  m_planeCovariance = vpMatrix();
   m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
   m_constrainedChosen = false;
   m_points = points;
@@ -494,7 +496,7 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
   if (!consensus.found || consensus.inliers.size() < needed) {
     std::ostringstream msg;
-    msg << " (" << methodName(method) << ", " << consensus.inliers.size() << " inliers at best, " << needed
+    msg << " (" << getMethodName(method) << ", " << consensus.inliers.size() << " inliers at best, " << needed
         << " needed, after " << consensus.report.trials << " samples)";
     return failOrMismatch(STATUS_NO_CONSENSUS, msg.str(), points, method);
   }

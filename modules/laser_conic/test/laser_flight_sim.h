@@ -174,7 +174,8 @@ inline void fly(const Flight &flight, double duration, unsigned int seed, vpLase
     filter.addImu(t, gyro, acc);
     while (nextFrame <= t) { // exposure: estimate now, deliver after the latency
       const Truth ft = flight.at(nextFrame);
-      Pending p{nextFrame, false, 0, 0, 0, vpMatrix(), ft.h, frameIndex};
+      // C is never empty: ViSP 3.5 copies an empty vpMatrix with memcpy from a null pointer (UBSan).
+      Pending p{nextFrame, false, 0, 0, 0, vpMatrix(3, 3, 0.0), ft.h, frameIndex};
       const bool dropped = nextFrame >= events.dropFrom && nextFrame < events.dropTo;
       if (!dropped && frameEstimate(ft, 120, pixelSigma, rng, pose)) {
         p.ok = true;

@@ -40,6 +40,17 @@ struct Consistency
     ++n;
   }
 };
+//! One simulated flight through a new filter (laser_flight::fly()): the filter, its IMU-rate outputs and frames.
+struct FlightRun
+{
+  vpLaserConicFilter filter;
+  std::vector<Sample> samples;
+  std::vector<FrameRecord> frames;
+  FlightRun(const Flight &flight, double duration, unsigned int seed, const FrameEvents &events = FrameEvents())
+  {
+    laser_flight::fly(flight, duration, seed, filter, samples, frames, events);
+  }
+};
 } // namespace
 
 // Over Monte Carlo flights the normalised error of (altitude, vertical speed, roll, pitch) at IMU rate
@@ -50,11 +61,8 @@ TEST(LaserConicFilter, CovarianceIsConsistentOverFlights)
 {
   Consistency c;
   for (unsigned int run = 0; run < 8; ++run) {
-    vpLaserConicFilter filter;
-    std::vector<Sample> samples;
-    std::vector<FrameRecord> frames;
-    laser_flight::fly(Flight(100 + run), 8.0, 200 + run, filter, samples, frames);
-    for (const Sample &s : samples)
+    const FlightRun flown(Flight(100 + run), 8.0, 200 + run);
+    for (const Sample &s : flown.samples)
       if (s.t > kWarmUp)
         c.add(s);
   }
@@ -77,16 +85,13 @@ TEST(LaserConicFilter, AltitudeBeatsPerFrameEstimate)
   double filterSq = 0.0, frameSq = 0.0;
   int nf = 0, ns = 0;
   for (unsigned int run = 0; run < 3; ++run) {
-    vpLaserConicFilter filter;
-    std::vector<Sample> samples;
-    std::vector<FrameRecord> frames;
-    laser_flight::fly(Flight(300 + run), 8.0, 400 + run, filter, samples, frames);
-    for (const Sample &s : samples)
+    const FlightRun flown(Flight(300 + run), 8.0, 400 + run);
+    for (const Sample &s : flown.samples)
       if (s.t > kWarmUp) {
         filterSq += (s.x(0) - s.truth.h) * (s.x(0) - s.truth.h);
         ++ns;
       }
-    for (const FrameRecord &f : frames)
+    for (const FrameRecord &f : flown.frames)
       if (f.hasPlane && f.t > kWarmUp) {
         frameSq += (f.h - f.hTrue) * (f.h - f.hTrue);
         ++nf;
@@ -103,16 +108,13 @@ TEST(LaserConicFilter, AltitudeBeatsPerFrameEstimate)
 TEST(LaserConicFilter, DropoutKeepsErrorInsideThreeSigma)
 {
   for (unsigned int run = 0; run < 4; ++run) {
-    vpLaserConicFilter filter;
-    std::vector<Sample> samples;
-    std::vector<FrameRecord> frames;
     FrameEvents events;
     events.dropFrom = 3.0;
     events.dropTo = 3.5;
-    laser_flight::fly(Flight(500 + run), 5.0, 600 + run, filter, samples, frames, events);
+    const FlightRun flown(Flight(500 + run), 5.0, 600 + run, events);
     double sigmaBefore = 0.0, sigmaEnd = 0.0;
     int predicting = 0;
-    for (const Sample &s : samples) {
+    for (const Sample &s : flown.samples) {
       if (s.t < events.dropFrom || s.t > events.dropTo + 0.03)
         continue;
       const double sigma = std::sqrt(s.P(0, 0));
@@ -122,7 +124,7 @@ TEST(LaserConicFilter, DropoutKeepsErrorInsideThreeSigma)
     }
     EXPECT_GT(sigmaEnd, sigmaBefore);
     EXPECT_GT(predicting, 50); // 0.4 s of 0.5 s at 200 Hz after the 0.1 s timeout
-    for (const FrameRecord &f : frames)
+    for (const FrameRecord &f : flown.frames)
       if (f.t >= events.dropTo && f.t < events.dropTo + 0.05) {
         EXPECT_EQ(f.status, vpLaserConicFilter::FRAME_ACCEPTED);
       }
@@ -135,21 +137,19 @@ TEST(LaserConicFilter, RejectsFiveSigmaOutliers)
 {
   int outliers = 0, rejected = 0;
   for (unsigned int run = 0; run < 6; ++run) {
-    vpLaserConicFilter filter;
-    std::vector<Sample> samples;
-    std::vector<FrameRecord> frames;
     FrameEvents events;
     for (int k = 40; k < 240; k += 7)
       events.outlierFrames.push_back(k);
-    laser_flight::fly(Flight(700 + run), 8.0, 800 + run, filter, samples, frames, events);
+    const FlightRun flown(Flight(700 + run), 8.0, 800 + run, events);
+    const std::vector<FrameRecord> &frames = flown.frames;
     for (size_t i = 0; i < frames.size(); ++i)
       for (int o : events.outlierFrames)
         if (static_cast<int>(i) == o && frames[i].hasPlane) {
           ++outliers;
           rejected += frames[i].status == vpLaserConicFilter::FRAME_REJECTED;
         }
-    EXPECT_EQ(filter.getGroundStepCount(), 0u);
-    EXPECT_EQ(filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING);
+    EXPECT_EQ(flown.filter.getGroundStepCount(), 0u);
+    EXPECT_EQ(flown.filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING);
   }
   std::printf("5-sigma outliers rejected: %d of %d\n", rejected, outliers);
   ASSERT_GT(outliers, 150);
@@ -166,10 +166,8 @@ TEST(LaserConicFilter, DetectsGroundStepWithinThreeFrames)
   for (unsigned int run = 0; run < 6; ++run) {
     Flight flight(900 + run);
     flight.stepTime = 3.01 + 0.005 * run;
-    vpLaserConicFilter filter;
-    std::vector<Sample> samples;
-    std::vector<FrameRecord> frames;
-    laser_flight::fly(flight, 5.0, 1000 + run, filter, samples, frames);
+    const FlightRun flown(flight, 5.0, 1000 + run);
+    const std::vector<FrameRecord> &frames = flown.frames;
     int first = -1, detected = -1;
     for (size_t i = 0; i < frames.size(); ++i) {
       if (first < 0 && frames[i].t >= flight.stepTime)
@@ -179,12 +177,12 @@ TEST(LaserConicFilter, DetectsGroundStepWithinThreeFrames)
     }
     ASSERT_GE(detected, first) << "run " << run;
     EXPECT_LE(detected - first, 2) << "run " << run;
-    EXPECT_EQ(filter.getGroundStepCount(), 1u);
+    EXPECT_EQ(flown.filter.getGroundStepCount(), 1u);
     // After the step no transient: the error stays at the noise level (a few sigma, never a part of the
     // 20 cm step) and inside 3 sigma as often as before it.
     const double settled = frames[detected].t + 0.1 + 0.03;
     int after = 0, inside = 0;
-    for (const Sample &s : samples)
+    for (const Sample &s : flown.samples)
       if (s.t > settled) {
         ++after;
         inside += std::abs(s.x(0) - s.truth.h) <= 3.0 * std::sqrt(s.P(0, 0));
@@ -192,7 +190,7 @@ TEST(LaserConicFilter, DetectsGroundStepWithinThreeFrames)
       }
     allAfter += after;
     allInside += inside;
-    EXPECT_EQ(filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING);
+    EXPECT_EQ(flown.filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING);
   }
   std::printf("after the step: altitude inside 3 sigma in %d of %d samples\n", allInside, allAfter);
   EXPECT_GE(allInside, 0.95 * allAfter);

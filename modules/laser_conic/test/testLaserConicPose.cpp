@@ -22,21 +22,6 @@ namespace
 const vpLaserConicPose::vpLaserConicMethod kAllMethods[] = {vpLaserConicPose::PLANE_PAIR, vpLaserConicPose::PP5,
                                                             vpLaserConicPose::PP3, vpLaserConicPose::GP3};
 
-std::string name(vpLaserConicPose::vpLaserConicMethod m)
-{
-  switch (m) {
-  case vpLaserConicPose::PLANE_PAIR:
-    return "PLANE_PAIR";
-  case vpLaserConicPose::PP5:
-    return "PP5";
-  case vpLaserConicPose::PP3:
-    return "PP3";
-  case vpLaserConicPose::GP3:
-    return "GP3";
-  }
-  return "?";
-}
-
 Eigen::Vector4d toEigen(const vpPlane &p) { return Eigen::Vector4d(p.getA(), p.getB(), p.getC(), p.getD()); }
 
 vpLaserConicPose makeEstimator(const laser_test::Rig &rig)
@@ -213,7 +198,7 @@ struct NoiseRatios
 TEST(LaserConicPose, ExactDataEveryMethod)
 {
   for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
-    evaluate(method, 2000, 30, 0.0, 0.0, 100 + method).checkExact("exact " + name(method));
+    evaluate(method, 2000, 30, 0.0, 0.0, 100 + method).checkExact("exact " + vpLaserConicPose::getMethodName(method));
   }
 }
 
@@ -249,7 +234,7 @@ TEST(LaserConicPose, ExactDistortedPixelsEveryMethod)
         }
       }
       ASSERT_GT(exact.normal.size(), 250u);
-      exact.checkExact("distorted kdu " + std::to_string(kdu) + " " + name(method));
+      exact.checkExact("distorted kdu " + std::to_string(kdu) + " " + vpLaserConicPose::getMethodName(method));
       if (method == vpLaserConicPose::PLANE_PAIR) {
         ignored.print("distortion ignored kdu " + std::to_string(kdu));
         EXPECT_GT(laser_test::median(ignored.normal), 1e-3);
@@ -268,7 +253,7 @@ TEST(LaserConicPose, ExactDataGivesAllInliersAndThePixelConic)
     vpPlane plane;
     ASSERT_TRUE(estimator.computePlane(points, method, plane)) << estimator.getFailureReason();
     EXPECT_TRUE(estimator.getFailureReason().empty());
-    EXPECT_EQ(estimator.getInliers().size(), points.size()) << name(method);
+    EXPECT_EQ(estimator.getInliers().size(), points.size()) << vpLaserConicPose::getMethodName(method);
     if (method != vpLaserConicPose::PLANE_PAIR) {
       EXPECT_GT(estimator.getRansacTrials(), 0);
     }
@@ -279,7 +264,8 @@ TEST(LaserConicPose, ExactDataGivesAllInliersAndThePixelConic)
       for (unsigned int j = 0; j < 3; ++j)
         c(i, j) = C[i][j];
     for (const vpImagePoint &p : points)
-      EXPECT_LT(vpLaserSolvers::sampsonDistance(c, Eigen::Vector2d(p.get_u(), p.get_v())), 1e-6) << name(method);
+      EXPECT_LT(vpLaserSolvers::sampsonDistance(c, Eigen::Vector2d(p.get_u(), p.get_v())), 1e-6)
+          << vpLaserConicPose::getMethodName(method);
   }
 }
 
@@ -307,7 +293,7 @@ TEST(LaserConicPose, FiftyPercentOutliers)
       for (unsigned int i : inliers)
         EXPECT_FALSE(isOutlier[i]);
     }
-    e.checkExact("50% outliers " + name(method));
+    e.checkExact("50% outliers " + vpLaserConicPose::getMethodName(method));
   }
 }
 
@@ -335,7 +321,7 @@ TEST(LaserConicPose, NoisyPoints)
         if (ratios.estimate(s, points, method, k, sigma, estimator, plane))
           ratios.add(plane, s, sigma, n);
       }
-      ratios.check("sigma " + std::to_string(sigma).substr(0, 3) + " px " + name(method));
+      ratios.check("sigma " + std::to_string(sigma).substr(0, 3) + " px " + vpLaserConicPose::getMethodName(method));
     }
   }
 }
@@ -364,11 +350,11 @@ TEST(LaserConicPose, NoisyPointsWithFiftyPercentOutliers)
       int wrong = 0;
       for (unsigned int i : inliers)
         wrong += isOutlier[i] ? 1 : 0;
-      EXPECT_EQ(wrong, 0) << name(method) << " scene " << k;
-      EXPECT_GE(inliers.size(), 45u) << name(method) << " scene " << k;
+      EXPECT_EQ(wrong, 0) << vpLaserConicPose::getMethodName(method) << " scene " << k;
+      EXPECT_GE(inliers.size(), 45u) << vpLaserConicPose::getMethodName(method) << " scene " << k;
       ratios.add(plane, s, sigma, 50.0);
     }
-    ratios.check("sigma 1 px + 50% outliers " + name(method));
+    ratios.check("sigma 1 px + 50% outliers " + vpLaserConicPose::getMethodName(method));
   }
 }
 
@@ -403,7 +389,7 @@ void expectThrowCode(vpLaserConicPose &estimator, const std::vector<vpImagePoint
   vpPlane plane;
   try {
     estimator.computePlane(points, method, plane);
-    ADD_FAILURE() << "no exception for " << name(method);
+    ADD_FAILURE() << "no exception for " << vpLaserConicPose::getMethodName(method);
   } catch (const vpLaserConicException &e) {
     EXPECT_EQ(e.getCode(), code) << e.getMessage();
     EXPECT_FALSE(std::string(e.getMessage()).empty());
@@ -465,6 +451,28 @@ TEST(LaserConicPose, TooFewOrNonFinitePointsThrow)
   }
 }
 
+// The names the messages use are the enumerators' spellings; the too-few-points message names the method.
+TEST(LaserConicPose, MethodNames)
+{
+  EXPECT_EQ(vpLaserConicPose::getMethodName(vpLaserConicPose::PLANE_PAIR), "PLANE_PAIR");
+  EXPECT_EQ(vpLaserConicPose::getMethodName(vpLaserConicPose::PP5), "PP5");
+  EXPECT_EQ(vpLaserConicPose::getMethodName(vpLaserConicPose::PP3), "PP3");
+  EXPECT_EQ(vpLaserConicPose::getMethodName(vpLaserConicPose::GP3), "GP3");
+  EXPECT_EQ(vpLaserConicPose::getMethodName(static_cast<vpLaserConicPose::vpLaserConicMethod>(17)), "unknown");
+  std::mt19937 rng(12);
+  std::vector<vpImagePoint> points;
+  const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 4, points);
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  vpPlane plane;
+  try {
+    estimator.computePlane(points, vpLaserConicPose::PP5, plane);
+    ADD_FAILURE() << "4 points for PP5 did not throw";
+  } catch (const vpLaserConicException &e) {
+    EXPECT_NE(e.getStringMessage().find("method PP5 needs at least 5 points"), std::string::npos)
+        << e.getStringMessage();
+  }
+}
+
 TEST(LaserConicPose, CollinearPointsFailWithAReason)
 {
   std::mt19937 rng(13);
@@ -477,7 +485,7 @@ TEST(LaserConicPose, CollinearPointsFailWithAReason)
   vpLaserConicPose estimator = makeEstimator(s.rig);
   for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
     vpPlane plane(1.0, 2.0, 3.0, 4.0);
-    EXPECT_FALSE(estimator.computePlane(line, method, plane)) << name(method);
+    EXPECT_FALSE(estimator.computePlane(line, method, plane)) << vpLaserConicPose::getMethodName(method);
     EXPECT_NE(estimator.getFailureReason().find("collinear"), std::string::npos) << estimator.getFailureReason();
     EXPECT_EQ(plane.getD(), 4.0); // untouched
   }
@@ -497,9 +505,10 @@ TEST(LaserConicPose, PlaneBehindTheLaserFailsWithAReason)
   vpLaserConicPose estimator = makeEstimator(s.rig);
   for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
     vpPlane plane;
-    EXPECT_FALSE(estimator.computePlane(points, method, plane)) << name(method);
-    EXPECT_FALSE(estimator.getFailureReason().empty()) << name(method);
-    std::printf("%-10s behind the laser: %s\n", name(method).c_str(), estimator.getFailureReason().c_str());
+    EXPECT_FALSE(estimator.computePlane(points, method, plane)) << vpLaserConicPose::getMethodName(method);
+    EXPECT_FALSE(estimator.getFailureReason().empty()) << vpLaserConicPose::getMethodName(method);
+    std::printf("%-10s behind the laser: %s\n", vpLaserConicPose::getMethodName(method).c_str(),
+                estimator.getFailureReason().c_str());
   }
 }
 
@@ -518,9 +527,10 @@ TEST(LaserConicPose, CameraInsideTheLaserConeFailsForPp3)
   // The other methods need no epipolar tangent: the apex offset along the line of sight still fixes the scale.
   for (vpLaserConicPose::vpLaserConicMethod method :
        {vpLaserConicPose::PLANE_PAIR, vpLaserConicPose::PP5, vpLaserConicPose::GP3}) {
-    ASSERT_TRUE(estimator.computePlane(points, method, plane)) << name(method) << ": " << estimator.getFailureReason();
-    EXPECT_LT(laser_test::normalError(toEigen(plane), s.plane), 1e-9) << name(method);
-    EXPECT_LT(laser_test::altitudeError(toEigen(plane), s.plane), 1e-9) << name(method);
+    ASSERT_TRUE(estimator.computePlane(points, method, plane))
+        << vpLaserConicPose::getMethodName(method) << ": " << estimator.getFailureReason();
+    EXPECT_LT(laser_test::normalError(toEigen(plane), s.plane), 1e-9) << vpLaserConicPose::getMethodName(method);
+    EXPECT_LT(laser_test::altitudeError(toEigen(plane), s.plane), 1e-9) << vpLaserConicPose::getMethodName(method);
   }
 }
 
@@ -722,11 +732,11 @@ TEST(LaserConicPose, ToleratesIntrinsicErrors)
     const double m = laser_test::median(normals[method]);
     std::printf("%-4s intrinsics off by 5 px: median normal error %.3f deg (PP5 %.3f deg, ratio %.2f); health %.2f "
                 "(calibrated %.3f)\n",
-                name(method).c_str(), vpMath::deg(m), vpMath::deg(pp5), m / pp5, laser_test::median(health[method]),
-                laser_test::median(healthCalibrated[method]));
-    EXPECT_LT(m, 1.5 * pp5) << name(method);
-    EXPECT_LT(laser_test::median(healthCalibrated[method]), 1.05) << name(method);
-    EXPECT_GT(laser_test::median(health[method]), 1.3) << name(method);
+                vpLaserConicPose::getMethodName(method).c_str(), vpMath::deg(m), vpMath::deg(pp5), m / pp5,
+                laser_test::median(health[method]), laser_test::median(healthCalibrated[method]));
+    EXPECT_LT(m, 1.5 * pp5) << vpLaserConicPose::getMethodName(method);
+    EXPECT_LT(laser_test::median(healthCalibrated[method]), 1.05) << vpLaserConicPose::getMethodName(method);
+    EXPECT_GT(laser_test::median(health[method]), 1.3) << vpLaserConicPose::getMethodName(method);
   }
 }
 
@@ -742,16 +752,17 @@ TEST(LaserConicPose, ShortArcIsRefused)
        {vpLaserConicPose::PP5, vpLaserConicPose::PP3, vpLaserConicPose::GP3}) {
     vpLaserConicPose estimator = makeEstimator(s.rig);
     vpPlane plane;
-    EXPECT_FALSE(estimator.computePlane(arc, method, plane)) << name(method);
-    EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_SHORT_ARC) << name(method);
+    EXPECT_FALSE(estimator.computePlane(arc, method, plane)) << vpLaserConicPose::getMethodName(method);
+    EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_SHORT_ARC) << vpLaserConicPose::getMethodName(method);
     EXPECT_NE(estimator.getFailureReason().find("short an arc"), std::string::npos) << estimator.getFailureReason();
     estimator.setArcCoverageThreshold(vpMath::rad(30.0));
-    ASSERT_TRUE(estimator.computePlane(arc, method, plane)) << name(method);
+    ASSERT_TRUE(estimator.computePlane(arc, method, plane)) << vpLaserConicPose::getMethodName(method);
     EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_OK);
     // The angle around the ellipse is the cone azimuth up to the perspective of the view, counted in
     // 0.5 deg bins: 59 deg of azimuth span read as 59-62 deg.
-    EXPECT_NEAR(estimator.getArcCoverage(), vpMath::rad(60.0), vpMath::rad(2.5)) << name(method);
-    EXPECT_LT(laser_test::normalError(toEigen(plane), s.plane), 1e-8) << name(method);
+    EXPECT_NEAR(estimator.getArcCoverage(), vpMath::rad(60.0), vpMath::rad(2.5))
+        << vpLaserConicPose::getMethodName(method);
+    EXPECT_LT(laser_test::normalError(toEigen(plane), s.plane), 1e-8) << vpLaserConicPose::getMethodName(method);
   }
   vpLaserConicPose estimator;
   EXPECT_THROW(estimator.setArcCoverageThreshold(-1.0), vpLaserConicException);

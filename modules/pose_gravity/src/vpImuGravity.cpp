@@ -14,6 +14,7 @@
 
 #include <visp3/core/vpMatrix.h>
 #include <visp3/core/vpThetaUVector.h>
+#include <visp3/robust/vpNumericCsv.h>
 
 namespace
 {
@@ -187,36 +188,21 @@ void vpImuGravity::loadCsv(const std::string &file, double timeScale)
   std::ifstream in(file.c_str());
   if (!in)
     badFile(file, 0, "cannot open the IMU file");
-  std::string line;
-  std::vector<double> values;
-  size_t lineNo = 0;
-  bool first = true;
   vpColVector w(3), a(3);
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (blankOrComment(line))
-      continue;
-    const bool numeric = parseNumbers(line, values);
-    if (!numeric && first) { // a header line
-      first = false;
-      continue;
-    }
-    first = false;
-    if (!numeric)
-      badFile(file, lineNo, "a field is not a number: '" + line + "'");
-    if (values.size() != 7)
-      badFile(file, lineNo,
-              "expected 7 columns (timestamp, wx, wy, wz, ax, ay, az), got " + std::to_string(values.size()));
-    for (unsigned int i = 0; i < 3; ++i) {
-      w[i] = values[1 + i];
-      a[i] = values[4 + i];
-    }
-    try {
-      addSample(values[0] * timeScale, w, a);
-    } catch (const vpPoseGravityException &e) {
-      badFile(file, lineNo, e.getStringMessage());
-    }
-  }
+  vpReadNumericCsv(
+      in, 7, "timestamp, wx, wy, wz, ax, ay, az", parseNumbers,
+      [&](size_t lineNo, const std::vector<double> &values) {
+        for (unsigned int i = 0; i < 3; ++i) {
+          w[i] = values[1 + i];
+          a[i] = values[4 + i];
+        }
+        try {
+          addSample(values[0] * timeScale, w, a);
+        } catch (const vpPoseGravityException &e) {
+          badFile(file, lineNo, e.getStringMessage());
+        }
+      },
+      [&](size_t lineNo, const std::string &what) { badFile(file, lineNo, what); });
   if (m_samples.empty())
     badFile(file, 0, "no IMU sample");
 }

@@ -296,6 +296,11 @@ public:
   //! What a status means, in words.
   static std::string getStatusMessage(vpLaserConicStatus status);
   /*!
+    The name of a method as its enumerator spells it: "PLANE_PAIR", "PP5", "PP3" or "GP3" ("unknown" for
+    a value outside the enumeration), as the error messages of computePlane() name it.
+  */
+  static std::string getMethodName(vpLaserConicMethod method);
+  /*!
     After STATUS_CALIBRATION_MISMATCH, the standard mistake that explains the trace (MISTAKE_UNKNOWN
     when none does, or after any other status). getCalibrationHealth(), getConstrainedRms() and
     getFreeRms() then give the figures of the refused estimate.

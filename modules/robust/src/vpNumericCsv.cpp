@@ -1,0 +1,46 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+#include <visp3/robust/vpNumericCsv.h>
+
+namespace
+{
+bool blankOrComment(const std::string &line)
+{
+  const size_t first = line.find_first_not_of(" \t\r");
+  return first == std::string::npos || line[first] == '#';
+}
+} // namespace
+
+void vpReadNumericCsv(std::istream &in, size_t columns, const std::string &columnNames,
+                      const std::function<bool(const std::string &, std::vector<double> &)> &parse,
+                      const std::function<void(size_t, const std::vector<double> &)> &row,
+                      const std::function<void(size_t, const std::string &)> &fail)
+{
+  std::string line;
+  std::vector<double> values;
+  size_t lineNo = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (blankOrComment(line))
+      continue;
+    const bool numeric = parse(line, values);
+    if (!numeric && first) { // a header line
+      first = false;
+      continue;
+    }
+    first = false;
+    if (!numeric) {
+      fail(lineNo, "a field is not a number: '" + line + "'");
+      return;
+    }
+    if (values.size() != columns) {
+      fail(lineNo, "expected " + std::to_string(columns) + " columns (" + columnNames + "), got " +
+                       std::to_string(values.size()));
+      return;
+    }
+    row(lineNo, values);
+  }
+}
