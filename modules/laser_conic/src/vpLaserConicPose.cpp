@@ -289,7 +289,6 @@ Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserCo
   return consensus;
 }
 
-//! \e points with u and v exchanged.
 // A ground plane closer to the camera centre than a tenth of the baseline leaves the camera and the
 // laser apex on the ground: no ring could be imaged there. A wrong calibration (e.g. the half opening
 // angle) can make the fit collapse onto such a plane, which must not be returned as an altitude.
@@ -299,6 +298,7 @@ bool passesThroughTheRig(const Eigen::Vector4d &plane, const vpLaserSolvers::Las
   return std::fabs(plane(3)) < 0.1 * cone.apex.norm() * normal;
 }
 
+//! \e points with u and v exchanged.
 std::vector<vpImagePoint> swappedUV(const std::vector<vpImagePoint> &points)
 {
   std::vector<vpImagePoint> out(points.size());
