@@ -255,7 +255,7 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
     const double F = k.a * u * u + 2.0 * k.b * u * v + k.c * v * v + 2.0 * k.d * u + 2.0 * k.e * v + k.f;
     if (!(norm > 0.0))
       return;
-    points.push_back(OnConic{u, v, fu / norm, fv / norm, F / (2.0 * norm), std::atan2(v - vc, u - uc)});
+    points.push_back(OnConic{u, v, fu / norm, fv / norm, F / (2.0 * norm), curveOrder(u - uc, v - vc)});
   }
   std::vector<int> sequence;
   std::vector<double> arc, offset, fitted;
@@ -302,7 +302,7 @@ bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step
       return;
     const double toNormal = along / norm;
     const double slope = -(alongRow ? fv : fu) / (alongRow ? fu : fv);
-    samples.push_back(GuidedSample{alongRow, t, x, margin / toNormal, toNormal, std::atan2(v - vc, u - uc), slope});
+    samples.push_back(GuidedSample{alongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
   };
   for (int v = 0; v < H; v += step) {
     roots.clear();

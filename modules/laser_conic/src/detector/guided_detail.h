@@ -10,6 +10,7 @@
 #ifndef VP_LASER_GUIDED_DETAIL_H
 #define VP_LASER_GUIDED_DETAIL_H
 
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -27,9 +28,25 @@ struct GuidedSample
   double pos;        //!< predicted crossing along the line
   double halfWindow; //!< margin along the line (the margin across the curve / sine of the crossing angle)
   double toNormal;   //!< offset along the line x toNormal = offset across the curve
-  double angle;      //!< around the conic's centre: the order along the curve
+  double angle;      //!< around the conic's centre, as curveOrder(): the order along the curve
   double slope;      //!< d pos / d line of the predicted curve (the neighbouring lines' shift)
 };
+
+/*!
+  A number that orders directions (dx, dy) as std::atan2(dy, dx) does, from -pi (excluded) to pi, without a
+  transcendental function (the order of the points along the curve was a tenth of the tracking mode's time):
+  dy / (|dx| + |dy|) on the right half plane, continued monotonically to (-2, 2] on the left one.
+*/
+inline double curveOrder(double dx, double dy)
+{
+  const double sum = std::fabs(dx) + std::fabs(dy);
+  if (!(sum > 0.0))
+    return 0.0;
+  const double d = dy / sum; // -1 .. 1
+  if (dx >= 0.0)
+    return d;
+  return dy >= 0.0 ? 2.0 - d : -2.0 - d;
+}
 
 /*!
   The crossings of the conic C with every step-th row (where it crosses the rows more steeply than the
@@ -44,6 +61,7 @@ struct ProfileResult
   Crossing crossing;   //!< the point and its half-maximum run
   double offset = 0.0; //!< across the curve from the prediction (pixels)
   double noise = 0.0, threshold = 0.0;
+  int lines = 0; //!< image lines summed
 };
 
 //! Buffers of the profile measurements, reused from sample to sample.
@@ -67,9 +85,20 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, s
 */
 void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings);
 
-//! Measures the profile of sample s in the RGBA image I.
+//! Where a profile searches: a window along its line, and the noise its threshold uses.
+struct ProfileWindow
+{
+  double centre = 0.0;     //!< offset (pixels along the line) of the window's centre from the prediction
+  double halfWidth = 0.0;  //!< half width along the line; 0: the sample's whole margin (GuidedSample::halfWindow)
+  double lineNoise = -1.0; //!< noise of one line (grey levels); negative: measured along this profile
+};
+
+/*!
+  Measures the profile of sample s in the RGBA image I within \e window (kept inside the sample's margin).
+  ProfileResult::noise is that of the summed lines, whether measured or given.
+*/
 ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
-                             ProfileBuffers &buffers);
+                             const ProfileWindow &window, ProfileBuffers &buffers);
 } // namespace vsp::laser_detector
 
 #endif

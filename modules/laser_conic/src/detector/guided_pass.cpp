@@ -38,8 +38,9 @@ public:
     m_points.push_back(p);
   }
   // Whether a point found lies on the profile of sample s: within RidgeTuning::guidedKnownAlong pixels of it along
-  // the predicted curve and RidgeTuning::guidedKnownAcross across it.
-  bool covers(const GuidedSample &s) const
+  // the predicted curve and RidgeTuning::guidedKnownAcross across it. \e offset: then that point's offset across
+  // the predicted curve (as ProfileResult::offset).
+  bool covers(const GuidedSample &s, double &offset) const
   {
     const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
     int a = 0, b = 0;
@@ -53,8 +54,10 @@ public:
           const double du = m_points[static_cast<size_t>(k)].get_u() - u,
                        dv = m_points[static_cast<size_t>(k)].get_v() - v;
           if (std::fabs(du * tu + dv * tv) <= RidgeTuning::guidedKnownAlong &&
-              std::fabs(du * tv - dv * tu) <= RidgeTuning::guidedKnownAcross)
+              std::fabs(du * tv - dv * tu) <= RidgeTuning::guidedKnownAcross) {
+            offset = (s.alongRow ? du - s.slope * dv : dv - s.slope * du) * s.toNormal;
             return true;
+          }
         }
     return false;
   }
@@ -136,6 +139,56 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   close();
 }
 
+// Measures the samples no point covers yet (in \e limit when not null) and sets their state and result; returns
+// the samples missed. A sample next to one with a point is first searched within RidgeTuning::guidedFollowMargin
+// of that point's offset, with the noise of the last full profile (see RidgeTuning::guidedFollowMargin); the
+// full margin is searched when that finds nothing. \e noises and \e thresholds: those of the full profiles.
+int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const std::vector<GuidedSample> &samples,
+                   const RegionSpans *limit, const FoundCells &found, ProfileBuffers &buffers,
+                   std::vector<SampleState> &state, std::vector<ProfileResult> &results, std::vector<double> &noises,
+                   std::vector<double> &thresholds)
+{
+  const int H = static_cast<int>(I.getHeight());
+  int missed = 0, lastWithPoint = -2, noiseSample = 0;
+  double lastOffset = 0.0, lineNoise = -1.0;
+  for (int i = 0; i < static_cast<int>(samples.size()); ++i) {
+    const GuidedSample &s = samples[static_cast<size_t>(i)];
+    double offset = 0.0;
+    if (found.covers(s, offset)) {
+      state[static_cast<size_t>(i)] = KNOWN;
+      lastOffset = offset;
+      lastWithPoint = i;
+      continue;
+    }
+    if (!inLimit(limit, H, s.alongRow ? s.pos : s.line, s.alongRow ? s.line : s.pos))
+      continue;
+    ProfileResult &r = results[static_cast<size_t>(i)];
+    if (lastWithPoint == i - 1 && lineNoise >= 0.0 && i - noiseSample <= RidgeTuning::guidedNoiseReuse) {
+      ProfileWindow follow;
+      follow.centre = lastOffset / s.toNormal;
+      follow.halfWidth = RidgeTuning::guidedFollowMargin / s.toNormal;
+      follow.lineNoise = lineNoise;
+      r = measureProfile(I, s, settings, follow, buffers);
+    }
+    if (!r.found) {
+      r = measureProfile(I, s, settings, ProfileWindow(), buffers);
+      if (r.lines > 0) {
+        lineNoise = r.noise / std::sqrt(static_cast<double>(r.lines));
+        noiseSample = i;
+      }
+      noises.push_back(r.noise);
+      thresholds.push_back(r.threshold);
+    }
+    state[static_cast<size_t>(i)] = r.found ? FOUND : MISSED;
+    if (r.found) {
+      lastOffset = r.offset;
+      lastWithPoint = i;
+    } else
+      ++missed;
+  }
+  return missed;
+}
+
 // Least-squares ellipse through the points (a subsample of a few hundred). The subsample is chosen by
 // position and sorted: the same points in any order (the first pass's order depends on how it searched) give
 // the same ellipse, to the last bit, and so the same regularised centres (smoothAlongCurve()).
@@ -198,18 +251,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     ++report.iterations;
     state.assign(samples.size(), MISSED);
     results.assign(samples.size(), ProfileResult());
-    for (size_t i = 0; i < samples.size(); ++i) {
-      const GuidedSample &s = samples[i];
-      const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
-      if (found.covers(s))
-        state[i] = KNOWN;
-      else if (inLimit(limit, H, u, v)) {
-        results[i] = measureProfile(I, s, settings, buffers);
-        state[i] = results[i].found ? FOUND : MISSED;
-        noises.push_back(results[i].noise);
-        thresholds.push_back(results[i].threshold);
-      }
-    }
+    const int missed = measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds);
     keepContinuingPieces(state, results, keep);
     int added = 0;
     for (size_t i = 0; i < samples.size(); ++i)
@@ -221,8 +263,9 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
       }
     // The coverage stops growing, or no better prediction. Refitted even then: the final conic is the
     // points' (sorted) fit, whatever the order the first pass returned its points in.
+    // No sample missed: another walk along the refitted conic would measure nothing.
     const bool refitted = refit(fitPoints, C);
-    if (added == 0 || !refitted)
+    if (added == 0 || missed == 0 || !refitted)
       break;
   }
   keepOnTheFinalCurve(C, work.guided);

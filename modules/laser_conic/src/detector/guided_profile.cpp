@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "ridge_profile.h"
 #include "ridge_score.h"
@@ -17,63 +18,76 @@ namespace vsp::laser_detector
 {
 namespace
 {
-// The profile as the first pass's shape tests read a scan line (see ridge_profile.h).
+// The profile as the first pass's shape tests read a scan line (see ridge_profile.h): the sums of the lines
+// from the buffers, the red channel and dominance of the sample's own line from the image (the shape tests
+// read them around one candidate only).
 struct ProfileView
 {
   const ProfileBuffers &b;
   int n;
+  const unsigned char *centre; //!< pixel 0 of the profile on the sample's own line
+  ptrdiff_t stride;            //!< bytes from a pixel of the profile to the next
   int length() const { return n; }
   int at(int k) const { return b.value[static_cast<size_t>(k)]; }
-  int red(int k) const { return b.red[static_cast<size_t>(k)]; }
-  int dominance(int k) const { return b.dominance[static_cast<size_t>(k)]; }
+  int red(int k) const { return centre[k * stride]; }
+  int dominance(int k) const
+  {
+    const unsigned char *p = centre + k * stride;
+    return p[0] - std::max(p[1], p[2]);
+  }
 };
 
-// Reads pixels [start, start + n) of the sample's line into the buffers: the score where the red channel is
-// in the saturation ramp (a saturated core is a plateau of 255, as in the first pass), the unclipped red
-// dominance elsewhere (the matched filter and the noise estimate are then linear in the sensor's noise: a
-// clipped dark floor would hide both), summed over RidgeTuning::guidedLines lines shifted along the predicted
-// curve; the red channel and dominance of the sample's own line; the prefix sums. Returns the lines summed.
-int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, ProfileBuffers &b)
+// The value of one pixel in a profile: the score where the red channel is in the saturation ramp (a saturated
+// core is a plateau of 255, as in the first pass), the unclipped red dominance elsewhere (the matched filter
+// and the noise estimate are then linear in the sensor's noise: a clipped dark floor would hide both). Both
+// are computed and one selected, without a branch: which one a pixel takes is unpredictable on a textured floor.
+inline int profileValue(const unsigned char *p, int saturation, int rampStart)
 {
-  b.value.resize(n);
-  b.dominance.resize(n);
-  b.red.resize(n);
+  const int score = scorePixel(p, saturation), dominance = p[0] - std::max(p[1], p[2]);
+  return p[0] >= rampStart ? score : dominance;
+}
+
+// Adds the values of \e n pixels from \e first, \e stride bytes apart, to \e value. A row's stride is a
+// compile-time 4: the loop is then vectorised.
+template <class Stride>
+void addLine(const unsigned char *first, Stride stride, int n, int saturation, int rampStart, int *value)
+{
+  for (int k = 0; k < n; ++k)
+    value[k] += profileValue(first + k * static_cast<ptrdiff_t>(stride), saturation, rampStart);
+}
+
+// Sums the values of pixels [start, start + n) of the sample's line and of its RidgeTuning::guidedLines - 1
+// neighbours, each shifted along the predicted curve, into b.value, and their prefix sums into b.prefix.
+// Returns the lines summed (those inside the image), and in \e centre the sample's own line's pixel 0.
+int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, ProfileBuffers &b,
+              const unsigned char *&centre)
+{
+  b.value.assign(static_cast<size_t>(n), 0);
   b.prefix.resize(static_cast<size_t>(n) + 1);
   const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
   const ptrdiff_t W = static_cast<ptrdiff_t>(I.getWidth());
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
   const int lineCount = static_cast<int>(s.alongRow ? I.getHeight() : I.getWidth());
-  const ptrdiff_t stride = s.alongRow ? 4 : 4 * W;
   const int rampStart = saturation - RidgeTuning::saturationRamp, half = RidgeTuning::guidedLines / 2;
-  // The lines summed and where they start (pixel 0 of the profile on each); a line is summed pixel by pixel
-  // with the others, so that a column profile reads each image row once (the columns side by side share
-  // their cache lines).
-  const unsigned char *first[2 * RidgeTuning::guidedLines + 1];
-  int used = 0, centre = -1;
+  int used = 0;
+  int *value = b.value.data();
   for (int j = -half; j <= half; ++j) {
     const int line = s.line + j, from = start + static_cast<int>(std::lround(j * s.slope));
     if (line < 0 || line >= lineCount || from < 0 || from + n > lineLength)
       continue;
+    const unsigned char *first =
+        rgba + (s.alongRow ? 4 * (line * W + from) : 4 * (static_cast<ptrdiff_t>(from) * W + line));
     if (j == 0)
-      centre = used;
-    first[used++] = rgba + (s.alongRow ? 4 * (line * W + from) : 4 * (static_cast<ptrdiff_t>(from) * W + line));
-  }
-  for (int k = 0; k < n; ++k) {
-    int sum = 0;
-    for (int m = 0; m < used; ++m) {
-      const unsigned char *p = first[m] + k * stride;
-      const int dominance = p[0] - std::max(p[1], p[2]);
-      sum += p[0] >= rampStart ? scorePixel(p, saturation) : dominance;
-      if (m == centre) {
-        b.red[k] = p[0];
-        b.dominance[k] = dominance;
-      }
-    }
-    b.value[k] = sum;
+      centre = first;
+    if (s.alongRow)
+      addLine(first, std::integral_constant<ptrdiff_t, 4>(), n, saturation, rampStart, value);
+    else
+      addLine(first, 4 * W, n, saturation, rampStart, value);
+    ++used;
   }
   b.prefix[0] = 0;
   for (int k = 0; k < n; ++k)
-    b.prefix[k + 1] = b.prefix[k] + b.value[k];
+    b.prefix[k + 1] = b.prefix[k] + value[k];
   return used;
 }
 
@@ -190,26 +204,33 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
 } // namespace
 
 ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
-                             ProfileBuffers &buffers)
+                             const ProfileWindow &window, ProfileBuffers &buffers)
 {
   ProfileResult result;
   const int h = std::max(1, settings.stripeWidth / 2), f = std::max(RidgeTuning::guidedMinFlank, h + 1);
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
-  const int lo = static_cast<int>(std::floor(s.pos - s.halfWindow)),
-            hi = static_cast<int>(std::ceil(s.pos + s.halfWindow));
+  const double half = window.halfWidth > 0.0 ? window.halfWidth : s.halfWindow;
+  const double from = std::max(s.pos - s.halfWindow, s.pos + window.centre - half),
+               to = std::min(s.pos + s.halfWindow, s.pos + window.centre + half);
+  const int lo = static_cast<int>(std::floor(from)), hi = static_cast<int>(std::ceil(to));
   const int reach = h + RidgeTuning::guidedGap + f;
   const int start = std::max(0, lo - reach), end = std::min(lineLength - 1, hi + reach), n = end - start + 1;
-  if (n < 2 * reach + 1)
+  if (hi < lo || n < 2 * reach + 1)
     return result;
-  const int lines = readLines(I, s, start, n, settings.saturation, buffers);
-  if (lines == 0)
+  const unsigned char *centreLine = nullptr;
+  const int lines = readLines(I, s, start, n, settings.saturation, buffers, centreLine);
+  if (lines == 0 || centreLine == nullptr)
     return result;
+  result.lines = lines;
   const MatchedFilter filter{buffers.prefix, h, f};
   double bestResponse = -1e30;
   const int best = filter.best(std::max(reach, lo - start), std::min(n - 1 - reach, hi - start), bestResponse);
   const int tails = h + RidgeTuning::guidedGap + 1;
-  result.noise = best < 0 ? profileNoise(buffers, n, lines, n, n)
-                          : profileNoise(buffers, n, lines, best - tails, best + tails);
+  if (window.lineNoise >= 0.0)
+    result.noise = window.lineNoise * std::sqrt(static_cast<double>(lines));
+  else
+    result.noise = best < 0 ? profileNoise(buffers, n, lines, n, n)
+                            : profileNoise(buffers, n, lines, best - tails, best + tails);
   result.threshold = std::max(RidgeTuning::guidedMinResponse * lines,
                               settings.factor * result.noise * std::sqrt(1.0 / (2 * h + 1) + 1.0 / f));
   double centre = 0.0;
@@ -220,7 +241,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
       static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse,
                                           settings.factor * result.noise / std::sqrt(static_cast<double>(lines)))));
   if (best < 0 || bestResponse < result.threshold ||
-      !shapeAndCentre(ProfileView{buffers, n}, filter, best, settings, flankThreshold, first, last, centre))
+      !shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
+                      filter, best, settings, flankThreshold, first, last, centre))
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
   // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here). Its

@@ -111,6 +111,13 @@ struct RidgeTuning
   //! Pixels of background on each side of the matched filter's stripe box, at least: the longer, the less
   //! noisy the background level.
   static constexpr int guidedMinFlank = 4;
+  //! A sample next to one whose point is known is first searched within guidedFollowMargin pixels (across the
+  //! curve) of that point's offset: a piece of curve moves by guidedMaxJump per sample at most, and the short
+  //! profile costs a third of the full margin's. Its threshold uses the noise of a full profile measured at
+  //! most guidedNoiseReuse samples before (the background's noise changes slowly along the curve).
+  static constexpr double guidedFollowMargin = 3.0;
+  //! See guidedFollowMargin.
+  static constexpr int guidedNoiseReuse = 8;
 };
 } // namespace vsp::laser_detector
 
