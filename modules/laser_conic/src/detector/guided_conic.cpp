@@ -42,6 +42,21 @@ struct ConicCoefficients
     v = (b * d - a * e) / det;
     return std::isfinite(u) && std::isfinite(v);
   }
+  // The multiples of \e step in [0, n) between which the ellipse's lines lie: rows (v) when !alongU, else
+  // columns (u), one step beyond each end (rounding); [0, n) when the extent cannot be computed. A row v
+  // crosses the ellipse where (b v + d)^2 - a (c v^2 + 2 e v + f) >= 0, a quadratic in v with a negative
+  // leading term (b^2 - a c < 0); for columns a and c, d and e swap roles.
+  void extent(bool alongU, int step, int n, int &first, int &last) const
+  {
+    const double p = alongU ? c : a, q = alongU ? e : d, r = alongU ? d : e, t = alongU ? a : c;
+    std::vector<double> ends;
+    solveQuadratic(b * b - p * t, 2.0 * (b * q - p * r), q * q - p * f, ends);
+    if (ends.size() != 2 || !std::isfinite(ends[0]) || !std::isfinite(ends[1]))
+      return;
+    const double lo = std::min(ends[0], ends[1]) - step, hi = std::max(ends[0], ends[1]) + step;
+    first = std::max(0, static_cast<int>(std::ceil(std::max(lo, 0.0) / step)) * step);
+    last = std::min(n - 1, static_cast<int>(std::min(hi, static_cast<double>(n - 1))));
+  }
 };
 
 // Least-squares conic through the listed points, kept only if it is an ellipse (vpLaserSolvers::isEllipse()).
@@ -56,13 +71,12 @@ bool fitImageEllipse(const vsp::laser_estimators::PointList &points, const std::
 }
 
 // Arc (radians) around (uc, vc) covered by the points: 36 sectors of 10 degrees, the occupied ones.
-double sectorCoverage(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices, double uc,
-                      double vc)
+double sectorCoverage(const vsp::laser_estimators::PointList &points, double uc, double vc)
 {
   const double pi = 3.14159265358979323846;
   bool occupied[36] = {false};
-  for (int i : indices) {
-    const double t = std::atan2(points[i].y() - vc, points[i].x() - uc) + pi;
+  for (const Eigen::Vector2d &p : points) {
+    const double t = std::atan2(p.y() - vc, p.x() - uc) + pi;
     occupied[std::min(35, static_cast<int>(t / (2.0 * pi) * 36.0))] = true;
   }
   return static_cast<double>(std::count(occupied, occupied + 36, true)) * (2.0 * pi / 36.0);
@@ -239,7 +253,13 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   const double pi = 3.14159265358979323846, diagonal = std::hypot(W, H);
   if (!k.centre(uc, vc) || std::hypot(uc - 0.5 * W, vc - 0.5 * H) > 4.0 * diagonal)
     return false; // a huge ellipse: a few straight pieces, not a ring
-  return sectorCoverage(all, inliers, uc, vc) >= pi / 3.0;
+  // The arc of about 300 of the inliers, evenly spread along their list (an arc tangent each: all of them cost
+  // as much as the rest of the fit).
+  sample.clear();
+  const size_t stride = std::max<size_t>(1, inliers.size() / 300);
+  for (size_t j = 0; j < inliers.size(); j += stride)
+    sample.push_back(all[static_cast<size_t>(inliers[j])]);
+  return sectorCoverage(sample, uc, vc) >= pi / 3.0;
 }
 
 void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
@@ -304,13 +324,17 @@ bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step
     const double slope = -(alongRow ? fv : fu) / (alongRow ? fu : fv);
     samples.push_back(GuidedSample{alongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
   };
-  for (int v = 0; v < H; v += step) {
+  // Only the lines that cross the ellipse: its extent along v (rows) and u (columns).
+  int firstRow = 0, lastRow = H - 1, firstColumn = 0, lastColumn = W - 1;
+  k.extent(false, step, H, firstRow, lastRow);
+  k.extent(true, step, W, firstColumn, lastColumn);
+  for (int v = firstRow; v <= lastRow; v += step) {
     roots.clear();
     solveQuadratic(k.a, 2.0 * (k.b * v + k.d), k.c * v * v + 2.0 * k.e * v + k.f, roots);
     for (double u : roots)
       add(true, v, u);
   }
-  for (int u = 0; u < W; u += step) {
+  for (int u = firstColumn; u <= lastColumn; u += step) {
     roots.clear();
     solveQuadratic(k.c, 2.0 * (k.b * u + k.e), k.a * u * u + 2.0 * k.d * u + k.f, roots);
     for (double v : roots)

@@ -103,6 +103,7 @@ struct RidgeWorkspace
   std::vector<Crossing> guided;             //!< the crossings the guided pass added (see guided_pass.h)
   std::vector<int> guidedCells, guidedNext; //!< guided pass: per cell its last point found, and the previous one's
   std::vector<vpImagePoint> guidedFound;    //!< guided pass: the points found (both passes), in cell lists
+  int guidedColumns = 0;                    //!< guided pass: columns of the cell grid of guidedCells
   unsigned int regionHeight = 0, regionWidth = 0, regionGeneration = 0; //!< what the region was rasterised for
   bool regionValid = false;
 };
