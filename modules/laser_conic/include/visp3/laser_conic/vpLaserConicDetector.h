@@ -89,6 +89,10 @@ struct vpLaserConicDetectorRun
   measured along that profile (robust spread, as above): a threshold local to the profile instead of the
   global contrast. Around the best response, the first pass's shape tests (width, white light) and
   sub-pixel centre apply (a saturated core needs red flanks out of one line's noise by the same factor).
+  A profile next to one with a point is first searched within 3 px (across the curve) of that point, with
+  the noise of the last full profile (measured at most 8 profiles before); the whole margin is searched
+  when that finds nothing. A piece of curve moves by about a pixel per profile: the short profile finds its
+  continuation at a third of the cost.
   Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
