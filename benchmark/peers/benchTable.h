@@ -47,6 +47,7 @@ struct BenchTargets
   double gp3At50 = -1.0;
   double gp3Vs2000FitEllipse = -1.0; //!< GP-3 on 1000 trace points + 1000 outliers / cv::fitEllipse on them
   double wholeFrame = -1.0, cvtColor = -1.0;
+  double trackingFrame = -1.0; //!< tracking (previous conic) + GP-3, worst floor, on the scale of cvtColor
   double filterPropagate = -1.0, filterUpdate = -1.0,
          filterAllocationsPerSample = -1.0; //!< vpLaserConicFilter (ns, ns, count)
   double selfCalibration20 = -1.0;          //!< laser self-calibration on 20 frames of 1000 points, ns
