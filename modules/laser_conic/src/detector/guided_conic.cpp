@@ -135,7 +135,10 @@ void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence,
   std::vector<int> order(points.size());
   for (size_t k = 0; k < order.size(); ++k)
     order[k] = static_cast<int>(k);
-  std::sort(order.begin(), order.end(), [&](int p, int q) { return points[p].angle < points[q].angle; });
+  // The points often come in that order already (one walk along the curve): sorted only when they do not.
+  const auto byAngle = [&](int p, int q) { return points[p].angle < points[q].angle; };
+  if (!std::is_sorted(order.begin(), order.end(), byAngle))
+    std::sort(order.begin(), order.end(), byAngle);
   const size_t n = order.size();
   std::vector<double> along(n, 0.0);
   auto chord = [&](int p, int q) {
