@@ -61,7 +61,8 @@ struct ProfileResult
   Crossing crossing;   //!< the point and its half-maximum run
   double offset = 0.0; //!< across the curve from the prediction (pixels)
   double noise = 0.0, threshold = 0.0;
-  int lines = 0; //!< image lines summed
+  double response = 0.0; //!< the matched filter's best response
+  int lines = 0;         //!< image lines summed
 };
 
 //! Buffers of the profile measurements, reused from sample to sample.
@@ -91,6 +92,7 @@ struct ProfileWindow
   double centre = 0.0;     //!< offset (pixels along the line) of the window's centre from the prediction
   double halfWidth = 0.0;  //!< half width along the line; 0: the sample's whole margin (GuidedSample::halfWindow)
   double lineNoise = -1.0; //!< noise of one line (grey levels); negative: measured along this profile
+  bool singleLine = false; //!< the sample's line alone, not RidgeTuning::guidedLines lines
 };
 
 /*!

@@ -167,6 +167,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
   const int H = static_cast<int>(I.getHeight());
   int missed = 0, lastWithPoint = -2, noiseSample = 0;
   double lastOffset = 0.0, lineNoise = -1.0;
+  bool strong = false;
   for (int i = 0; i < static_cast<int>(samples.size()); ++i) {
     const GuidedSample &s = samples[static_cast<size_t>(i)];
     double offset = 0.0;
@@ -184,6 +185,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
       follow.centre = lastOffset / s.toNormal;
       follow.halfWidth = RidgeTuning::guidedFollowMargin / s.toNormal;
       follow.lineNoise = lineNoise;
+      follow.singleLine = strong;
       r = measureProfile(I, s, settings, follow, buffers);
     }
     if (!r.found) {
@@ -191,6 +193,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
       if (r.lines > 0) {
         lineNoise = r.noise / std::sqrt(static_cast<double>(r.lines));
         noiseSample = i;
+        strong = r.found && r.response >= RidgeTuning::guidedStrongStripe * r.threshold;
       }
       noises.push_back(r.noise);
       thresholds.push_back(r.threshold);

@@ -59,8 +59,8 @@ void addLine(const unsigned char *first, Stride stride, int n, int saturation, i
 // Sums the values of pixels [start, start + n) of the sample's line and of its RidgeTuning::guidedLines - 1
 // neighbours, each shifted along the predicted curve, into b.value, and their prefix sums into b.prefix.
 // Returns the lines summed (those inside the image), and in \e centre the sample's own line's pixel 0.
-int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, ProfileBuffers &b,
-              const unsigned char *&centre)
+int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, int half,
+              ProfileBuffers &b, const unsigned char *&centre)
 {
   b.value.assign(static_cast<size_t>(n), 0);
   b.prefix.resize(static_cast<size_t>(n) + 1);
@@ -68,7 +68,7 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
   const ptrdiff_t W = static_cast<ptrdiff_t>(I.getWidth());
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
   const int lineCount = static_cast<int>(s.alongRow ? I.getHeight() : I.getWidth());
-  const int rampStart = saturation - RidgeTuning::saturationRamp, half = RidgeTuning::guidedLines / 2;
+  const int rampStart = saturation - RidgeTuning::saturationRamp;
   int used = 0;
   int *value = b.value.data();
   for (int j = -half; j <= half; ++j) {
@@ -218,7 +218,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (hi < lo || n < 2 * reach + 1)
     return result;
   const unsigned char *centreLine = nullptr;
-  const int lines = readLines(I, s, start, n, settings.saturation, buffers, centreLine);
+  const int lines = readLines(I, s, start, n, settings.saturation, window.singleLine ? 0 : RidgeTuning::guidedLines / 2,
+                              buffers, centreLine);
   if (lines == 0 || centreLine == nullptr)
     return result;
   result.lines = lines;
@@ -240,6 +241,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   const int flankThreshold =
       static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse,
                                           settings.factor * result.noise / std::sqrt(static_cast<double>(lines)))));
+  result.response = bestResponse;
   if (best < 0 || bestResponse < result.threshold ||
       !shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
                       filter, best, settings, flankThreshold, first, last, centre))

@@ -118,6 +118,10 @@ struct RidgeTuning
   static constexpr double guidedFollowMargin = 3.0;
   //! See guidedFollowMargin.
   static constexpr int guidedNoiseReuse = 8;
+  //! Where the last full profile's response reached guidedStrongStripe times its threshold, the short profile reads
+  //! the sample's line alone: the stripe stands out of one line's noise by more than twice the threshold factor,
+  //! and the regularisation along the curve averages the noisier centres.
+  static constexpr double guidedStrongStripe = 4.0;
 };
 } // namespace vsp::laser_detector
 
