@@ -68,8 +68,7 @@ struct ProfileResult
 //! Buffers of the profile measurements, reused from sample to sample.
 struct ProfileBuffers
 {
-  std::vector<int> value, dominance, prefix, diffs;
-  std::vector<unsigned char> red;
+  std::vector<int> value, prefix, diffs;
 };
 
 /*!

@@ -56,9 +56,9 @@ void addLine(const unsigned char *first, Stride stride, int n, int saturation, i
     value[k] += profileValue(first + k * static_cast<ptrdiff_t>(stride), saturation, rampStart);
 }
 
-// Sums the values of pixels [start, start + n) of the sample's line and of its RidgeTuning::guidedLines - 1
-// neighbours, each shifted along the predicted curve, into b.value, and their prefix sums into b.prefix.
-// Returns the lines summed (those inside the image), and in \e centre the sample's own line's pixel 0.
+// Sums the values of pixels [start, start + n) of the sample's line and of its \e half neighbours on each side,
+// each shifted along the predicted curve, into b.value, and their prefix sums into b.prefix. Returns the lines
+// summed (those inside the image), and in \e centre the sample's own line's pixel 0.
 int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, int half,
               ProfileBuffers &b, const unsigned char *&centre)
 {
