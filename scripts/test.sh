@@ -6,13 +6,15 @@
 #   clang-tidy  .clang-tidy on the library sources (modules/*/src), run-clang-tidy -j<cores>; any finding fails
 #   doxygen     the HTML reference of the public headers, warnings as errors
 #   sanitizers  the libraries and their module tests built with ASan + UBSan (VSP_ENABLE_SANITIZERS) in
-#               build-sanitize/ (or VSP_SANITIZE_BUILD_DIR), the module tests run under them (leaks on)
+#               build-sanitize/ (or VSP_SANITIZE_BUILD_DIR), the module tests run under them (leaks on),
+#               the heaviest statistical tests with fewer repetitions (VSP_REDUCED_TRIALS=1)
 # Every stage runs even when an earlier one failed; a summary with the time of each stage ends the run,
 # and the exit status is non-zero when any stage failed.
 # Usage: bash scripts/test.sh [extra cmake options of the main build]   (as root, or with sudo available)
 # Skip stages in a quick local run (the default, and CI, runs them all): VSP_SKIP_FORMAT=1,
 # VSP_SKIP_STRUCTURE=1, VSP_SKIP_TIDY=1, VSP_SKIP_DOC=1, VSP_SKIP_SANITIZERS=1. Parallel jobs: VSP_JOBS
-# (default: the number of cores).
+# (default: the number of cores). A new build folder uses Ninja when it is installed (it keeps both cores
+# busy where make waits for one target after another); a folder configured earlier keeps its generator.
 # The build folder is always configured with the tests on, whatever an earlier configuration (e.g. of
 # another script) left in its cache, and the run fails when ctest finds no test.
 # VSP_CONTRIB_BUILD=1 also builds a minimal ViSP with the modules as contrib modules and runs their
@@ -26,6 +28,10 @@ jobs="${VSP_JOBS:-$(nproc)}"
 # A compiler cache when the machine has one (scripts/install_deps.sh installs it); nothing depends on it.
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+# generator DIR: "-G Ninja" for a new build folder when ninja is installed, nothing otherwise.
+generator() {
+  if [ ! -f "$1/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then echo "-G Ninja"; fi
+}
 
 summary=()
 failed=0
@@ -51,8 +57,9 @@ skipped() { summary+=("$(printf '%-12s %-22s' "$1" "skipped ($2=1)")"); }
 build_and_ctest() {
   # BUILD_TESTING and the program folders are forced on: the suite tests the examples, the CLIs and the
   # tutorials too; compile_commands.json is for clang-tidy. Extra options come last and may change the rest.
-  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON -DVSP_BUILD_EXAMPLES=ON \
-    -DVSP_BUILD_TUTORIALS=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "${launcher[@]}" "$@" &&
+  # shellcheck disable=SC2046 # generator: zero or two words
+  cmake -S "$here" -B "$build" $(generator "$build") -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON \
+    -DVSP_BUILD_EXAMPLES=ON -DVSP_BUILD_TUTORIALS=ON -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "${launcher[@]}" "$@" &&
     cmake --build "$build" -j "$jobs" &&
     # --no-tests=error: a build without tests is a failure, never a silent success.
     (cd "$build" && ctest --output-on-failure --no-tests=error -j "$jobs")
@@ -72,12 +79,16 @@ doxygen_doc() {
 
 sanitizers() {
   # The libraries and the module tests only (not the programs, tutorials and installed-package tests:
-  # they run the same library code on the same data and would double the build). -O2: the Ceres-based
-  # tests stay fast; -g1: line numbers in the reports, without the full debug information that makes the
-  # Eigen-heavy sources slow to compile and link.
+  # they run the same library code on the same data and would double the build). -O1 and no debug
+  # information: the cheapest build in which the Ceres-based tests stay fast (VSP_ENABLE_SANITIZERS adds
+  # -fno-omit-frame-pointer, so the reports' stacks are whole, with function names). For file and line
+  # numbers in a report, rebuild the test with -g and run it again, e.g.
+  #   cmake -B build-sanitize -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g -DNDEBUG" && cmake --build build-sanitize \
+  #     --target <module>-<testFile> && (cd build-sanitize && ctest -R <test> --output-on-failure)
   local modules_regex="^(robust|pose_gravity|laser_conic)-"
-  cmake -S "$here" -B "$sanitize_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DVSP_ENABLE_SANITIZERS=ON \
+  # shellcheck disable=SC2046 # generator: zero or two words
+  cmake -S "$here" -B "$sanitize_build" $(generator "$sanitize_build") -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DVSP_ENABLE_SANITIZERS=ON \
     -DBUILD_TESTING=ON -DVSP_BUILD_EXAMPLES=OFF -DVSP_BUILD_TUTORIALS=OFF -DVSP_BUILD_BENCHMARKS=OFF \
     "${launcher[@]}" >/dev/null || return 1
   local targets
@@ -85,8 +96,10 @@ sanitizers() {
     echo "$(basename "$(dirname "$(dirname "$f")")")-$(basename "$f" .cpp)"; done)
   cmake --build "$sanitize_build" -j "$jobs" --target "${targets[@]}" || return 1
   # Any sanitizer report fails the test that produced it; leaks are reported too, the suppressions
-  # file lists the third-party ones this project cannot fix.
-  (cd "$sanitize_build" &&
+  # file lists the third-party ones this project cannot fix. VSP_REDUCED_TRIALS=1: the few statistical
+  # tests that repeat the same code thousands of times (laser_test::trials, gravity_test::trials) run
+  # fewer repetitions here; their full counts run in the build+ctest stage.
+  (cd "$sanitize_build" && VSP_REDUCED_TRIALS=1 \
     ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:check_initialization_order=1" \
     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
     LSAN_OPTIONS="suppressions=$here/benchmark/sanitizers/lsan.supp:print_suppressions=0" \
@@ -100,8 +113,9 @@ if [ "${VSP_SKIP_STRUCTURE:-0}" = 1 ]; then skipped structure VSP_SKIP_STRUCTURE
 stage build+ctest build_and_ctest "$@"
 if [ "${VSP_SKIP_TIDY:-0}" = 1 ]; then skipped clang-tidy VSP_SKIP_TIDY; else stage clang-tidy clang_tidy; fi
 if [ "${VSP_SKIP_DOC:-0}" = 1 ]; then skipped doxygen VSP_SKIP_DOC; else stage doxygen doxygen_doc; fi
-# The sanitizer stage runs on every submission; its cost (about 10 minutes more on 2 cores with a cold
-# compiler cache) is the price of catching memory and undefined-behaviour errors before users do.
+# The sanitizer stage runs on every submission; its cost (about 18 minutes on 2 cores with a cold
+# compiler cache and another job on the machine: 13 to build, 5 to test) is the price of catching memory
+# and undefined-behaviour errors before users do.
 if [ "${VSP_SKIP_SANITIZERS:-0}" = 1 ]; then skipped sanitizers VSP_SKIP_SANITIZERS; else
   stage sanitizers sanitizers; fi
 if [ "${VSP_CONTRIB_BUILD:-0}" = 1 ]; then

@@ -13,7 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -28,6 +30,15 @@
 
 namespace laser_test
 {
+//! The repetitions of a statistical test: \e full, or \e reduced when the environment has
+//! VSP_REDUCED_TRIALS=1 (the sanitizer stage of scripts/test.sh: the same code paths, fewer times; the
+//! full counts run in the Release stage).
+inline int trials(int full, int reduced)
+{
+  const char *env = std::getenv("VSP_REDUCED_TRIALS");
+  return env != nullptr && std::string(env) == "1" ? reduced : full;
+}
+
 //! The typical rig of the paper's experiment: 1600x1200 camera, px = py = 1200, 34 deg laser.
 struct Rig
 {

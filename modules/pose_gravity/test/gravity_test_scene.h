@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -25,6 +27,15 @@
 
 namespace gravity_test
 {
+//! The repetitions of a statistical test: \e full, or \e reduced when the environment has
+//! VSP_REDUCED_TRIALS=1 (the sanitizer stage of scripts/test.sh: the same code paths, fewer times; the
+//! full counts run in the Release stage).
+inline int trials(int full, int reduced)
+{
+  const char *env = std::getenv("VSP_REDUCED_TRIALS");
+  return env != nullptr && std::string(env) == "1" ? reduced : full;
+}
+
 //! One simulated observation: ground-truth pose, points (oX.. and x, y set) and both gravities.
 struct Scene
 {

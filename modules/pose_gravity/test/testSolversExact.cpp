@@ -20,7 +20,8 @@ using namespace gravity_test;
 
 namespace
 {
-const int kTrials = 100000;
+// 100000 scenes; 10000 under the sanitizers (gravity_test::trials).
+const int kTrials = trials(100000, 10000);
 
 void reportAndCheck(const char *what, const std::vector<double> &errors)
 {
