@@ -280,10 +280,11 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
         found.mark(results[i].crossing.point);
         ++added;
       }
-    // The coverage stops growing, or no better prediction. Refitted even then: the final conic is the
-    // points' (sorted) fit, whatever the order the first pass returned its points in.
-    // Without points of its own the pass needs no final conic (it is what they are checked against and
-    // regularised along). No sample missed: another walk along the refitted conic would measure nothing.
+    // The walk stops when the coverage stops growing, when no sample was missed (another walk along the
+    // refitted conic would measure nothing) or when there is no better prediction. The conic is refitted
+    // even then, as the points' (sorted) fit whatever the order the first pass returned them in: it is the
+    // final conic the pass's points are checked against and regularised along. A pass without points of
+    // its own needs no final conic.
     if (added == 0 && work.guided.empty())
       break;
     const bool refitted = refit(fitPoints, C);
