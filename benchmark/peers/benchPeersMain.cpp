@@ -15,7 +15,7 @@
 */
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -25,6 +25,7 @@
 
 #include "benchTable.h"
 #include "vpCommandLine.h"
+#include "vpOutputFile.h"
 #include "vspBenchUtils.h"
 
 void printMarkdown(std::ostream &os, const std::vector<BenchTable> &tables)
@@ -149,6 +150,9 @@ int main(int argc, char **argv)
     return cli.exitStatus();
   if (outliers >= 1.0)
     return cli.fail("--outliers expects a ratio below 1");
+  std::string error;
+  if (!out.empty() && !vpOutputFile::checkWritable(out, error)) // before minutes of benchmarks
+    return cli.fail(error);
 
   // Every method runs on one core: the timer measures the calling thread's CPU time, and a
   // per-core comparison is what matters on a machine that runs several cameras or processes.
@@ -181,10 +185,16 @@ int main(int argc, char **argv)
   printMarkdown(report, tables);
   printTargets(report, targets);
   std::cout << report.str() << std::flush;
-  if (!out.empty()) {
-    std::ofstream file(out);
-    file << report.str();
-  }
   std::fprintf(stderr, "(sink %g)\n", static_cast<double>(vspBench::g_sink));
+  if (!out.empty()) {
+    vpOutputFile file(out);
+    const bool opened = file.open(error);
+    if (opened)
+      file.stream() << report.str();
+    if (!opened || !file.commit(error)) { // commit() reports the write errors
+      std::cerr << "bench-peers: " << error << std::endl;
+      return EXIT_FAILURE;
+    }
+  }
   return 0;
 }
