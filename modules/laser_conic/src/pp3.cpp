@@ -5,12 +5,12 @@
 // PP-3 minimal solver (Boutteau et al., JMIV 2018, Sec. 5.2): conics through three points tangent
 // to the two epipolar lines that are tangent to the laser cone.
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
+#include <visp3/robust/vpPolynomialRoots.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
@@ -95,55 +95,14 @@ double polynomial(const double *k, int degree, double u, double &derivative)
   return p;
 }
 
-//! Eigenvalues of the fixed-size companion matrix of a polynomial of degree Deg (no heap).
-template <int Deg> int companionRoots(const double *k, std::complex<double> *roots)
-{
-  Eigen::Matrix<double, Deg, Deg> companion = Eigen::Matrix<double, Deg, Deg>::Zero();
-  for (int i = 0; i < Deg; ++i)
-    companion(0, i) = -k[Deg - 1 - i] / k[Deg];
-  for (int i = 1; i < Deg; ++i)
-    companion(i, i - 1) = 1.0;
-  Eigen::EigenSolver<Eigen::Matrix<double, Deg, Deg> > eig(companion, false);
-  if (eig.info() != Eigen::Success)
-    return 0;
-  for (int i = 0; i < Deg; ++i)
-    roots[i] = eig.eigenvalues()(i);
-  return Deg;
-}
-
 //! Largest imaginary part, relative to the modulus, of a quartic root taken as (nearly) real.
 constexpr double kRelativeImaginary = 1e-3;
 
 //! Real roots of a polynomial of degree <= 4 (coefficients k[0] + k[1] u + ...), Newton-polished.
 int realQuarticRoots(const double k[5], double roots[4])
 {
-  double scale = 0.0;
-  for (int i = 0; i < 5; ++i)
-    scale = std::max(scale, std::abs(k[i]));
-  if (!(scale > 0.0) || !std::isfinite(scale))
-    return 0;
-  int degree = 4;
-  while (degree > 0 && std::abs(k[degree]) <= 1e-14 * scale)
-    --degree;
   std::complex<double> candidates[4];
-  int ncandidates = 0;
-  switch (degree) {
-  case 4:
-    ncandidates = companionRoots<4>(k, candidates);
-    break;
-  case 3:
-    ncandidates = companionRoots<3>(k, candidates);
-    break;
-  case 2:
-    ncandidates = companionRoots<2>(k, candidates);
-    break;
-  case 1:
-    candidates[0] = -k[0] / k[1];
-    ncandidates = 1;
-    break;
-  default:
-    return 0;
-  }
+  const int ncandidates = vpPolynomialRoots(k, candidates), degree = ncandidates;
   int count = 0;
   for (int i = 0; i < ncandidates; ++i) {
     const std::complex<double> z = candidates[i];

@@ -17,10 +17,12 @@
 */
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 
 #include <Eigen/Dense>
-#include <unsupported/Eigen/Polynomials>
+
+#include <visp3/robust/vpPolynomialRoots.h>
 
 #include "gravity_geometry.h"
 
@@ -64,47 +66,16 @@ void circleDerivatives(const Eigen::Matrix3d &Q, double phi, double &d1, double 
   d2 = -2.0 * dQ * c2 - 4.0 * Q(0, 1) * s2 - 2.0 * Q(0, 2) * c - 2.0 * Q(1, 2) * s;
 }
 
-// Real parts of the roots of the polynomial sum_k coeffs[k] t^k, degree dropped while the leading
-// coefficient is negligible. Complex roots are returned too (their real part): the caller only
-// evaluates the cost there, which cannot hide the true minimiser. Returns the number written.
+// Real parts of the roots of the polynomial sum_k coeffs[k] t^k (see vpPolynomialRoots()). Complex roots
+// are returned too (their real part): the caller only evaluates the cost there, which cannot hide the true
+// minimiser. Returns the number written.
 int polynomialRootsRealPart(const double coeffs[5], double roots[4])
 {
-  double scale = 0.0;
-  for (int k = 0; k < 5; ++k)
-    scale = std::max(scale, std::abs(coeffs[k]));
-  if (!(scale > 0.0))
-    return 0;
-  int degree = 4;
-  while (degree > 0 && std::abs(coeffs[degree]) <= 1e-14 * scale)
-    --degree;
-  switch (degree) {
-  case 4: {
-    Eigen::PolynomialSolver<double, 4> solver;
-    solver.compute(Eigen::Matrix<double, 5, 1>(coeffs[0], coeffs[1], coeffs[2], coeffs[3], coeffs[4]));
-    for (int k = 0; k < 4; ++k)
-      roots[k] = solver.roots()[k].real();
-    return 4;
-  }
-  case 3: {
-    Eigen::PolynomialSolver<double, 3> solver;
-    solver.compute(Eigen::Vector4d(coeffs[0], coeffs[1], coeffs[2], coeffs[3]));
-    for (int k = 0; k < 3; ++k)
-      roots[k] = solver.roots()[k].real();
-    return 3;
-  }
-  case 2: {
-    Eigen::PolynomialSolver<double, 2> solver;
-    solver.compute(Eigen::Vector3d(coeffs[0], coeffs[1], coeffs[2]));
-    for (int k = 0; k < 2; ++k)
-      roots[k] = solver.roots()[k].real();
-    return 2;
-  }
-  case 1:
-    roots[0] = -coeffs[0] / coeffs[1];
-    return 1;
-  default:
-    return 0;
-  }
+  std::complex<double> complexRoots[4];
+  const int count = vpPolynomialRoots(coeffs, complexRoots);
+  for (int k = 0; k < count; ++k)
+    roots[k] = complexRoots[k].real();
+  return count;
 }
 
 // Everything needed to score a candidate yaw: the reduced cost and the points in front of the camera.
