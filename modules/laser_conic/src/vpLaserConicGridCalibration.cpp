@@ -98,10 +98,15 @@ bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogen
     for (unsigned int c = 0; c < I.getWidth(); ++c)
       green.at<unsigned char>(static_cast<int>(r), static_cast<int>(c)) = I[r][c].G;
   const cv::Size pattern(static_cast<int>(m_squaresX) - 1, static_cast<int>(m_squaresY) - 1);
+  // The default search first; the exhaustive one (several times slower: seconds per view) only for a view
+  // where the default does not find the whole board. Both refine the corners alike (CALIB_CB_ACCURACY).
   std::vector<cv::Point2f> found;
-  if (!cv::findChessboardCornersSB(green, pattern, found,
-                                   cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE | cv::CALIB_CB_ACCURACY) ||
-      found.size() != static_cast<size_t>(pattern.area()))
+  const int flags = cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_ACCURACY;
+  auto wholeBoard = [&](int extraFlags) {
+    return cv::findChessboardCornersSB(green, pattern, found, flags | extraFlags) &&
+           found.size() == static_cast<size_t>(pattern.area());
+  };
+  if (!wholeBoard(0) && !wholeBoard(cv::CALIB_CB_EXHAUSTIVE))
     return false;
 
   // Undistorted normalized coordinates with ViSP's model, then a pinhole PnP with identity intrinsics.

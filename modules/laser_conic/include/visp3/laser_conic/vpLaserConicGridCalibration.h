@@ -28,7 +28,8 @@
   For each image addImage():
   -# finds the inner corners of the chessboard with OpenCV's cv::findChessboardCornersSB() on the green
      channel (the red laser barely lights it, so the stripe crossing a black square does not shift the
-     corners);
+     corners): its default search first, the exhaustive one (several times slower) when that does not
+     find the whole board;
   -# detects the laser trace with getDetector() and leaves out the corners closer than setCornerClearance()
      to it (a stripe across a corner moves it);
   -# converts the other corners to normalized coordinates with vpPixelMeterConversion (the camera's ViSP distortion
