@@ -41,7 +41,13 @@ bad=()
 lines=0
 diffs="$(mktemp)"
 trap 'rm -f "$diffs"' EXIT
-for f in "${files[@]}"; do
+# One clang-format process per 50 files, as many at a time as cores, reports the files that differ
+# (--dry-run -Werror: "FILE:LINE:COL: error: code should be clang-formatted"); only those are diffed.
+# (A process and a diff for each of the 200 files took 20 s.)
+mapfile -t differing < <(printf '%s\0' "${files[@]}" |
+  xargs -0 -n 50 -P "$(nproc)" "$CLANG_FORMAT" --style=file --dry-run -Werror 2>&1 |
+  sed -nE 's/^(.*):[0-9]+:[0-9]+: error: .*clang-format.*/\1/p' | sort -u)
+for f in "${differing[@]}"; do
   if ! "$CLANG_FORMAT" --style=file "$f" | diff -u --label "$f" --label "$f (clang-format)" "$f" - >>"$diffs"; then
     bad+=("$f")
   fi

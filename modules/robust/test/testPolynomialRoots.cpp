@@ -89,10 +89,7 @@ TEST(PolynomialRoots, NegligibleLeadingCoefficientLowersTheDegree)
 }
 
 // A double root splits into two roots about sqrt(eps) apart: each within 1e-7 of it.
-TEST(PolynomialRoots, DoubleRoot)
-{
-  expectRoots(fromRoots({0.7, 0.7, -1.0, 2.0}, 1.0), {0.7, 0.7, -1.0, 2.0}, 1e-7);
-}
+TEST(PolynomialRoots, DoubleRoot) { expectRoots(fromRoots({0.7, 0.7, -1.0, 2.0}, 1.0), {0.7, 0.7, -1.0, 2.0}, 1e-7); }
 
 TEST(PolynomialRoots, RefusesConstantZeroAndNonFinitePolynomials)
 {
