@@ -50,8 +50,8 @@ void expectRoots(const std::vector<double> &k, const std::vector<std::complex<do
 } // namespace
 
 // Simple roots of random quartics, cubics and quadratics (real and complex pairs, leading coefficients
-// from 1e-3 to 1e3): the companion matrix's eigenvalues are backward stable, so simple roots of moderate
-// size come out to about 1e-12; 1e-9 leaves room for the conditioning of the random draws.
+// from 1e-3 to 1e3): well separated simple roots of moderate size are found to about 1e-14; 1e-9 leaves
+// room for the conditioning of the random draws.
 TEST(PolynomialRoots, RandomPolynomialsOfKnownRoots)
 {
   std::mt19937 rng(11);
@@ -86,6 +86,14 @@ TEST(PolynomialRoots, NegligibleLeadingCoefficientLowersTheDegree)
   k[4] = 1e-16;
   expectRoots(k, {1.0, -2.0, 0.5}, 1e-12);
   expectRoots({3.0, -1.5, 0.0, 0.0, 0.0}, {2.0}, 1e-15); // linear: -k0 / k1
+}
+
+// Roots of very different sizes (the start circle is set by the largest) and a root at zero.
+TEST(PolynomialRoots, RootsOfDifferentScalesAndZero)
+{
+  expectRoots(fromRoots({1e-4, -1.0, 1e3, 30.0}, 1.0), {1e-4, -1.0, 1e3, 30.0}, 1e-10);
+  expectRoots(fromRoots({0.0, 2.0, std::complex<double>(-1.0, 3.0), std::complex<double>(-1.0, -3.0)}, -0.5),
+              {0.0, 2.0, std::complex<double>(-1.0, 3.0), std::complex<double>(-1.0, -3.0)}, 1e-12);
 }
 
 // A double root splits into two roots about sqrt(eps) apart: each within 1e-7 of it.
