@@ -18,14 +18,19 @@ namespace
 //! converges linearly to about the square root of the rounding in about 60.
 constexpr int kMaxIterations = 200;
 
-//! p(z) / p'(z) of the monic polynomial a[0] + a[1] z + ... + z^n (a[n] = 1), by Horner's scheme.
-std::complex<double> newtonRatio(const double *a, int n, std::complex<double> z, bool &flat)
+//! p(z) / p'(z) of the monic polynomial a[0] + a[1] z + ... + z^n (a[n] = 1), by Horner's scheme. \e atRounding:
+//! |p(z)| is within the rounding error of its evaluation (z is a root to working precision).
+std::complex<double> newtonRatio(const double *a, int n, std::complex<double> z, bool &flat, bool &atRounding)
 {
   std::complex<double> p(1.0, 0.0), d(0.0, 0.0);
+  double bound = 1.0; // sum of |a_i| |z|^i, by the same scheme
+  const double r = std::abs(z);
   for (int i = n - 1; i >= 0; --i) {
     d = d * z + p;
     p = p * z + a[i];
+    bound = bound * r + std::abs(a[i]);
   }
+  atRounding = std::abs(p) <= 8.0 * n * std::numeric_limits<double>::epsilon() * bound;
   flat = std::abs(d) == 0.0 && std::abs(p) > 0.0;
   return std::abs(d) == 0.0 ? std::complex<double>(0.0, 0.0) : p / d;
 }
@@ -67,28 +72,32 @@ int vpPolynomialRoots(const double k[5], std::complex<double> roots[4])
     const double angle = 2.0 * 3.14159265358979323846 * j / n + 0.4;
     roots[j] = std::complex<double>(r * std::cos(angle), r * std::sin(angle));
   }
-  const double eps = std::numeric_limits<double>::epsilon();
+  // A root whose value is within the rounding of its evaluation is final: further steps only move it in
+  // the rounding noise (and a criterion on the step's size alone would never be met there).
+  bool done[4] = {false, false, false, false};
   for (int it = 0; it < kMaxIterations; ++it) {
     bool converged = true;
     for (int j = 0; j < n; ++j) {
-      bool flat = false;
-      const std::complex<double> ratio = newtonRatio(a, n, roots[j], flat);
-      if (flat) { // a stationary point that is no root (p' = 0): moved off it, off the real axis
-        roots[j] += std::complex<double>(1e-3, 1e-3) * (1.0 + std::abs(roots[j]));
-        converged = false;
+      if (done[j])
+        continue;
+      bool flat = false, atRounding = false;
+      const std::complex<double> ratio = newtonRatio(a, n, roots[j], flat, atRounding);
+      if (atRounding) {
+        done[j] = true;
         continue;
       }
-      if (ratio == std::complex<double>(0.0, 0.0))
-        continue; // an exact root
+      converged = false;
+      if (flat) { // a stationary point that is no root (p' = 0): moved off it, off the real axis
+        roots[j] += std::complex<double>(1e-3, 1e-3) * (1.0 + std::abs(roots[j]));
+        continue;
+      }
       std::complex<double> repulsion(0.0, 0.0);
       for (int m = 0; m < n; ++m)
         if (m != j && roots[m] != roots[j])
           repulsion += 1.0 / (roots[j] - roots[m]);
       const std::complex<double> step = ratio / (1.0 - ratio * repulsion);
-      if (!(std::isfinite(step.real()) && std::isfinite(step.imag())))
-        continue;
-      roots[j] -= step;
-      converged = converged && std::abs(step) <= 4.0 * eps * std::abs(roots[j]);
+      if (std::isfinite(step.real()) && std::isfinite(step.imag()))
+        roots[j] -= step;
     }
     if (converged)
       break;
