@@ -102,9 +102,9 @@ constexpr double kRelativeImaginary = 1e-3;
 int realQuarticRoots(const double k[5], double roots[4])
 {
   std::complex<double> candidates[4];
-  const int ncandidates = vpPolynomialRoots(k, candidates), degree = ncandidates;
+  const int degree = vpPolynomialRoots(k, candidates); // as many roots as the degree found
   int count = 0;
-  for (int i = 0; i < ncandidates; ++i) {
+  for (int i = 0; i < degree; ++i) {
     const std::complex<double> z = candidates[i];
     // Keep nearly real roots: a root that is real in exact arithmetic can come out complex, and a
     // double root splits into a complex pair whose imaginary part is of the order of the square root
@@ -115,7 +115,7 @@ int realQuarticRoots(const double k[5], double roots[4])
       continue;
     if (z.imag() < 0.0 && std::abs(z.imag()) > 0.0) {
       bool conjugateKept = false;
-      for (int j = 0; j < ncandidates; ++j)
+      for (int j = 0; j < degree; ++j)
         conjugateKept = conjugateKept || (j != i && std::abs(candidates[j] - std::conj(z)) <= 1e-12 * std::abs(z));
       if (conjugateKept)
         continue;

@@ -146,7 +146,7 @@ double minimiseOnCircle(const Eigen::Matrix3d &Qin, const Problem &problem)
   double phiMin[5], costMin[5];
   int minima = 0;
   for (int k = 0; k < count; ++k) {
-    // Newton polishing: the companion-matrix roots (or the real part of a nearly real pair) are
+    // Newton polishing: the roots of vpPolynomialRoots() (or the real part of a nearly real pair) are
     // close to the stationary point; a few steps make it exact. Maxima and inflections are skipped.
     double phi = phis[k], d1 = 0.0, d2 = 0.0;
     for (int it = 0; it < 20; ++it) {
