@@ -448,7 +448,7 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
         if (!traces[i].empty() && estimator.computePlane(traces[i], vpLaserConicPose::GP3, plane)) {
           tracked[i].setSearchRegion(estimator.getImageConic(), 20.0);
           trackedSparse[i].setSearchRegion(estimator.getImageConic(), 20.0);
-          trackedSparse[i].setGuidedStep(3);
+          trackedSparse[i].setTrackingStep(3);
         }
       } catch (const vpException &) {
       }

@@ -42,7 +42,7 @@ vpLaserConicDetector::vpLaserConicDetector()
     m_saturationLevel(250), m_step(1), m_instructions(INSTRUCTIONS_BEST), m_maxHueLow(10), m_minHueHigh(170),
     m_minSaturation(80), m_minValue(80), m_region(), m_regionMargin(0.0), m_regionGeneration(0), m_mask(),
     m_maskDirty(false), m_height(0), m_width(0), m_threshold(0.0), m_noise(0.0), m_guided(true), m_guidedMargin(12.0),
-    m_guidedFactor(3.5), m_guidedStep(1), m_guidedCount(0), m_stripeWidth(0), m_regionIsConic(false),
+    m_guidedFactor(3.5), m_guidedStep(1), m_trackingStep(2), m_guidedCount(0), m_stripeWidth(0), m_regionIsConic(false),
     m_regionConic(3, 3, 0.0), m_work(), m_runs()
 {
 }
@@ -109,6 +109,11 @@ void vpLaserConicDetector::setGuidedMargin(double pixels)
 void vpLaserConicDetector::setGuidedStep(unsigned int lines)
 {
   m_guidedStep = positive(lines, "the guided search step must be positive");
+}
+
+void vpLaserConicDetector::setTrackingStep(unsigned int lines)
+{
+  m_trackingStep = positive(lines, "the tracking step must be positive");
 }
 
 void vpLaserConicDetector::setGuidedThresholdFactor(double factor)
@@ -234,10 +239,10 @@ Eigen::Matrix3d toEigen(const vpMatrix &C)
 }
 } // namespace
 
-vsp::laser_detector::GuidedSettings vpLaserConicDetector::guidedSettings(double margin) const
+vsp::laser_detector::GuidedSettings vpLaserConicDetector::guidedSettings(double margin, unsigned int step) const
 {
   return {margin,
-          static_cast<int>(m_guidedStep),
+          static_cast<int>(step),
           m_guidedFactor,
           static_cast<int>(m_maxStripeWidth),
           static_cast<int>(m_saturationLevel),
@@ -273,7 +278,7 @@ std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<
   anchors.reserve(inliers.size());
   for (int k : inliers)
     anchors.push_back(points[static_cast<size_t>(k)]);
-  const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin);
+  const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin, m_guidedStep);
   vsp::laser_detector::GuidedReport guidedReport;
   const size_t before = points.size();
   vsp::laser_detector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work,
@@ -287,7 +292,7 @@ bool vpLaserConicDetector::trackConic(const vpImage<vpRGBa> &I, std::vector<vpIm
   vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   work.crossings.clear();
   work.keep.clear();
-  const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_regionMargin);
+  const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_regionMargin, m_trackingStep);
   vsp::laser_detector::GuidedReport report;
   points.clear();
   vsp::laser_detector::guidedPass(I, guided, toEigen(m_regionConic), std::vector<vpImagePoint>(), nullptr, points, work,

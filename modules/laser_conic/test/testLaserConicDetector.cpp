@@ -556,6 +556,9 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
     for (unsigned int j = 0; j < 3; ++j)
       Cv[i][j] = C(i, j);
   byConic.setSearchRegion(Cv, 20.0);
+  // A profile on every line, as the first pass: the coverage here counts a point within 1 px of each pixel
+  // of the trace (at the default tracking step of 2 lines, points are up to 2.8 px apart: 90 %).
+  byConic.setTrackingStep(1);
   const Quality qc = runCase(c, 40, byConic);
   EXPECT_GT(qc.coverage, 0.99);
   EXPECT_LT(qc.offTrace, 0.01);

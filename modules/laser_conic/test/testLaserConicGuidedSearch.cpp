@@ -188,11 +188,20 @@ TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
       Cv[i][j] = C(i, j);
   vpLaserConicDetector tracker;
   tracker.setSearchRegion(Cv, 20.0);
-  // Measured: 100 % of the ring, precision 1, RMS 0.11 px (the bright side is measured by the guided pass
-  // too).
+  EXPECT_EQ(tracker.getTrackingStep(), 2u);
+  // Measured at the default tracking step (a profile every 2nd line): 99.8 % of the ring, precision 1,
+  // RMS 0.11 px, 1297 points (the bright side is measured by the guided pass too). At step 1: 100 %, the
+  // same RMS, twice the points.
   const GuidedQuality q = runGuided("tracked", cMg, fadingRing(150.0, 15.0), 75, tracker);
   expectGuided(q, 0.95, 0.3);
   EXPECT_EQ(q.guided, q.points); // every point from the guided search
+  vpLaserConicDetector everyLine;
+  everyLine.setSearchRegion(Cv, 20.0);
+  everyLine.setTrackingStep(1);
+  const GuidedQuality all = runGuided("tracked_every_line", cMg, fadingRing(150.0, 15.0), 75, everyLine);
+  expectGuided(all, 0.95, 0.3);
+  EXPECT_NEAR(static_cast<double>(q.points) / all.points, 0.5, 0.05); // one profile in two
+  EXPECT_LE(q.rmsGuided, all.rmsGuided + 0.05);                       // as accurate
 }
 
 TEST(LaserConicGuidedSearch, SettingsAreCheckedAndTheSecondPassCanBeTurnedOff)
@@ -202,6 +211,7 @@ TEST(LaserConicGuidedSearch, SettingsAreCheckedAndTheSecondPassCanBeTurnedOff)
   EXPECT_THROW(detector.setGuidedMargin(0.0), vpLaserConicException);
   EXPECT_THROW(detector.setGuidedMargin(std::nan("")), vpLaserConicException);
   EXPECT_THROW(detector.setGuidedStep(0), vpLaserConicException);
+  EXPECT_THROW(detector.setTrackingStep(0), vpLaserConicException);
   EXPECT_THROW(detector.setGuidedThresholdFactor(-1.0), vpLaserConicException);
   detector.setGuidedSearch(false);
   const GuidedQuality off = runGuided("first_pass_only", tiltedGround(), fadingRing(150.0, 15.0), 70, detector);

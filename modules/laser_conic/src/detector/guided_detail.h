@@ -94,6 +94,9 @@ struct ProfileWindow
   bool singleLine = false; //!< the sample's line alone, not RidgeTuning::guidedLines lines
 };
 
+//! Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line.
+void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth);
+
 /*!
   Measures the profile of sample s in the RGBA image I within \e window (kept inside the sample's margin).
   ProfileResult::noise is that of the summed lines, whether measured or given.

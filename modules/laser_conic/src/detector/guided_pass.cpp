@@ -170,6 +170,12 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
   bool strong = false;
   for (int i = 0; i < static_cast<int>(samples.size()); ++i) {
     const GuidedSample &s = samples[static_cast<size_t>(i)];
+    // The pixels of a profile a few samples on are asked for now: a frame just captured is not in cache,
+    // and the profiles' reads, a few dozen bytes a row, each wait for memory otherwise (a sixth of the
+    // tracking mode's time).
+    if (i + RidgeTuning::guidedPrefetchAhead < static_cast<int>(samples.size()))
+      prefetchProfile(I, samples[static_cast<size_t>(i + RidgeTuning::guidedPrefetchAhead)],
+                      RidgeTuning::guidedPrefetchReach);
     double offset = 0.0;
     if (found.covers(s, offset)) {
       state[static_cast<size_t>(i)] = KNOWN;

@@ -118,6 +118,11 @@ struct RidgeTuning
   static constexpr double guidedFollowMargin = 3.0;
   //! See guidedFollowMargin.
   static constexpr int guidedNoiseReuse = 8;
+  //! The pixels of the profile guidedPrefetchAhead samples on are prefetched while a sample is measured: far
+  //! enough for memory to answer, near enough to be still in cache when read.
+  static constexpr int guidedPrefetchAhead = 6;
+  //! Pixels on each side of the predicted crossing prefetched (a short profile and its background boxes).
+  static constexpr int guidedPrefetchReach = 12;
   //! Where the last full profile's response reached guidedStrongStripe times its threshold, the short profile reads
   //! the sample's line alone: the stripe stands out of one line's noise by more than twice the threshold factor,
   //! and the regularisation along the curve averages the noisier centres.
