@@ -53,6 +53,8 @@ public:
   // the predicted curve (as ProfileResult::offset).
   bool covers(const GuidedSample &s, double &offset) const
   {
+    if (m_points.empty()) // the first walk of a tracking pass: nothing to look up in the grid
+      return false;
     const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
     int a = 0, b = 0;
     if (!cellOf(u, v, a, b))
@@ -158,7 +160,7 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
 // Measures the samples no point covers yet (in \e limit when not null) and sets their state and result; returns
 // the samples missed. A sample next to one with a point is first searched within RidgeTuning::guidedFollowMargin
 // of that point's offset, with the noise of the last full profile (see RidgeTuning::guidedFollowMargin); the
-// full margin is searched when that finds nothing. \e noises and \e thresholds: those of the full profiles.
+// full margin is searched when that finds nothing. \e noises and \e thresholds: those of the full profiles, per image line.
 int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const std::vector<GuidedSample> &samples,
                    const RegionSpans *limit, const FoundCells &found, ProfileBuffers &buffers,
                    std::vector<SampleState> &state, std::vector<ProfileResult> &results, std::vector<double> &noises,
@@ -195,14 +197,22 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
       r = measureProfile(I, s, settings, follow, buffers);
     }
     if (!r.found) {
-      r = measureProfile(I, s, settings, ProfileWindow(), buffers);
+      // The whole margin: the continuation was not found, or the noise is to be measured again. Along a
+      // bright stripe that is followed, the sample's line alone gives that noise and finds the stripe (the
+      // three lines read when it does not).
+      ProfileWindow whole;
+      whole.singleLine = strong && lastWithPoint == i - 1;
+      r = measureProfile(I, s, settings, whole, buffers);
+      if (!r.found && whole.singleLine)
+        r = measureProfile(I, s, settings, ProfileWindow(), buffers);
       if (r.lines > 0) {
-        lineNoise = r.noise / std::sqrt(static_cast<double>(r.lines));
+        const double lines = static_cast<double>(r.lines);
+        lineNoise = r.noise / std::sqrt(lines);
         noiseSample = i;
         strong = r.found && r.response >= RidgeTuning::guidedStrongStripe * r.threshold;
+        noises.push_back(lineNoise);
+        thresholds.push_back(r.threshold / lines);
       }
-      noises.push_back(r.noise);
-      thresholds.push_back(r.threshold);
     }
     state[static_cast<size_t>(i)] = r.found ? FOUND : MISSED;
     if (r.found) {
@@ -302,8 +312,8 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   for (const Crossing &c : work.guided)
     points.push_back(c.point);
   report.added = static_cast<int>(work.guided.size());
-  report.noise = median(noises) / std::sqrt(static_cast<double>(RidgeTuning::guidedLines));
-  report.threshold = median(thresholds) / RidgeTuning::guidedLines;
+  report.noise = median(noises);
+  report.threshold = median(thresholds);
 }
 
 int observedStripeWidth(const RidgeWorkspace &work, int fallback)
