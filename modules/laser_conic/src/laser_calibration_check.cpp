@@ -9,6 +9,8 @@
 #include <limits>
 #include <vector>
 
+#include <Eigen/LU>
+
 namespace vsp::laser_calibration_check
 {
 double misfit(const vsp::laser_robust_fit::Result &result)
@@ -34,6 +36,39 @@ bool suspect(const vsp::laser_robust_fit::Result &result)
 {
   const double m = misfit(result);
   return m > kSuspectFactor * std::max(result.sigma, result.rmsFree) && m > 0.5;
+}
+
+double localNoise(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices,
+                  const Eigen::Matrix3d &conic, double focal, double spacing)
+{
+  const Eigen::Matrix2d A = 0.5 * (conic.topLeftCorner<2, 2>() + conic.topLeftCorner<2, 2>().transpose());
+  const Eigen::Vector2d b = 0.5 * (conic.topRightCorner<2, 1>() + conic.bottomLeftCorner<1, 2>().transpose());
+  if (!(std::fabs(A.determinant()) > 0.0))
+    return 0.0;
+  const Eigen::Vector2d centre = -A.inverse() * b;
+  std::vector<std::pair<double, int> > order;
+  order.reserve(indices.size());
+  for (int k : indices) {
+    const Eigen::Vector2d d = points[static_cast<size_t>(k)] - centre;
+    order.emplace_back(std::atan2(d.y(), d.x()), k);
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<double> distances;
+  for (size_t i = 1; i + 1 < order.size(); ++i) {
+    const Eigen::Vector2d &p0 = points[static_cast<size_t>(order[i - 1].second)],
+                          &p1 = points[static_cast<size_t>(order[i].second)],
+                          &p2 = points[static_cast<size_t>(order[i + 1].second)];
+    const Eigen::Vector2d chord = p2 - p0;
+    const double length = chord.norm();
+    if (!(length > 0.0) || (p1 - p0).norm() > spacing || (p2 - p1).norm() > spacing)
+      continue;
+    const Eigen::Vector2d r = p1 - p0;
+    distances.push_back(std::fabs(chord.x() * r.y() - chord.y() * r.x()) / length);
+  }
+  if (distances.size() < 20)
+    return 0.0;
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return focal * 1.4826 * distances[distances.size() / 2] / std::sqrt(1.5);
 }
 
 namespace

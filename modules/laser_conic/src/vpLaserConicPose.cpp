@@ -415,10 +415,25 @@ bool vpLaserConicPose::failCalibration(vpLaserConicMistake mistake, const vsp::l
   return fail(STATUS_CALIBRATION_MISMATCH, msg.str());
 }
 
+bool vpLaserConicPose::inflatedScale(const std::vector<vpImagePoint> &points,
+                                     const vsp::laser_robust_fit::Result &result) const
+{
+  namespace check = vsp::laser_calibration_check;
+  const double m = check::misfit(result);
+  if (!(m > 0.5)) // pixels: the floor of check::suspect(), below which no misfit is looked at
+    return false;
+  // The trace's neighbours are about a pixel apart; four leaves room for a line the detector skipped.
+  const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
+  const double local =
+      check::localNoise(normalizedPoints(points, m_cam), result.inliers, result.conic, focal, 4.0 / focal);
+  return local > 0.0 && check::kInflatedScale * local < std::max(result.sigma, result.rmsFree) &&
+         m > check::kSuspectFactor * local;
+}
+
 bool vpLaserConicPose::checkCalibration(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
                                         const vsp::laser_robust_fit::Result &result)
 {
-  if (!m_calibrationCheck || !vsp::laser_calibration_check::suspect(result))
+  if (!m_calibrationCheck || !(vsp::laser_calibration_check::suspect(result) || inflatedScale(points, result)))
     return true;
   // A misfit beyond the imperfect calibrations the estimators tolerate is refused whatever the
   // alternatives say; between the noise and that tolerance, only when a standard mistake explains the
