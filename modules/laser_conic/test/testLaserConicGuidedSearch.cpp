@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <iterator>
 #include <string>
 
 #include <visp3/core/vpMath.h>
@@ -124,14 +125,24 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
-  // 40 near, 4 far (2 sigma): of the part of the ring at 3 sigma or more, measured 94.1 % found, precision
-  // 0.997, second-pass RMS 0.23 px. The 95 % is not reached: what is missed lies between 3 and 3.3
-  // sigma, where JPEG at quality 90 leaves a matched-filter response of 0-2 grey levels per line (it rounds
-  // the weak chroma detail away; without JPEG 99.1 % is found). The bound is the measured level. The
-  // Cramer-Rao bound of one profile there (Gaussian stripe of 3 px FWHM, peak 6 over a dominance noise of
-  // 2.6, three lines) is 0.30 px: the regularisation along the curve is what brings the RMS under it.
-  vpLaserConicDetector detector;
-  expectGuided(runGuided("faint", tiltedGround(), fadingRing(40.0, 4.0), 72, detector), 0.93, 0.3);
+  // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured
+  // 94.7-96.9 % found (mean 95.9 %), precision 0.997-1, second-pass RMS 0.20-0.31 px (mean 0.26). What is
+  // missed lies between 3 and 3.3 sigma, where JPEG at quality 90 leaves a matched-filter response of 0-2
+  // grey levels per line (it rounds the weak chroma detail away; without JPEG 99.1 % is found for seed 72).
+  // Profiles of three lines alone found 92.6-95.6 %; where they find nothing, nine lines are averaged. The
+  // Cramer-Rao bound of one three-line profile there (Gaussian stripe of 3 px FWHM, peak 6 over a dominance
+  // noise of 2.6) is 0.30 px: the regularisation along the curve is what brings the RMS under it.
+  double coverage = 0.0, rms = 0.0;
+  const unsigned int seeds[] = {72u, 60u, 61u, 62u, 63u, 64u, 65u};
+  for (unsigned int seed : seeds) {
+    vpLaserConicDetector detector;
+    const GuidedQuality q = runGuided("faint", tiltedGround(), fadingRing(40.0, 4.0), seed, detector);
+    expectGuided(q, 0.94, 0.33);
+    coverage += q.coverage3 / std::size(seeds);
+    rms += q.rmsGuided / std::size(seeds);
+  }
+  EXPECT_GE(coverage, 0.95); // the bounds, on the mean over the seeds
+  EXPECT_LE(rms, 0.3);
 }
 
 TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLight)
@@ -141,13 +152,14 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   s.ambient = 0.6;
   s.reflectanceScaled = true;
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured
-  // 90.9 % of the ring at 3 sigma or more (the first pass alone: see the log), precision 0.989, second-pass
-  // RMS 0.41 px. The 95 % and 0.3 px are not reached; the bounds are the measured levels. What is
+  // 92.8 % of the ring at 3 sigma or more (90.9 % before the nine-line profiles of the faint stripe),
+  // precision 0.987, second-pass RMS 0.40 px. The 95 % and 0.3 px are not reached; the bounds are
+  // the measured levels. What is
   // missed lies along the patches' edges: where the stripe runs along a step of the floor's red, its
   // profile is a step, not a stripe, and the first pass's points there (which the second pass does not
   // measure again) are 1.5-2 px off the line.
   vpLaserConicDetector detector;
-  expectGuided(runGuided("fading_mosaic", tiltedGround(), s, 73, detector), 0.90, 0.45);
+  expectGuided(runGuided("fading_mosaic", tiltedGround(), s, 73, detector), 0.92, 0.42);
 }
 
 TEST(LaserConicGuidedSearch, DistractorsStayOut)
@@ -160,8 +172,8 @@ TEST(LaserConicGuidedSearch, DistractorsStayOut)
                    Distractor::line(-0.3, 0.2, 0.1, 0.3, 0.004)};
   s.clutter = 80;
   s.clutterRadius = 0.5;
-  // Measured: 97.1 % of the ring at 3 sigma (the first pass alone 78.3 %), none of the second pass's
-  // points off the line, second-pass RMS 0.34 px, and the precision of all the points that of the first
+  // Measured: 97.8 % of the ring at 3 sigma (the first pass alone 78.3 %), none of the second pass's
+  // points off the line, second-pass RMS 0.35 px, and the precision of all the points that of the first
   // pass alone or better (0.845 against 0.816: the cable's points are the first pass's).
   vpLaserConicDetector detector, firstPass;
   firstPass.setGuidedSearch(false);

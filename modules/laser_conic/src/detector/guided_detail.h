@@ -91,7 +91,7 @@ struct ProfileWindow
   double centre = 0.0;     //!< offset (pixels along the line) of the window's centre from the prediction
   double halfWidth = 0.0;  //!< half width along the line; 0: the sample's whole margin (GuidedSample::halfWindow)
   double lineNoise = -1.0; //!< noise of one line (grey levels); negative: measured along this profile
-  bool singleLine = false; //!< the sample's line alone, not RidgeTuning::guidedLines lines
+  int lines = RidgeTuning::guidedLines; //!< image lines averaged (odd): the sample's and its neighbours
 };
 
 //! Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line.

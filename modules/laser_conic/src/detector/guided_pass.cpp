@@ -193,7 +193,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
       follow.centre = lastOffset / s.toNormal;
       follow.halfWidth = RidgeTuning::guidedFollowMargin / s.toNormal;
       follow.lineNoise = lineNoise;
-      follow.singleLine = strong;
+      follow.lines = strong ? 1 : RidgeTuning::guidedLines;
       r = measureProfile(I, s, settings, follow, buffers);
     }
     if (!r.found) {
@@ -201,10 +201,17 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
       // bright stripe that is followed, the sample's line alone gives that noise and finds the stripe (the
       // three lines read when it does not).
       ProfileWindow whole;
-      whole.singleLine = strong && lastWithPoint == i - 1;
+      whole.lines = strong && lastWithPoint == i - 1 ? 1 : RidgeTuning::guidedLines;
       r = measureProfile(I, s, settings, whole, buffers);
-      if (!r.found && whole.singleLine)
+      if (!r.found && whole.lines == 1)
         r = measureProfile(I, s, settings, ProfileWindow(), buffers);
+      if (!r.found) { // a faint stripe: a longer stretch of the curve averaged
+        ProfileWindow faint;
+        faint.lines = RidgeTuning::guidedFaintLines;
+        const ProfileResult longer = measureProfile(I, s, settings, faint, buffers);
+        if (longer.found)
+          r = longer;
+      }
       if (r.lines > 0) {
         const double lines = static_cast<double>(r.lines);
         lineNoise = r.noise / std::sqrt(lines);

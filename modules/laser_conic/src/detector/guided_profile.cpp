@@ -252,8 +252,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (hi < lo || n < 2 * reach + 1)
     return result;
   const unsigned char *centreLine = nullptr;
-  const int lines = readLines(I, s, start, n, settings.saturation, window.singleLine ? 0 : RidgeTuning::guidedLines / 2,
-                              buffers, centreLine);
+  const int lines = readLines(I, s, start, n, settings.saturation, window.lines / 2, buffers, centreLine);
   if (lines == 0 || centreLine == nullptr)
     return result;
   result.lines = lines;

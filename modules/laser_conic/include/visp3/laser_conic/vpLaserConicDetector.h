@@ -93,7 +93,9 @@ struct vpLaserConicDetectorRun
   the noise of the last full profile (measured at most 8 profiles before); the whole margin is searched
   when that finds nothing. A piece of curve moves by about a pixel per profile: the short profile finds its
   continuation at a third of the cost. Where the last full profile's response reached 4 times its threshold
-  (a bright stripe), the short profile reads the sample's line alone.
+  (a bright stripe), the short profile reads the sample's line alone. Where the three-line profile finds
+  nothing, one of nine lines is measured: a faint stripe's response grows as the lines averaged, the
+  noise as their square root.
   Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
