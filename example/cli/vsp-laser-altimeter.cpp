@@ -14,6 +14,7 @@
                       [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]
                       [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
                       [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]
+                      [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]
                       [--truth groundtruth.csv] [--max-altitude-error MM]
   \endverbatim
   The camera file may hold the perspective model with distortion (kud, kdu): it is then used (the
@@ -64,6 +65,9 @@ struct Options
   // Detector settings (defaults of vpLaserConicDetector).
   double minContrast = 10.0, noiseFactor = 5.0, minSegment = 50.0, track = 0.0, maxAltitudeError = 0.0;
   unsigned int maxStripeWidth = 12, saturationLevel = 250, samplingStep = 1;
+  bool guided = true;
+  double guidedMargin = 12.0, guidedFactor = 3.5;
+  unsigned int guidedStep = 1;
 };
 
 vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
@@ -84,6 +88,7 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
       "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
       "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
       "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
+      "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
       "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
       "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
       "           [--covariance-inflation K]]",
@@ -121,6 +126,19 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
   cli.addDouble("--min-segment", options.minSegment, "PX",
                 "ridge: shortest chain of points kept, pixels (default 50; 0 keeps all)", vpCommandLine::NON_NEGATIVE);
   cli.addUnsigned("--sampling-step", options.samplingStep, "N", "scan one row/column in N (default 1)", 1);
+  cli.addFlag("--no-guided", options.guided,
+              "ridge: no second pass along the ellipse of the first pass's points (it finds the dim part of a "
+              "ring that fades)",
+              false);
+  cli.addDouble("--guided-margin", options.guidedMargin, "PX",
+                "ridge: the second pass searches within PX pixels across that ellipse (default 12)",
+                vpCommandLine::POSITIVE);
+  cli.addUnsigned("--guided-step", options.guidedStep, "N",
+                  "ridge: the second pass measures a profile on every N-th row or column crossed (default 1)", 1);
+  cli.addDouble("--guided-factor", options.guidedFactor, "K",
+                "ridge: a profile of the second pass holds a stripe when its matched filter's response exceeds K "
+                "times its noise measured along the profile (default 3.5)",
+                vpCommandLine::POSITIVE);
   cli.addChoice("--instructions", options.instructions, {"best", "avx2", "sse2", "scalar"}, "SET",
                 "ridge: instruction set of the vectorised passes, the same points with each (default best: AVX2 "
                 "when the processor has it, else SSE2)");
@@ -268,6 +286,10 @@ vpLaserConicDetector makeDetector(const Options &options)
   detector.setSaturationLevel(options.saturationLevel);
   detector.setMinSegmentLength(options.minSegment);
   detector.setSamplingStep(options.samplingStep);
+  detector.setGuidedSearch(options.guided);
+  detector.setGuidedMargin(options.guidedMargin);
+  detector.setGuidedStep(options.guidedStep);
+  detector.setGuidedThresholdFactor(options.guidedFactor);
   detector.setInstructionSet(options.instructions == "avx2"     ? vpLaserConicDetector::INSTRUCTIONS_AVX2
                              : options.instructions == "sse2"   ? vpLaserConicDetector::INSTRUCTIONS_SSE2
                              : options.instructions == "scalar" ? vpLaserConicDetector::INSTRUCTIONS_SCALAR
