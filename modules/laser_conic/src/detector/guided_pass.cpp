@@ -160,7 +160,8 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
 // Measures the samples no point covers yet (in \e limit when not null) and sets their state and result; returns
 // the samples missed. A sample next to one with a point is first searched within RidgeTuning::guidedFollowMargin
 // of that point's offset, with the noise of the last full profile (see RidgeTuning::guidedFollowMargin); the
-// full margin is searched when that finds nothing. \e noises and \e thresholds: those of the full profiles, per image line.
+// full margin is searched when that finds nothing, with RidgeTuning::guidedFaintLines lines when three find
+// nothing. \e noises and \e thresholds: those of the full profiles, per image line.
 int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const std::vector<GuidedSample> &samples,
                    const RegionSpans *limit, const FoundCells &found, ProfileBuffers &buffers,
                    std::vector<SampleState> &state, std::vector<ProfileResult> &results, std::vector<double> &noises,
