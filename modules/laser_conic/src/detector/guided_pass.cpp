@@ -177,7 +177,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
     // and the profiles' reads, a few dozen bytes a row, each wait for memory otherwise (a sixth of the
     // tracking mode's time).
     if (i + RidgeTuning::guidedPrefetchAhead < static_cast<int>(samples.size()))
-      prefetchProfile(I, samples[static_cast<size_t>(i + RidgeTuning::guidedPrefetchAhead)],
+      prefetchProfile(I, samples[static_cast<size_t>(i) + RidgeTuning::guidedPrefetchAhead],
                       RidgeTuning::guidedPrefetchReach);
     double offset = 0.0;
     if (found.covers(s, offset)) {
