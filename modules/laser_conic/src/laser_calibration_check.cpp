@@ -9,8 +9,6 @@
 #include <limits>
 #include <vector>
 
-#include <Eigen/LU>
-
 namespace vsp::laser_calibration_check
 {
 double misfit(const vsp::laser_robust_fit::Result &result)
@@ -21,9 +19,15 @@ double misfit(const vsp::laser_robust_fit::Result &result)
   return excess > 0.0 ? std::sqrt(excess) : 0.0;
 }
 
+namespace
+{
+//! Noise scale (pixels) of a fit: the larger of its robust scale and its free fit's RMS.
+double noiseScale(const vsp::laser_robust_fit::Result &result) { return std::max(result.sigma, result.rmsFree); }
+} // namespace
+
 double tolerance(const vsp::laser_robust_fit::Result &result)
 {
-  return std::max(kNoiseFactor * std::max(result.sigma, result.rmsFree), kFloorPixels);
+  return std::max(kNoiseFactor * noiseScale(result), kFloorPixels);
 }
 
 bool explained(const vsp::laser_robust_fit::Result &result)
@@ -35,17 +39,15 @@ bool explained(const vsp::laser_robust_fit::Result &result)
 bool suspect(const vsp::laser_robust_fit::Result &result)
 {
   const double m = misfit(result);
-  return m > kSuspectFactor * std::max(result.sigma, result.rmsFree) && m > 0.5;
+  return m > kSuspectFactor * noiseScale(result) && m > kSuspectFloorPixels;
 }
 
 double localNoise(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices,
                   const Eigen::Matrix3d &conic, double focal, double spacing)
 {
-  const Eigen::Matrix2d A = 0.5 * (conic.topLeftCorner<2, 2>() + conic.topLeftCorner<2, 2>().transpose());
-  const Eigen::Vector2d b = 0.5 * (conic.topRightCorner<2, 1>() + conic.bottomLeftCorner<1, 2>().transpose());
-  if (!(std::fabs(A.determinant()) > 0.0))
+  Eigen::Vector2d centre;
+  if (!vsp::laser_robust_fit::ellipseCentre(conic, centre))
     return 0.0;
-  const Eigen::Vector2d centre = -A.inverse() * b;
   std::vector<std::pair<double, int> > order;
   order.reserve(indices.size());
   for (int k : indices) {
@@ -69,6 +71,14 @@ double localNoise(const vsp::laser_estimators::PointList &points, const std::vec
     return 0.0;
   std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
   return focal * 1.4826 * distances[distances.size() / 2] / std::sqrt(1.5);
+}
+
+bool suspectAtLocalNoise(const vsp::laser_estimators::PointList &points, const vsp::laser_robust_fit::Result &result,
+                         double focal)
+{
+  // The trace's neighbours are about a pixel apart; four leaves room for a line the detector skipped.
+  const double local = localNoise(points, result.inliers, result.conic, focal, 4.0 / focal);
+  return local > 0.0 && kInflatedScale * local < noiseScale(result) && misfit(result) > kSuspectFactor * local;
 }
 
 namespace

@@ -47,6 +47,8 @@ constexpr double kFloorPixels = 3.0;
   An imperfect calibration (up to kNoiseFactor) is still accepted unless a mistake fits markedly better.
 */
 constexpr double kSuspectFactor = 1.0;
+//! Misfit (pixels) below which no calibration is suspected, whatever the noise scale.
+constexpr double kSuspectFloorPixels = 0.5;
 /*!
   An alternative calibration fits markedly better when it leaves less than this fraction of the
   misfit (a quarter of the added squared error).
@@ -59,7 +61,7 @@ double misfit(const vsp::laser_robust_fit::Result &result);
 double tolerance(const vsp::laser_robust_fit::Result &result);
 //! True unless the misfit is beyond the tolerance (a missing constrained fit cannot be judged: true).
 bool explained(const vsp::laser_robust_fit::Result &result);
-//! True when the misfit exceeds kSuspectFactor noise scales (and the floor of 0.5 px): the mistakes are worth trying.
+//! True when the misfit exceeds kSuspectFactor noise scales (and kSuspectFloorPixels): the mistakes are worth trying.
 bool suspect(const vsp::laser_robust_fit::Result &result);
 
 /*!
@@ -78,6 +80,15 @@ constexpr double kInflatedScale = 4.0;
 */
 double localNoise(const vsp::laser_estimators::PointList &points, const std::vector<int> &indices,
                   const Eigen::Matrix3d &conic, double focal, double spacing);
+
+/*!
+  The fit's noise scale is inflated (kInflatedScale times the trace's localNoise() or more) and the misfit
+  exceeds kSuspectFactor times that local noise: suspect() on the trace's own noise. \e points: the
+  normalised points of the fit; \e focal: pixels per normalised unit. The caller checks first that the
+  misfit exceeds kSuspectFloorPixels (this function orders the trace, the points need converting).
+*/
+bool suspectAtLocalNoise(const vsp::laser_estimators::PointList &points, const vsp::laser_robust_fit::Result &result,
+                         double focal);
 
 //! A calibration the user may have meant, one standard mistake away from the one given.
 struct Alternative

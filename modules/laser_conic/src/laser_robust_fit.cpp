@@ -287,6 +287,16 @@ bool freeCovariance(const PointList &trace, const LaserCone &cone, double focal,
 }
 } // namespace
 
+bool ellipseCentre(const Eigen::Matrix3d &c, Eigen::Vector2d &centre)
+{
+  const Eigen::Matrix2d A = 0.5 * (c.topLeftCorner<2, 2>() + c.topLeftCorner<2, 2>().transpose());
+  const Eigen::Vector2d b = 0.5 * (c.topRightCorner<2, 1>() + c.bottomLeftCorner<1, 2>().transpose());
+  if (!(std::fabs(A.determinant()) > 0.0))
+    return false;
+  centre = -A.inverse() * b;
+  return true;
+}
+
 double arcCoverage(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &conic)
 {
   Eigen::Matrix3d c = conic;
@@ -296,7 +306,9 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
   const Eigen::LLT<Eigen::Matrix2d> llt(A);
   if (llt.info() != Eigen::Success || indices.empty())
     return 0.0;
-  const Eigen::Vector2d centre = -A.inverse() * c.topRightCorner<2, 1>();
+  Eigen::Vector2d centre;
+  if (!ellipseCentre(c, centre))
+    return 0.0;
   const Eigen::Matrix2d U = llt.matrixU(); // A = U^T U: U (x - centre) lies on a circle
   // Occupied bins of 0.5 deg around the ellipse; the coverage is the circle minus its largest empty run.
   constexpr int kBins = 720;

@@ -415,38 +415,29 @@ bool vpLaserConicPose::failCalibration(vpLaserConicMistake mistake, const vsp::l
   return fail(STATUS_CALIBRATION_MISMATCH, msg.str());
 }
 
-bool vpLaserConicPose::inflatedScale(const std::vector<vpImagePoint> &points,
-                                     const vsp::laser_robust_fit::Result &result) const
-{
-  namespace check = vsp::laser_calibration_check;
-  const double m = check::misfit(result);
-  if (!(m > 0.5)) // pixels: the floor of check::suspect(), below which no misfit is looked at
-    return false;
-  // The trace's neighbours are about a pixel apart; four leaves room for a line the detector skipped.
-  const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
-  const double local =
-      check::localNoise(normalizedPoints(points, m_cam), result.inliers, result.conic, focal, 4.0 / focal);
-  return local > 0.0 && check::kInflatedScale * local < std::max(result.sigma, result.rmsFree) &&
-         m > check::kSuspectFactor * local;
-}
-
 bool vpLaserConicPose::checkCalibration(const std::vector<vpImagePoint> &points, vpLaserConicMethod method,
                                         const vsp::laser_robust_fit::Result &result)
 {
-  if (!m_calibrationCheck || !(vsp::laser_calibration_check::suspect(result) || inflatedScale(points, result)))
+  namespace check = vsp::laser_calibration_check;
+  if (!m_calibrationCheck)
+    return true;
+  // The fit's own noise scale, or the trace's measured along it when the fit's is inflated by a model error
+  // (a wrong calibration's fit on crossings of the trace and clutter).
+  const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
+  if (!check::suspect(result) && !(check::misfit(result) > check::kSuspectFloorPixels &&
+                                   check::suspectAtLocalNoise(normalizedPoints(points, m_cam), result, focal)))
     return true;
   // A misfit beyond the imperfect calibrations the estimators tolerate is refused whatever the
   // alternatives say; between the noise and that tolerance, only when a standard mistake explains the
   // trace markedly better (with the inverse laser pose, a fading or cluttered trace can leave a
   // misfit within the tolerance: 14 px at 0.6 px noise, or a partial trace of inflated noise scale).
   double alternative = std::numeric_limits<double>::infinity();
-  if (!vsp::laser_calibration_check::explained(result))
+  if (!check::explained(result))
     return failCalibration(suspectedMistake(points, method), result, alternative);
   // The alternative must explain the whole trace (on a part of it, a shorter arc, any calibration
   // fits) within the noise, as a right calibration does.
   const vpLaserConicMistake mistake = suspectedMistake(points, method, &alternative, true, result.inliers.size());
-  if (mistake != MISTAKE_UNKNOWN &&
-      alternative < vsp::laser_calibration_check::kBetterFraction * vsp::laser_calibration_check::misfit(result))
+  if (mistake != MISTAKE_UNKNOWN && alternative < check::kBetterFraction * check::misfit(result))
     return failCalibration(mistake, result, alternative);
   return true;
 }

@@ -201,10 +201,7 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
   centre = stripeCentroid(view, p, a, b, bg, contrast, d);
   return true;
 }
-} // namespace
 
-namespace
-{
 // A hint to bring the cache line of \e p to cache (nothing where the compiler has no such builtin).
 inline void prefetch(const unsigned char *p)
 {

@@ -398,8 +398,6 @@ private:
   //! STATUS_CALIBRATION_MISMATCH naming \e mistake (the alternative left \e alternativeMisfit pixels).
   bool failCalibration(vpLaserConicMistake mistake, const vsp::laser_robust_fit::Result &result,
                        double alternativeMisfit);
-  //! Whether the fit's noise scale is inflated by a model error (laser_calibration_check.h, localNoise()).
-  bool inflatedScale(const std::vector<vpImagePoint> &points, const vsp::laser_robust_fit::Result &result) const;
   /*!
     The calibration check of a final fit (setCalibrationCheck()): false, with
     STATUS_CALIBRATION_MISMATCH, when the misfit is beyond the tolerance, or beyond the noise with a
