@@ -185,7 +185,8 @@ void fitWindows(const WindowFits &fits, const std::vector<double> &arc, size_t f
 }
 } // namespace
 
-void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, std::vector<Eigen::Vector2d> &sample)
+void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, bool byPosition,
+                       std::vector<Eigen::Vector2d> &sample)
 {
   sample.clear();
   const unsigned int stride = static_cast<unsigned int>(std::max<size_t>(1, points.size() / target));
@@ -195,9 +196,10 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, s
     if (((iu * 73856093u) ^ (iv * 19349663u)) % stride == 0)
       sample.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
   }
-  std::sort(sample.begin(), sample.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
-    return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
-  });
+  if (byPosition)
+    std::sort(sample.begin(), sample.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
+      return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
+    });
 }
 
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, Eigen::Matrix3d &C,
@@ -214,7 +216,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   for (const vpImagePoint &p : points)
     all.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
   std::vector<Eigen::Vector2d> picked;
-  positionSubsample(points, 300, picked);
+  positionSubsample(points, 300, true, picked);
   sample.assign(picked.begin(), picked.end());
   // Most frames hold the trace alone: the least-squares ellipse of the subsample then fits nearly all of it,
   // and RANSAC (a singular value decomposition per sample) is needed only when it does not.
@@ -272,6 +274,7 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
   if (crossings.size() < static_cast<size_t>(RidgeTuning::guidedSmoothMinPoints) || !k.centre(uc, vc))
     return;
   std::vector<OnConic> points;
+  points.reserve(crossings.size());
   for (const Crossing &x : crossings) {
     const double u = x.point.get_u(), v = x.point.get_v();
     const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e, norm = std::sqrt(fu * fu + fv * fv);

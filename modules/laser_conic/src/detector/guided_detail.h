@@ -72,11 +72,13 @@ struct ProfileBuffers
 };
 
 /*!
-  About \e target of \e points (all of them when fewer), chosen by their position (a hash of their pixel) and
-  sorted by row then column: the same points in any order give the same subsample in the same order, and so
-  the same fit to the last bit.
+  About \e target of \e points (all of them when fewer), chosen by their position (a hash of their pixel), in
+  their order or, when \e byPosition, sorted by row then column: the same points in any order then give the
+  same subsample in the same order, and so the same fit to the last bit. (Sorting is a tenth of a tracked
+  frame: the guided pass's own points come in the order of its walk, which the same prediction repeats.)
 */
-void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, std::vector<Eigen::Vector2d> &sample);
+void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, bool byPosition,
+                       std::vector<Eigen::Vector2d> &sample);
 
 /*!
   Regularises the centres of \e crossings (the second pass's points) along the conic C: each point is moved

@@ -233,12 +233,13 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
 }
 
 // Least-squares ellipse through the points (a subsample of a few hundred). The subsample is chosen by
-// position and sorted: the same points in any order (the first pass's order depends on how it searched) give
-// the same ellipse, to the last bit, and so the same regularised centres (smoothAlongCurve()).
-bool refit(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
+// position, and sorted when \e fromFirstPass (the points start with the first pass's): the same points in any
+// order (the first pass's order depends on how it searched) give the same ellipse, to the last bit, and so
+// the same regularised centres (smoothAlongCurve()). The pass's own points come in the order of its walks.
+bool refit(const std::vector<vpImagePoint> &points, bool fromFirstPass, Eigen::Matrix3d &C)
 {
   std::vector<Eigen::Vector2d> sample;
-  positionSubsample(points, 600, sample);
+  positionSubsample(points, 600, fromFirstPass, sample);
   Eigen::Matrix3d c;
   if (sample.size() < 5 || !vpLaserSolvers::fitConic(sample.data(), static_cast<int>(sample.size()), c) ||
       !vpLaserSolvers::isEllipse(c))
@@ -311,7 +312,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     // its own needs no final conic.
     if (added == 0 && work.guided.empty())
       break;
-    const bool refitted = refit(fitPoints, C);
+    const bool refitted = refit(fitPoints, !anchors.empty(), C);
     if (added == 0 || missed == 0 || !refitted)
       break;
   }

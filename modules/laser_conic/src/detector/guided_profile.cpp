@@ -47,13 +47,19 @@ inline int profileValue(const unsigned char *p, int saturation, int rampStart)
   return p[0] >= rampStart ? score : dominance;
 }
 
-// Adds the values of \e n pixels from \e first, \e stride bytes apart, to \e value. A row's stride is a
-// compile-time 4: the loop is then vectorised.
+// Adds the values of \e n pixels from \e first, \e stride bytes apart, to \e value, or writes them there when
+// \e overwrite (the first line: no zeroing pass). A row's stride is a compile-time 4: the loop is then
+// vectorised.
 template <class Stride>
-void addLine(const unsigned char *first, Stride stride, int n, int saturation, int rampStart, int *value)
+void addLine(const unsigned char *first, Stride stride, int n, int saturation, int rampStart, bool overwrite,
+             int *value)
 {
-  for (int k = 0; k < n; ++k)
-    value[k] += profileValue(first + k * static_cast<ptrdiff_t>(stride), saturation, rampStart);
+  if (overwrite)
+    for (int k = 0; k < n; ++k)
+      value[k] = profileValue(first + k * static_cast<ptrdiff_t>(stride), saturation, rampStart);
+  else
+    for (int k = 0; k < n; ++k)
+      value[k] += profileValue(first + k * static_cast<ptrdiff_t>(stride), saturation, rampStart);
 }
 
 // Sums the values of pixels [start, start + n) of the sample's line and of its \e half neighbours on each side,
@@ -62,7 +68,7 @@ void addLine(const unsigned char *first, Stride stride, int n, int saturation, i
 int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, int half,
               ProfileBuffers &b, const unsigned char *&centre)
 {
-  b.value.assign(static_cast<size_t>(n), 0);
+  b.value.resize(static_cast<size_t>(n));
   b.prefix.resize(static_cast<size_t>(n) + 1);
   const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
   const ptrdiff_t W = static_cast<ptrdiff_t>(I.getWidth());
@@ -80,11 +86,13 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
     if (j == 0)
       centre = first;
     if (s.alongRow)
-      addLine(first, std::integral_constant<ptrdiff_t, 4>(), n, saturation, rampStart, value);
+      addLine(first, std::integral_constant<ptrdiff_t, 4>(), n, saturation, rampStart, used == 0, value);
     else
-      addLine(first, 4 * W, n, saturation, rampStart, value);
+      addLine(first, 4 * W, n, saturation, rampStart, used == 0, value);
     ++used;
   }
+  if (used == 0)
+    return 0;
   b.prefix[0] = 0;
   for (int k = 0; k < n; ++k)
     b.prefix[k + 1] = b.prefix[k] + value[k];
@@ -131,47 +139,47 @@ double profileNoise(ProfileBuffers &b, int n, int lines, int skipFirst, int skip
 
 // The matched filter: mean over the stripe box [k - h, k + h] minus the larger mean of the background boxes
 // of f pixels beyond a gap on each side (a step edge has one bright side and fails, as in the first pass).
+// In integers, scaled by (2h + 1) f, then one multiplication (the divisions of three means per response
+// were a good part of a tracked frame's profiles).
 struct MatchedFilter
 {
   const std::vector<int> &prefix;
   int h, f;
-  double mean(int first, int last) const
+  double scale; //!< 1 / ((2h + 1) f): from a scaled response to grey levels
+  MatchedFilter(const std::vector<int> &prefix_, int h_, int f_)
+    : prefix(prefix_), h(h_), f(f_), scale(1.0 / ((2.0 * h_ + 1.0) * f_))
   {
-    return static_cast<double>(prefix[last + 1] - prefix[first]) / (last - first + 1);
   }
-  double background(int k) const
+  // Sums of the left and right background boxes of k.
+  int leftSum(int k) const
   {
-    const int g = RidgeTuning::guidedGap;
-    return std::max(mean(k - h - g - f, k - h - g - 1), mean(k + h + g + 1, k + h + g + f));
+    return prefix[k - h - RidgeTuning::guidedGap] - prefix[k - h - RidgeTuning::guidedGap - f];
   }
-  double response(int k) const { return mean(k - h, k + h) - background(k); }
-  // response(k) x (2h + 1) f, exact in integers: a larger one is a larger response (by 1 / ((2h + 1) f),
-  // far beyond rounding), so the best response is among the best of these.
+  int rightSum(int k) const
+  {
+    return prefix[k + h + RidgeTuning::guidedGap + f + 1] - prefix[k + h + RidgeTuning::guidedGap + 1];
+  }
+  double background(int k) const { return static_cast<double>(std::max(leftSum(k), rightSum(k))) / f; }
+  // response(k) x (2h + 1) f, exact in integers.
   long long scaledResponse(int k) const
   {
-    const int g = RidgeTuning::guidedGap;
     const long long stripe = prefix[k + h + 1] - prefix[k - h];
-    const long long left = prefix[k - h - g] - prefix[k - h - g - f],
-                    right = prefix[k + h + g + f + 1] - prefix[k + h + g + 1];
-    return stripe * f - std::max(left, right) * (2 * h + 1);
+    return stripe * f - static_cast<long long>(std::max(leftSum(k), rightSum(k))) * (2 * h + 1);
   }
-  // The first k of [first, last] with the largest response(k) (-1 when empty): the largest scaled response
-  // in integers first, the doubles only where it is reached (the same k as comparing every response(k)).
+  double response(int k) const { return static_cast<double>(scaledResponse(k)) * scale; }
+  // The first k of [first, last] with the largest response (-1 when empty), and that response.
   int best(int first, int last, double &bestResponse) const
   {
-    long long top = 0;
-    for (int k = first; k <= last; ++k)
-      top = k == first ? scaledResponse(k) : std::max(top, scaledResponse(k));
     int found = -1;
-    bestResponse = -1e30;
-    for (int k = first; k <= last; ++k)
-      if (scaledResponse(k) == top) {
-        const double r = response(k);
-        if (r > bestResponse) {
-          bestResponse = r;
-          found = k;
-        }
+    long long top = 0;
+    for (int k = first; k <= last; ++k) {
+      const long long r = scaledResponse(k);
+      if (found < 0 || r > top) {
+        top = r;
+        found = k;
       }
+    }
+    bestResponse = found < 0 ? -1e30 : static_cast<double>(top) * scale;
     return found;
   }
 };
@@ -253,7 +261,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (lines == 0 || centreLine == nullptr)
     return result;
   result.lines = lines;
-  const MatchedFilter filter{buffers.prefix, h, f};
+  const MatchedFilter filter(buffers.prefix, h, f);
   double bestResponse = -1e30;
   const int best = filter.best(std::max(reach, lo - start), std::min(n - 1 - reach, hi - start), bestResponse);
   const int tails = h + RidgeTuning::guidedGap + 1;
