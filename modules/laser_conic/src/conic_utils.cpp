@@ -27,8 +27,12 @@ double sampsonDistance(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
   const Eigen::Vector3d x(p(0), p(1), 1.0);
   const Eigen::Vector3d cx = c * x;
   const double algebraic = x.dot(cx);
-  // Gradient of x^T c x with respect to the two inhomogeneous coordinates.
-  const double gradient = 2.0 * std::hypot(cx(0), cx(1));
+  // Gradient of x^T c x with respect to the two inhomogeneous coordinates. std::hypot, which guards against
+  // overflow and underflow (and was a few percent of a tracked frame), only for sums of squares out of the
+  // normal range (conics scaled near the largest or smallest doubles).
+  const double squared = cx(0) * cx(0) + cx(1) * cx(1);
+  const bool normal = squared >= std::numeric_limits<double>::min() && squared <= std::numeric_limits<double>::max();
+  const double gradient = 2.0 * (normal ? std::sqrt(squared) : std::hypot(cx(0), cx(1)));
   if (!(gradient > 0.0))
     return algebraic == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
   return std::abs(algebraic) / gradient;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include <Eigen/LU>
@@ -294,16 +295,44 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
   WindowFits fits;
   fits.build(arc, offset, use);
   fitWindows(fits, arc, 0, sequence.size(), fitted);
-  for (size_t i = 0; i < sequence.size(); ++i)
+  size_t dropped = 0;
+  for (size_t i = 0; i < sequence.size(); ++i) {
     use[i] = std::fabs(offset[i] - fitted[i]) <= RidgeTuning::guidedSmoothOutlier ? 1 : 0; // NaN: left out
-  fits.build(arc, offset, use);
-  fitWindows(fits, arc, first, points.size(), fitted);
+    dropped += 1 - use[i];
+  }
+  if (dropped > 0) { // else the same fits again
+    fits.build(arc, offset, use);
+    fitWindows(fits, arc, first, points.size(), fitted);
+  } else
+    fitted.erase(fitted.begin(), fitted.begin() + static_cast<std::ptrdiff_t>(first));
   for (size_t i = 0; i < points.size(); ++i) {
     const OnConic &c = points[static_cast<size_t>(sequence[first + i])];
     const double shift = std::isfinite(fitted[i]) ? fitted[i] - c.offset : 0.0;
     crossings[static_cast<size_t>(sequence[first + i])].point = vpImagePoint(c.v + shift * c.nv, c.u + shift * c.nu);
   }
 }
+
+namespace
+{
+bool byAngle(const GuidedSample &p, const GuidedSample &q) { return p.angle < q.angle; }
+
+// Puts the samples of \e run, one arc of the curve in the order of its lines, in increasing angle: reversed
+// when the angle decreases along it, rotated when it crosses the -pi / pi cut. False when the run is no such
+// arc (then the caller sorts).
+bool alongTheCurve(std::vector<GuidedSample> &run)
+{
+  size_t descents = 0;
+  for (size_t i = 1; i < run.size(); ++i)
+    descents += run[i].angle < run[i - 1].angle ? 1 : 0;
+  if (2 * descents > run.size())
+    std::reverse(run.begin(), run.end());
+  const auto cut = std::is_sorted_until(run.begin(), run.end(), byAngle);
+  if (cut == run.end())
+    return true;
+  std::rotate(run.begin(), cut, run.end());
+  return std::is_sorted(run.begin(), run.end(), byAngle);
+}
+} // namespace
 
 bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step, std::vector<GuidedSample> &samples)
 {
@@ -315,20 +344,32 @@ bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step
   if (!k.centre(uc, vc))
     return false;
   std::vector<double> roots;
+  // The crossings come as four arcs, each in the order of its lines (rows or columns, first or second root),
+  // then merged along the curve: sorting them all was a twentieth of a tracked frame.
+  std::vector<GuidedSample> arcs[4];
   // Crossings of row v = t (alongRow) or column u = t: where the gradient is more along the line than
   // across it, the line crosses the curve at 45 degrees or more.
-  auto add = [&](bool alongRow, int t, double x) {
-    const double u = alongRow ? x : t, v = alongRow ? t : x;
-    const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e, norm = std::sqrt(fu * fu + fv * fv);
-    const double along = std::fabs(alongRow ? fu : fv), across = std::fabs(alongRow ? fv : fu);
-    if (!(norm > 0.0) || along < across || (!alongRow && along == across))
-      return;
+  auto add = [&](bool alongRow, int t, double x, int root) {
     const int n = alongRow ? W : H;
     if (x < -margin || x > n - 1 + margin)
       return;
+    const double u = alongRow ? x : t, v = alongRow ? t : x;
+    const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e;
+    const double along = std::fabs(alongRow ? fu : fv), across = std::fabs(alongRow ? fv : fu);
+    // The tests first, the square root for the crossings kept only (half of them).
+    if (!(along > 0.0) || along < across || (!alongRow && along == across))
+      return;
+    const double norm = std::sqrt(fu * fu + fv * fv);
     const double toNormal = along / norm;
     const double slope = -(alongRow ? fv : fu) / (alongRow ? fu : fv);
-    samples.push_back(GuidedSample{alongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
+    arcs[(alongRow ? 0 : 2) + root].push_back(
+        GuidedSample{alongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
+  };
+  auto addRoots = [&](bool alongRow, int t) {
+    if (roots.size() == 2 && roots[1] < roots[0])
+      std::swap(roots[0], roots[1]);
+    for (size_t r = 0; r < roots.size(); ++r)
+      add(alongRow, t, roots[r], static_cast<int>(r));
   };
   // Only the lines that cross the ellipse: its extent along v (rows) and u (columns).
   int firstRow = 0, lastRow = H - 1, firstColumn = 0, lastColumn = W - 1;
@@ -337,17 +378,25 @@ bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step
   for (int v = firstRow; v <= lastRow; v += step) {
     roots.clear();
     solveQuadratic(k.a, 2.0 * (k.b * v + k.d), k.c * v * v + 2.0 * k.e * v + k.f, roots);
-    for (double u : roots)
-      add(true, v, u);
+    addRoots(true, v);
   }
   for (int u = firstColumn; u <= lastColumn; u += step) {
     roots.clear();
     solveQuadratic(k.c, 2.0 * (k.b * u + k.e), k.a * u * u + 2.0 * k.d * u + k.f, roots);
-    for (double v : roots)
-      add(false, u, v);
+    addRoots(false, u);
   }
-  std::sort(samples.begin(), samples.end(),
-            [](const GuidedSample &p, const GuidedSample &q) { return p.angle < q.angle; });
+  bool arcsInOrder = true;
+  for (std::vector<GuidedSample> &arc : arcs)
+    arcsInOrder = alongTheCurve(arc) && arcsInOrder;
+  std::vector<GuidedSample> rows, columns;
+  rows.reserve(arcs[0].size() + arcs[1].size());
+  columns.reserve(arcs[2].size() + arcs[3].size());
+  std::merge(arcs[0].begin(), arcs[0].end(), arcs[1].begin(), arcs[1].end(), std::back_inserter(rows), byAngle);
+  std::merge(arcs[2].begin(), arcs[2].end(), arcs[3].begin(), arcs[3].end(), std::back_inserter(columns), byAngle);
+  samples.reserve(rows.size() + columns.size());
+  std::merge(rows.begin(), rows.end(), columns.begin(), columns.end(), std::back_inserter(samples), byAngle);
+  if (!arcsInOrder)
+    std::sort(samples.begin(), samples.end(), byAngle);
   return true;
 }
 } // namespace vsp::laser_detector

@@ -293,6 +293,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
       break;
     ++report.iterations;
+    fitPoints.reserve(fitPoints.size() + samples.size());
     state.assign(samples.size(), MISSED);
     results.assign(samples.size(), ProfileResult());
     const int missed = measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds);
@@ -318,6 +319,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   }
   keepOnTheFinalCurve(C, work.guided);
   smoothAlongCurve(C, work.guided);
+  points.reserve(points.size() + work.guided.size());
   for (const Crossing &c : work.guided)
     points.push_back(c.point);
   report.added = static_cast<int>(work.guided.size());

@@ -78,7 +78,7 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
   int used = 0;
   int *value = b.value.data();
   for (int j = -half; j <= half; ++j) {
-    const int line = s.line + j, from = start + static_cast<int>(std::lround(j * s.slope));
+    const int line = s.line + j, from = start + (j == 0 ? 0 : static_cast<int>(std::lround(j * s.slope)));
     if (line < 0 || line >= lineCount || from < 0 || from + n > lineLength)
       continue;
     const unsigned char *first =
@@ -265,23 +265,24 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   double bestResponse = -1e30;
   const int best = filter.best(std::max(reach, lo - start), std::min(n - 1 - reach, hi - start), bestResponse);
   const int tails = h + RidgeTuning::guidedGap + 1;
+  const double rootLines = lines == 1 ? 1.0 : std::sqrt(static_cast<double>(lines));
   if (window.lineNoise >= 0.0)
-    result.noise = window.lineNoise * std::sqrt(static_cast<double>(lines));
+    result.noise = window.lineNoise * rootLines;
   else
     result.noise = best < 0 ? profileNoise(buffers, n, lines, n, n)
                             : profileNoise(buffers, n, lines, best - tails, best + tails);
-  result.threshold = std::max(RidgeTuning::guidedMinResponse * lines,
-                              settings.factor * result.noise * std::sqrt(1.0 / (2 * h + 1) + 1.0 / f));
+  result.threshold =
+      std::max(RidgeTuning::guidedMinResponse * lines, settings.factor * result.noise * buffers.filterGain(h, f));
+  result.response = bestResponse;
+  if (best < 0 || bestResponse < result.threshold)
+    return result;
   double centre = 0.0;
   int first = 0, last = 0;
   // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
   // in the sum of the lines, refused every white core with pink flanks: the laser on white paper.)
   const int flankThreshold =
-      static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse,
-                                          settings.factor * result.noise / std::sqrt(static_cast<double>(lines)))));
-  result.response = bestResponse;
-  if (best < 0 || bestResponse < result.threshold ||
-      !shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
+      static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse, settings.factor * result.noise / rootLines)));
+  if (!shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
                       filter, best, settings, flankThreshold, first, last, centre))
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
