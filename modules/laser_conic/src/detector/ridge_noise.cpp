@@ -84,11 +84,16 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region,
   };
   for (int i = 0; i < H; i += 8) {
     const unsigned char *row = reinterpret_cast<const unsigned char *>(I[static_cast<unsigned int>(i)]);
-    if (region == nullptr)
+    if (region == nullptr) {
+      // The rows sampled are 8 apart, too far for the processor to guess: the next one is asked for while
+      // this one is read, which would otherwise wait for memory line by line.
+      if (i + 8 < H)
+        prefetchBytes(row + 4 * static_cast<size_t>(8) * W, 4 * static_cast<size_t>(W));
       sampleSpan(row, 0, W - 1);
-    else
+    } else {
       for (const Span *span = region->begin(i); span != region->end(i); ++span)
         sampleSpan(row, span->first, span->second);
+    }
   }
   if (count == 0)
     return 0.0;

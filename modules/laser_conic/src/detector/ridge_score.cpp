@@ -115,6 +115,25 @@ __attribute__((target("avx2"))) inline __m256i dominance8(__m256i a, __m256i low
                           low8);
 }
 
+// The channel at bit \e shift of the 16 RGBA pixels of a and b (8 each), in 16-bit lanes (AVX2).
+__attribute__((target("avx2"))) inline __m256i channel16(__m256i a, __m256i b, int shift, __m256i low8)
+{
+  return _mm256_packs_epi32(_mm256_and_si256(_mm256_srli_epi32(a, shift), low8),
+                            _mm256_and_si256(_mm256_srli_epi32(b, shift), low8));
+}
+
+// The score of the 16 pixels of a and b (8 each) with the ramp weight, in 16-bit lanes: scoreBlockRamp()'s
+// arithmetic on twice the pixels; the packs leave them in the order of the 128-bit lanes (as dominance8()'s).
+__attribute__((target("avx2"))) inline __m256i rampScore16(__m256i a, __m256i b, __m256i low8, __m256i sat,
+                                                           __m256i ramp, __m256i third)
+{
+  const __m256i zero = _mm256_setzero_si256();
+  const __m256i r = channel16(a, b, 0, low8), m = _mm256_max_epi16(channel16(a, b, 8, low8), channel16(a, b, 16, low8));
+  const __m256i t = _mm256_min_epi16(_mm256_max_epi16(_mm256_sub_epi16(sat, r), zero), ramp);
+  const __m256i w = _mm256_mulhi_epu16(_mm256_mullo_epi16(m, t), third);
+  return _mm256_max_epi16(_mm256_sub_epi16(r, w), zero);
+}
+
 // scoreSpanScalar() 32 pixels at a time (AVX2), on processors that have it (see scoreSpan()).
 __attribute__((target("avx2"))) void scoreSpanAvx2(const unsigned char *rgba, unsigned char *score, int n,
                                                    int saturation, int threshold, unsigned char *flags)
@@ -125,19 +144,20 @@ __attribute__((target("avx2"))) void scoreSpanAvx2(const unsigned char *rgba, un
   const __m256i thresholdBytes = _mm256_set1_epi8(static_cast<char>(threshold));
   // The packs work within 128-bit lanes: they leave the groups of 4 pixels in the order 0 2 4 6 1 3 5 7.
   const __m256i groups = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+  const __m256i sat = _mm256_set1_epi16(static_cast<short>(saturation)),
+                ramp = _mm256_set1_epi16(RidgeTuning::saturationRamp), third = _mm256_set1_epi16(2185);
   int j = 0;
   for (; j + 32 <= n; j += 32) {
     const __m256i *in = reinterpret_cast<const __m256i *>(rgba + 4 * j);
     const __m256i a0 = _mm256_loadu_si256(in), a1 = _mm256_loadu_si256(in + 1), a2 = _mm256_loadu_si256(in + 2),
                   a3 = _mm256_loadu_si256(in + 3);
     const __m256i redMax = _mm256_and_si256(_mm256_max_epu8(_mm256_max_epu8(a0, a1), _mm256_max_epu8(a2, a3)), low8);
-    if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_subs_epu8(redMax, rampStart), zero)) != -1) {
-      scoreBlock(rgba + 4 * j, score + j, flags + (j >> 4), k); // a red above the ramp start: 16-bit arithmetic
-      scoreBlock(rgba + 4 * (j + 16), score + j + 16, flags + (j >> 4) + 1, k);
-      continue;
-    }
-    const __m256i packed = _mm256_packus_epi16(_mm256_packs_epi32(dominance8(a0, low8), dominance8(a1, low8)),
-                                               _mm256_packs_epi32(dominance8(a2, low8), dominance8(a3, low8)));
+    // A red above the ramp start (the warm patches of a colourful floor under a lamp): 16-bit arithmetic.
+    const bool inRamp = _mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_subs_epu8(redMax, rampStart), zero)) != -1;
+    const __m256i packed = inRamp ? _mm256_packus_epi16(rampScore16(a0, a1, low8, sat, ramp, third),
+                                                        rampScore16(a2, a3, low8, sat, ramp, third))
+                                  : _mm256_packus_epi16(_mm256_packs_epi32(dominance8(a0, low8), dominance8(a1, low8)),
+                                                        _mm256_packs_epi32(dominance8(a2, low8), dominance8(a3, low8)));
     const __m256i s = _mm256_permutevar8x32_epi32(packed, groups);
     _mm256_storeu_si256(reinterpret_cast<__m256i *>(score + j), s);
     const unsigned int reached =

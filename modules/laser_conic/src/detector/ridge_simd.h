@@ -11,6 +11,8 @@
 #ifndef VP_LASER_RIDGE_SIMD_H
 #define VP_LASER_RIDGE_SIMD_H
 
+#include <cstddef>
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -27,6 +29,18 @@ namespace vsp::laser_detector
 //! The 16 bytes from p (unaligned).
 inline __m128i load16(const unsigned char *p) { return _mm_loadu_si128(reinterpret_cast<const __m128i *>(p)); }
 #endif
+
+//! Asks for the \e n bytes from p to be brought to cache (nothing without SSE2): for rows read far apart,
+//! whose next one the processor cannot guess.
+inline void prefetchBytes(const unsigned char *p, size_t n)
+{
+#if defined(__SSE2__)
+  for (size_t b = 0; b < n; b += 64)
+    _mm_prefetch(reinterpret_cast<const char *>(p + b), _MM_HINT_T0);
+#else
+  (void)p, (void)n;
+#endif
+}
 
 #if VSP_DETECTOR_AVX2
 //! The 32 bytes from p (unaligned, AVX2).
