@@ -232,6 +232,21 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
   return missed;
 }
 
+// Share of the samples (those in \e limit) that are known or whose point is kept.
+double walkCoverage(const std::vector<GuidedSample> &samples, const RegionSpans *limit, int H,
+                    const std::vector<SampleState> &state, const std::vector<unsigned char> &keep)
+{
+  size_t searched = 0, covered = 0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const GuidedSample &s = samples[i];
+    if (state[i] != KNOWN && !inLimit(limit, H, s.alongRow ? s.pos : s.line, s.alongRow ? s.line : s.pos))
+      continue;
+    ++searched;
+    covered += state[i] == KNOWN || keep[i] ? 1 : 0;
+  }
+  return searched ? static_cast<double>(covered) / searched : 0.0;
+}
+
 // Least-squares ellipse through the points (a subsample of a few hundred). The subsample is chosen by
 // position, and sorted when \e fromFirstPass (the points start with the first pass's): the same points in any
 // order (the first pass's order depends on how it searched) give the same ellipse, to the last bit, and so
@@ -298,6 +313,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     results.assign(samples.size(), ProfileResult());
     const int missed = measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds);
     keepContinuingPieces(state, results, keep);
+    report.coverage = walkCoverage(samples, limit, H, state, keep);
     int added = 0;
     for (size_t i = 0; i < samples.size(); ++i)
       if (keep[i]) {
@@ -327,15 +343,71 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   report.threshold = median(thresholds);
 }
 
+namespace
+{
+int medianWidth(std::vector<int> &widths, int fallback)
+{
+  if (widths.empty())
+    return fallback;
+  std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
+  return widths[widths.size() / 2];
+}
+} // namespace
+
 int observedStripeWidth(const RidgeWorkspace &work, int fallback)
 {
   std::vector<int> widths;
   for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
     if (work.keep[k])
       widths.push_back(work.crossings[k].last - work.crossings[k].first + 1);
-  if (widths.empty())
-    return fallback;
-  std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
-  return widths[widths.size() / 2];
+  return medianWidth(widths, fallback);
+}
+
+int observedStripeWidth(const RidgeWorkspace &work, const Eigen::Matrix3d &C, const std::vector<int> &inliers,
+                        int fallback)
+{
+  // The kept crossings in order, as the points returned (the inliers index those).
+  std::vector<const Crossing *> kept;
+  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
+    if (work.keep[k])
+      kept.push_back(&work.crossings[k]);
+  std::vector<int> widths;
+  for (int index : inliers) {
+    if (index < 0 || static_cast<size_t>(index) >= kept.size())
+      continue;
+    const Crossing &c = *kept[static_cast<size_t>(index)];
+    // A run along a row is the width across the stripe over |n_u|, along a column over |n_v| (n: the unit
+    // normal; the gradient's direction will do).
+    const Eigen::Vector3d g = C * Eigen::Vector3d(c.point.get_u(), c.point.get_v(), 1.0);
+    const double nu = std::fabs(g(0)), nv = std::fabs(g(1)), steeper = std::max(nu, nv);
+    if (!(steeper > 0.0))
+      continue;
+    const double run = c.last - c.first + 1;
+    widths.push_back(static_cast<int>(std::lround(run * (c.alongRow ? nu : nv) / steeper)));
+  }
+  return medianWidth(widths, fallback);
+}
+
+std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> &points,
+                                                const std::vector<int> &inliers, const Eigen::Matrix3d &C,
+                                                RidgeWorkspace &work)
+{
+  std::vector<unsigned char> steep(points.size(), 0);
+  std::vector<vpImagePoint> kept;
+  kept.reserve(inliers.size());
+  for (int k : inliers) {
+    const vpImagePoint &p = points[static_cast<size_t>(k)];
+    const Eigen::Vector3d g = C * Eigen::Vector3d(p.get_u(), p.get_v(), 1.0);
+    if (std::fabs(g(0)) >= std::fabs(g(1))) {
+      steep[static_cast<size_t>(k)] = 1;
+      kept.push_back(p);
+    }
+  }
+  // The points are the kept crossings in order.
+  size_t index = 0;
+  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
+    if (work.keep[k])
+      work.keep[k] = index < steep.size() && steep[index++];
+  return kept;
 }
 } // namespace vsp::laser_detector

@@ -38,6 +38,8 @@ struct GuidedReport
   double noise = 0.0;     //!< median of the noise measured along the profiles (grey levels)
   double threshold = 0.0; //!< median response threshold of the profiles (grey levels)
   bool ran = false;       //!< false when there was no usable prediction
+  //! Share of the last walk's samples (in the search limit) that ended known or with a point kept
+  double coverage = 0.0;
 };
 
 /*!
@@ -61,6 +63,26 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
 
 //! Median half-maximum width (pixels) of the crossings work.keep marks; \e fallback when there is none.
 int observedStripeWidth(const RidgeWorkspace &work, int fallback);
+
+/*!
+  observedStripeWidth() of crossings measured along the rows whatever the stripe's slope (see
+  detectRidgeRows()), of those among \e inliers (indices of the kept crossings, in order) only: each run
+  converted, with the normal of the conic C at its centre, into the run along the line, row or column, that
+  crosses the stripe more steeply, the width the guided pass's profiles see.
+*/
+int observedStripeWidth(const RidgeWorkspace &work, const Eigen::Matrix3d &C, const std::vector<int> &inliers,
+                        int fallback);
+
+/*!
+  Of the sample of rows (see detectRidgeRows()) whose kept crossings are \e points and fit the conic C with
+  \e inliers (indices into \e points): the inliers where a row crosses C more steeply than a column (the
+  normal's u component the larger), returned; elsewhere a row's centroid lies off the centre line (near a
+  tangent by up to half the stripe's width), and the guided pass measures those parts along the columns.
+  The other crossings are no longer kept in work.keep (the mask draws them as rejected).
+*/
+std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> &points,
+                                                const std::vector<int> &inliers, const Eigen::Matrix3d &C,
+                                                RidgeWorkspace &work);
 } // namespace vsp::laser_detector
 
 #endif

@@ -126,6 +126,18 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
                                       const RegionSpans *scoreRegion, const RegionSpans *searchRegion,
                                       RidgeWorkspace &work, std::vector<StripeRun> &runs, RidgeReport &report);
 
+/*!
+  The row sample of the ridge detector over the whole image: every sampledRowStep()-th row alone is scored,
+  searched and measured (any stripe crossing it, whatever its slope: the rows around are not read), and the
+  crossings on chains of the minimum length less three of those steps are returned (the others stay in
+  \e work, see drawRuns()). Enough to locate a ring for the guided pass at an eighth of the frame's reads.
+*/
+std::vector<vpImagePoint> detectRidgeRows(const vpImage<vpRGBa> &I, const RidgeSettings &settings, RidgeWorkspace &work,
+                                          std::vector<StripeRun> &runs, RidgeReport &report);
+
+//! The rows of detectRidgeRows() are this many apart: the coarse lines of the whole search (see coarseFactor()).
+int sampledRowStep(const RidgeSettings &settings);
+
 //! Settings of the HSV detector.
 struct HsvSettings
 {

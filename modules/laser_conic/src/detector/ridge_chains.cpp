@@ -141,4 +141,14 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
   joinNeighbours(work, link);
   keepByExtent(work, minLength);
 }
+
+std::vector<vpImagePoint> keptPoints(const RidgeWorkspace &work)
+{
+  std::vector<vpImagePoint> points;
+  points.reserve(static_cast<size_t>(std::count(work.keep.begin(), work.keep.end(), 1)));
+  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
+    if (work.keep[k])
+      points.push_back(work.crossings[k].point);
+  return points;
+}
 } // namespace vsp::laser_detector

@@ -10,7 +10,10 @@
 #ifndef VP_LASER_RIDGE_CHAINS_H
 #define VP_LASER_RIDGE_CHAINS_H
 
+#include <vector>
+
 #include "laser_detector.h"
+#include "ridge_tuning.h"
 
 namespace vsp::laser_detector
 {
@@ -21,6 +24,12 @@ namespace vsp::laser_detector
   their chain.
 */
 void longChains(RidgeWorkspace &work, int W, int H, double link, double minLength);
+
+//! The points of the crossings work.keep marks, in their order.
+std::vector<vpImagePoint> keptPoints(const RidgeWorkspace &work);
+
+//! The link radius (pixels) of chains whose lines are \e step pixels apart and linked within \e linkSteps of them.
+inline double linkRadius(double linkSteps, int step) { return linkSteps * step + RidgeTuning::linkSlack; }
 } // namespace vsp::laser_detector
 
 #endif

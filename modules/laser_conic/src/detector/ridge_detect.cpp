@@ -21,9 +21,6 @@ namespace vsp::laser_detector
 {
 namespace
 {
-// The link radius (pixels) of chains whose lines are \e steps pixels apart.
-double linkRadius(double linkSteps, int step) { return linkSteps * step + RidgeTuning::linkSlack; }
-
 // Over the whole image, coarse to fine: on a textured floor nearly every block of the image has candidates,
 // most of them short ridges (a patch corner between two grout lines is a thin wedge of its colour), and
 // measuring them all took most of a frame's time. The pass over the rows measures the candidates of the
@@ -59,18 +56,11 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
                                       const RegionSpans *scoreRegion, const RegionSpans *searchRegion,
                                       RidgeWorkspace &work, std::vector<StripeRun> &runs, RidgeReport &report)
 {
-  std::vector<vpImagePoint> points;
-  runs.clear();
-  work.crossings.clear();
-  work.keep.clear();
-  const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
-  if (H == 0 || W == 0)
-    return points;
-
   // 1. Threshold from the image's own noise (a sparse sample of rows).
-  report.noise = estimateNoise(I, scoreRegion, settings.instructions);
-  report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
-  const int threshold = std::min(255, static_cast<int>(std::ceil(report.threshold)));
+  const int threshold = beginDetection(I, settings, scoreRegion, work, runs, report);
+  if (threshold < 0)
+    return std::vector<vpImagePoint>();
+  const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
 
   // 2. Score, candidates and profiles; over the whole image coarse to fine, in a search region (already
   // small) in one pass.
@@ -84,10 +74,6 @@ std::vector<vpImagePoint> detectRidge(const vpImage<vpRGBa> &I, const RidgeSetti
   // 3. Continuity: drop the short chains.
   longChains(work, W, H, linkRadius(RidgeTuning::linkSteps, step), settings.minSegment);
   // The runs of the crossings stay in the workspace for the mask (see drawRuns()).
-  points.reserve(static_cast<size_t>(std::count(work.keep.begin(), work.keep.end(), 1)));
-  for (size_t k = 0; k < work.crossings.size(); ++k)
-    if (work.keep[k])
-      points.push_back(work.crossings[k].point);
-  return points;
+  return keptPoints(work);
 }
 } // namespace vsp::laser_detector

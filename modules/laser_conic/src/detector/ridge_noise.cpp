@@ -113,4 +113,17 @@ double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region,
   }
   return 0.0;
 }
+
+int beginDetection(const vpImage<vpRGBa> &I, const RidgeSettings &settings, const RegionSpans *region,
+                   RidgeWorkspace &work, std::vector<StripeRun> &runs, RidgeReport &report)
+{
+  runs.clear();
+  work.crossings.clear();
+  work.keep.clear();
+  if (I.getHeight() == 0 || I.getWidth() == 0)
+    return -1;
+  report.noise = estimateNoise(I, region, settings.instructions);
+  report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
+  return std::min(255, static_cast<int>(std::ceil(report.threshold)));
+}
 } // namespace vsp::laser_detector

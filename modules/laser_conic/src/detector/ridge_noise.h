@@ -10,6 +10,8 @@
 #ifndef VP_LASER_RIDGE_NOISE_H
 #define VP_LASER_RIDGE_NOISE_H
 
+#include <vector>
+
 #include "laser_detector.h"
 
 namespace vsp::laser_detector
@@ -23,6 +25,15 @@ namespace vsp::laser_detector
 */
 double estimateNoise(const vpImage<vpRGBa> &I, const RegionSpans *region,
                      vpLaserConicDetector::vpInstructionSet instructions);
+
+/*!
+  Begins a ridge detection of \e I: forgets the last detection's crossings (in \e work) and rejected runs,
+  estimates the noise over \e region (estimateNoise()) and the contrast threshold it sets, max(minContrast,
+  noiseFactor x noise), into \e report; returns that threshold in whole grey levels (at most 255), or -1 for
+  an empty image.
+*/
+int beginDetection(const vpImage<vpRGBa> &I, const RidgeSettings &settings, const RegionSpans *region,
+                   RidgeWorkspace &work, std::vector<StripeRun> &runs, RidgeReport &report);
 } // namespace vsp::laser_detector
 
 #endif

@@ -66,7 +66,8 @@ bool measuredAcross(const ScanLine &s, int i, int j, int width, int bg, int cont
 }
 } // namespace
 
-Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, Crossing &out)
+Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, bool acrossScored,
+                Crossing &out)
 {
   const int n = s.length(), d = settings.maxWidth;
   const int peak = s.at(p);
@@ -90,10 +91,24 @@ Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int thr
   if (whiteWithoutRedFlanks(s, a, b, settings.saturation, threshold))
     return REJECTED; // white light, not a laser
   const int i = s.alongRow ? s.line : p, j = s.alongRow ? p : s.line;
-  if (measuredAcross(s, i, j, b - a + 1, bg, contrast, aboveHalf, d))
+  if (acrossScored && measuredAcross(s, i, j, b - a + 1, bg, contrast, aboveHalf, d))
     return IGNORED;
   const double centre = stripeCentroid(s, p, a, b, bg, contrast, d);
   out.point = s.alongRow ? vpImagePoint(s.line, centre) : vpImagePoint(centre, s.line);
   return ACCEPTED;
+}
+
+int measureCandidate(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, bool acrossScored,
+                     RidgeWorkspace &work, std::vector<StripeRun> &runs)
+{
+  Crossing crossing;
+  const Verdict verdict = analyse(s, p, settings, threshold, acrossScored, crossing);
+  if (verdict == IGNORED)
+    return -1;
+  if (verdict == ACCEPTED)
+    work.crossings.push_back(crossing);
+  else
+    runs.push_back(StripeRun{s.alongRow, crossing.line, crossing.first, crossing.last, false});
+  return crossing.last;
 }
 } // namespace vsp::laser_detector

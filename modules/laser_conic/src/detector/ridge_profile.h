@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <vector>
 
 #include "laser_detector.h"
 #include "ridge_tuning.h"
@@ -113,9 +114,20 @@ template <class Profile> double stripeCentroid(const Profile &s, int p, int a, i
 /*!
   Checks the profile around the candidate peak \e p of the scan line \e s against \e threshold (the
   contrast of a stripe above the background at the stripe width), and measures its sub-pixel centre and
-  half-maximum run into \e out (the run also when REJECTED).
+  half-maximum run into \e out (the run also when REJECTED). \e acrossScored: the score across the line
+  (d + 1 lines on each side) is there, and a crossing the other direction measures better is IGNORED; when
+  false (a sample of rows alone) every stripe crossing the line is measured.
 */
-Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, Crossing &out);
+Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, bool acrossScored,
+                Crossing &out);
+
+/*!
+  analyse() of the candidate peak \e p of \e s, filed: an accepted crossing into work.crossings, a rejected
+  run into \e runs (for the mask). Returns the last pixel of the run measured, or -1 when IGNORED (a later
+  peak inside that run is the same stripe).
+*/
+int measureCandidate(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, bool acrossScored,
+                     RidgeWorkspace &work, std::vector<StripeRun> &runs);
 } // namespace vsp::laser_detector
 
 #endif

@@ -188,15 +188,9 @@ void RidgeScan::measure(const Candidate &c, bool alongRow)
   if (c.pos <= end)
     return;
   const ScanLine s(m_work.score.data(), m_rgba, m_W, m_H, alongRow, c.line);
-  Crossing crossing;
-  const Verdict verdict = analyse(s, c.pos, m_settings, m_threshold, crossing);
-  if (verdict == IGNORED)
-    return;
-  end = crossing.last;
-  if (verdict == ACCEPTED)
-    m_work.crossings.push_back(crossing);
-  else
-    m_runs.push_back(StripeRun{alongRow, crossing.line, crossing.first, crossing.last, false});
+  const int last = measureCandidate(s, c.pos, m_settings, m_threshold, true, m_work, m_runs);
+  if (last >= 0)
+    end = last;
 }
 
 void RidgeScan::measureUpTo(int r)

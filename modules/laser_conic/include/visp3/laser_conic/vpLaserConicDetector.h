@@ -25,6 +25,7 @@ namespace vsp::laser_detector
 {
 struct RidgeWorkspace;
 struct GuidedSettings;
+struct RidgeSettings;
 } // namespace vsp::laser_detector
 
 //! A stripe run measured by vpLaserConicDetector (the diagnostic mask getMask() is drawn from them).
@@ -69,6 +70,18 @@ struct vpLaserConicDetectorRun
      (bounding-box diagonal) is below setMinSegmentLength() are dropped: small red clutter and isolated
      texture or noise peaks give short chains, the trace long ones.
 
+  <em>Whole image: a sample of rows, then the ring along its ellipse (default).</em> With the guided pass
+  on (setGuidedSearch(), below), every 8th row (every 8 x setSamplingStep()-th, as the coarse lines below)
+  is scored, searched and measured alone, an eighth of the frame read; a stripe crossing a row is measured
+  whatever its slope (the rows around are not read), and the crossings on chains of the minimum length are
+  fitted with an ellipse as below. When it is found, the guided pass measures the ring along it, and only
+  the sample's crossings on the ellipse where a row crosses it more steeply than a column are returned with
+  the guided pass's points (clutter and distractors the sample crossed are not). When the rows locate no
+  ellipse (a small or partial trace, a hyperbola, a line), or the guided pass ends with a point on fewer
+  than 80 % of its profiles (an ellipse through clutter and a piece of the ring, or extrapolated from the
+  bright arcs of a fading ring), the whole image is searched as follows and the guided pass follows that
+  search's ellipse. A frame of 1600 x 1200 pixels then costs a third of one cv::cvtColor pass.
+
   <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
   measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
   sampling steps, and none of this below 8), their crossings chained at that scale; the other lines are
@@ -79,13 +92,14 @@ struct vpLaserConicDetectorRun
 
   <em>Second pass, guided by the conic (default, setGuidedSearch()).</em> The first pass keeps the bright
   parts of a ring whose brightness falls along it (distance to the laser, incidence angle, dark or black
-  floor patches). After it, an ellipse is fitted robustly to the points kept (RANSAC on five-point conics,
-  2 px), provided at least 30 of them agree over an arc of 60 degrees or more, and the image is searched
+  floor patches). After it (or after the sample of rows above), an ellipse is fitted robustly to the points
+  kept (RANSAC on five-point conics, 2 px), provided at least 30 of them agree over an arc of 60 degrees or
+  more, and the image is searched
   along that predicted curve: on every setGuidedStep()-th row (where the curve is closer to vertical) and
   column (elsewhere) it crosses, where no point lies on it yet, a profile of the red dominance across the
   curve within setGuidedMargin() pixels of it, averaged over three neighbouring lines shifted along the
   curve, goes through a matched filter for a stripe of the observed width (the median half-maximum width
-  of the first pass's crossings) whose response must exceed setGuidedThresholdFactor() times its own noise,
+  of the first pass's crossings, those of the sample of rows converted to the line crossing more steeply) whose response must exceed setGuidedThresholdFactor() times its own noise,
   measured along that profile (robust spread, as above): a threshold local to the profile instead of the
   global contrast. Around the best response, the first pass's shape tests (width, white light) and
   sub-pixel centre apply (a saturated core needs red flanks out of one line's noise by the same factor).
@@ -106,9 +120,10 @@ struct vpLaserConicDetectorRun
   returned (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
   and have a stripe's profile.
 
-  A search region (setSearchRegion()) restricts the search to a band around the predicted curve: faster,
-  and distractors outside the band are ignored. Given as points (e.g. the previous frame's trace), every
-  line of the band is searched by the first pass, and the guided pass stays within the band. Given as a
+  A search region (setSearchRegion()) restricts the search to a band around the predicted curve:
+  distractors outside the band are ignored. Given as points (e.g. the previous frame's trace), every
+  line of the band is searched by the first pass, and the guided pass stays within the band (on a
+  1600 x 1200 frame a band of 20 px costs about as much as the whole image's sample of rows). Given as a
   conic (e.g. the image conic of the previous frame's estimate, vpLaserConicPose::getImageConic()), it is
   the prediction of the guided pass itself (tracking): only the profiles along that conic are read, within
   the region's margin; when they find fewer than 30 points (track lost), the first pass searches the band
@@ -119,9 +134,9 @@ struct vpLaserConicDetectorRun
   value reach setMinSaturationValue(); each run along a row or column gives its brightness-weighted centre.
   Fixed thresholds: it misses dim stripes and splits saturated ones; kept for comparison.
 
-  The diagnostic mask getMask() marks the accepted stripe runs of the first pass 255, those of the guided
-  pass 170 and the rejected candidate runs 100 (ridge method; over the whole image, away from the trace,
-  only those of the coarse lines), or the thresholded pixels 255 (HSV method). An empty image gives no point and an empty mask.
+  The diagnostic mask getMask() marks the runs of the first pass's points (or of the sample of rows') 255,
+  those of the guided pass 170 and the rejected candidate runs and crossings not returned 100 (ridge method;
+  over the whole image, away from the trace, only those of the sampled or coarse lines), or the thresholded pixels 255 (HSV method). An empty image gives no point and an empty mask.
 
   \code
   vpLaserConicDetector detector;                       // ridge method, settings for real images by default
@@ -357,6 +372,11 @@ private:
   vsp::laser_detector::GuidedSettings guidedSettings(double margin, unsigned int step) const;
   //! The guided pass along the conic search region; false when it found too few points (track lost).
   bool trackConic(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points);
+  //! Over the whole image: the ring located by a sample of rows, then measured by the guided pass along it;
+  //! false when the sample makes no ellipse or the pass finds too little of it (then the whole search runs).
+  bool locateFromRows(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points);
+  //! The settings of the first pass.
+  vsp::laser_detector::RidgeSettings ridgeSettings() const;
 
   vpDetectionMethod m_method;
   double m_minContrast, m_noiseFactor, m_minSegmentLength;
