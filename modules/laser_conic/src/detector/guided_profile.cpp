@@ -263,7 +263,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   result.lines = lines;
   const MatchedFilter filter(buffers.prefix, h, f);
   double bestResponse = -1e30;
-  const int best = filter.best(std::max(reach, lo - start), std::min(n - 1 - reach, hi - start), bestResponse);
+  const int first = std::max(reach, lo - start), last = std::min(n - 1 - reach, hi - start);
+  int best = filter.best(first, last, bestResponse);
   const int tails = h + RidgeTuning::guidedGap + 1;
   const double rootLines = lines == 1 ? 1.0 : std::sqrt(static_cast<double>(lines));
   if (window.lineNoise >= 0.0)
@@ -273,17 +274,32 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                             : profileNoise(buffers, n, lines, best - tails, best + tails);
   result.threshold =
       std::max(RidgeTuning::guidedMinResponse * lines, settings.factor * result.noise * buffers.filterGain(h, f));
+  if (window.halfWidth <= 0.0 && best >= 0) {
+    // The whole margin: a response near the prediction that passes the threshold is preferred to a stronger
+    // one farther off (see RidgeTuning::guidedNearMargin). The noise stays that measured beside the strongest.
+    const double predicted = s.pos + window.centre - start, near = RidgeTuning::guidedNearMargin / s.toNormal;
+    const int nearFirst = std::max(first, static_cast<int>(std::floor(predicted - near))),
+              nearLast = std::min(last, static_cast<int>(std::ceil(predicted + near)));
+    if (best < nearFirst || best > nearLast) {
+      double nearResponse = -1e30;
+      const int nearBest = filter.best(nearFirst, nearLast, nearResponse);
+      if (nearBest >= 0 && nearResponse >= result.threshold) {
+        best = nearBest;
+        bestResponse = nearResponse;
+      }
+    }
+  }
   result.response = bestResponse;
   if (best < 0 || bestResponse < result.threshold)
     return result;
   double centre = 0.0;
-  int first = 0, last = 0;
+  int runFirst = 0, runLast = 0;
   // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
   // in the sum of the lines, refused every white core with pink flanks: the laser on white paper.)
   const int flankThreshold =
       static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse, settings.factor * result.noise / rootLines)));
   if (!shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
-                      filter, best, settings, flankThreshold, first, last, centre))
+                      filter, best, settings, flankThreshold, runFirst, runLast, centre))
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
   // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here). Its
@@ -299,8 +315,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   result.offset = (along - s.pos) * s.toNormal;
   result.crossing.alongRow = s.alongRow;
   result.crossing.line = s.line;
-  result.crossing.first = start + first;
-  result.crossing.last = start + last;
+  result.crossing.first = start + runFirst;
+  result.crossing.last = start + runLast;
   result.crossing.point = s.alongRow ? vpImagePoint(s.line, along) : vpImagePoint(along, s.line);
   return result;
 }
