@@ -137,6 +137,19 @@ double profileNoise(ProfileBuffers &b, int n, int lines, int skipFirst, int skip
   return std::max(floor, 1.4826 * mad / std::sqrt(2.0));
 }
 
+// Robust noise of the red dominance along the sample's own line (1.4826 MAD / sqrt(2) of the differences two
+// pixels apart), the differences touching [skipFirst, skipLast] left out. Where the red channel is in the
+// saturation ramp (a lamp's glare on a white floor) the profile's values swing with the red channel and their
+// noise is several times the dominance's: this is the noise a saturated core's red flanks are read against.
+double dominanceNoise(const ProfileView &view, std::vector<int> &diffs, int skipFirst, int skipLast)
+{
+  diffs.clear();
+  for (int k = 0; k + 2 < view.n; ++k)
+    if (k + 2 < skipFirst || k > skipLast)
+      diffs.push_back(std::abs(view.dominance(k + 2) - view.dominance(k)));
+  return diffs.empty() ? 0.0 : 1.4826 * middleValue(diffs) / std::sqrt(2.0);
+}
+
 // The matched filter: mean over the stripe box [k - h, k + h] minus the larger mean of the background boxes
 // of f pixels beyond a gap on each side (a step edge has one bright side and fails, as in the first pass).
 // In integers, scaled by (2h + 1) f, then one multiplication (the divisions of three means per response
@@ -185,9 +198,10 @@ struct MatchedFilter
 };
 
 // The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile. A
-// saturated core is a laser's when its flanks' red dominance (one line) reaches \e flankThreshold.
+// saturated core is a laser's when its flanks' red dominance (one line) reaches \e flankThreshold, or, when it
+// does not, \e factor times the dominance's own noise along the line (lower than the profile's in a glare).
 bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k, const GuidedSettings &settings,
-                    int flankThreshold, int &first, int &last, double &centre)
+                    int flankThreshold, std::vector<int> &diffs, int &first, int &last, double &centre)
 {
   int p = std::max(0, k - filter.h - 1);
   for (int j = p; j <= std::min(view.n - 1, k + filter.h + 1); ++j)
@@ -202,8 +216,15 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
     --a;
   while (b + 1 < view.n && view.at(b + 1) > aboveHalf && b - p <= d)
     ++b;
-  if (b - a + 1 > settings.maxWidth || whiteWithoutRedFlanks(view, a, b, settings.saturation, flankThreshold))
+  if (b - a + 1 > settings.maxWidth)
     return false;
+  if (whiteWithoutRedFlanks(view, a, b, settings.saturation, flankThreshold)) {
+    const int tails = filter.h + RidgeTuning::guidedGap + 1;
+    const int glareThreshold = static_cast<int>(std::ceil(
+        std::max(RidgeTuning::guidedMinResponse, settings.factor * dominanceNoise(view, diffs, a - tails, b + tails))));
+    if (glareThreshold >= flankThreshold || whiteWithoutRedFlanks(view, a, b, settings.saturation, glareThreshold))
+      return false;
+  }
   first = a;
   last = b;
   centre = stripeCentroid(view, p, a, b, bg, contrast, d);
@@ -299,7 +320,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   const int flankThreshold =
       static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse, settings.factor * result.noise / rootLines)));
   if (!shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
-                      filter, best, settings, flankThreshold, runFirst, runLast, centre))
+                      filter, best, settings, flankThreshold, buffers.diffs, runFirst, runLast, centre))
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
   // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here). Its
