@@ -107,6 +107,28 @@ gen_sequence() {
   } >"$blocks/sequence.md"
 }
 
+# --- the second pass against the first pass alone, on the shipped sequences -------------------------------
+gen_second_pass() {
+  log "laser-sequence-eval --check-against-first-pass (simulated and hard sequences)"
+  local k=0
+  {
+    echo "| Sequence, laser | GP-3 | default detector: mean ± std, median | first pass alone | difference: mean (standard error) | frames better / worse |"
+    echo "|---|---|---|---|---|---|"
+    while IFS=';' read -r label args; do
+      k=$((k + 1))
+      # shellcheck disable=SC2086 # the arguments are words
+      "$(program laser-sequence-eval)" $args --check-against-first-pass --output "$work/second_pass" \
+        >"$work/second_pass_$k.txt" 2>/dev/null || true
+      awk -v label="$label" '/^GP-3 with the default detector/ {on = 1; next}
+        on && /^\| [A-Z]/ && !/default:/ {print "| " label " " $0}' "$work/second_pass_$k.txt"
+    done <<EOF_RUNS
+laser_sequence, calibrated;
+laser_hard, calibrated;--data $root/data/laser_hard
+laser_hard, true;--data $root/data/laser_hard --laser $root/data/laser_hard/laser_true.txt
+EOF_RUNS
+  } >"$blocks/second_pass.md"
+}
+
 # A fixed-width summary of the demo (header line starting with "method") as a markdown table, without
 # its last column (the time per frame, which depends on the machine).
 demo_table() { # demo_table FIRST_WORD_OF_SECTION_TITLE
@@ -265,6 +287,7 @@ replace_blocks() {
 gen_table1
 gen_robustness
 gen_sequence
+gen_second_pass
 gen_demo
 if [ "$mode" = full ]; then
   gen_stress

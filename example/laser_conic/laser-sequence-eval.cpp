@@ -8,6 +8,8 @@
   sequence of data/laser_sequence and prints the errors against the ground truth in the layout of
   Table 2 of Boutteau et al. (JMIV 2018): altitude (mm), pitch and roll (deg), mean +- standard
   deviation per method. Per-frame results go to a CSV file and the altitude / attitude curves to PNG.
+  With --check-against-first-pass the sequence is also run with the detector's first pass alone
+  (vpLaserConicDetector::setGuidedSearch(false)) and GP-3's errors of the two are compared frame by frame.
 */
 #include <algorithm>
 #include <cmath>
@@ -42,7 +44,8 @@ struct Options
   bool check = false;
   bool verbose = false;
   bool localOptimisation = true;
-  std::string laserFile; //!< overrides DIR/laser.txt when set
+  bool againstFirstPass = false; //!< also run the first pass alone and compare GP-3's errors frame by frame
+  std::string laserFile;         //!< overrides DIR/laser.txt when set
 };
 
 struct Method
@@ -136,7 +139,7 @@ double angleDifference(double a, double b) { return std::fabs(std::remainder(a -
 vpCommandLine commandLine(Options &opt)
 {
   vpCommandLine cli("[--data DIR] [--output DIR] [--threshold PX] [--laser FILE] [--no-local-optimisation]\n"
-                    "       [--verbose] [--check]",
+                    "       [--verbose] [--check] [--check-against-first-pass]",
                     "Detection + PP-5 / PP-3 / GP-3 over a laser sequence, errors in the layout of Table 2.");
   cli.addString("--data", opt.data, "DIR", "dataset directory (default " VSP_DATA_DIR "/laser_sequence)");
   cli.addString("--output", opt.output, "DIR", "per-frame CSV and PNG curves (default laser-sequence-results)");
@@ -145,6 +148,10 @@ vpCommandLine commandLine(Options &opt)
   vspLaserRig::addEstimatorOptions(cli, opt.threshold, opt.localOptimisation, "");
   cli.addFlag("--verbose", opt.verbose, "print the estimate, inlier count and RANSAC samples of every frame");
   cli.addFlag("--check", opt.check, "exit non-zero when an error exceeds the bounds justified in the source");
+  cli.addFlag("--check-against-first-pass", opt.againstFirstPass,
+              "also run the detector's first pass alone (no guided second pass) and exit non-zero when GP-3's mean "
+              "altitude, roll or pitch error of the default detector exceeds that of the first pass by more than "
+              "two standard errors of their frame-by-frame difference");
   return cli;
 }
 
@@ -190,6 +197,131 @@ void writeResults(const Options &opt, const vpLaserDataset &dataset, const std::
     plot.write(opt.output + "/sequence_" + names[q] + ".png");
   }
 }
+//! The rendering pose of the laser, when the dataset ships it (laser_true.txt): it measures the detection error.
+struct TrueLaser
+{
+  bool known = false;
+  double openingAngle = 0.0;
+  vpHomogeneousMatrix cMl;
+};
+
+//! Detection with \e detector and the three estimators on every frame of \e dataset: \e results per method,
+//! \e detected the points per frame, \e residuals the points' distances to the exact trace when \e truth is
+//! known. Throws vpException when an image cannot be read.
+void runSequence(const Options &opt, const vpLaserDataset &dataset, vpLaserConicDetector &detector,
+                 const TrueLaser &truth, std::vector<MethodResult> &results, std::vector<unsigned int> &detected,
+                 std::vector<double> &residuals)
+{
+  results.assign(methods().size(), MethodResult());
+  detected.clear();
+  vpLaserConicPose estimator;
+  estimator.setCameraParameters(dataset.cam);
+  estimator.setLaser(dataset.openingAngle, dataset.cMl);
+  estimator.setRansacThreshold(opt.threshold);
+  estimator.setRansacMaxTrials(opt.ransacTrials);
+  estimator.setLocalOptimisation(opt.localOptimisation);
+  for (const vpLaserGroundTruthFrame &f : dataset.frames) {
+    vpImage<vpRGBa> I;
+    vpImageIo::read(I, dataset.imagePath(f));
+    const std::vector<vpImagePoint> points = detector.detect(I);
+    detected.push_back(static_cast<unsigned int>(points.size()));
+    if (truth.known) {
+      detectionResiduals(points, dataset.cam, truth.openingAngle, truth.cMl, f.plane, residuals);
+    }
+    for (size_t i = 0; i < methods().size(); ++i) {
+      MethodResult &r = results[i];
+      estimator.setRansacSeed(f.frame);
+      vpPlane plane;
+      bool ok = false;
+      try {
+        ok = estimator.computePlane(points, methods()[i].id, plane);
+      } catch (const vpException &e) {
+        std::cerr << "frame " << f.frame << " " << methods()[i].name << ": " << e.getMessage() << std::endl;
+      }
+      if (!ok) {
+        ++r.failures;
+        r.estAltitude.push_back(std::nan(""));
+        r.estRoll.push_back(std::nan(""));
+        r.estPitch.push_back(std::nan(""));
+        continue;
+      }
+      if (opt.verbose) {
+        std::cout << "frame " << f.frame << " " << methods()[i].name << ": altitude error "
+                  << 1e3 * (estimator.getAltitude() - f.altitude) << " mm, roll error "
+                  << vpMath::deg(estimator.getRoll() - f.roll) << " deg, pitch error "
+                  << vpMath::deg(estimator.getPitch() - f.pitch) << " deg, inliers " << estimator.getInliers().size()
+                  << "/" << points.size() << ", samples " << estimator.getRansacTrials() << std::endl;
+      }
+      r.estAltitude.push_back(estimator.getAltitude());
+      r.estRoll.push_back(estimator.getRoll());
+      r.estPitch.push_back(estimator.getPitch());
+      r.altitudeMm.push_back(1e3 * std::fabs(estimator.getAltitude() - f.altitude));
+      r.rollDeg.push_back(vpMath::deg(angleDifference(estimator.getRoll(), f.roll)));
+      r.pitchDeg.push_back(vpMath::deg(angleDifference(estimator.getPitch(), f.pitch)));
+    }
+  }
+}
+
+//! Median of \e v (not empty).
+double median(std::vector<double> v)
+{
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+/*!
+  GP-3's errors with the default detector (\e guided) and with its first pass alone (\e firstPass), over the
+  frames where both give a plane: prints them with their frame-by-frame difference, and returns how many of
+  altitude, roll and pitch have a mean difference above two standard errors of that difference (the
+  default detector worse than the first pass beyond the frames' spread).
+*/
+int compareWithFirstPass(const vpLaserDataset &dataset, const MethodResult &guided, const MethodResult &firstPass)
+{
+  std::cout << "\nGP-3 with the default detector against its first pass alone (setGuidedSearch(false)), frame by "
+               "frame:\n| | default: mean ± std, median | first pass alone | difference: mean (standard error) | "
+               "frames better / worse |\n|---|---|---|---|---|\n";
+  const char *names[] = {"Altitude error (mm)", "Roll error (deg)", "Pitch error (deg)"};
+  int failed = 0;
+  for (int q = 0; q < 3; ++q) {
+    std::vector<double> a, b, d;
+    for (size_t k = 0; k < dataset.frames.size(); ++k) {
+      const vpLaserGroundTruthFrame &f = dataset.frames[k];
+      auto error = [&](const MethodResult &r) {
+        return q == 0 ? 1e3 * std::fabs(r.estAltitude[k] - f.altitude)
+                      : vpMath::deg(q == 1 ? angleDifference(r.estRoll[k], f.roll)
+                                           : angleDifference(r.estPitch[k], f.pitch));
+      };
+      const double ea = error(guided), eb = error(firstPass);
+      if (std::isfinite(ea) && std::isfinite(eb)) {
+        a.push_back(ea);
+        b.push_back(eb);
+        d.push_back(ea - eb);
+      }
+    }
+    if (d.size() < 2) {
+      std::cout << "| " << names[q] << " | fewer than 2 frames with a plane from both |\n";
+      ++failed;
+      continue;
+    }
+    const MeanStd diff = meanStd(d);
+    const double standardError = diff.std / std::sqrt(static_cast<double>(d.size()));
+    const long better = std::count_if(d.begin(), d.end(), [](double x) { return x < 0.0; });
+    const long worse = std::count_if(d.begin(), d.end(), [](double x) { return x > 0.0; });
+    std::ostringstream row;
+    row << std::fixed << std::setprecision(q == 0 ? 2 : 3) << "| " << names[q] << " | " << meanStd(a).mean << " ± "
+        << meanStd(a).std << ", " << median(a) << " | " << meanStd(b).mean << " ± " << meanStd(b).std << ", "
+        << median(b) << " | " << std::showpos << diff.mean << std::noshowpos << " (" << standardError << ") | "
+        << better << " / " << worse << " |";
+    std::cout << row.str() << std::endl;
+    failed += diff.mean > 2.0 * standardError ? 1 : 0;
+  }
+  std::cout << (failed ? "CHECK FAILED: the default detector's GP-3 errors exceed the first pass's"
+                       : "The default detector's GP-3 errors are no worse than the first pass's (within two standard "
+                         "errors of the difference)")
+            << std::endl;
+  return failed;
+}
+
 //! The program's work once its options are read; returns its exit status.
 int run(Options &opt, const vpCommandLine &)
 {
@@ -204,64 +336,21 @@ int run(Options &opt, const vpCommandLine &)
     std::cerr << error << std::endl;
     return EXIT_FAILURE;
   }
-  std::vector<MethodResult> results(methods().size());
-  std::vector<unsigned int> detected;
-  // The rendering pose of the laser, when shipped, measures the detection error.
-  double openingTrue = 0.0;
-  vpHomogeneousMatrix cMlTrue;
+  std::vector<MethodResult> results, firstPassResults;
+  std::vector<unsigned int> detected, firstPassDetected;
+  TrueLaser truth;
   std::string ignored;
-  const bool hasTrueLaser =
-      vpLaserRigIo::readLaserCalibration(opt.data + "/laser_true.txt", openingTrue, cMlTrue, ignored);
-  std::vector<double> residuals;
+  truth.known =
+      vpLaserRigIo::readLaserCalibration(opt.data + "/laser_true.txt", truth.openingAngle, truth.cMl, ignored);
+  std::vector<double> residuals, firstPassResiduals;
   try {
     vpIoTools::makeDirectory(opt.output);
     vpLaserConicDetector detector;
-    vpLaserConicPose estimator;
-    estimator.setCameraParameters(dataset.cam);
-    estimator.setLaser(dataset.openingAngle, dataset.cMl);
-    estimator.setRansacThreshold(opt.threshold);
-    estimator.setRansacMaxTrials(opt.ransacTrials);
-    estimator.setLocalOptimisation(opt.localOptimisation);
-
-    for (const vpLaserGroundTruthFrame &f : dataset.frames) {
-      vpImage<vpRGBa> I;
-      vpImageIo::read(I, dataset.imagePath(f));
-      const std::vector<vpImagePoint> points = detector.detect(I);
-      detected.push_back(static_cast<unsigned int>(points.size()));
-      if (hasTrueLaser) {
-        detectionResiduals(points, dataset.cam, openingTrue, cMlTrue, f.plane, residuals);
-      }
-      for (size_t i = 0; i < methods().size(); ++i) {
-        MethodResult &r = results[i];
-        estimator.setRansacSeed(f.frame);
-        vpPlane plane;
-        bool ok = false;
-        try {
-          ok = estimator.computePlane(points, methods()[i].id, plane);
-        } catch (const vpException &e) {
-          std::cerr << "frame " << f.frame << " " << methods()[i].name << ": " << e.getMessage() << std::endl;
-        }
-        if (!ok) {
-          ++r.failures;
-          r.estAltitude.push_back(std::nan(""));
-          r.estRoll.push_back(std::nan(""));
-          r.estPitch.push_back(std::nan(""));
-          continue;
-        }
-        if (opt.verbose) {
-          std::cout << "frame " << f.frame << " " << methods()[i].name << ": altitude error "
-                    << 1e3 * (estimator.getAltitude() - f.altitude) << " mm, roll error "
-                    << vpMath::deg(estimator.getRoll() - f.roll) << " deg, pitch error "
-                    << vpMath::deg(estimator.getPitch() - f.pitch) << " deg, inliers " << estimator.getInliers().size()
-                    << "/" << points.size() << ", samples " << estimator.getRansacTrials() << std::endl;
-        }
-        r.estAltitude.push_back(estimator.getAltitude());
-        r.estRoll.push_back(estimator.getRoll());
-        r.estPitch.push_back(estimator.getPitch());
-        r.altitudeMm.push_back(1e3 * std::fabs(estimator.getAltitude() - f.altitude));
-        r.rollDeg.push_back(vpMath::deg(angleDifference(estimator.getRoll(), f.roll)));
-        r.pitchDeg.push_back(vpMath::deg(angleDifference(estimator.getPitch(), f.pitch)));
-      }
+    runSequence(opt, dataset, detector, truth, results, detected, residuals);
+    if (opt.againstFirstPass) {
+      vpLaserConicDetector firstPass;
+      firstPass.setGuidedSearch(false);
+      runSequence(opt, dataset, firstPass, truth, firstPassResults, firstPassDetected, firstPassResiduals);
     }
     writeResults(opt, dataset, results, detected);
   } catch (const vpException &e) {
@@ -304,8 +393,10 @@ int run(Options &opt, const vpCommandLine &)
                "| Pitch error (deg) | 1.19 ± 0.86 | 0.67 ± 0.39 | 0.66 ± 0.37 |\n"
                "| Roll error (deg) | 1.25 ± 0.89 | 0.78 ± 0.41 | 0.76 ± 0.36 |\n";
 
+  const int comparisonFailed = opt.againstFirstPass ? compareWithFirstPass(dataset, results[2], firstPassResults[2])
+                                                    : 0;
   if (!opt.check) {
-    return EXIT_SUCCESS;
+    return comparisonFailed ? EXIT_FAILURE : EXIT_SUCCESS;
   }
   // Bounds, from the error budget of the simulated sequence:
   // - detection: the stripe (3 px FWHM, 0.7 px blur, 1 grey-level noise, JPEG) is located with an RMS
@@ -325,7 +416,7 @@ int run(Options &opt, const vpCommandLine &)
     std::cout << (condition ? "  [ok]   " : "  [FAIL] ") << what << std::endl;
     failed += condition ? 0 : 1;
   };
-  if (hasTrueLaser) {
+  if (truth.known) {
     expect(rmsResidual < maxDetectionRmsPx,
            "detection RMS error " + fmt(rmsResidual) + " px < " + fmt(maxDetectionRmsPx));
   }
@@ -341,7 +432,7 @@ int run(Options &opt, const vpCommandLine &)
                fmt(maxMeanAngleDeg));
   }
   std::cout << (failed ? "CHECK FAILED" : "All checks passed") << std::endl;
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return failed || comparisonFailed ? EXIT_FAILURE : EXIT_SUCCESS;
 }
 } // namespace
 
