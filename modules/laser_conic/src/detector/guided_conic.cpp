@@ -203,8 +203,8 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, b
     });
 }
 
-bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, Eigen::Matrix3d &C,
-                     std::vector<int> &inliers)
+bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, int ransacTrials,
+                     Eigen::Matrix3d &C, std::vector<int> &inliers)
 {
   inliers.clear();
   if (static_cast<int>(points.size()) < std::max(5, minInliers))
@@ -237,10 +237,10 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
     vpRansacOptions options;
     options.threshold = threshold;
     options.seed = 1;
-    // Few samples, no local optimisation: five-point conics cost a singular value decomposition each, and a
-    // trace that is most of the points needs few (40 samples find a 60 % majority with 96 % probability);
-    // a frame whose points make no ellipse (no trace, or a hyperbola's arc) must not cost more.
-    options.maxTrials = 40;
+    // No local optimisation, and as few samples as the caller can afford: five-point conics cost a singular
+    // value decomposition each; a frame whose points make no ellipse (no trace, or a hyperbola's arc) must
+    // not cost more.
+    options.maxTrials = ransacTrials;
     options.localOptimisation = false;
     vpRansacReport ransac;
     if (!vpRansacLoop(estimator, options, C, ransac))

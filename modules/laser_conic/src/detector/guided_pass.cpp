@@ -388,6 +388,18 @@ int observedStripeWidth(const RidgeWorkspace &work, const Eigen::Matrix3d &C, co
   return medianWidth(widths, fallback);
 }
 
+namespace
+{
+// Of the kept crossings of work (in order, the points of the pass), keeps those \e selected marks.
+void keepSelectedCrossings(const std::vector<unsigned char> &selected, RidgeWorkspace &work)
+{
+  size_t index = 0;
+  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
+    if (work.keep[k])
+      work.keep[k] = index < selected.size() && selected[index++];
+}
+} // namespace
+
 std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> &points,
                                                 const std::vector<int> &inliers, const Eigen::Matrix3d &C,
                                                 RidgeWorkspace &work)
@@ -403,11 +415,21 @@ std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> 
       kept.push_back(p);
     }
   }
-  // The points are the kept crossings in order.
-  size_t index = 0;
-  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
-    if (work.keep[k])
-      work.keep[k] = index < steep.size() && steep[index++];
+  keepSelectedCrossings(steep, work);
+  return kept;
+}
+
+std::vector<vpImagePoint> keepInlierCrossings(const std::vector<vpImagePoint> &points, const std::vector<int> &inliers,
+                                              RidgeWorkspace &work)
+{
+  std::vector<unsigned char> selected(points.size(), 0);
+  std::vector<vpImagePoint> kept;
+  kept.reserve(inliers.size());
+  for (int k : inliers) {
+    selected[static_cast<size_t>(k)] = 1;
+    kept.push_back(points[static_cast<size_t>(k)]);
+  }
+  keepSelectedCrossings(selected, work);
   return kept;
 }
 } // namespace vsp::laser_detector

@@ -43,13 +43,14 @@ struct GuidedReport
 };
 
 /*!
-  Robust ellipse through \e points (pixel coordinates): RANSAC over five-point conics (seeded, Sampson
-  distance within 2 px), refitted on its inliers (returned in \e inliers). False when fewer than
+  Robust ellipse through \e points (pixel coordinates): the least-squares ellipse when it fits 90 % of them,
+  else RANSAC over five-point conics (seeded, \e ransacTrials samples, Sampson distance within 2 px);
+  refitted on its inliers (returned in \e inliers). False when fewer than
   \e minInliers points agree, their arc around the ellipse is under 60 degrees or the conic is no plausible
   image of the ring (not an ellipse, or far larger than the image).
 */
-bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, Eigen::Matrix3d &C,
-                     std::vector<int> &inliers);
+bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, int ransacTrials,
+                     Eigen::Matrix3d &C, std::vector<int> &inliers);
 
 /*!
   The guided pass. \e prediction: the conic to search along (pixel coordinates); \e anchors: the points
@@ -83,6 +84,14 @@ int observedStripeWidth(const RidgeWorkspace &work, const Eigen::Matrix3d &C, co
 std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> &points,
                                                 const std::vector<int> &inliers, const Eigen::Matrix3d &C,
                                                 RidgeWorkspace &work);
+
+/*!
+  Of the first pass's points (the kept crossings of work, in order) \e points, those of \e inliers (indices
+  into \e points, increasing), returned; the others are no longer kept in work.keep (the mask draws them as
+  rejected).
+*/
+std::vector<vpImagePoint> keepInlierCrossings(const std::vector<vpImagePoint> &points, const std::vector<int> &inliers,
+                                              RidgeWorkspace &work);
 } // namespace vsp::laser_detector
 
 #endif
