@@ -100,8 +100,9 @@ struct vpLaserConicDetectorRun
   curve within setGuidedMargin() pixels of it, averaged over three neighbouring lines shifted along the
   curve, goes through a matched filter for a stripe of the observed width (the median half-maximum width
   of the first pass's crossings, those of the sample of rows converted to the line crossing more steeply) whose response must exceed setGuidedThresholdFactor() times its own noise,
-  measured along that profile (robust spread, as above): a threshold local to the profile instead of the
-  global contrast. Around the best response, the first pass's shape tests (width, white light) and
+  measured along that profile (robust spread of its second differences, which the blurred steps between
+  the patches of a textured floor do not raise): a threshold local to the profile instead of the global
+  contrast. Around the best response, the first pass's shape tests (width, white light) and
   sub-pixel centre apply (a saturated core needs red flanks out of one line's noise by the same factor).
   A profile next to one with a point is first searched within 3 px (across the curve) of that point, with
   the noise of the last full profile (measured at most 8 profiles before); the whole margin is searched
@@ -114,7 +115,7 @@ struct vpLaserConicDetectorRun
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
   times). Last, the centres of this pass are regularised along the curve: each one's offset to the final
-  ellipse is replaced by a straight-line fit of the offsets over 20 px of arc around it (offsets more than
+  ellipse is replaced by a straight-line fit of the offsets over 40 px of arc around it (offsets more than
   1 px from a first fit left out), since one profile's centre is noisy (sensor noise, JPEG's 8 x 8 blocks)
   but the centre line is smooth. The points of this pass follow those of the first pass in the list
   returned (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
