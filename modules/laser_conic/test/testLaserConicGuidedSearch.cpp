@@ -204,7 +204,7 @@ TEST(LaserConicGuidedSearch, SaturatedStripeThroughALampsGlare)
   // against that noise: the white core was refused there (measured 9.0 % of the ring within 80 px of the
   // reflection found, 94.95 % of the whole ring; data/laser_hard frames 1, 16 and 31 lost 4-10 % of their
   // rings). The flanks are now read against the dominance's own noise where they fail the profile's: 99.1 %
-  // in the glare, 99.95 % of the ring, precision 1, second-pass RMS 0.10 px (0.09 px before).
+  // in the glare, 99.95 % of the ring, precision 1, second-pass RMS 0.08 px.
   Settings s;
   s.floor = vpLaserConicSimulator::FLOOR_WHITE_TILES;
   s.ambient = 0.85;
