@@ -218,20 +218,29 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
 {
 #ifdef VSP_HAVE_LASER_CONIC
   const vspBench::LaserRig rig = vspBench::defaultRig();
-  if (methodName.compare(0, 7, "detect-") == 0) { // detection + GP-3 on the whole-frame benchmark's frames
+  const bool tracking = methodName.compare(0, 6, "track-") == 0;
+  if (methodName.compare(0, 7, "detect-") == 0 || tracking) {
+    // Detection + GP-3 on the whole-frame benchmark's frames; track-: with the image conic of each frame's
+    // GP-3 estimate as the search region (the tracking rows).
     std::vector<std::pair<std::string, vpLaserConicSimulator::vpRenderSettings> > floors = benchFloors();
-    const size_t f = methodName == "detect-dark" ? 0 : (methodName == "detect-grey" ? 1 : 2);
+    const std::string floorName = methodName.substr(tracking ? 6 : 7);
+    const size_t f = floorName == "dark" ? 0 : (floorName == "grey" ? 1 : 2);
     std::vector<vpImage<vpRGBa> > images;
     std::vector<Eigen::Vector4d> truths;
     renderFrames(rig, seed + 7, 6, floors[f].second, images, truths);
-    vpLaserConicDetector detector;
+    std::vector<vpLaserConicDetector> detectors(images.size());
     vpLaserConicPose estimator = makeEstimator(rig);
+    for (size_t i = 0; i < images.size() && tracking; ++i) {
+      vpPlane plane;
+      if (estimator.computePlane(detectors[i].detect(images[i]), vpLaserConicPose::GP3, plane))
+        detectors[i].setSearchRegion(estimator.getImageConic(), 20.0);
+    }
     int good = 0;
     size_t detected = 0;
     const auto start = std::chrono::steady_clock::now();
     for (int k = 0; k < frames; ++k) {
       const size_t i = static_cast<size_t>(k) % images.size();
-      const std::vector<vpImagePoint> trace = detector.detect(images[i]);
+      const std::vector<vpImagePoint> trace = detectors[i].detect(images[i]);
       detected += trace.size();
       vpPlane plane;
       try {

@@ -6,7 +6,7 @@
 
   Usage: bench-peers [--seed S] [--quick] [--only gravity|laser|laser-frame|filter] [--out results.md] [--benchmark_... flags]
          bench-peers --profile gp3|pp3|pp5|planepair [--outliers 0.5] [--frames 20] [--points 1000]
-         bench-peers --profile detect-dark|detect-grey|detect-mosaic [--frames 20]
+         bench-peers --profile detect-dark|detect-grey|detect-mosaic|track-dark|track-grey|track-mosaic [--frames 20]
          bench-peers --profile p2p|p3p|lsq|facade|compute [--frames 1000]
   (the second form only runs one laser method, the third one times one of our gravity solvers on
   --frames seeded problems; both are meant for a profiler). Every row is timed by Google Benchmark
@@ -113,8 +113,9 @@ int main(int argc, char **argv)
   bool quick = false;
   std::string only, out, profile;
   const std::vector<std::string> gravityProfiles = {"p2p", "p3p", "lsq", "facade", "compute"};
-  const std::vector<std::string> laserProfiles = {"gp3",         "pp3",         "pp5",          "planepair",
-                                                  "detect-dark", "detect-grey", "detect-mosaic"};
+  const std::vector<std::string> laserProfiles = {"gp3",         "pp3",         "pp5",           "planepair",
+                                                  "detect-dark", "detect-grey", "detect-mosaic", "track-dark",
+                                                  "track-grey",  "track-mosaic"};
   std::vector<std::string> profiles = gravityProfiles;
   profiles.insert(profiles.end(), laserProfiles.begin(), laserProfiles.end());
   vpCommandLine cli("[--seed S] [--quick] [--only gravity|laser|laser-frame|filter|selfcal] [--out FILE] | --profile "
@@ -133,7 +134,8 @@ int main(int argc, char **argv)
   cli.addChoice("--profile", profile, profiles, "method",
                 "run one method in a loop for a profiler: p2p, p3p, lsq, facade, compute (gravity) or gp3, pp3, "
                 "pp5, planepair (laser), detect-dark, detect-grey, detect-mosaic (detection + GP-3 on the "
-                "whole-frame benchmark's frames of one floor)");
+                "whole-frame benchmark's frames of one floor), track-dark, track-grey, track-mosaic (the same with "
+                "the previous conic as the search region)");
   cli.addUnsigned("--frames", frames, "N", "--profile: problems (default 1000) or laser frames (default 20)", 1);
   cli.addDouble("--outliers", outliers, "R", "--profile of a laser method: outlier ratio (default 0.5)",
                 vpCommandLine::NON_NEGATIVE);

@@ -80,7 +80,9 @@ struct vpLaserConicDetectorRun
   ellipse (a small or partial trace, a hyperbola, a line), or the guided pass ends with a point on fewer
   than 80 % of its profiles (an ellipse through clutter and a piece of the ring, or extrapolated from the
   bright arcs of a fading ring), the whole image is searched as follows and the guided pass follows that
-  search's ellipse. A frame of 1600 x 1200 pixels then costs a third of one cv::cvtColor pass.
+  search's ellipse (sought with more RANSAC samples: such frames hold clutter); when the pass finds the ring
+  along 80 % of that ellipse, the search's points off it are not returned either. A frame of 1600 x 1200
+  pixels costs a third of one cv::cvtColor pass.
 
   <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
   measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
@@ -103,7 +105,9 @@ struct vpLaserConicDetectorRun
   measured along that profile (robust spread of its second differences, which the blurred steps between
   the patches of a textured floor do not raise): a threshold local to the profile instead of the global
   contrast. Around the best response, the first pass's shape tests (width, white light) and
-  sub-pixel centre apply (a saturated core needs red flanks out of one line's noise by the same factor).
+  sub-pixel centre apply (a saturated core needs red flanks out of one line's noise by the same factor, or,
+  in a lamp's glare, where the red channel in the saturation ramp raises that noise, out of the red
+  dominance's own noise along the line).
   A profile next to one with a point is first searched within 3 px (across the curve) of that point, with
   the noise of the last full profile (measured at most 8 profiles before); the whole margin is searched
   when that finds nothing. A piece of curve moves by about a pixel per profile: the short profile finds its
