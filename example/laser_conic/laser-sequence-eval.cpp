@@ -262,13 +262,6 @@ void runSequence(const Options &opt, const vpLaserDataset &dataset, vpLaserConic
   }
 }
 
-//! Median of \e v (not empty).
-double median(std::vector<double> v)
-{
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 /*!
   GP-3's errors with the default detector (\e guided) and with its first pass alone (\e firstPass), over the
   frames where both give a plane: prints them with their frame-by-frame difference, and returns how many of
@@ -309,9 +302,9 @@ int compareWithFirstPass(const vpLaserDataset &dataset, const MethodResult &guid
     const long worse = std::count_if(d.begin(), d.end(), [](double x) { return x > 0.0; });
     std::ostringstream row;
     row << std::fixed << std::setprecision(q == 0 ? 2 : 3) << "| " << names[q] << " | " << meanStd(a).mean << " ± "
-        << meanStd(a).std << ", " << median(a) << " | " << meanStd(b).mean << " ± " << meanStd(b).std << ", "
-        << median(b) << " | " << std::showpos << diff.mean << std::noshowpos << " (" << standardError << ") | "
-        << better << " / " << worse << " |";
+        << meanStd(a).std << ", " << vpMath::getMedian(a) << " | " << meanStd(b).mean << " ± " << meanStd(b).std << ", "
+        << vpMath::getMedian(b) << " | " << std::showpos << diff.mean << std::noshowpos << " (" << standardError
+        << ") | " << better << " / " << worse << " |";
     std::cout << row.str() << std::endl;
     failed += diff.mean > 2.0 * standardError ? 1 : 0;
   }

@@ -306,9 +306,9 @@ std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<
   // Over the whole image, a ring found along most of its ellipse: the first pass's points off it (a red
   // cable, a floor's red edges, clutter) are not returned, as when the sample of rows located it.
   if (!inRegion && guidedReport.coverage >= kMinLocatedCoverage) {
-    std::vector<vpImagePoint> kept = vsp::laser_detector::keepInlierCrossings(points, inliers, work);
-    kept.insert(kept.end(), points.begin() + static_cast<std::ptrdiff_t>(before), points.end());
-    points.swap(kept);
+    vsp::laser_detector::keepInlierCrossings(before, inliers, work);
+    anchors.insert(anchors.end(), points.begin() + static_cast<std::ptrdiff_t>(before), points.end());
+    points.swap(anchors);
   }
   return points;
 }

@@ -419,17 +419,11 @@ std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> 
   return kept;
 }
 
-std::vector<vpImagePoint> keepInlierCrossings(const std::vector<vpImagePoint> &points, const std::vector<int> &inliers,
-                                              RidgeWorkspace &work)
+void keepInlierCrossings(size_t count, const std::vector<int> &inliers, RidgeWorkspace &work)
 {
-  std::vector<unsigned char> selected(points.size(), 0);
-  std::vector<vpImagePoint> kept;
-  kept.reserve(inliers.size());
-  for (int k : inliers) {
+  std::vector<unsigned char> selected(count, 0);
+  for (int k : inliers)
     selected[static_cast<size_t>(k)] = 1;
-    kept.push_back(points[static_cast<size_t>(k)]);
-  }
   keepSelectedCrossings(selected, work);
-  return kept;
 }
 } // namespace vsp::laser_detector

@@ -86,12 +86,10 @@ std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> 
                                                 RidgeWorkspace &work);
 
 /*!
-  Of the first pass's points (the kept crossings of work, in order) \e points, those of \e inliers (indices
-  into \e points, increasing), returned; the others are no longer kept in work.keep (the mask draws them as
-  rejected).
+  Of the first pass's \e count points (the kept crossings of work, in order), keeps those of \e inliers
+  (indices, increasing) in work.keep: the others are no longer kept (the mask draws them as rejected).
 */
-std::vector<vpImagePoint> keepInlierCrossings(const std::vector<vpImagePoint> &points, const std::vector<int> &inliers,
-                                              RidgeWorkspace &work);
+void keepInlierCrossings(size_t count, const std::vector<int> &inliers, RidgeWorkspace &work);
 } // namespace vsp::laser_detector
 
 #endif

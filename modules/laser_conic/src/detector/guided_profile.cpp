@@ -168,6 +168,9 @@ struct MatchedFilter
     : prefix(prefix_), h(h_), f(f_), scale(1.0 / ((2.0 * h_ + 1.0) * f_))
   {
   }
+  // Pixels on each side of a response's position covered by its stripe box and gap: the stripe and its tails,
+  // which a noise estimate beside it leaves out.
+  int tails() const { return h + RidgeTuning::guidedGap + 1; }
   // Sums of the left and right background boxes of k.
   int leftSum(int k) const
   {
@@ -224,9 +227,9 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
   if (b - a + 1 > settings.maxWidth)
     return false;
   if (whiteWithoutRedFlanks(view, a, b, settings.saturation, flankThreshold)) {
-    const int tails = filter.h + RidgeTuning::guidedGap + 1;
-    const int glareThreshold = static_cast<int>(std::ceil(
-        std::max(RidgeTuning::guidedMinResponse, settings.factor * dominanceNoise(view, diffs, a - tails, b + tails))));
+    const int glareThreshold = static_cast<int>(
+        std::ceil(std::max(RidgeTuning::guidedMinResponse,
+                           settings.factor * dominanceNoise(view, diffs, a - filter.tails(), b + filter.tails()))));
     if (glareThreshold >= flankThreshold || whiteWithoutRedFlanks(view, a, b, settings.saturation, glareThreshold))
       return false;
   }
@@ -291,7 +294,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   double bestResponse = -1e30;
   const int first = std::max(reach, lo - start), last = std::min(n - 1 - reach, hi - start);
   int best = filter.best(first, last, bestResponse);
-  const int tails = h + RidgeTuning::guidedGap + 1;
+  const int tails = filter.tails();
   const double rootLines = lines == 1 ? 1.0 : std::sqrt(static_cast<double>(lines));
   if (window.lineNoise >= 0.0)
     result.noise = window.lineNoise * rootLines;
