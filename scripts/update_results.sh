@@ -107,26 +107,50 @@ gen_sequence() {
   } >"$blocks/sequence.md"
 }
 
-# --- the second pass against the first pass alone, on the shipped sequences -------------------------------
+# --- laser-sequence-eval's frame-by-frame comparisons on the shipped sequences ------------------------------
+# comparison_rows NAME "OPTIONS" TITLE_START: runs laser-sequence-eval with OPTIONS on each "label;arguments"
+# line of stdin (output in $work/NAME_k.txt) and prints the rows of its comparison table (the one after the
+# line starting with TITLE_START), each prefixed by the run's label.
+comparison_rows() {
+  local name=$1 options=$2 title=$3 k=0
+  while IFS=';' read -r label args; do
+    k=$((k + 1))
+    # shellcheck disable=SC2086 # the arguments are words
+    "$(program laser-sequence-eval)" $args $options --output "$work/$name" >"$work/${name}_$k.txt" 2>/dev/null || true
+    awk -v label="$label" -v title="$title" 'index($0, title) == 1 {on = 1; next}
+      on && /^\| [A-Z]/ && !/: mean ± std/ {print "| " label " " $0}' "$work/${name}_$k.txt"
+  done
+}
+
 gen_second_pass() {
   log "laser-sequence-eval --check-against-first-pass (simulated and hard sequences)"
-  local k=0
   {
     echo "| Sequence, laser | GP-3 | default detector: mean ± std, median | first pass alone | difference: mean (standard error) | frames better / worse |"
     echo "|---|---|---|---|---|---|"
-    while IFS=';' read -r label args; do
-      k=$((k + 1))
-      # shellcheck disable=SC2086 # the arguments are words
-      "$(program laser-sequence-eval)" $args --check-against-first-pass --output "$work/second_pass" \
-        >"$work/second_pass_$k.txt" 2>/dev/null || true
-      awk -v label="$label" '/^GP-3 with the default detector/ {on = 1; next}
-        on && /^\| [A-Z]/ && !/default:/ {print "| " label " " $0}' "$work/second_pass_$k.txt"
-    done <<EOF_RUNS
+    comparison_rows second_pass --check-against-first-pass "GP-3 with the default detector" <<EOF_RUNS
 laser_sequence, calibrated;
 laser_hard, calibrated;--data $root/data/laser_hard
 laser_hard, true;--data $root/data/laser_hard --laser $root/data/laser_hard/laser_true.txt
 EOF_RUNS
   } >"$blocks/second_pass.md"
+}
+
+gen_tracking() {
+  log "laser-sequence-eval --track 20 --check-against-whole-frame (simulated and hard sequences)"
+  {
+    echo "| Sequence | GP-3 | tracking: mean ± std, median | whole frame | difference: mean (standard error) | frames better / worse |"
+    echo "|---|---|---|---|---|---|"
+    comparison_rows tracking "--track 20 --check-against-whole-frame" "GP-3 with tracking" <<EOF_RUNS
+laser_sequence;
+laser_hard;--data $root/data/laser_hard
+EOF_RUNS
+    echo
+    local k=0 label
+    for label in laser_sequence laser_hard; do
+      k=$((k + 1))
+      grep -h -E "^(Tracking:|Frames with a plane)" "$work/tracking_$k.txt" | sed "s/^/- $label: /"
+    done
+  } >"$blocks/tracking.md"
 }
 
 # A fixed-width summary of the demo (header line starting with "method") as a markdown table, without
@@ -288,6 +312,7 @@ gen_table1
 gen_robustness
 gen_sequence
 gen_second_pass
+gen_tracking
 gen_demo
 if [ "$mode" = full ]; then
   gen_stress

@@ -10,6 +10,10 @@
   deviation per method. Per-frame results go to a CSV file and the altitude / attitude curves to PNG.
   With --check-against-first-pass the sequence is also run with the detector's first pass alone
   (vpLaserConicDetector::setGuidedSearch(false)) and GP-3's errors of the two are compared frame by frame.
+  With --track the sequence is run as in flight: each frame is searched along the image conic of the
+  previous frame's GP-3 estimate (vpLaserConicDetector::setSearchRegion(const vpMatrix &, double)), over
+  the whole image when that gives GP-3 no plane; --check-against-whole-frame compares its GP-3 errors with
+  those of a whole-frame detection of every frame.
 */
 #include <algorithm>
 #include <cmath>
@@ -44,8 +48,11 @@ struct Options
   bool check = false;
   bool verbose = false;
   bool localOptimisation = true;
-  bool againstFirstPass = false; //!< also run the first pass alone and compare GP-3's errors frame by frame
-  std::string laserFile;         //!< overrides DIR/laser.txt when set
+  bool againstFirstPass = false;  //!< also run the first pass alone and compare GP-3's errors frame by frame
+  double trackMargin = 0.0;       //!< > 0: search each frame along the previous frame's conic, this margin (px)
+  unsigned int trackingStep = 0;  //!< vpLaserConicDetector::setTrackingStep() when > 0
+  bool againstWholeFrame = false; //!< with --track: also detect every frame over the whole image and compare
+  std::string laserFile;          //!< overrides DIR/laser.txt when set
 };
 
 struct Method
@@ -139,7 +146,8 @@ double angleDifference(double a, double b) { return std::fabs(std::remainder(a -
 vpCommandLine commandLine(Options &opt)
 {
   vpCommandLine cli("[--data DIR] [--output DIR] [--threshold PX] [--laser FILE] [--no-local-optimisation]\n"
-                    "       [--verbose] [--check] [--check-against-first-pass]",
+                    "       [--verbose] [--check] [--check-against-first-pass]\n"
+                    "       [--track PX [--tracking-step N] [--check-against-whole-frame]]",
                     "Detection + PP-5 / PP-3 / GP-3 over a laser sequence, errors in the layout of Table 2.");
   cli.addString("--data", opt.data, "DIR", "dataset directory (default " VSP_DATA_DIR "/laser_sequence)");
   cli.addString("--output", opt.output, "DIR", "per-frame CSV and PNG curves (default laser-sequence-results)");
@@ -152,6 +160,18 @@ vpCommandLine commandLine(Options &opt)
               "also run the detector's first pass alone (no guided second pass) and exit non-zero when GP-3's mean "
               "altitude, roll or pitch error of the default detector exceeds that of the first pass by more than "
               "two standard errors of their frame-by-frame difference");
+  cli.addDouble("--track", opt.trackMargin, "PX",
+                "tracking, as in flight: each frame is searched along the image conic of the previous frame's GP-3 "
+                "estimate within PX pixels, over the whole image again when that gives GP-3 no plane",
+                vpCommandLine::POSITIVE);
+  cli.addUnsigned("--tracking-step", opt.trackingStep, "N",
+                  "with --track: a profile every N image lines (vpLaserConicDetector::setTrackingStep; default: the "
+                  "detector's)",
+                  1);
+  cli.addFlag("--check-against-whole-frame", opt.againstWholeFrame,
+              "with --track: also detect every frame over the whole image and exit non-zero when tracking's GP-3 "
+              "mean altitude, roll or pitch error exceeds the whole frame's by more than two standard errors of "
+              "their frame-by-frame difference");
   return cli;
 }
 
@@ -205,15 +225,57 @@ struct TrueLaser
   vpHomogeneousMatrix cMl;
 };
 
-//! Detection with \e detector and the three estimators on every frame of \e dataset: \e results per method,
-//! \e detected the points per frame, \e residuals the points' distances to the exact trace when \e truth is
-//! known. Throws vpException when an image cannot be read.
-void runSequence(const Options &opt, const vpLaserDataset &dataset, vpLaserConicDetector &detector,
-                 const TrueLaser &truth, std::vector<MethodResult> &results, std::vector<unsigned int> &detected,
-                 std::vector<double> &residuals)
+//! One run of the sequence: the estimators' results, the points detected per frame, the points' distances
+//! to the exact trace (when the true laser is known), and how the frames were searched.
+struct SequenceRun
 {
-  results.assign(methods().size(), MethodResult());
-  detected.clear();
+  std::vector<MethodResult> results; //!< per method of methods()
+  std::vector<unsigned int> detected;
+  std::vector<double> residuals;
+  int tracked = 0;    //!< frames searched along the previous frame's conic
+  int wholeAgain = 0; //!< of those, frames searched again over the whole image (GP-3 found no plane)
+};
+
+//! GP-3 on \e points, false when it finds no plane or throws (the frame's message printed).
+bool gp3Plane(vpLaserConicPose &estimator, const std::vector<vpImagePoint> &points, unsigned int frame)
+{
+  vpPlane plane;
+  try {
+    return estimator.computePlane(points, vpLaserConicPose::GP3, plane);
+  } catch (const vpException &e) {
+    std::cerr << "frame " << frame << " GP-3: " << e.getMessage() << std::endl;
+  }
+  return false;
+}
+
+/*!
+  The points of frame I. With a search region (tracking: the previous frame's conic) the detector searches
+  along it, and over the whole image again when GP-3 finds no plane in what it returns (the ring left the
+  band, or tracking followed something else), as a tracking loop does.
+*/
+std::vector<vpImagePoint> detectFrame(const vpImage<vpRGBa> &I, unsigned int frame, vpLaserConicDetector &detector,
+                                      vpLaserConicPose &estimator, SequenceRun &run)
+{
+  std::vector<vpImagePoint> points = detector.detect(I);
+  if (!detector.hasSearchRegion())
+    return points;
+  ++run.tracked;
+  estimator.setRansacSeed(frame);
+  if (gp3Plane(estimator, points, frame))
+    return points;
+  ++run.wholeAgain;
+  detector.clearSearchRegion();
+  return detector.detect(I);
+}
+
+//! Detection with \e detector and the three estimators on every frame of \e dataset, each frame searched along
+//! the previous one's GP-3 conic within \e trackMargin pixels when it is positive. Throws vpException when an
+//! image cannot be read.
+SequenceRun runSequence(const Options &opt, const vpLaserDataset &dataset, vpLaserConicDetector &detector,
+                        const TrueLaser &truth, double trackMargin)
+{
+  SequenceRun run;
+  run.results.assign(methods().size(), MethodResult());
   vpLaserConicPose estimator;
   estimator.setCameraParameters(dataset.cam);
   estimator.setLaser(dataset.openingAngle, dataset.cMl);
@@ -223,13 +285,14 @@ void runSequence(const Options &opt, const vpLaserDataset &dataset, vpLaserConic
   for (const vpLaserGroundTruthFrame &f : dataset.frames) {
     vpImage<vpRGBa> I;
     vpImageIo::read(I, dataset.imagePath(f));
-    const std::vector<vpImagePoint> points = detector.detect(I);
-    detected.push_back(static_cast<unsigned int>(points.size()));
+    const std::vector<vpImagePoint> points = detectFrame(I, f.frame, detector, estimator, run);
+    run.detected.push_back(static_cast<unsigned int>(points.size()));
     if (truth.known) {
-      detectionResiduals(points, dataset.cam, truth.openingAngle, truth.cMl, f.plane, residuals);
+      detectionResiduals(points, dataset.cam, truth.openingAngle, truth.cMl, f.plane, run.residuals);
     }
+    detector.clearSearchRegion();
     for (size_t i = 0; i < methods().size(); ++i) {
-      MethodResult &r = results[i];
+      MethodResult &r = run.results[i];
       estimator.setRansacSeed(f.frame);
       vpPlane plane;
       bool ok = false;
@@ -245,6 +308,8 @@ void runSequence(const Options &opt, const vpLaserDataset &dataset, vpLaserConic
         r.estPitch.push_back(std::nan(""));
         continue;
       }
+      if (trackMargin > 0.0 && methods()[i].id == vpLaserConicPose::GP3)
+        detector.setSearchRegion(estimator.getImageConic(), trackMargin);
       if (opt.verbose) {
         std::cout << "frame " << f.frame << " " << methods()[i].name << ": altitude error "
                   << 1e3 * (estimator.getAltitude() - f.altitude) << " mm, roll error "
@@ -260,19 +325,34 @@ void runSequence(const Options &opt, const vpLaserDataset &dataset, vpLaserConic
       r.pitchDeg.push_back(vpMath::deg(angleDifference(estimator.getPitch(), f.pitch)));
     }
   }
+  return run;
 }
 
-/*!
-  GP-3's errors with the default detector (\e guided) and with its first pass alone (\e firstPass), over the
-  frames where both give a plane: prints them with their frame-by-frame difference, and returns how many of
-  altitude, roll and pitch have a mean difference above two standard errors of that difference (the
-  default detector worse than the first pass beyond the frames' spread).
-*/
-int compareWithFirstPass(const vpLaserDataset &dataset, const MethodResult &guided, const MethodResult &firstPass)
+//! What compareErrors() compares: the two runs in words.
+struct Comparison
 {
-  std::cout << "\nGP-3 with the default detector against its first pass alone (setGuidedSearch(false)), frame by "
-               "frame:\n| | default: mean ± std, median | first pass alone | difference: mean (standard error) | "
-               "frames better / worse |\n|---|---|---|---|---|\n";
+  std::string title;     //!< the heading line, ending with "frame by frame:"
+  std::string candidate; //!< column heading of the run under test
+  std::string reference; //!< column heading of the run it must be no worse than
+  std::string failure;   //!< printed when it is worse
+  std::string success;   //!< printed when it is not
+  //! Frames where the candidate gives a plane and the reference none fail the comparison (a frame without
+  //! the laser that a whole-frame detection finds empty must not give tracking a plane).
+  bool noPlaneWithoutReference = false;
+};
+
+/*!
+  GP-3's errors of \e candidate and \e reference over the frames where both give a plane: prints them with
+  their frame-by-frame difference, and returns how many of altitude, roll and pitch have a mean difference
+  above two standard errors of that difference (the candidate worse than the reference beyond the frames'
+  spread).
+*/
+int compareErrors(const vpLaserDataset &dataset, const MethodResult &candidate, const MethodResult &reference,
+                  const Comparison &words)
+{
+  std::cout << "\n"
+            << words.title << "\n| | " << words.candidate << ": mean ± std, median | " << words.reference
+            << " | difference: mean (standard error) | frames better / worse |\n|---|---|---|---|---|\n";
   const char *names[] = {"Altitude error (mm)", "Roll error (deg)", "Pitch error (deg)"};
   int failed = 0;
   for (int q = 0; q < 3; ++q) {
@@ -284,7 +364,7 @@ int compareWithFirstPass(const vpLaserDataset &dataset, const MethodResult &guid
                       : vpMath::deg(q == 1 ? angleDifference(r.estRoll[k], f.roll)
                                            : angleDifference(r.estPitch[k], f.pitch));
       };
-      const double ea = error(guided), eb = error(firstPass);
+      const double ea = error(candidate), eb = error(reference);
       if (std::isfinite(ea) && std::isfinite(eb)) {
         a.push_back(ea);
         b.push_back(eb);
@@ -308,11 +388,44 @@ int compareWithFirstPass(const vpLaserDataset &dataset, const MethodResult &guid
     std::cout << row.str() << std::endl;
     failed += diff.mean > 2.0 * standardError ? 1 : 0;
   }
-  std::cout << (failed ? "CHECK FAILED: the default detector's GP-3 errors exceed the first pass's"
-                       : "The default detector's GP-3 errors are no worse than the first pass's (within two standard "
-                         "errors of the difference)")
-            << std::endl;
+  if (words.noPlaneWithoutReference) {
+    std::vector<unsigned int> extra;
+    for (size_t k = 0; k < dataset.frames.size(); ++k)
+      if (std::isfinite(candidate.estAltitude[k]) && !std::isfinite(reference.estAltitude[k]))
+        extra.push_back(dataset.frames[k].frame);
+    std::cout << "Frames with a plane from " << words.candidate << " and none from " << words.reference << ": "
+              << extra.size();
+    for (unsigned int frame : extra)
+      std::cout << " " << frame;
+    std::cout << std::endl;
+    failed += extra.empty() ? 0 : 1;
+  }
+  std::cout << (failed ? words.failure : words.success) << std::endl;
   return failed;
+}
+
+int compareWithFirstPass(const vpLaserDataset &dataset, const MethodResult &guided, const MethodResult &firstPass)
+{
+  return compareErrors(dataset, guided, firstPass,
+                       {"GP-3 with the default detector against its first pass alone (setGuidedSearch(false)), frame "
+                        "by frame:",
+                        "default", "first pass alone",
+                        "CHECK FAILED: the default detector's GP-3 errors exceed the first pass's",
+                        "The default detector's GP-3 errors are no worse than the first pass's (within two standard "
+                        "errors of the difference)"});
+}
+
+int compareWithWholeFrame(const vpLaserDataset &dataset, const MethodResult &tracked, const MethodResult &whole)
+{
+  return compareErrors(dataset, tracked, whole,
+                       {"GP-3 with tracking (the previous frame's conic as the search region) against a whole-frame "
+                        "detection of every frame, frame by frame:",
+                        "tracking", "whole frame",
+                        "CHECK FAILED: tracking's GP-3 errors exceed the whole frame's, or it gives planes the whole "
+                        "frame does not",
+                        "Tracking's GP-3 errors are no worse than the whole frame's (within two standard errors of the "
+                        "difference)",
+                        true});
 }
 
 //! The program's work once its options are read; returns its exit status.
@@ -329,35 +442,46 @@ int run(Options &opt, const vpCommandLine &)
     std::cerr << error << std::endl;
     return EXIT_FAILURE;
   }
-  std::vector<MethodResult> results, firstPassResults;
-  std::vector<unsigned int> detected, firstPassDetected;
   TrueLaser truth;
   std::string ignored;
   truth.known =
       vpLaserRigIo::readLaserCalibration(opt.data + "/laser_true.txt", truth.openingAngle, truth.cMl, ignored);
-  std::vector<double> residuals, firstPassResiduals;
+  SequenceRun main, firstPass, wholeFrame;
   try {
     vpIoTools::makeDirectory(opt.output);
     vpLaserConicDetector detector;
-    runSequence(opt, dataset, detector, truth, results, detected, residuals);
+    if (opt.trackingStep > 0)
+      detector.setTrackingStep(opt.trackingStep);
+    main = runSequence(opt, dataset, detector, truth, opt.trackMargin);
     if (opt.againstFirstPass) {
-      vpLaserConicDetector firstPass;
-      firstPass.setGuidedSearch(false);
-      runSequence(opt, dataset, firstPass, truth, firstPassResults, firstPassDetected, firstPassResiduals);
+      vpLaserConicDetector firstPassDetector;
+      firstPassDetector.setGuidedSearch(false);
+      firstPass = runSequence(opt, dataset, firstPassDetector, truth, 0.0);
     }
-    writeResults(opt, dataset, results, detected);
+    if (opt.againstWholeFrame) {
+      vpLaserConicDetector wholeFrameDetector;
+      wholeFrame = runSequence(opt, dataset, wholeFrameDetector, truth, 0.0);
+    }
+    writeResults(opt, dataset, main.results, main.detected);
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getMessage() << std::endl;
     return EXIT_FAILURE;
   }
-
-  const unsigned int minDetected = *std::min_element(detected.begin(), detected.end());
+  const std::vector<MethodResult> &results = main.results;
+  std::vector<double> &residuals = main.residuals;
+  const unsigned int minDetected = *std::min_element(main.detected.begin(), main.detected.end());
   std::cout << dataset.frames.size() << " frames of " << opt.data << ", " << minDetected << " to "
-            << *std::max_element(detected.begin(), detected.end()) << " trace points detected per frame, "
+            << *std::max_element(main.detected.begin(), main.detected.end()) << " trace points detected per frame, "
             << "laser " << (opt.laserFile.empty() ? opt.data + "/laser.txt" : opt.laserFile) << ", RANSAC threshold "
             << opt.threshold << " px, " << (opt.localOptimisation ? "least-squares refit on the inliers" : "no refit")
             << "\nPer-frame results: " << opt.output << "/sequence.csv, curves: " << opt.output
-            << "/sequence_{altitude,roll,pitch}.png\n\n";
+            << "/sequence_{altitude,roll,pitch}.png\n";
+  if (opt.trackMargin > 0.0)
+    std::cout << "Tracking: " << main.tracked << " frames searched along the previous frame's GP-3 conic (margin "
+              << opt.trackMargin << " px, a profile every "
+              << (opt.trackingStep > 0 ? opt.trackingStep : vpLaserConicDetector().getTrackingStep()) << " lines), "
+              << main.wholeAgain << " of them again over the whole image (GP-3 found no plane)\n";
+  std::cout << "\n";
   double rmsResidual = 0.0, outlierFraction = 0.0;
   if (!residuals.empty()) {
     for (double r : residuals) {
@@ -386,8 +510,9 @@ int run(Options &opt, const vpCommandLine &)
                "| Pitch error (deg) | 1.19 ± 0.86 | 0.67 ± 0.39 | 0.66 ± 0.37 |\n"
                "| Roll error (deg) | 1.25 ± 0.89 | 0.78 ± 0.41 | 0.76 ± 0.36 |\n";
 
-  const int comparisonFailed = opt.againstFirstPass ? compareWithFirstPass(dataset, results[2], firstPassResults[2])
-                                                    : 0;
+  const int comparisonFailed =
+      (opt.againstFirstPass ? compareWithFirstPass(dataset, results[2], firstPass.results[2]) : 0) +
+      (opt.againstWholeFrame ? compareWithWholeFrame(dataset, results[2], wholeFrame.results[2]) : 0);
   if (!opt.check) {
     return comparisonFailed ? EXIT_FAILURE : EXIT_SUCCESS;
   }

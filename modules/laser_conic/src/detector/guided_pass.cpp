@@ -232,11 +232,12 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
   return missed;
 }
 
-// Share of the samples (those in \e limit) that are known or whose point is kept.
+// Share of the samples (those in \e limit) that are known or whose point is kept; \e searched: how many.
 double walkCoverage(const std::vector<GuidedSample> &samples, const RegionSpans *limit, int H,
-                    const std::vector<SampleState> &state, const std::vector<unsigned char> &keep)
+                    const std::vector<SampleState> &state, const std::vector<unsigned char> &keep, size_t &searched)
 {
-  size_t searched = 0, covered = 0;
+  searched = 0;
+  size_t covered = 0;
   for (size_t i = 0; i < samples.size(); ++i) {
     const GuidedSample &s = samples[i];
     if (state[i] != KNOWN && !inLimit(limit, H, s.alongRow ? s.pos : s.line, s.alongRow ? s.line : s.pos))
@@ -313,7 +314,10 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     results.assign(samples.size(), ProfileResult());
     const int missed = measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds);
     keepContinuingPieces(state, results, keep);
-    report.coverage = walkCoverage(samples, limit, H, state, keep);
+    size_t searched = 0;
+    report.coverage = walkCoverage(samples, limit, H, state, keep, searched);
+    if (iteration == 0)
+      report.predictionSamples = static_cast<int>(searched);
     int added = 0;
     for (size_t i = 0; i < samples.size(); ++i)
       if (keep[i]) {

@@ -40,6 +40,8 @@ struct GuidedReport
   bool ran = false;       //!< false when there was no usable prediction
   //! Share of the last walk's samples (in the search limit) that ended known or with a point kept
   double coverage = 0.0;
+  //! Samples the first walk, along the prediction itself, searched
+  int predictionSamples = 0;
 };
 
 /*!
