@@ -157,12 +157,13 @@ std::vector<vpAccuracyBound> laserBounds()
   // from the sub-pixel detection, from the rig (a 15 cm laser baseline seen from up to 2.9 m: the ring's
   // shape then changes little with the attitude) and from laser.txt being a calibrated, slightly wrong,
   // laser pose. Measured on the shipped sequence (vsp-demo --check): at most 13 mm of altitude (frames at
-  // 2.6-2.9 m) and 1.5 deg of roll or pitch (the faint ring of frame 56), for every method: PLANE_PAIR keeps every point and rejects none,
+  // 2.6-2.9 m) and 1.3 deg of roll or pitch (the faint ring of frame 56), for every method: PLANE_PAIR keeps every
+  // point and rejects none,
   // but the detector returns only the points on the ring it located (the red cable of the distractor frames
   // is left out; when its points were returned, PLANE_PAIR was 430 mm and 65 deg off on frame 27). So all
   // four have the same bounds, and a distractor's points returned fail them. Margins of about 3.
   const std::string why =
-      "worst frame; measured <= 13 mm and 1.5 deg, a distractor taken for the trace is off by dm or degrees";
+      "worst frame; measured <= 13 mm and 1.3 deg, a distractor taken for the trace is off by dm or degrees";
   std::vector<vpAccuracyBound> bounds;
   for (const char *method : {"GP3", "PP3", "PP5", "PLANE_PAIR"}) {
     bounds.push_back({method, "altitude", "max", 40.0, why});
