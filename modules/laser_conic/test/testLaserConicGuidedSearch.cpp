@@ -152,7 +152,7 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
   // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured
-  // 94.9-97.2 % found (mean 96.1 %), precision 0.997-1, second-pass RMS 0.14-0.21 px (mean 0.19; with the
+  // 94.9-97.2 % found (mean 96.2 %), precision 0.997-1, second-pass RMS 0.14-0.21 px (mean 0.19; with the
   // regularisation along 20 px of arc and the points kept within 2 px of the final conic: 94.7-96.9 %, mean
   // 95.9 %, RMS 0.20-0.31 px, mean 0.26). What is
   // missed lies between 3 and 3.3 sigma, where JPEG at quality 90 leaves a matched-filter response of 0-2
@@ -214,8 +214,8 @@ TEST(LaserConicGuidedSearch, SaturatedStripeThroughALampsGlare)
   // ramp, the profile's values swing with it (several times the dominance's noise) and the flanks were read
   // against that noise: the white core was refused there (measured 9.0 % of the ring within 80 px of the
   // reflection found, 94.95 % of the whole ring; data/laser_hard frames 1, 16 and 31 lost 4-10 % of their
-  // rings). The flanks are now read against the dominance's own noise where they fail the profile's: 98.5 %
-  // in the glare, 99.92 % of the ring, precision 1, second-pass RMS 0.11 px (with a stripe box one pixel
+  // rings). The flanks are now read against the dominance's own noise where they fail the profile's: 98.8 %
+  // in the glare, 99.93 % of the ring, precision 1, second-pass RMS 0.11 px (with a stripe box one pixel
   // wider than the saturated core's even run: 99.1 %, 99.95 %, 0.08 px).
   Settings s;
   s.floor = vpLaserConicSimulator::FLOOR_WHITE_TILES;
