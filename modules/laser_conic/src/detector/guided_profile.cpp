@@ -239,6 +239,18 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
   return true;
 }
 
+// Half width h of the matched filter's stripe box (2h + 1 pixels). The box is as wide as the observed
+// half-maximum run, or a pixel narrower when that is even: a box wider than the stripe flattens the responses
+// the centre is read from (a run of 4 pixels, measured on the 3 px stripes of data/laser_sequence, with a box
+// of 5: GP-3's roll error 0.028 deg, with a box of 3: 0.024). A faint stripe's profile of many lines keeps the
+// pixel more: it sums more of the stripe where finding it is what counts (the faint frame 56 of
+// data/laser_hard: 0.949 -> 0.954 of its ring at 3 sigma).
+int stripeHalfBox(const GuidedSettings &settings, const ProfileWindow &window)
+{
+  const int run = window.lines > RidgeTuning::guidedLines ? settings.stripeWidth : settings.stripeWidth - 1;
+  return std::max(1, run / 2);
+}
+
 // A hint to bring the cache line of \e p to cache (nothing where the compiler has no such builtin).
 inline void prefetch(const unsigned char *p)
 {
@@ -275,13 +287,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                              const ProfileWindow &window, ProfileBuffers &buffers)
 {
   ProfileResult result;
-  // The stripe box is as wide as the observed half-maximum run, or a pixel narrower when that is even: a box
-  // wider than the stripe flattens the responses the centre is read from (a run of 4 pixels, measured on the
-  // 3 px stripes of data/laser_sequence, with a box of 5: GP-3's roll error 0.028 -> 0.024 deg with a box of 3).
-  // A faint stripe's profile of many lines keeps the pixel more: it sums more of the stripe where finding it
-  // is what counts (the faint frame 56 of data/laser_hard: 0.949 -> 0.954 of its ring at 3 sigma).
-  const int run = window.lines > RidgeTuning::guidedLines ? settings.stripeWidth : settings.stripeWidth - 1;
-  const int h = std::max(1, run / 2), f = std::max(RidgeTuning::guidedMinFlank, h + 1);
+  const int h = stripeHalfBox(settings, window), f = std::max(RidgeTuning::guidedMinFlank, h + 1);
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
   const double half = window.halfWidth > 0.0 ? window.halfWidth : s.halfWindow;
   const double from = std::max(s.pos - s.halfWindow, s.pos + window.centre - half),
