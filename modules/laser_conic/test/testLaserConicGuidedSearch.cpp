@@ -304,6 +304,27 @@ TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
   EXPECT_LE(q.rmsGuided, all.rmsGuided + 0.05);                       // as accurate
 }
 
+TEST(LaserConicGuidedSearch, TrackingFollowsTheStripesWidth)
+{
+  // Climbing, the stripe narrows in the image (the laser's line keeps its width on the ground). The tracker
+  // starts on a 7 px stripe detected over the whole image, then follows the ring, now 3 px wide, from frame
+  // to frame: its matched filter must follow the width it measures, not keep the first detection's.
+  const vpHomogeneousMatrix cMg = tiltedGround();
+  Settings wide = fadingRing(150.0, 20.0);
+  wide.stripeWidth = 7.0;
+  vpLaserConicDetector tracker;
+  runGuided("wide_start", cMg, wide, 77, tracker);
+  tracker.setSearchRegion(imageConicOf(cMg), 20.0);
+  GuidedQuality q;
+  for (unsigned int frame = 0; frame < 3; ++frame)
+    q = runGuided("narrow_tracked_" + std::to_string(frame), cMg, fadingRing(150.0, 20.0), 78 + frame, tracker);
+  vpLaserConicDetector fresh;
+  fresh.setSearchRegion(imageConicOf(cMg), 20.0);
+  const GuidedQuality reference = runGuided("narrow_fresh", cMg, fadingRing(150.0, 20.0), 80, fresh);
+  expectGuided(q, 0.95, 0.3);
+  EXPECT_LE(q.rmsGuided, reference.rmsGuided + 0.02);
+}
+
 TEST(LaserConicGuidedSearch, TrackingAFrameWithoutTheLaserFindsNoRing)
 {
   // Flight: the laser is off in this frame (pulsed laser, dropped exposure) and the tracker searches along

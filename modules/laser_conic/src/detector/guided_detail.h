@@ -105,6 +105,9 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, b
 */
 void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings);
 
+//! The element of rank size / 2 of \e values (>= 0, not empty), as std::nth_element would place it.
+int middleValue(std::vector<int> &values);
+
 //! Where a profile searches: a window along its line, and the noise its threshold uses.
 struct ProfileWindow
 {

@@ -349,13 +349,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
 
 namespace
 {
-int medianWidth(std::vector<int> &widths, int fallback)
-{
-  if (widths.empty())
-    return fallback;
-  std::nth_element(widths.begin(), widths.begin() + widths.size() / 2, widths.end());
-  return widths[widths.size() / 2];
-}
+int medianWidth(std::vector<int> &widths, int fallback) { return widths.empty() ? fallback : middleValue(widths); }
 } // namespace
 
 int observedStripeWidth(const RidgeWorkspace &work, int fallback)
@@ -364,6 +358,15 @@ int observedStripeWidth(const RidgeWorkspace &work, int fallback)
   for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
     if (work.keep[k])
       widths.push_back(work.crossings[k].last - work.crossings[k].first + 1);
+  return medianWidth(widths, fallback);
+}
+
+int guidedStripeWidth(const RidgeWorkspace &work, int fallback)
+{
+  std::vector<int> widths;
+  widths.reserve(work.guided.size());
+  for (const Crossing &c : work.guided)
+    widths.push_back(c.last - c.first + 1);
   return medianWidth(widths, fallback);
 }
 

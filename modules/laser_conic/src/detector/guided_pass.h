@@ -68,6 +68,12 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
 int observedStripeWidth(const RidgeWorkspace &work, int fallback);
 
 /*!
+  Median half-maximum width (pixels) of the guided pass's crossings (work.guided), each measured along the
+  line, row or column, that crosses the stripe more steeply; \e fallback when there is none.
+*/
+int guidedStripeWidth(const RidgeWorkspace &work, int fallback);
+
+/*!
   observedStripeWidth() of crossings measured along the rows whatever the stripe's slope (see
   detectRidgeRows()), of those among \e inliers (indices of the kept crossings, in order) only: each run
   converted, with the normal of the conic C at its centre, into the run along the line, row or column, that

@@ -99,27 +99,6 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
   return used;
 }
 
-// The element of rank size / 2 of \e values (>= 0, not empty), as std::nth_element would place it: by
-// counting when it is small (the differences of a profile's background mostly are: a few hundred
-// nanoseconds of nth_element per profile were a quarter of the tracking mode's time), else by nth_element.
-int middleValue(std::vector<int> &values)
-{
-  constexpr int bins = 128;
-  int count[bins] = {0};
-  for (int v : values)
-    if (v < bins)
-      ++count[v];
-  const int rank = static_cast<int>(values.size() / 2);
-  int below = 0;
-  for (int v = 0; v < bins; ++v) {
-    below += count[v];
-    if (below > rank)
-      return v;
-  }
-  std::nth_element(values.begin(), values.begin() + rank, values.end());
-  return values[static_cast<size_t>(rank)];
-}
-
 // Robust noise of the profile: 1.4826 MAD / sqrt(6) of the second differences of pixels two apart,
 // v[k + 2] - 2 v[k] + v[k - 2] (the same spread as the first pass's differences two pixels apart for white
 // noise, see ridge_noise.h), at least RidgeTuning::guidedNoiseFloor per line summed. Second differences
@@ -261,6 +240,26 @@ inline void prefetch(const unsigned char *p)
 #endif
 }
 } // namespace
+
+// By counting when the values are small (the differences of a profile's background mostly are: a few hundred
+// nanoseconds of nth_element per profile were a quarter of the tracking mode's time), else by nth_element.
+int middleValue(std::vector<int> &values)
+{
+  constexpr int bins = 128;
+  int count[bins] = {0};
+  for (int v : values)
+    if (v < bins)
+      ++count[v];
+  const int rank = static_cast<int>(values.size() / 2);
+  int below = 0;
+  for (int v = 0; v < bins; ++v) {
+    below += count[v];
+    if (below > rank)
+      return v;
+  }
+  std::nth_element(values.begin(), values.begin() + rank, values.end());
+  return values[static_cast<size_t>(rank)];
+}
 
 void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth)
 {

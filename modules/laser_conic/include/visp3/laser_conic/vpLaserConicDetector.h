@@ -259,7 +259,9 @@ public:
     description), or, when the track is lost, the first pass searches the band it defines (sampled at each
     image row and column) and the guided pass follows. The track is lost when the guided pass's points
     cover less than 40 % of the predicted curve's length in the image (a frame without the laser over a
-    textured floor gives up to 16 %, a ring tracked from frame to frame of a drone-like flight 77-100 %). The conic is one of the image searched: with a
+    textured floor gives up to 16 %, a ring tracked from frame to frame of a drone-like flight 77-100 %).
+    Each tracked frame's stripe width is the next one's matched filter's (the stripe narrows in the image as
+    the vehicle climbs). The conic is one of the image searched: with a
     distorted camera, getImageConic() is that of the undistorted image, so the margin must cover the
     distortion along the trace, or the points of the previous trace serve as the region instead.
     \exception vpLaserConicException::badValueError when \e C is not a finite 3x3 matrix, is zero, or the
