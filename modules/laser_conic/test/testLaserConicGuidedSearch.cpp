@@ -309,6 +309,9 @@ TEST(LaserConicGuidedSearch, TrackingFollowsTheStripesWidth)
   // Climbing, the stripe narrows in the image (the laser's line keeps its width on the ground). The tracker
   // starts on a 7 px stripe detected over the whole image, then follows the ring, now 3 px wide, from frame
   // to frame: its matched filter must follow the width it measures, not keep the first detection's.
+  // Measured: RMS 0.069, 0.062, 0.056 px over the three tracked frames, a fresh tracker 0.051 px; keeping the
+  // first width, 0.084 px on the third. The width settles at 5, not at the 4 a fresh tracker measures: the
+  // half-maximum run is read against the background boxes of the filter in use, farther from a wider box.
   const vpHomogeneousMatrix cMg = tiltedGround();
   Settings wide = fadingRing(150.0, 20.0);
   wide.stripeWidth = 7.0;
