@@ -431,6 +431,10 @@ int compareWithWholeFrame(const vpLaserDataset &dataset, const MethodResult &tra
 //! The program's work once its options are read; returns its exit status.
 int run(Options &opt, const vpCommandLine &)
 {
+  if (opt.trackMargin <= 0.0 && (opt.trackingStep > 0 || opt.againstWholeFrame)) {
+    std::cerr << "--tracking-step and --check-against-whole-frame need --track PX" << std::endl;
+    return EXIT_FAILURE;
+  }
   vpLaserDataset dataset;
   std::string error;
   if (!vpLaserRigIo::readDataset(opt.data, dataset, error)) {
