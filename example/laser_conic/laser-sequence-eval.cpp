@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -35,6 +34,7 @@
 #include "laserRigSetup.h"
 #include "vpCommandLine.h"
 #include "vpLaserRigIo.h"
+#include "vpOutputFile.h"
 #include "vpPngPlot.h"
 
 namespace
@@ -178,7 +178,11 @@ vpCommandLine commandLine(Options &opt)
 void writeResults(const Options &opt, const vpLaserDataset &dataset, const std::vector<MethodResult> &results,
                   const std::vector<unsigned int> &detected)
 {
-  std::ofstream out((opt.output + "/sequence.csv").c_str());
+  vpOutputFile file(opt.output + "/sequence.csv");
+  std::string error;
+  if (!file.open(error))
+    throw vpException(vpException::ioError, "%s", error.c_str());
+  std::ostream &out = file.stream();
   out << "frame,detected_points,gt_altitude_m,gt_roll_deg,gt_pitch_deg";
   for (const Method &m : methods()) {
     out << "," << m.name << "_altitude_m," << m.name << "_roll_deg," << m.name << "_pitch_deg";
@@ -198,6 +202,8 @@ void writeResults(const Options &opt, const vpLaserDataset &dataset, const std::
     gtRoll.push_back(vpMath::deg(f.roll));
     gtPitch.push_back(vpMath::deg(f.pitch));
   }
+  if (!file.commit(error))
+    throw vpException(vpException::ioError, "%s", error.c_str());
 
   const char *names[] = {"altitude", "roll", "pitch"};
   const char *units[] = {"altitude (m)", "roll (deg)", "pitch (deg)"};
