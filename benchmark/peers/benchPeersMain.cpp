@@ -7,6 +7,7 @@
   Usage: bench-peers [--seed S] [--quick] [--only gravity|laser|laser-frame|filter] [--out results.md] [--benchmark_... flags]
          bench-peers --profile gp3|pp3|pp5|planepair [--outliers 0.5] [--frames 20] [--points 1000]
          bench-peers --profile detect-dark|detect-grey|detect-mosaic|track-dark|track-grey|track-mosaic [--frames 20]
+                     [--one-frame]
          bench-peers --profile p2p|p3p|lsq|facade|compute [--frames 1000]
   (the second form only runs one laser method, the third one times one of our gravity solvers on
   --frames seeded problems; both are meant for a profiler). Every row is timed by Google Benchmark
@@ -110,7 +111,7 @@ int main(int argc, char **argv)
 {
   unsigned int seed = 42, frames = 0, points = 1000;
   double outliers = 0.5;
-  bool quick = false;
+  bool quick = false, oneFrame = false;
   std::string only, out, profile;
   const std::vector<std::string> gravityProfiles = {"p2p", "p3p", "lsq", "facade", "compute"};
   const std::vector<std::string> laserProfiles = {"gp3",         "pp3",         "pp5",           "planepair",
@@ -136,6 +137,9 @@ int main(int argc, char **argv)
                 "pp5, planepair (laser), detect-dark, detect-grey, detect-mosaic (detection + GP-3 on the "
                 "whole-frame benchmark's frames of one floor), track-dark, track-grey, track-mosaic (the same with "
                 "the previous conic as the search region)");
+  cli.addFlag("--one-frame", oneFrame,
+              "--profile detect-* or track-*: the first of the six frames over and over (its pixels stay in cache) "
+              "instead of the six in turn");
   cli.addUnsigned("--frames", frames, "N", "--profile: problems (default 1000) or laser frames (default 20)", 1);
   cli.addDouble("--outliers", outliers, "R", "--profile of a laser method: outlier ratio (default 0.5)",
                 vpCommandLine::NON_NEGATIVE);
@@ -161,9 +165,12 @@ int main(int argc, char **argv)
   cv::setNumThreads(1);
   if (std::find(gravityProfiles.begin(), gravityProfiles.end(), profile) != gravityProfiles.end())
     return runGravityProfileLoop(profile, frames ? static_cast<int>(frames) : 1000, seed);
+  const bool frameProfile = profile.compare(0, 7, "detect-") == 0 || profile.compare(0, 6, "track-") == 0;
+  if (oneFrame && !frameProfile)
+    return cli.fail("--one-frame applies to --profile detect-* and track-* only");
   if (!profile.empty())
     return runLaserProfileLoop(profile, outliers, frames ? static_cast<int>(frames) : 20, static_cast<int>(points),
-                               seed);
+                               seed, oneFrame);
 
   std::vector<BenchTable> tables;
   BenchTargets targets;

@@ -78,6 +78,7 @@ int runGravityProfileLoop(const std::string &method, int instances, unsigned int
   Runs one laser method on \e frames seeded 1000-point frames and prints its success rate and mean
   RANSAC trial count: a short, deterministic loop to run under a profiler (valgrind --tool=callgrind).
 */
-int runLaserProfileLoop(const std::string &method, double outlierRatio, int frames, int points, unsigned int seed);
+int runLaserProfileLoop(const std::string &method, double outlierRatio, int frames, int points, unsigned int seed,
+                        bool oneFrame = false);
 
 #endif
