@@ -152,7 +152,9 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
   // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured
-  // 94.9-97.2 % found (mean 96.2 %), precision 0.997-1, second-pass RMS 0.14-0.21 px (mean 0.19; with the
+  // 94.4-97.5 % found (mean 96.3 %), precision 0.993-1, second-pass RMS 0.16-0.27 px (mean 0.22; before a
+  // followed stripe was read against its dimmer side where the brighter one hides it: 94.9-97.2 %, mean
+  // 96.2 %, precision 0.997-1, RMS mean 0.19; with the
   // regularisation along 20 px of arc and the points kept within 2 px of the final conic: 94.7-96.9 %, mean
   // 95.9 %, RMS 0.20-0.31 px, mean 0.26). What is
   // missed lies between 3 and 3.3 sigma, where JPEG at quality 90 leaves a matched-filter response of 0-2
@@ -180,8 +182,11 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   s.ambient = 0.6;
   s.reflectanceScaled = true;
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured
-  // 95.8 % of the ring at 3 sigma or more, precision 0.998, second-pass RMS 0.240 px (over seeds 73-82:
-  // 92.9-96.3 %, mean 94.5 %, precision 0.984-1, RMS 0.16-0.26 px, mean 0.21 px). Before: 93.6 %, 0.998,
+  // 95.1 % of the ring at 3 sigma or more, precision 0.998, second-pass RMS 0.235 px (over seeds 73-82:
+  // 93.5-96.8 %, mean 94.9 %, precision 0.987-1, RMS 0.18-0.27 px, mean 0.22 px). A follow that drifted
+  // from the refitted conic onto a patch's edge now yields to a stripe near the conic, and a followed stripe
+  // beside a brighter patch is read against its dimmer side (seed 73: 95.8 %; seeds 73-82 before: 92.9-96.3 %,
+  // mean 94.5 %, precision 0.984-1, RMS mean 0.21 px; the first change alone: mean 94.96 %). Before: 93.6 %, 0.998,
   // 0.298 px (the full first pass and the second pass: 92.8 %, 0.987, 0.40 px; a whole-margin profile
   // preferring a response within 3 px of the prediction: +0.4 %); then the profile's noise from its second differences,
   // which a blurred step between patches does not raise (+1.1 %), the regularisation along 40 px of arc
@@ -203,18 +208,18 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // points that agree, searched within 1.5 px of the interpolated offset against the pass's median noise
   // (-0.2 to +0.03 %), and keeping points within 3 px of the final conic (96.0 %, RMS 0.254 px; over the ten
   // seeds precision 0.996 against 0.998).
-  // Over the ten seeds the 95 % is not reached (mean 94.5 %): the bounds below are what is measured,
+  // Over the ten seeds the 95 % is not reached (mean 94.9 %): the bounds below are what is measured,
   // so that a change that loses ring on this floor fails; seed 73 keeps the bound.
   const unsigned int firstSeed = 73, seedCount = 10;
   double coverage = 0.0, rms = 0.0;
   for (unsigned int seed = firstSeed; seed < firstSeed + seedCount; ++seed) {
     vpLaserConicDetector detector;
     const GuidedQuality q = runGuided("fading_mosaic", tiltedGround(), s, seed, detector);
-    expectGuided(q, seed == firstSeed ? 0.95 : 0.925, 0.3);
+    expectGuided(q, seed == firstSeed ? 0.95 : 0.93, 0.3);
     coverage += q.coverage3 / seedCount;
     rms += q.rmsGuided / seedCount;
   }
-  EXPECT_GE(coverage, 0.94);
+  EXPECT_GE(coverage, 0.947);
   EXPECT_LE(rms, 0.25);
 }
 
@@ -288,6 +293,94 @@ TEST(LaserConicGuidedSearch, DistractorsStayOut)
   EXPECT_LE(q.guidedOff, 0.02);
   EXPECT_GE(q.precision, 0.98);
   EXPECT_LE(q.rmsGuided, 0.3);
+}
+
+namespace
+{
+/*!
+  A red cable laid on the ground along the dim side of the ring of \e s on \e cMg: a straight line tangent to
+  the ring at its dimmest visible point, moved outwards so that its centre line is \e gapPx pixels from the
+  stripe's there, \e widthPx pixels wide, as long as \e lengthPx pixels of the ring. \e stretch: the indices of
+  the truth samples (traceTruth(6000)) within that length.
+*/
+vpLaserConicSimulator::vpDistractor cableAlongTheDimSide(const vpHomogeneousMatrix &cMg, const Settings &s,
+                                                         double gapPx, double widthPx, double lengthPx,
+                                                         std::vector<size_t> &stretch)
+{
+  vpLaserConicSimulator sim = makeSimulator(cMg);
+  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
+  size_t dimmest = 0;
+  for (size_t k = 0; k < truth.size(); ++k)
+    if (truth[k].peakDominance < truth[dimmest].peakDominance)
+      dimmest = k;
+  // The truth samples within lengthPx / 2 of arc on each side of the dimmest (consecutive in the list).
+  stretch.clear();
+  const size_t n = truth.size();
+  size_t first = dimmest, last = dimmest;
+  for (double arc = 0.0; arc < 0.5 * lengthPx;) {
+    const size_t previous = (first + n - 1) % n;
+    arc += vpImagePoint::distance(truth[previous].point, truth[first].point);
+    first = previous;
+  }
+  for (double arc = 0.0; arc < 0.5 * lengthPx;) {
+    const size_t next = (last + 1) % n;
+    arc += vpImagePoint::distance(truth[next].point, truth[last].point);
+    last = next;
+  }
+  for (size_t k = first; k != (last + 1) % n; k = (k + 1) % n)
+    stretch.push_back(k);
+  const vpCameraParameters cam = camera();
+  double a[2], b[2], m[2], centre[2] = {0.0, 0.0};
+  groundPointOf(cam, cMg, truth[first].point, a);
+  groundPointOf(cam, cMg, truth[last].point, b);
+  groundPointOf(cam, cMg, truth[dimmest].point, m);
+  for (const vpLaserConicSimulator::vpTraceTruth &t : truth) {
+    double g[2];
+    groundPointOf(cam, cMg, t.point, g);
+    centre[0] += g[0] / n;
+    centre[1] += g[1] / n;
+  }
+  // Metres per pixel along the ring there, and the outward normal of the chord.
+  const double metresPerPixel =
+      std::hypot(b[0] - a[0], b[1] - a[1]) / vpImagePoint::distance(truth[first].point, truth[last].point);
+  double nx = -(b[1] - a[1]), ny = b[0] - a[0];
+  const double norm = std::hypot(nx, ny);
+  nx /= norm;
+  ny /= norm;
+  if (nx * (m[0] - centre[0]) + ny * (m[1] - centre[1]) < 0.0) {
+    nx = -nx;
+    ny = -ny;
+  }
+  const double offset = gapPx * metresPerPixel, tx = (b[0] - a[0]) * 0.75, ty = (b[1] - a[1]) * 0.75;
+  const double cx = m[0] + offset * nx, cy = m[1] + offset * ny;
+  return vpLaserConicSimulator::vpDistractor::line(cx - tx, cy - ty, cx + tx, cy + ty, widthPx * metresPerPixel);
+}
+} // namespace
+
+TEST(LaserConicGuidedSearch, AStripeBesideARedCableIsFound)
+{
+  // A red cable 8 px wide laid along the dim side of a fading ring (20 grey levels, 10 sigma), its centre line
+  // 13 px from the stripe's where it is closest: the background box on the cable's side reaches its flank.
+  // Measured over the 160 px of ring beside it: 90.9 % found at 3 sigma (78.5 % when the stripe was read
+  // against the brighter of its two sides only, as a step edge is); precision 1. At 14 px 96.2 % (89.7 %);
+  // at 10-11 px, where the stripe and the cable's flank make one slope, 29-51 % (28-45 %).
+  Settings s = fadingRing(150.0, 20.0);
+  std::vector<size_t> stretch;
+  s.distractors = {cableAlongTheDimSide(tiltedGround(), s, 13.0, 8.0, 160.0, stretch)};
+  vpLaserConicDetector detector;
+  std::vector<vpImagePoint> points;
+  const GuidedQuality q = runGuided("cable_beside", tiltedGround(), s, 76, detector, &points);
+  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 76);
+  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
+  std::vector<vpLaserConicSimulator::vpTraceTruth> beside;
+  beside.reserve(stretch.size());
+  for (size_t k : stretch)
+    beside.push_back(truth[k]);
+  const double besideCoverage = vpLaserConicSimulator::stripeCoverage(beside, points, 3.0, 1.5);
+  std::cout << "beside the cable: " << beside.size() << " samples, coverage " << 100.0 * besideCoverage << " %"
+            << std::endl;
+  expectGuided(q, 0.95, 0.3);
+  EXPECT_GE(besideCoverage, 0.88);
 }
 
 TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)

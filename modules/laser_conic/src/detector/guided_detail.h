@@ -115,6 +115,9 @@ struct ProfileWindow
   double halfWidth = 0.0;  //!< half width along the line; 0: the sample's whole margin (GuidedSample::halfWindow)
   double lineNoise = -1.0; //!< noise of one line (grey levels); negative: measured along this profile
   int lines = RidgeTuning::guidedLines; //!< image lines averaged (odd): the sample's and its neighbours
+  //! With halfWidth > 0: the prediction was fitted to the points found over the whole image, and a stripe near
+  //! it is preferred to one more than RidgeTuning::guidedNearMargin off it when the window has drifted that far
+  bool preferPrediction = false;
 };
 
 //! Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line.

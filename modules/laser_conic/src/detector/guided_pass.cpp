@@ -161,11 +161,12 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
 // the samples missed. A sample next to one with a point is first searched within RidgeTuning::guidedFollowMargin
 // of that point's offset, with the noise of the last full profile (see RidgeTuning::guidedFollowMargin); the
 // full margin is searched when that finds nothing, with RidgeTuning::guidedFaintLines lines when three find
-// nothing. \e noises and \e thresholds: those of the full profiles, per image line.
+// nothing. \e noises and \e thresholds: those of the full profiles, per image line. \e fittedHere: the samples'
+// conic was fitted to the points found over the whole image (ProfileWindow::preferPrediction).
 int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const std::vector<GuidedSample> &samples,
                    const RegionSpans *limit, const FoundCells &found, ProfileBuffers &buffers,
                    std::vector<SampleState> &state, std::vector<ProfileResult> &results, std::vector<double> &noises,
-                   std::vector<double> &thresholds)
+                   std::vector<double> &thresholds, bool fittedHere)
 {
   const int H = static_cast<int>(I.getHeight());
   int missed = 0, lastWithPoint = -2, noiseSample = 0;
@@ -195,6 +196,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
       follow.halfWidth = RidgeTuning::guidedFollowMargin / s.toNormal;
       follow.lineNoise = lineNoise;
       follow.lines = strong ? 1 : RidgeTuning::guidedLines;
+      follow.preferPrediction = fittedHere;
       r = measureProfile(I, s, settings, follow, buffers);
     }
     if (!r.found) {
@@ -312,7 +314,13 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     fitPoints.reserve(fitPoints.size() + samples.size());
     state.assign(samples.size(), MISSED);
     results.assign(samples.size(), ProfileResult());
-    const int missed = measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds);
+    // Over the whole image the prediction is the ellipse of the first pass's points (the anchors), then its
+    // refits. Not in tracking: the previous frame's conic, then refits on the pass's own points, which may
+    // hold one arc of a fading ring (data/laser_hard tracked: pitch errors of 1.1-1.4 deg on frames 50 and 53
+    // when refits counted as fitted here, against 0.04-0.07).
+    const bool fittedHere = !anchors.empty();
+    const int missed =
+        measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds, fittedHere);
     keepContinuingPieces(state, results, keep);
     size_t searched = 0;
     report.coverage = walkCoverage(samples, limit, H, state, keep, searched);

@@ -137,16 +137,21 @@ double dominanceNoise(const ProfileView &view, std::vector<int> &diffs, int skip
 // The matched filter: mean over the stripe box [k - h, k + h] minus the larger mean of the background boxes
 // of f pixels beyond a gap on each side (a step edge has one bright side and fails, as in the first pass).
 // In integers, scaled by (2h + 1) f, then one multiplication (the divisions of three means per response
-// were a good part of a tracked frame's profiles).
+// were a good part of a tracked frame's profiles). With \e againstDimmer, the smaller mean instead: a stripe
+// followed beside a brighter region (see measureProfile()), whose flank the half-maximum run then keeps out.
 struct MatchedFilter
 {
   const std::vector<int> &prefix;
   int h, f;
-  double scale; //!< 1 / ((2h + 1) f): from a scaled response to grey levels
+  double scale;               //!< 1 / ((2h + 1) f): from a scaled response to grey levels
+  bool againstDimmer = false; //!< the background is the dimmer box, not the brighter
   MatchedFilter(const std::vector<int> &prefix_, int h_, int f_)
     : prefix(prefix_), h(h_), f(f_), scale(1.0 / ((2.0 * h_ + 1.0) * f_))
   {
   }
+  // The positions whose boxes lie inside the profile.
+  int lowest() const { return h + RidgeTuning::guidedGap + f; }
+  int highest() const { return static_cast<int>(prefix.size()) - 2 - lowest(); }
   // Pixels on each side of a response's position covered by its stripe box and gap: the stripe and its tails,
   // which a noise estimate beside it leaves out.
   int tails() const { return h + RidgeTuning::guidedGap + 1; }
@@ -159,12 +164,16 @@ struct MatchedFilter
   {
     return prefix[k + h + RidgeTuning::guidedGap + f + 1] - prefix[k + h + RidgeTuning::guidedGap + 1];
   }
-  double background(int k) const { return static_cast<double>(std::max(leftSum(k), rightSum(k))) / f; }
+  int backgroundSum(int k) const
+  {
+    return againstDimmer ? std::min(leftSum(k), rightSum(k)) : std::max(leftSum(k), rightSum(k));
+  }
+  double background(int k) const { return static_cast<double>(backgroundSum(k)) / f; }
   // response(k) x (2h + 1) f, exact in integers.
   long long scaledResponse(int k) const
   {
     const long long stripe = prefix[k + h + 1] - prefix[k - h];
-    return stripe * f - static_cast<long long>(std::max(leftSum(k), rightSum(k))) * (2 * h + 1);
+    return stripe * f - static_cast<long long>(backgroundSum(k)) * (2 * h + 1);
   }
   double response(int k) const { return static_cast<double>(scaledResponse(k)) * scale; }
   // The first k of [first, last] with the largest response (-1 when empty), and that response.
@@ -183,6 +192,48 @@ struct MatchedFilter
     return found;
   }
 };
+
+// Where the best response k of the profile (starting at pixel \e start of its line) lies farther than
+// RidgeTuning::guidedNearMargin from the prediction: the best response within that margin of it, in [lowest,
+// highest], replaces it when it passes \e threshold (a stripe near the prediction is preferred to a stronger
+// one farther off).
+void preferNearPrediction(const MatchedFilter &filter, const GuidedSample &s, int start, int lowest, int highest,
+                          double threshold, int &k, double &response)
+{
+  const double predicted = s.pos - start, near = RidgeTuning::guidedNearMargin / s.toNormal;
+  const int nearFirst = std::max(lowest, static_cast<int>(std::floor(predicted - near))),
+            nearLast = std::min(highest, static_cast<int>(std::ceil(predicted + near)));
+  if (k >= nearFirst && k <= nearLast)
+    return;
+  double nearResponse = -1e30;
+  const int nearBest = filter.best(nearFirst, nearLast, nearResponse);
+  if (nearBest >= 0 && nearResponse >= threshold) {
+    k = nearBest;
+    response = nearResponse;
+  }
+}
+
+// The response that the profile of sample s (from pixel \e start of its line) is judged on, given the best one
+// (best, bestResponse) of its window [first, last] and the response threshold.
+void selectStripe(MatchedFilter &filter, const GuidedSample &s, const ProfileWindow &window, bool drifted, int start,
+                  int first, int last, double threshold, int &best, double &bestResponse)
+{
+  // The whole margin: a response near the prediction that passes the threshold is preferred to a stronger one
+  // farther off (see RidgeTuning::guidedNearMargin); the noise stays that measured beside the strongest. A
+  // follow likewise once it has drifted from a prediction fitted to the points of the whole image: it had
+  // followed a red cable along the ring, step by step (data/laser_hard frame 27: 0.929 -> 0.940 of the ring
+  // at 3 sigma), or a patch's edge on the mosaic floor. Not in tracking (ProfileWindow::preferPrediction).
+  if (best >= 0 && (window.halfWidth <= 0.0 || drifted))
+    preferNearPrediction(filter, s, start, window.halfWidth <= 0.0 ? first : filter.lowest(),
+                         window.halfWidth <= 0.0 ? last : filter.highest(), threshold, best, bestResponse);
+  if (best >= 0 && bestResponse < threshold && window.halfWidth > 0.0) {
+    // A followed stripe whose background box on one side lies on a brighter region (a red cable a few pixels
+    // off, a lighter patch): read against the other side. The shape tests then ask for a half-maximum run
+    // that ends on both sides, which the flank of a step (no valley between it and the brighter side) fails.
+    filter.againstDimmer = true;
+    best = filter.best(first, last, bestResponse);
+  }
+}
 
 // The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile. A
 // saturated core is a laser's when its flanks' red dominance (one line) reaches \e flankThreshold, or, when it
@@ -293,7 +344,13 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                to = std::min(s.pos + s.halfWindow, s.pos + window.centre + half);
   const int lo = static_cast<int>(std::floor(from)), hi = static_cast<int>(std::ceil(to));
   const int reach = h + RidgeTuning::guidedGap + f;
-  const int start = std::max(0, lo - reach), end = std::min(lineLength - 1, hi + reach), n = end - start + 1;
+  // A follow that has drifted from a prediction fitted to the points of the whole image: the pixels around
+  // the prediction are read too (see below).
+  const double near = RidgeTuning::guidedNearMargin / s.toNormal;
+  const bool drifted = window.halfWidth > 0.0 && window.preferPrediction && std::fabs(window.centre) > near;
+  const int readLo = drifted ? std::min(lo, static_cast<int>(std::floor(s.pos - near))) : lo,
+            readHi = drifted ? std::max(hi, static_cast<int>(std::ceil(s.pos + near))) : hi;
+  const int start = std::max(0, readLo - reach), end = std::min(lineLength - 1, readHi + reach), n = end - start + 1;
   if (hi < lo || n < 2 * reach + 1)
     return result;
   const unsigned char *centreLine = nullptr;
@@ -301,7 +358,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (lines == 0 || centreLine == nullptr)
     return result;
   result.lines = lines;
-  const MatchedFilter filter(buffers.prefix, h, f);
+  MatchedFilter filter(buffers.prefix, h, f);
   double bestResponse = -1e30;
   const int first = std::max(reach, lo - start), last = std::min(n - 1 - reach, hi - start);
   int best = filter.best(first, last, bestResponse);
@@ -314,21 +371,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                             : profileNoise(buffers, n, lines, best - tails, best + tails);
   result.threshold =
       std::max(RidgeTuning::guidedMinResponse * lines, settings.factor * result.noise * buffers.filterGain(h, f));
-  if (window.halfWidth <= 0.0 && best >= 0) {
-    // The whole margin: a response near the prediction that passes the threshold is preferred to a stronger
-    // one farther off (see RidgeTuning::guidedNearMargin). The noise stays that measured beside the strongest.
-    const double predicted = s.pos + window.centre - start, near = RidgeTuning::guidedNearMargin / s.toNormal;
-    const int nearFirst = std::max(first, static_cast<int>(std::floor(predicted - near))),
-              nearLast = std::min(last, static_cast<int>(std::ceil(predicted + near)));
-    if (best < nearFirst || best > nearLast) {
-      double nearResponse = -1e30;
-      const int nearBest = filter.best(nearFirst, nearLast, nearResponse);
-      if (nearBest >= 0 && nearResponse >= result.threshold) {
-        best = nearBest;
-        bestResponse = nearResponse;
-      }
-    }
-  }
+  selectStripe(filter, s, window, drifted, start, first, last, result.threshold, best, bestResponse);
   result.response = bestResponse;
   if (best < 0 || bestResponse < result.threshold)
     return result;

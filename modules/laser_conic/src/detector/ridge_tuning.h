@@ -136,7 +136,9 @@ struct RidgeTuning
   //! is more likely the stripe than a stronger one farther off. On a textured floor that one was a patch's edge,
   //! which the following samples then tracked (their follow window is around the last offset) until the piece
   //! broke and the stripe's own points were lost with it (FadingRingOnATexturedFloorWithReflectanceScaledLight:
-  //! 93.2 -> 93.6 % of the ring found). The same 3 px as guidedFollowMargin.
+  //! 93.2 -> 93.6 % of the ring found). The same 3 px as guidedFollowMargin. A follow window that has drifted
+  //! farther than guidedNearMargin from a prediction fitted to the points of the whole image (not in tracking)
+  //! yields likewise to a stripe near it (the same floor: mean of ten seeds 94.48 -> 94.96 %).
   static constexpr double guidedNearMargin = 3.0;
   //! Where the profile of guidedLines lines finds nothing, one of guidedFaintLines lines is measured: the stripe's
   //! response grows as the number of lines, its noise as its square root (three times the noise of one pixel
