@@ -164,25 +164,34 @@ struct MatchedFilter
   {
     return prefix[k + h + RidgeTuning::guidedGap + f + 1] - prefix[k + h + RidgeTuning::guidedGap + 1];
   }
-  int backgroundSum(int k) const
+  template <bool Dimmer> int backgroundSum(int k) const
   {
-    return againstDimmer ? std::min(leftSum(k), rightSum(k)) : std::max(leftSum(k), rightSum(k));
+    return Dimmer ? std::min(leftSum(k), rightSum(k)) : std::max(leftSum(k), rightSum(k));
   }
+  int backgroundSum(int k) const { return againstDimmer ? backgroundSum<true>(k) : backgroundSum<false>(k); }
   double background(int k) const { return static_cast<double>(backgroundSum(k)) / f; }
   // response(k) x (2h + 1) f, exact in integers.
-  long long scaledResponse(int k) const
+  template <bool Dimmer> long long scaledResponse(int k) const
   {
     const long long stripe = prefix[k + h + 1] - prefix[k - h];
-    return stripe * f - static_cast<long long>(backgroundSum(k)) * (2 * h + 1);
+    return stripe * f - static_cast<long long>(backgroundSum<Dimmer>(k)) * (2 * h + 1);
   }
-  double response(int k) const { return static_cast<double>(scaledResponse(k)) * scale; }
-  // The first k of [first, last] with the largest response (-1 when empty), and that response.
+  double response(int k) const
+  {
+    return static_cast<double>(againstDimmer ? scaledResponse<true>(k) : scaledResponse<false>(k)) * scale;
+  }
+  // The first k of [first, last] with the largest response (-1 when empty), and that response. (The choice of
+  // background is made once per scan: inside the loop it cost a tracked frame 3-4 %.)
   int best(int first, int last, double &bestResponse) const
+  {
+    return againstDimmer ? best<true>(first, last, bestResponse) : best<false>(first, last, bestResponse);
+  }
+  template <bool Dimmer> int best(int first, int last, double &bestResponse) const
   {
     int found = -1;
     long long top = 0;
     for (int k = first; k <= last; ++k) {
-      const long long r = scaledResponse(k);
+      const long long r = scaledResponse<Dimmer>(k);
       if (found < 0 || r > top) {
         top = r;
         found = k;
