@@ -43,6 +43,16 @@ Settings fadingRing(double nearPeak, double farPeak)
   return s;
 }
 
+//! The fading ring on the colourful mosaic floor, the laser light scaled by its red reflectance.
+Settings fadingMosaic()
+{
+  Settings s = fadingRing(150.0, 20.0);
+  s.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
+  s.ambient = 0.6;
+  s.reflectanceScaled = true;
+  return s;
+}
+
 //! A tilted ground (30 deg): distance and incidence vary along the ring.
 vpHomogeneousMatrix tiltedGround()
 {
@@ -152,9 +162,10 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
   // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured
-  // 94.4-97.5 % found (mean 96.3 %), precision 0.993-1, second-pass RMS 0.16-0.27 px (mean 0.22; before a
+  // 94.5-97.5 % found (mean 96.4 %), precision 0.997-1, second-pass RMS 0.13-0.26 px (mean 0.19; before a
   // followed stripe was read against its dimmer side where the brighter one hides it: 94.9-97.2 %, mean
-  // 96.2 %, precision 0.997-1, RMS mean 0.19; with the
+  // 96.2 %, precision 0.997-1, RMS mean 0.19; with it but the straight-line regularisation up to the end of
+  // a piece of curve, RidgeTuning::guidedSmoothEnd: mean 96.3 %, precision 0.993-1, RMS mean 0.22; with the
   // regularisation along 20 px of arc and the points kept within 2 px of the final conic: 94.7-96.9 %, mean
   // 95.9 %, RMS 0.20-0.31 px, mean 0.26). What is
   // missed lies between 3 and 3.3 sigma, where JPEG at quality 90 leaves a matched-filter response of 0-2
@@ -177,16 +188,15 @@ TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 
 TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLight)
 {
-  Settings s = fadingRing(150.0, 20.0);
-  s.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
-  s.ambient = 0.6;
-  s.reflectanceScaled = true;
+  const Settings s = fadingMosaic();
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured
-  // 95.1 % of the ring at 3 sigma or more, precision 0.998, second-pass RMS 0.235 px (over seeds 73-82:
-  // 93.5-96.8 %, mean 94.9 %, precision 0.987-1, RMS 0.18-0.27 px, mean 0.22 px). A follow that drifted
-  // from the refitted conic onto a patch's edge now yields to a stripe near the conic, and a followed stripe
-  // beside a brighter patch is read against its dimmer side (seed 73: 95.8 %; seeds 73-82 before: 92.9-96.3 %,
-  // mean 94.5 %, precision 0.984-1, RMS mean 0.21 px; the first change alone: mean 94.96 %). Before: 93.6 %, 0.998,
+  // 95.4 % of the ring at 3 sigma or more, precision 1, second-pass RMS 0.225 px (over seeds 73-82:
+  // 93.5-96.8 %, mean 95.02 %, precision 0.991-1, RMS 0.17-0.25 px, mean 0.21 px; over seeds 83-102, which
+  // the bounds were not set on: mean 94.0 %, precision 0.988-1). A follow that drifted from the refitted conic
+  // onto a patch's edge now yields to a stripe near the conic, a followed stripe beside a brighter patch is
+  // read against its dimmer side, and the ends of the pieces of curve are regularised by the mean of the
+  // offsets (seed 73 before: 95.8 %; seeds 73-82 before: 92.9-96.3 %, mean 94.5 %, precision 0.984-1, RMS
+  // mean 0.21 px; the first change alone: mean 94.96 %, the first two 94.92 %). Before: 93.6 %, 0.998,
   // 0.298 px (the full first pass and the second pass: 92.8 %, 0.987, 0.40 px; a whole-margin profile
   // preferring a response within 3 px of the prediction: +0.4 %); then the profile's noise from its second differences,
   // which a blurred step between patches does not raise (+1.1 %), the regularisation along 40 px of arc
@@ -208,8 +218,8 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // points that agree, searched within 1.5 px of the interpolated offset against the pass's median noise
   // (-0.2 to +0.03 %), and keeping points within 3 px of the final conic (96.0 %, RMS 0.254 px; over the ten
   // seeds precision 0.996 against 0.998).
-  // Over the ten seeds the 95 % is not reached (mean 94.9 %): the bounds below are what is measured,
-  // so that a change that loses ring on this floor fails; seed 73 keeps the bound.
+  // The 95 % holds for the mean of the ten seeds (95.02 %), not for each: the per-seed bound is what is
+  // measured, so that a change that loses ring on this floor fails; seed 73 keeps the bound.
   const unsigned int firstSeed = 73, seedCount = 10;
   double coverage = 0.0, rms = 0.0;
   for (unsigned int seed = firstSeed; seed < firstSeed + seedCount; ++seed) {
@@ -219,8 +229,23 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
     coverage += q.coverage3 / seedCount;
     rms += q.rmsGuided / seedCount;
   }
-  EXPECT_GE(coverage, 0.947);
+  EXPECT_GE(coverage, 0.95);
   EXPECT_LE(rms, 0.25);
+}
+
+TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
+{
+  // Seed 93 of the textured floor above, the worst of seeds 83-102: its ring runs along patch joints for
+  // stretches, broken into short pieces, and the straight-line regularisation extrapolated at their ends, 2-3 px
+  // off the centre line: precision 0.9715. With the mean of the offsets at the ends (RidgeTuning::guidedSmoothEnd):
+  // 0.9875. Still short of the bounds on this floor: 84.1 % of the ring at 3 sigma (dim stretches along
+  // joints, see above) and second-pass RMS 0.39 px (the chroma's pull beside a step of the floor's red).
+  const Settings s = fadingMosaic();
+  vpLaserConicDetector detector;
+  const GuidedQuality q = runGuided("fading_mosaic_93", tiltedGround(), s, 93, detector);
+  EXPECT_GE(q.precision, 0.98);
+  EXPECT_GE(q.coverage3, 0.83);
+  EXPECT_LE(q.rmsGuided, 0.4);
 }
 
 TEST(LaserConicGuidedSearch, SaturatedStripeThroughALampsGlare)

@@ -107,14 +107,19 @@ public:
         m_sums[5 * (k + 1) + j] = m_sums[5 * k + j] + terms[j];
     }
   }
-  // The fit over pairs [first, last] at x0; false with fewer than RidgeTuning::guidedSmoothMinPoints pairs.
-  bool at(size_t first, size_t last, double x0, double &value) const
+  // The fit over pairs [first, last] at x0, or their mean when not \e straight; false with fewer than
+  // RidgeTuning::guidedSmoothMinPoints pairs.
+  bool at(size_t first, size_t last, double x0, bool straight, double &value) const
   {
     double S[5];
     for (int j = 0; j < 5; ++j)
       S[j] = m_sums[5 * (last + 1) + j] - m_sums[5 * first + j];
     if (S[0] < RidgeTuning::guidedSmoothMinPoints)
       return false;
+    if (!straight) {
+      value = S[3] / S[0];
+      return true;
+    }
     // Centred on x0: sums of (x - x0), (x - x0)^2, (x - x0) offset.
     const double c1 = S[1] - S[0] * x0, c2 = S[2] - 2.0 * x0 * S[1] + x0 * x0 * S[0], e1 = S[4] - x0 * S[3];
     const double det = S[0] * c2 - c1 * c1;
@@ -175,7 +180,8 @@ void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence,
 }
 
 // The straight-line fit of the offsets within RidgeTuning::guidedSmoothRadius of arc length, at each point
-// of the sequence from position \e first on (NaN where too few points).
+// of the sequence from position \e first on (NaN where too few points); their mean at a point with less than
+// RidgeTuning::guidedSmoothEnd of arc on one side (see there).
 void fitWindows(const WindowFits &fits, const std::vector<double> &arc, size_t first, size_t count,
                 std::vector<double> &values)
 {
@@ -186,8 +192,10 @@ void fitWindows(const WindowFits &fits, const std::vector<double> &arc, size_t f
       ++lo;
     while (hi + 1 < arc.size() && arc[hi + 1] - arc[i] <= RidgeTuning::guidedSmoothRadius)
       ++hi;
+    const bool inside = arc[i] - arc[lo] >= RidgeTuning::guidedSmoothEnd &&
+                        arc[hi] - arc[i] >= RidgeTuning::guidedSmoothEnd;
     double value = 0.0;
-    if (fits.at(lo, hi, arc[i], value))
+    if (fits.at(lo, hi, arc[i], inside, value))
       values[i - first] = value;
   }
 }
