@@ -23,10 +23,11 @@ namespace vspBench
 {
 /*!
   Accumulates a value computed from every result so that the optimiser cannot drop the timed call.
-  The global is volatile: a store to it is an observable side effect.
+  The global is volatile: a store to it is an observable side effect. A non-finite value (a failed solve of
+  one of the gravity peers) counts as 1, so that the printed sum stays a number.
 */
 inline volatile double g_sink = 0.0;
-inline void consume(double v) { g_sink = g_sink + v; }
+inline void consume(double v) { g_sink = g_sink + (std::isfinite(v) ? v : 1.0); }
 
 /*!
   Median time per batch divided by \e nInstances, in nanoseconds: \e batch runs as one Google
