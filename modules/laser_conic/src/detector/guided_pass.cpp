@@ -307,6 +307,11 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   ProfileBuffers buffers;
   Eigen::Matrix3d C = prediction;
   report.ran = true;
+  // Over the whole image the prediction is the ellipse of the first pass's points (the anchors), then its
+  // refits. Not in tracking: the previous frame's conic, then refits on the pass's own points, which may hold
+  // one arc of a fading ring (data/laser_hard tracked: pitch errors of 1.1-1.4 deg on frames 50 and 53 when
+  // refits counted as fitted here, against 0.04-0.07).
+  const bool fittedHere = !anchors.empty();
   for (int iteration = 0; iteration < RidgeTuning::guidedMaxIterations; ++iteration) {
     if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
       break;
@@ -314,11 +319,6 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     fitPoints.reserve(fitPoints.size() + samples.size());
     state.assign(samples.size(), MISSED);
     results.assign(samples.size(), ProfileResult());
-    // Over the whole image the prediction is the ellipse of the first pass's points (the anchors), then its
-    // refits. Not in tracking: the previous frame's conic, then refits on the pass's own points, which may
-    // hold one arc of a fading ring (data/laser_hard tracked: pitch errors of 1.1-1.4 deg on frames 50 and 53
-    // when refits counted as fitted here, against 0.04-0.07).
-    const bool fittedHere = !anchors.empty();
     const int missed =
         measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds, fittedHere);
     keepContinuingPieces(state, results, keep);

@@ -118,8 +118,9 @@ struct RidgeTuning
   //! mosaic (ten seeds) 94.92 -> 95.02 % of the ring, precision 0.9971 -> 0.9984, RMS 0.218 -> 0.212 px (twenty
   //! other seeds: worst precision 0.971 -> 0.988); seven faint rings precision 0.993 -> 0.997, RMS 0.215 ->
   //! 0.188 px; data/laser_hard GP-3 pitch 0.190 -> 0.162 deg. At 20 px and more (the mean nearly everywhere:
-  //! mosaic RMS 0.19 px) the servo-landing tutorial's box-edge frames, where the ring steps onto the box,
-  //! gave GP-3 planes 4-5 deg off, and its filter rejected 60 frames (1-2 otherwise) and lost the altitude.
+  //! mosaic RMS 0.19 px) the servo-landing tutorial's filter rejected 60 frames (1-2 otherwise) and lost the
+  //! altitude: its box-edge frames, where the ring steps onto the box (two planes in one trace; GP-3 up to 4 deg
+  //! off before too), came 4-5 deg off in a row.
   static constexpr double guidedSmoothEnd = 10.0;
   //! Points a regularised centre needs in its neighbourhood (itself included), else it is left as measured.
   static constexpr int guidedSmoothMinPoints = 5;
