@@ -203,15 +203,15 @@ struct MatchedFilter
 };
 
 // Where the best response k of the profile (starting at pixel \e start of its line) lies farther than
-// RidgeTuning::guidedNearMargin from the prediction: the best response within that margin of it, in [lowest,
-// highest], replaces it when it passes \e threshold (a stripe near the prediction is preferred to a stronger
-// one farther off).
-void preferNearPrediction(const MatchedFilter &filter, const GuidedSample &s, int start, int lowest, int highest,
-                          double threshold, int &k, double &response)
+// RidgeTuning::guidedNearMargin from the prediction: the best response within that margin of it (and within
+// the sample's margin and the profile) replaces it when it passes \e threshold (a stripe near the prediction
+// is preferred to a stronger one farther off).
+void preferNearPrediction(const MatchedFilter &filter, const GuidedSample &s, int start, double threshold, int &k,
+                          double &response)
 {
-  const double predicted = s.pos - start, near = RidgeTuning::guidedNearMargin / s.toNormal;
-  const int nearFirst = std::max(lowest, static_cast<int>(std::floor(predicted - near))),
-            nearLast = std::min(highest, static_cast<int>(std::ceil(predicted + near)));
+  const double predicted = s.pos - start, near = std::min(RidgeTuning::guidedNearMargin / s.toNormal, s.halfWindow);
+  const int nearFirst = std::max(filter.lowest(), static_cast<int>(std::floor(predicted - near))),
+            nearLast = std::min(filter.highest(), static_cast<int>(std::ceil(predicted + near)));
   if (k >= nearFirst && k <= nearLast)
     return;
   double nearResponse = -1e30;
@@ -233,8 +233,7 @@ void selectStripe(MatchedFilter &filter, const GuidedSample &s, const ProfileWin
   // followed a red cable along the ring, step by step (data/laser_hard frame 27: 0.929 -> 0.940 of the ring
   // at 3 sigma), or a patch's edge on the mosaic floor. Not in tracking (ProfileWindow::preferPrediction).
   if (best >= 0 && (window.halfWidth <= 0.0 || drifted))
-    preferNearPrediction(filter, s, start, window.halfWidth <= 0.0 ? first : filter.lowest(),
-                         window.halfWidth <= 0.0 ? last : filter.highest(), threshold, best, bestResponse);
+    preferNearPrediction(filter, s, start, threshold, best, bestResponse);
   if (best >= 0 && bestResponse < threshold && window.halfWidth > 0.0) {
     // A followed stripe whose background box on one side lies on a brighter region (a red cable a few pixels
     // off, a lighter patch): read against the other side. The shape tests then ask for a half-maximum run
