@@ -235,17 +235,28 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
 
 TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
 {
-  // Seed 93 of the textured floor above, the worst of seeds 83-102: its ring runs along patch joints for
-  // stretches, broken into short pieces, and the straight-line regularisation extrapolated at their ends, 2-3 px
-  // off the centre line: precision 0.9715. With the mean of the offsets at the ends (RidgeTuning::guidedSmoothEnd):
-  // 0.9875. Still short of the bounds on this floor: 84.1 % of the ring at 3 sigma (dim stretches along
-  // joints, see above) and second-pass RMS 0.39 px (the chroma's pull beside a step of the floor's red).
+  // The textured floor above over twenty other seeds (83-102), which its bounds were not set on. The worst,
+  // seed 93, has its ring along patch joints for stretches, broken into short pieces, and the straight-line
+  // regularisation extrapolated at their ends, 2-3 px off the centre line: precision 0.9715. With the mean of
+  // the offsets at the ends (RidgeTuning::guidedSmoothEnd): 0.9875. Measured over the twenty: mean 94.0 % of
+  // the ring at 3 sigma, precision 0.9875-1, RMS mean 0.20 px. Short of the bounds on seed 93: 84.1 %
+  // (dim stretches along joints, see above) and RMS 0.39 px (the chroma's pull beside a step of the floor's red).
   const Settings s = fadingMosaic();
-  vpLaserConicDetector detector;
-  const GuidedQuality q = runGuided("fading_mosaic_93", tiltedGround(), s, 93, detector);
-  EXPECT_GE(q.precision, 0.98);
-  EXPECT_GE(q.coverage3, 0.83);
-  EXPECT_LE(q.rmsGuided, 0.4);
+  const unsigned int firstSeed = 83, seedCount = 20;
+  double coverage = 0.0, rms = 0.0;
+  for (unsigned int seed = firstSeed; seed < firstSeed + seedCount; ++seed) {
+    vpLaserConicDetector detector;
+    const GuidedQuality q = runGuided("fading_mosaic_" + std::to_string(seed), tiltedGround(), s, seed, detector);
+    EXPECT_GE(q.precision, 0.98) << "seed " << seed;
+    EXPECT_GE(q.coverage3, 0.83) << "seed " << seed;
+    EXPECT_LE(q.rmsGuided, 0.4) << "seed " << seed;
+    coverage += q.coverage3 / seedCount;
+    rms += q.rmsGuided / seedCount;
+  }
+  std::cout << "seeds " << firstSeed << "-" << firstSeed + seedCount - 1 << ": mean coverage " << 100.0 * coverage
+            << " %, mean second-pass RMS " << rms << " px" << std::endl;
+  EXPECT_GE(coverage, 0.94);
+  EXPECT_LE(rms, 0.25);
 }
 
 TEST(LaserConicGuidedSearch, SaturatedStripeThroughALampsGlare)
@@ -385,27 +396,33 @@ vpLaserConicSimulator::vpDistractor cableAlongTheDimSide(const vpHomogeneousMatr
 TEST(LaserConicGuidedSearch, AStripeBesideARedCableIsFound)
 {
   // A red cable 8 px wide laid along the dim side of a fading ring (20 grey levels, 10 sigma), its centre line
-  // 13 px from the stripe's where it is closest: the background box on the cable's side reaches its flank.
-  // Measured over the 160 px of ring beside it: 90.9 % found at 3 sigma (78.5 % when the stripe was read
-  // against the brighter of its two sides only, as a step edge is); precision 1. At 14 px 96.2 % (89.7 %);
-  // at 10-11 px, where the stripe and the cable's flank make one slope, 29-51 % (28-45 %).
-  Settings s = fadingRing(150.0, 20.0);
-  std::vector<size_t> stretch;
-  s.distractors = {cableAlongTheDimSide(tiltedGround(), s, 13.0, 8.0, 160.0, stretch)};
-  vpLaserConicDetector detector;
-  std::vector<vpImagePoint> points;
-  const GuidedQuality q = runGuided("cable_beside", tiltedGround(), s, 76, detector, &points);
-  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 76);
-  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
-  std::vector<vpLaserConicSimulator::vpTraceTruth> beside;
-  beside.reserve(stretch.size());
-  for (size_t k : stretch)
-    beside.push_back(truth[k]);
-  const double besideCoverage = vpLaserConicSimulator::stripeCoverage(beside, points, 3.0, 1.5);
-  std::cout << "beside the cable: " << beside.size() << " samples, coverage " << 100.0 * besideCoverage << " %"
-            << std::endl;
-  expectGuided(q, 0.95, 0.3);
-  EXPECT_GE(besideCoverage, 0.88);
+  // 10, 13 or 14 px from the stripe's where it is closest: the background box on the cable's side reaches its
+  // flank. Measured over the 160 px of ring beside it: at 13 px 90.9 % found at 3 sigma (78.5 % when the
+  // stripe was read against the brighter of its two sides only, as a step edge is), at 14 px 96.2 % (89.7 %),
+  // at 10 px, where the stripe and the cable's flank make one slope, 29.2 % (28.0 %); precision 1.
+  const struct
+  {
+    double gap, minBeside;
+  } cases[] = {{10.0, 0.25}, {13.0, 0.88}, {14.0, 0.94}};
+  for (const auto &c : cases) {
+    Settings s = fadingRing(150.0, 20.0);
+    std::vector<size_t> stretch;
+    s.distractors = {cableAlongTheDimSide(tiltedGround(), s, c.gap, 8.0, 160.0, stretch)};
+    vpLaserConicDetector detector;
+    std::vector<vpImagePoint> points;
+    const GuidedQuality q = runGuided("cable_beside", tiltedGround(), s, 76, detector, &points);
+    vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 76);
+    const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
+    std::vector<vpLaserConicSimulator::vpTraceTruth> beside;
+    beside.reserve(stretch.size());
+    for (size_t k : stretch)
+      beside.push_back(truth[k]);
+    const double besideCoverage = vpLaserConicSimulator::stripeCoverage(beside, points, 3.0, 1.5);
+    std::cout << "cable " << c.gap << " px away: " << beside.size() << " samples beside it, coverage "
+              << 100.0 * besideCoverage << " %" << std::endl;
+    expectGuided(q, 0.95, 0.3);
+    EXPECT_GE(besideCoverage, c.minBeside) << "cable " << c.gap << " px away";
+  }
 }
 
 TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
