@@ -157,6 +157,49 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   close();
 }
 
+// The window of a follow: RidgeTuning::guidedFollowMargin around the offset of the neighbouring sample's point,
+// its threshold from \e lineNoise (the noise of one image line); the sample's line alone along a strong stripe,
+// RidgeTuning::guidedLines otherwise.
+ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNoise, bool strong, bool fittedHere)
+{
+  ProfileWindow follow;
+  follow.centre = offset / s.toNormal;
+  follow.halfWidth = RidgeTuning::guidedFollowMargin / s.toNormal;
+  follow.lineNoise = lineNoise;
+  follow.lines = strong ? 1 : RidgeTuning::guidedLines;
+  follow.preferPrediction = fittedHere;
+  return follow;
+}
+
+// The walk follows a stripe forwards only: where it is lost for a few samples (a dim stretch on a dark joint,
+// whose whole-margin profiles find nothing) and found again, the samples in between are followed backwards
+// from where it is found again, as the walk would have followed them coming the other way: with the noise
+// that point was found against, as a follow reuses the noise of the profiles before it (the missed samples'
+// own whole-margin profiles, whose noise a joint's edges raise: 95.15 % of the mosaic's ring found against
+// 95.21 %). Returns the samples found so.
+int followBackwards(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const std::vector<GuidedSample> &samples,
+                    bool fittedHere, ProfileBuffers &buffers, std::vector<SampleState> &state,
+                    std::vector<ProfileResult> &results)
+{
+  int found = 0;
+  for (size_t i = samples.size() < 2 ? 0 : samples.size() - 1; i-- > 0;) {
+    const ProfileResult &next = results[i + 1];
+    // results[i].lines == 0: not measured (outside the search limit, or no profile fits in the image).
+    if (state[i] != MISSED || state[i + 1] != FOUND || results[i].lines == 0)
+      continue;
+    const double lineNoise = next.noise / std::sqrt(static_cast<double>(next.lines));
+    const ProfileResult back = measureProfile(I, samples[i], settings,
+                                              followWindow(samples[i], next.offset, lineNoise, false, fittedHere),
+                                              buffers);
+    if (!back.found)
+      continue;
+    results[i] = back;
+    state[i] = FOUND;
+    ++found;
+  }
+  return found;
+}
+
 // Measures the samples no point covers yet (in \e limit when not null) and sets their state and result; returns
 // the samples missed. A sample next to one with a point is first searched within RidgeTuning::guidedFollowMargin
 // of that point's offset, with the noise of the last full profile (see RidgeTuning::guidedFollowMargin); the
@@ -190,15 +233,8 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
     if (!inLimit(limit, H, s.alongRow ? s.pos : s.line, s.alongRow ? s.line : s.pos))
       continue;
     ProfileResult &r = results[static_cast<size_t>(i)];
-    if (lastWithPoint == i - 1 && lineNoise >= 0.0 && i - noiseSample <= RidgeTuning::guidedNoiseReuse) {
-      ProfileWindow follow;
-      follow.centre = lastOffset / s.toNormal;
-      follow.halfWidth = RidgeTuning::guidedFollowMargin / s.toNormal;
-      follow.lineNoise = lineNoise;
-      follow.lines = strong ? 1 : RidgeTuning::guidedLines;
-      follow.preferPrediction = fittedHere;
-      r = measureProfile(I, s, settings, follow, buffers);
-    }
+    if (lastWithPoint == i - 1 && lineNoise >= 0.0 && i - noiseSample <= RidgeTuning::guidedNoiseReuse)
+      r = measureProfile(I, s, settings, followWindow(s, lastOffset, lineNoise, strong, fittedHere), buffers);
     if (!r.found) {
       // The whole margin: the continuation was not found, or the noise is to be measured again. Along a
       // bright stripe that is followed, the sample's line alone gives that noise and finds the stripe (the
@@ -231,7 +267,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
     } else
       ++missed;
   }
-  return missed;
+  return missed - followBackwards(I, settings, samples, fittedHere, buffers, state, results);
 }
 
 // Share of the samples (those in \e limit) that are known or whose point is kept; \e searched: how many.
