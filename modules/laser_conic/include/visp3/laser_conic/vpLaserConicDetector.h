@@ -307,8 +307,10 @@ public:
     Ridge method, tracking (a conic search region, setSearchRegion(const vpMatrix &, double)): the guided
     pass that is then the whole search measures a profile on every \e lines-th image row or column crossed
     by the predicted curve; default 2. A profile averages three neighbouring lines, so with 2 every image
-    line still enters a profile, and the points are at most 2 sqrt(2) pixels apart along the curve: half
-    the points and the time of step 1 for the same coverage and accuracy on the rendered tracking cases.
+    line enters a profile, except along a stripe four times over its threshold, where a profile reads its
+    own line alone (then one line in two); the points are at most 2 sqrt(2) pixels apart along the curve:
+    half the points and the time of step 1 for the same coverage and accuracy on the rendered tracking
+    cases.
     The guided pass after a first pass keeps its own step (setGuidedStep()): there it extrapolates a fit
     over the missing part of the ring, and its continuity rules are counted in profiles of one line.
     \exception vpLaserConicException::badValueError on 0.
