@@ -169,7 +169,13 @@ struct MatchedFilter
     return Dimmer ? std::min(leftSum(k), rightSum(k)) : std::max(leftSum(k), rightSum(k));
   }
   int backgroundSum(int k) const { return againstDimmer ? backgroundSum<true>(k) : backgroundSum<false>(k); }
-  double background(int k) const { return static_cast<double>(backgroundSum(k)) / f; }
+  // The background level of k in grey levels, rounded half away from zero as std::lround would round the
+  // quotient, in integers (a division and a rounding call per profile in doubles).
+  int roundedBackground(int k) const
+  {
+    const int sum = backgroundSum(k);
+    return sum >= 0 ? (2 * sum + f) / (2 * f) : -((f - 2 * sum) / (2 * f));
+  }
   // response(k) x (2h + 1) f, exact in integers.
   template <bool Dimmer> long long scaledResponse(int k) const
   {
@@ -246,14 +252,15 @@ void selectStripe(MatchedFilter &filter, const GuidedSample &s, const ProfileWin
 // The first pass's shape tests and centre (ridge_profile.h) around the best response k of the profile. A
 // saturated core is a laser's when its flanks' red dominance (one line) reaches \e flankThreshold, or, when it
 // does not, \e factor times the dominance's own noise along the line (lower than the profile's in a glare).
+// The centre only when \e centre is not null (the caller has a better one).
 bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k, const GuidedSettings &settings,
-                    int flankThreshold, std::vector<int> &diffs, int &first, int &last, double &centre)
+                    int flankThreshold, std::vector<int> &diffs, int &first, int &last, double *centre)
 {
   int p = std::max(0, k - filter.h - 1);
   for (int j = p; j <= std::min(view.n - 1, k + filter.h + 1); ++j)
     if (view.at(j) > view.at(p))
       p = j;
-  const int bg = static_cast<int>(std::lround(filter.background(k))), contrast = view.at(p) - bg;
+  const int bg = filter.roundedBackground(k), contrast = view.at(p) - bg;
   if (contrast <= 0)
     return false;
   const int aboveHalf = bg + contrast / 2, d = settings.maxWidth;
@@ -273,7 +280,8 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
   }
   first = a;
   last = b;
-  centre = stripeCentroid(view, p, a, b, bg, contrast, d);
+  if (centre != nullptr)
+    *centre = stripeCentroid(view, p, a, b, bg, contrast, d);
   return true;
 }
 
@@ -383,24 +391,27 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   result.response = bestResponse;
   if (best < 0 || bestResponse < result.threshold)
     return result;
+  // The centre: the vertex of the parabola through the matched filter's responses around its best (the
+  // filter has averaged the noise; the first pass's centroid of the raw profile, the fallback, is noisier
+  // here). Its neighbours need their background boxes inside the profile too: [reach, n - 1 - reach].
   double centre = 0.0;
+  bool vertex = false;
+  if (best - 1 >= reach && best + 1 <= n - 1 - reach) {
+    const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
+    const double curvature = r0 - 2.0 * bestResponse + r2;
+    vertex = curvature < 0.0;
+    if (vertex)
+      centre = best + std::max(-0.5, std::min(0.5, 0.5 * (r0 - r2) / curvature));
+  }
   int runFirst = 0, runLast = 0;
   // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
   // in the sum of the lines, refused every white core with pink flanks: the laser on white paper.)
   const int flankThreshold =
       static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse, settings.factor * result.noise / rootLines)));
   if (!shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
-                      filter, best, settings, flankThreshold, buffers.diffs, runFirst, runLast, centre))
+                      filter, best, settings, flankThreshold, buffers.diffs, runFirst, runLast,
+                      vertex ? nullptr : &centre))
     return result;
-  // The centre: the vertex of the parabola through the matched filter's responses around its best (the
-  // filter has averaged the noise; the first pass's centroid of the raw profile is noisier here). Its
-  // neighbours need their background boxes inside the profile too: [reach, n - 1 - reach].
-  if (best - 1 >= reach && best + 1 <= n - 1 - reach) {
-    const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
-    const double curvature = r0 - 2.0 * bestResponse + r2;
-    if (curvature < 0.0)
-      centre = best + std::max(-0.5, std::min(0.5, 0.5 * (r0 - r2) / curvature));
-  }
   const double along = start + centre;
   result.found = true;
   result.offset = (along - s.pos) * s.toNormal;
