@@ -63,6 +63,8 @@ struct ProfileResult
   double noise = 0.0, threshold = 0.0;
   double response = 0.0; //!< the matched filter's best response
   int lines = 0;         //!< image lines summed
+  //! The noise of one image line (lines > 0): the summed lines' noise grows as the square root of their number
+  double lineNoise() const { return noise / std::sqrt(static_cast<double>(lines)); }
 };
 
 //! Buffers of the profile measurements, reused from sample to sample.

@@ -187,10 +187,9 @@ int followBackwards(const vpImage<vpRGBa> &I, const GuidedSettings &settings, co
     // results[i].lines == 0: not measured (outside the search limit, or no profile fits in the image).
     if (state[i] != MISSED || state[i + 1] != FOUND || results[i].lines == 0)
       continue;
-    const double lineNoise = next.noise / std::sqrt(static_cast<double>(next.lines));
-    const ProfileResult back = measureProfile(I, samples[i], settings,
-                                              followWindow(samples[i], next.offset, lineNoise, false, fittedHere),
-                                              buffers);
+    const ProfileResult back =
+        measureProfile(I, samples[i], settings,
+                       followWindow(samples[i], next.offset, next.lineNoise(), false, fittedHere), buffers);
     if (!back.found)
       continue;
     results[i] = back;
@@ -253,12 +252,11 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
           r = longer;
       }
       if (r.lines > 0) {
-        const double lines = static_cast<double>(r.lines);
-        lineNoise = r.noise / std::sqrt(lines);
+        lineNoise = r.lineNoise();
         noiseSample = i;
         strong = r.found && r.response >= RidgeTuning::guidedStrongStripe * r.threshold;
         noises.push_back(lineNoise);
-        thresholds.push_back(r.threshold / lines);
+        thresholds.push_back(r.threshold / r.lines);
       }
     }
     state[static_cast<size_t>(i)] = r.found ? FOUND : MISSED;
