@@ -138,6 +138,39 @@ void expectGuided(const GuidedQuality &q, double minCoverage, double maxRms)
   EXPECT_GE(q.precision, 0.98);
   EXPECT_LE(q.rmsGuided, maxRms);
 }
+
+//! Means over seeds of the coverage at 3 sigma and of the second-pass RMS.
+struct SeedMeans
+{
+  double coverage3 = 0.0, rmsGuided = 0.0;
+};
+
+/*!
+  The case \e s on the tilted ground rendered with each of \e seeds (run \e name_seed), \e check called on each
+  seed's quality: the means over the seeds.
+*/
+template <class Check>
+SeedMeans overSeeds(const std::string &name, const Settings &s, const std::vector<unsigned int> &seeds, Check check)
+{
+  SeedMeans means;
+  for (unsigned int seed : seeds) {
+    vpLaserConicDetector detector;
+    const GuidedQuality q = runGuided(name + "_" + std::to_string(seed), tiltedGround(), s, seed, detector);
+    check(seed, q);
+    means.coverage3 += q.coverage3 / seeds.size();
+    means.rmsGuided += q.rmsGuided / seeds.size();
+  }
+  return means;
+}
+
+//! \e count consecutive seeds from \e first.
+std::vector<unsigned int> seedRange(unsigned int first, unsigned int count)
+{
+  std::vector<unsigned int> seeds(count);
+  for (unsigned int k = 0; k < count; ++k)
+    seeds[k] = first + k;
+  return seeds;
+}
 } // namespace
 
 TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
@@ -173,17 +206,10 @@ TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
   // Profiles of three lines alone found 92.6-95.6 %; where they find nothing, nine lines are averaged. The
   // Cramer-Rao bound of one three-line profile there (Gaussian stripe of 3 px FWHM, peak 6 over a dominance
   // noise of 2.6) is 0.30 px: the regularisation along the curve is what brings the RMS under it.
-  double coverage = 0.0, rms = 0.0;
-  const unsigned int seeds[] = {72u, 60u, 61u, 62u, 63u, 64u, 65u};
-  for (unsigned int seed : seeds) {
-    vpLaserConicDetector detector;
-    const GuidedQuality q = runGuided("faint", tiltedGround(), fadingRing(40.0, 4.0), seed, detector);
-    expectGuided(q, 0.94, 0.33);
-    coverage += q.coverage3 / std::size(seeds);
-    rms += q.rmsGuided / std::size(seeds);
-  }
-  EXPECT_GE(coverage, 0.95); // the bounds, on the mean over the seeds
-  EXPECT_LE(rms, 0.3);
+  const SeedMeans means = overSeeds("faint", fadingRing(40.0, 4.0), {72u, 60u, 61u, 62u, 63u, 64u, 65u},
+                                    [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.94, 0.33); });
+  EXPECT_GE(means.coverage3, 0.95); // the bounds, on the mean over the seeds
+  EXPECT_LE(means.rmsGuided, 0.3);
 }
 
 TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLight)
@@ -193,14 +219,15 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // 95.4 % of the ring at 3 sigma or more, precision 1, second-pass RMS 0.233 px (over seeds 73-82:
   // 93.6-96.8 %, mean 95.21 %, precision 0.991-1, RMS 0.17-0.25 px, mean 0.22 px; over seeds 83-102, which
   // the bounds were not set on: mean 94.3 %, precision 0.988-1; before a stripe lost on a joint was followed
-  // back, AStripeLostOnAJointIsFollowedBackFromWhereItIsFoundAgain: mean 95.02 % and 94.0 %). A follow that drifted from the refitted conic
-  // onto a patch's edge now yields to a stripe near the conic, a followed stripe beside a brighter patch is
-  // read against its dimmer side, and the ends of the pieces of curve are regularised by the mean of the
-  // offsets (seed 73 before: 95.8 %; seeds 73-82 before: 92.9-96.3 %, mean 94.5 %, precision 0.984-1, RMS
-  // mean 0.21 px; the first change alone: mean 94.96 %, the first two 94.92 %). Before: 93.6 %, 0.998,
-  // 0.298 px (the full first pass and the second pass: 92.8 %, 0.987, 0.40 px; a whole-margin profile
-  // preferring a response within 3 px of the prediction: +0.4 %); then the profile's noise from its second differences,
-  // which a blurred step between patches does not raise (+1.1 %), the regularisation along 40 px of arc
+  // back, AStripeLostOnAJointIsFollowedBackFromWhereItIsFoundAgain: mean 95.02 % and 94.0 %). A follow that
+  // drifted from the refitted conic onto a patch's edge now yields to a stripe near the conic, a followed
+  // stripe beside a brighter patch is read against its dimmer side, and the ends of the pieces of curve are
+  // regularised by the mean of the offsets (seed 73 before: 95.8 %; seeds 73-82 before: 92.9-96.3 %, mean
+  // 94.5 %, precision 0.984-1, RMS mean 0.21 px; the first change alone: mean 94.96 %, the first two
+  // 94.92 %). Before: 93.6 %, 0.998, 0.298 px (the full first pass and the second pass: 92.8 %, 0.987,
+  // 0.40 px; a whole-margin profile preferring a response within 3 px of the prediction: +0.4 %); then the
+  // profile's noise from its second differences, which a blurred step between patches does not raise
+  // (+1.1 %), the regularisation along 40 px of arc
   // instead of 20 (+0.2 %, RMS 0.30 -> 0.22 px) and the second pass's points kept within 2.5 px of the final
   // conic instead of 2 (+0.9 %: the stripe pulled 1-2 px aside by the chroma, then regularised onto the
   // curve).
@@ -221,17 +248,11 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // seeds precision 0.996 against 0.998).
   // The 95 % holds for the mean of the ten seeds (95.21 %), not for each: the per-seed bound is what is
   // measured, so that a change that loses ring on this floor fails; seed 73 keeps the bound.
-  const unsigned int firstSeed = 73, seedCount = 10;
-  double coverage = 0.0, rms = 0.0;
-  for (unsigned int seed = firstSeed; seed < firstSeed + seedCount; ++seed) {
-    vpLaserConicDetector detector;
-    const GuidedQuality q = runGuided("fading_mosaic", tiltedGround(), s, seed, detector);
-    expectGuided(q, seed == firstSeed ? 0.95 : 0.93, 0.3);
-    coverage += q.coverage3 / seedCount;
-    rms += q.rmsGuided / seedCount;
-  }
-  EXPECT_GE(coverage, 0.95);
-  EXPECT_LE(rms, 0.25);
+  const SeedMeans means =
+      overSeeds("fading_mosaic", s, seedRange(73, 10),
+                [](unsigned int seed, const GuidedQuality &q) { expectGuided(q, seed == 73 ? 0.95 : 0.93, 0.3); });
+  EXPECT_GE(means.coverage3, 0.95);
+  EXPECT_LE(means.rmsGuided, 0.25);
 }
 
 TEST(LaserConicGuidedSearch, AStripeLostOnAJointIsFollowedBackFromWhereItIsFoundAgain)
@@ -268,22 +289,16 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
   // the offsets at the ends (RidgeTuning::guidedSmoothEnd): 0.9875. Measured over the twenty: mean 94.3 % of
   // the ring at 3 sigma, precision 0.9875-1, RMS mean 0.20 px. Short of the bounds on seed 93: 84.2 %
   // (dim stretches along joints, see above) and RMS 0.39 px (the chroma's pull beside a step of the floor's red).
-  const Settings s = fadingMosaic();
-  const unsigned int firstSeed = 83, seedCount = 20;
-  double coverage = 0.0, rms = 0.0;
-  for (unsigned int seed = firstSeed; seed < firstSeed + seedCount; ++seed) {
-    vpLaserConicDetector detector;
-    const GuidedQuality q = runGuided("fading_mosaic_" + std::to_string(seed), tiltedGround(), s, seed, detector);
-    EXPECT_GE(q.precision, 0.98) << "seed " << seed;
-    EXPECT_GE(q.coverage3, 0.83) << "seed " << seed;
-    EXPECT_LE(q.rmsGuided, 0.4) << "seed " << seed;
-    coverage += q.coverage3 / seedCount;
-    rms += q.rmsGuided / seedCount;
-  }
-  std::cout << "seeds " << firstSeed << "-" << firstSeed + seedCount - 1 << ": mean coverage " << 100.0 * coverage
-            << " %, mean second-pass RMS " << rms << " px" << std::endl;
-  EXPECT_GE(coverage, 0.94);
-  EXPECT_LE(rms, 0.25);
+  const SeedMeans means =
+      overSeeds("fading_mosaic", fadingMosaic(), seedRange(83, 20), [](unsigned int seed, const GuidedQuality &q) {
+        EXPECT_GE(q.precision, 0.98) << "seed " << seed;
+        EXPECT_GE(q.coverage3, 0.83) << "seed " << seed;
+        EXPECT_LE(q.rmsGuided, 0.4) << "seed " << seed;
+      });
+  std::cout << "seeds 83-102: mean coverage " << 100.0 * means.coverage3 << " %, mean second-pass RMS "
+            << means.rmsGuided << " px" << std::endl;
+  EXPECT_GE(means.coverage3, 0.94);
+  EXPECT_LE(means.rmsGuided, 0.25);
 }
 
 TEST(LaserConicGuidedSearch, SaturatedStripeThroughALampsGlare)
