@@ -331,6 +331,69 @@ namespace
 {
 bool byAngle(const GuidedSample &p, const GuidedSample &q) { return p.angle < q.angle; }
 
+// The roots of the lines t = first, first + step, ... <= last of a family: p x^2 + 2 (b t + q1) x + r t^2
+// + 2 q2 t + f = 0, as quadraticRoots() gives them (the same arithmetic), the smaller in low[i], the larger
+// in high[i], count[i] of them. All lines in one pass before their crossings are looked at: one line's
+// square root and divisions, a long chain, waited behind the previous line's crossings when each line was
+// solved and crossed in turn (the sampling took half as long again: 18 against 12 us for a ring of 630
+// samples).
+struct LineRoots
+{
+  std::vector<double> low, high;
+  std::vector<int> count;
+  void solve(double p, double q1, double r, double q2, double b, double f, int first, int last, int step)
+  {
+    const int lines = last < first ? 0 : (last - first) / step + 1;
+    low.resize(static_cast<size_t>(lines));
+    high.resize(static_cast<size_t>(lines));
+    count.resize(static_cast<size_t>(lines));
+    for (int i = 0; i < lines; ++i) {
+      const double t = first + i * step;
+      const double B = 2.0 * (b * t + q1), C = r * t * t + 2.0 * q2 * t + f;
+      const double scale = std::max(std::fabs(p), std::max(std::fabs(B), std::fabs(C)));
+      const double disc = B * B - 4.0 * p * C;
+      const double q = -0.5 * (B + std::copysign(std::sqrt(std::max(disc, 0.0)), B));
+      const double x0 = q / p, x1 = C / q;
+      low[static_cast<size_t>(i)] = q != 0.0 && x1 < x0 ? x1 : x0;
+      high[static_cast<size_t>(i)] = q != 0.0 && x1 < x0 ? x0 : x1;
+      // -1: a line along which the quadratic degenerates (solved alone below).
+      count[static_cast<size_t>(i)] = std::fabs(p) <= 1e-14 * scale ? -1 : (disc < 0.0 ? 0 : (q == 0.0 ? 1 : 2));
+    }
+    for (int i = 0; i < lines; ++i)
+      if (count[static_cast<size_t>(i)] < 0) {
+        const double t = first + i * step;
+        double x[2];
+        count[static_cast<size_t>(i)] = quadraticRoots(p, 2.0 * (b * t + q1), r * t * t + 2.0 * q2 * t + f, x);
+        low[static_cast<size_t>(i)] = x[0];
+      }
+  }
+};
+
+// The crossings of a family of lines (rows when AlongRow, roots in u; else columns, roots in v) kept as
+// samples, appended to arcs[0] (smaller roots) and arcs[1] (larger), each in the order of its lines: those
+// within the margin of the image, where the gradient is more along the line than across it (the line
+// crosses the curve at 45 degrees or more).
+template <bool AlongRow>
+void appendCrossings(const ConicCoefficients &k, const LineRoots &roots, int first, int step, int n, double margin,
+                     double uc, double vc, std::vector<GuidedSample> arcs[2])
+{
+  for (int root = 0; root < 2; ++root)
+    for (size_t i = 0; i < roots.count.size(); ++i) {
+      const int t = first + static_cast<int>(i) * step;
+      const double x = root == 0 ? roots.low[i] : roots.high[i];
+      const double u = AlongRow ? x : t, v = AlongRow ? t : x;
+      const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e;
+      const double along = std::fabs(AlongRow ? fu : fv), across = std::fabs(AlongRow ? fv : fu);
+      const double norm = std::sqrt(fu * fu + fv * fv);
+      const double toNormal = along / norm;
+      const double slope = -(AlongRow ? fv : fu) / (AlongRow ? fu : fv);
+      const GuidedSample sample{AlongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope};
+      if (roots.count[i] > root && x >= -margin && x <= n - 1 + margin && along > 0.0 && along >= across &&
+          (AlongRow || along != across))
+        arcs[root].push_back(sample);
+    }
+}
+
 // Puts the samples of \e run, one arc of the curve in the order of its lines, in increasing angle: reversed
 // when the angle decreases along it, rotated when it crosses the -pi / pi cut. False when the run is no such
 // arc (then the caller sorts).
@@ -358,48 +421,18 @@ bool sampleConic(const Eigen::Matrix3d &C, int W, int H, double margin, int step
   double uc = 0.0, vc = 0.0;
   if (!k.centre(uc, vc))
     return false;
-  std::vector<double> roots;
   // The crossings come as four arcs, each in the order of its lines (rows or columns, first or second root),
   // then merged along the curve: sorting them all was a twentieth of a tracked frame.
   std::vector<GuidedSample> arcs[4];
-  // Crossings of row v = t (alongRow) or column u = t: where the gradient is more along the line than
-  // across it, the line crosses the curve at 45 degrees or more.
-  auto add = [&](bool alongRow, int t, double x, int root) {
-    const int n = alongRow ? W : H;
-    if (x < -margin || x > n - 1 + margin)
-      return;
-    const double u = alongRow ? x : t, v = alongRow ? t : x;
-    const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e;
-    const double along = std::fabs(alongRow ? fu : fv), across = std::fabs(alongRow ? fv : fu);
-    // The tests first, the square root for the crossings kept only (half of them).
-    if (!(along > 0.0) || along < across || (!alongRow && along == across))
-      return;
-    const double norm = std::sqrt(fu * fu + fv * fv);
-    const double toNormal = along / norm;
-    const double slope = -(alongRow ? fv : fu) / (alongRow ? fu : fv);
-    arcs[(alongRow ? 0 : 2) + root].push_back(
-        GuidedSample{alongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
-  };
-  auto addRoots = [&](bool alongRow, int t) {
-    if (roots.size() == 2 && roots[1] < roots[0])
-      std::swap(roots[0], roots[1]);
-    for (size_t r = 0; r < roots.size(); ++r)
-      add(alongRow, t, roots[r], static_cast<int>(r));
-  };
   // Only the lines that cross the ellipse: its extent along v (rows) and u (columns).
   int firstRow = 0, lastRow = H - 1, firstColumn = 0, lastColumn = W - 1;
   k.extent(false, step, H, firstRow, lastRow);
   k.extent(true, step, W, firstColumn, lastColumn);
-  for (int v = firstRow; v <= lastRow; v += step) {
-    roots.clear();
-    solveQuadratic(k.a, 2.0 * (k.b * v + k.d), k.c * v * v + 2.0 * k.e * v + k.f, roots);
-    addRoots(true, v);
-  }
-  for (int u = firstColumn; u <= lastColumn; u += step) {
-    roots.clear();
-    solveQuadratic(k.c, 2.0 * (k.b * u + k.e), k.a * u * u + 2.0 * k.d * u + k.f, roots);
-    addRoots(false, u);
-  }
+  LineRoots roots;
+  roots.solve(k.a, k.d, k.c, k.e, k.b, k.f, firstRow, lastRow, step); // row v: roots in u
+  appendCrossings<true>(k, roots, firstRow, step, W, margin, uc, vc, arcs);
+  roots.solve(k.c, k.e, k.a, k.d, k.b, k.f, firstColumn, lastColumn, step); // column u: roots in v
+  appendCrossings<false>(k, roots, firstColumn, step, H, margin, uc, vc, arcs + 2);
   bool arcsInOrder = true;
   for (std::vector<GuidedSample> &arc : arcs)
     arcsInOrder = alongTheCurve(arc) && arcsInOrder;

@@ -84,24 +84,33 @@ void blocksToSpans(const std::vector<unsigned char> &marked, int nbX, int W, Reg
 }
 } // namespace
 
-void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
+int quadraticRoots(double a, double b, double c, double roots[2])
 {
   const double scale = std::max(std::fabs(a), std::max(std::fabs(b), std::fabs(c)));
   if (scale == 0.0)
-    return;
+    return 0;
   if (std::fabs(a) <= 1e-14 * scale) {
-    if (std::fabs(b) > 1e-14 * scale)
-      roots.push_back(-c / b);
-    return;
+    if (!(std::fabs(b) > 1e-14 * scale))
+      return 0;
+    roots[0] = -c / b;
+    return 1;
   }
   const double disc = b * b - 4.0 * a * c;
   if (disc < 0.0)
-    return;
+    return 0;
   // Numerically stable form: no cancellation between b and the square root.
   const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-  roots.push_back(q / a);
-  if (q != 0.0)
-    roots.push_back(c / q);
+  roots[0] = q / a;
+  if (q == 0.0)
+    return 1;
+  roots[1] = c / q;
+  return 2;
+}
+
+void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
+{
+  double found[2];
+  roots.insert(roots.end(), found, found + quadraticRoots(a, b, c, found));
 }
 std::vector<vpImagePoint> sampleConicOnLines(double a, double b, double c, double d, double e, double f, double margin)
 {

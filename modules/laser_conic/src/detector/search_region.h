@@ -18,6 +18,8 @@
 
 namespace vsp::laser_detector
 {
+//! Real roots of a t^2 + b t + c = 0 (a may be zero) written to \e roots; returns how many (0 to 2).
+int quadraticRoots(double a, double b, double c, double roots[2]);
 //! Real roots of a t^2 + b t + c = 0 (a may be zero) appended to \e roots.
 void solveQuadratic(double a, double b, double c, std::vector<double> &roots);
 
