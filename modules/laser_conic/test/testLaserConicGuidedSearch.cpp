@@ -195,14 +195,17 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
   // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured
-  // 94.9-98.2 % found (mean 96.8 %), precision 0.997-1, second-pass RMS 0.14-0.31 px (mean 0.19). Seed 61's
-  // 0.31 px: its points within 1.5 px of the centre line; over all its second-pass points 0.306 px, as before
-  // a stripe lost for a few samples was followed back (0.309 px; then 0.26 px within 1.5 px at precision
+  // 96.4-98.8 % found (mean 97.4 %), precision 1, second-pass RMS 0.15-0.30 px (mean 0.22). Before a followed
+  // stripe that the red score lost was searched on its brightness (see
+  // AStripeWhoseColourJpegSmearedIsFollowedOnItsLuminance): 94.9-98.2 % (mean 96.8 %), precision 0.997-1, RMS
+  // mean 0.19 px (the points found on the brightness are noisier). Seed 61's 0.30 px (0.31 px before):
+  // its points within 1.5 px of the centre line; over all its second-pass points 0.306 px, as before a
+  // stripe lost for a few samples was followed back (0.309 px; then 0.26 px within 1.5 px at precision
   // 0.9967: points beyond 1.5 px then lie within it now). Before that: 94.5-97.5 %, mean 96.4 %; with the
   // regularisation along 20 px of arc and the points kept within 2 px of the final conic: mean 95.9 %, RMS
   // mean 0.26 px (CHANGELOG.md has the steps between). What is missed lies between 3 and 3.3 sigma, where
   // JPEG at quality 90 leaves a matched-filter response of 0-2 grey levels per line (it rounds the weak
-  // chroma detail away; without JPEG 99.1 % is found for seed 72).
+  // chroma detail away; without JPEG 99.1 % is found for seed 72); the brightness recovers part of it.
   // Profiles of three lines alone found 92.6-95.6 %; where they find nothing, nine lines are averaged. The
   // Cramer-Rao bound of one three-line profile there (Gaussian stripe of 3 px FWHM, peak 6 over a dominance
   // noise of 2.6) is 0.30 px: the regularisation along the curve is what brings the RMS under it.
@@ -216,10 +219,12 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
 {
   const Settings s = fadingMosaic();
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured
-  // 95.4 % of the ring at 3 sigma or more, precision 1, second-pass RMS 0.233 px (over seeds 73-82:
-  // 93.6-96.8 %, mean 95.21 %, precision 0.991-1, RMS 0.17-0.25 px, mean 0.22 px; over seeds 83-102, which
-  // the bounds were not set on: mean 94.3 %, precision 0.988-1; before a stripe lost on a joint was followed
-  // back, AStripeLostOnAJointIsFollowedBackFromWhereItIsFoundAgain: mean 95.02 % and 94.0 %). A follow that
+  // 95.7 % of the ring at 3 sigma or more, precision 1, second-pass RMS 0.233 px (over seeds 73-82:
+  // 94.1-96.9 %, mean 95.38 %, precision 0.991-1, RMS 0.17-0.25 px, mean 0.215 px; over seeds 83-102, which
+  // the bounds were not set on: mean 94.6 %, precision 0.988-1; before a followed stripe that the red score
+  // lost was searched on its brightness, AStripeWhoseColourJpegSmearedIsFollowedOnItsLuminance: 93.6-96.8 %,
+  // mean 95.21 %, and 94.3 %; before a stripe lost on a joint was followed back,
+  // AStripeLostOnAJointIsFollowedBackFromWhereItIsFoundAgain: mean 95.02 % and 94.0 %). A follow that
   // drifted from the refitted conic onto a patch's edge now yields to a stripe near the conic, a followed
   // stripe beside a brighter patch is read against its dimmer side, and the ends of the pieces of curve are
   // regularised by the mean of the offsets (seed 73 before: 95.8 %; seeds 73-82 before: 92.9-96.3 %, mean
@@ -246,11 +251,11 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // points that agree, searched within 1.5 px of the interpolated offset against the pass's median noise
   // (-0.2 to +0.03 %), and keeping points within 3 px of the final conic (96.0 %, RMS 0.254 px; over the ten
   // seeds precision 0.996 against 0.998).
-  // The 95 % holds for the mean of the ten seeds (95.21 %), not for each: the per-seed bound is what is
+  // The 95 % holds for the mean of the ten seeds (95.38 %), not for each: the per-seed bound is what is
   // measured, so that a change that loses ring on this floor fails; seed 73 keeps the bound.
   const SeedMeans means =
       overSeeds("fading_mosaic", s, seedRange(73, 10),
-                [](unsigned int seed, const GuidedQuality &q) { expectGuided(q, seed == 73 ? 0.95 : 0.93, 0.3); });
+                [](unsigned int seed, const GuidedQuality &q) { expectGuided(q, seed == 73 ? 0.95 : 0.94, 0.3); });
   EXPECT_GE(means.coverage3, 0.95);
   EXPECT_LE(means.rmsGuided, 0.25);
 }
@@ -281,14 +286,39 @@ TEST(LaserConicGuidedSearch, AStripeLostOnAJointIsFollowedBackFromWhereItIsFound
   expectGuided(q, 0.95, 0.3);
 }
 
+TEST(LaserConicGuidedSearch, AStripeWhoseColourJpegSmearedIsFollowedOnItsLuminance)
+{
+  // The textured floor above, seed 80: a stripe at about 4 sigma crosses a joint near (515, 893) and is lost
+  // for about 15 px on each side of it. Rendered without JPEG it is found there; JPEG stores the colour at
+  // half resolution and coarser than the brightness, and beside the joint's edges the stripe's red dominance
+  // is smeared into a plateau several pixels wide (a profile across it: 28 grey levels from -2 to +2 px, 25
+  // to +6 px, 21-23 beyond), while its brightness, R + G + B, keeps a bump 3 px wide. Measured: 77.7 % of the
+  // ring within 20 px of that point found (37.2 % before a follow that the red score lost was searched on the
+  // brightness), the whole ring 94.13 % (93.55 %), precision 1, second-pass RMS 0.240 px (0.246).
+  vpLaserConicDetector detector;
+  std::vector<vpImagePoint> points;
+  const GuidedQuality q = runGuided("jpeg_luminance", tiltedGround(), fadingMosaic(), 80, detector, &points);
+  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 80);
+  std::vector<vpLaserConicSimulator::vpTraceTruth> near;
+  for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(6000, fadingMosaic()))
+    if (vpImagePoint::distance(t.point, vpImagePoint(893.0, 515.0)) <= 20.0)
+      near.push_back(t);
+  const double found = vpLaserConicSimulator::stripeCoverage(near, points, 3.0, 1.5);
+  std::cout << "near the joint: " << near.size() << " truth samples, " << 100.0 * found << " % found" << std::endl;
+  EXPECT_GE(found, 0.7);
+  expectGuided(q, 0.94, 0.3);
+}
+
 TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
 {
   // The textured floor above over twenty other seeds (83-102), which its bounds were not set on. The worst,
   // seed 93, has its ring along patch joints for stretches, broken into short pieces, and the straight-line
   // regularisation extrapolated at their ends, 2-3 px off the centre line: precision 0.9715. With the mean of
-  // the offsets at the ends (RidgeTuning::guidedSmoothEnd): 0.9875. Measured over the twenty: mean 94.3 % of
-  // the ring at 3 sigma, precision 0.9875-1, RMS mean 0.20 px. Short of the bounds on seed 93: 84.2 %
-  // (dim stretches along joints, see above) and RMS 0.39 px (the chroma's pull beside a step of the floor's red).
+  // the offsets at the ends (RidgeTuning::guidedSmoothEnd): 0.9875. Measured over the twenty: mean 94.6 % of
+  // the ring at 3 sigma (94.3 % before the brightness follow), precision 0.9877-1, RMS mean 0.20 px. Short of
+  // the bounds on seed 93: 85.0 % (84.2 %; dim stretches along joints, see above, and about 100 px of
+  // ring along a joint beside a bright tile, where the stripe is a shoulder on the tile's edge, not a peak,
+  // with or without JPEG) and RMS 0.39 px (the chroma's pull beside a step of the floor's red).
   const SeedMeans means =
       overSeeds("fading_mosaic", fadingMosaic(), seedRange(83, 20), [](unsigned int seed, const GuidedQuality &q) {
         EXPECT_GE(q.precision, 0.98) << "seed " << seed;

@@ -61,8 +61,9 @@ struct ProfileResult
   Crossing crossing;   //!< the point and its half-maximum run
   double offset = 0.0; //!< across the curve from the prediction (pixels)
   double noise = 0.0, threshold = 0.0;
-  double response = 0.0; //!< the matched filter's best response
-  int lines = 0;         //!< image lines summed
+  double response = 0.0;  //!< the matched filter's best response
+  int lines = 0;          //!< image lines summed
+  bool luminance = false; //!< measured on the brightness (ProfileWindow::luminance): its noise is not the red's
   //! The noise of one image line (lines > 0): the summed lines' noise grows as the square root of their number
   double lineNoise() const { return noise / std::sqrt(static_cast<double>(lines)); }
 };
@@ -120,6 +121,14 @@ struct ProfileWindow
   //! With halfWidth > 0: the prediction was fitted to the points found over the whole image, and a stripe near
   //! it is preferred to one more than RidgeTuning::guidedNearMargin off it when the window has drifted that far
   bool preferPrediction = false;
+  /*!
+    The profile of the brightness R + G + B instead of the red score, its noise measured along the sample's
+    whole margin and its stripe searched within the window. For a follow whose red score finds nothing: a
+    JPEG stores the colour at half resolution and coarser than the brightness, and beside a colour edge
+    a dim red stripe's dominance is smeared into a plateau several pixels wide, while its brightness keeps
+    the stripe's bump.
+  */
+  bool luminance = false;
 };
 
 //! Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line.

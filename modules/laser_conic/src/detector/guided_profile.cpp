@@ -62,11 +62,22 @@ void addLine(const unsigned char *first, Stride stride, int n, int saturation, i
       value[k] += profileValue(first + k * static_cast<ptrdiff_t>(stride), saturation, rampStart);
 }
 
+// Adds the brightness R + G + B of \e n pixels from \e first, \e stride bytes apart, to \e value, or writes it
+// there when \e overwrite (see ProfileWindow::luminance).
+template <class Stride> void addBrightness(const unsigned char *first, Stride stride, int n, bool overwrite, int *value)
+{
+  for (int k = 0; k < n; ++k) {
+    const unsigned char *p = first + k * static_cast<ptrdiff_t>(stride);
+    value[k] = (overwrite ? 0 : value[k]) + p[0] + p[1] + p[2];
+  }
+}
+
 // Sums the values of pixels [start, start + n) of the sample's line and of its \e half neighbours on each side,
-// each shifted along the predicted curve, into b.value, and their prefix sums into b.prefix. Returns the lines
-// summed (those inside the image), and in \e centre the sample's own line's pixel 0.
+// each shifted along the predicted curve, into b.value, and their prefix sums into b.prefix: the profile's
+// values, or with \e brightness their brightness. Returns the lines summed (those inside the image), and in
+// \e centre the sample's own line's pixel 0.
 int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, int half,
-              ProfileBuffers &b, const unsigned char *&centre)
+              bool brightness, ProfileBuffers &b, const unsigned char *&centre)
 {
   b.value.resize(static_cast<size_t>(n));
   b.prefix.resize(static_cast<size_t>(n) + 1);
@@ -85,7 +96,11 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
         rgba + (s.alongRow ? 4 * (line * W + from) : 4 * (static_cast<ptrdiff_t>(from) * W + line));
     if (j == 0)
       centre = first;
-    if (s.alongRow)
+    if (brightness && s.alongRow)
+      addBrightness(first, std::integral_constant<ptrdiff_t, 4>(), n, used == 0, value);
+    else if (brightness)
+      addBrightness(first, 4 * W, n, used == 0, value);
+    else if (s.alongRow)
       addLine(first, std::integral_constant<ptrdiff_t, 4>(), n, saturation, rampStart, used == 0, value);
     else
       addLine(first, 4 * W, n, saturation, rampStart, used == 0, value);
@@ -364,16 +379,22 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   // the prediction are read too (see below).
   const double near = RidgeTuning::guidedNearMargin / s.toNormal;
   const bool drifted = window.halfWidth > 0.0 && window.preferPrediction && std::fabs(window.centre) > near;
-  const int readLo = drifted ? std::min(lo, static_cast<int>(std::floor(s.pos - near))) : lo,
-            readHi = drifted ? std::max(hi, static_cast<int>(std::ceil(s.pos + near))) : hi;
+  int readLo = drifted ? std::min(lo, static_cast<int>(std::floor(s.pos - near))) : lo,
+      readHi = drifted ? std::max(hi, static_cast<int>(std::ceil(s.pos + near))) : hi;
+  if (window.luminance) { // the whole margin read, for the brightness's noise (see ProfileWindow::luminance)
+    readLo = std::min(readLo, static_cast<int>(std::floor(s.pos - s.halfWindow)));
+    readHi = std::max(readHi, static_cast<int>(std::ceil(s.pos + s.halfWindow)));
+  }
   const int start = std::max(0, readLo - reach), end = std::min(lineLength - 1, readHi + reach), n = end - start + 1;
   if (hi < lo || n < 2 * reach + 1)
     return result;
   const unsigned char *centreLine = nullptr;
-  const int lines = readLines(I, s, start, n, settings.saturation, window.lines / 2, buffers, centreLine);
+  const int lines =
+      readLines(I, s, start, n, settings.saturation, window.lines / 2, window.luminance, buffers, centreLine);
   if (lines == 0 || centreLine == nullptr)
     return result;
   result.lines = lines;
+  result.luminance = window.luminance;
   MatchedFilter filter(buffers.prefix, h, f);
   double bestResponse = -1e30;
   const int first = std::max(reach, lo - start), last = std::min(n - 1 - reach, hi - start);
