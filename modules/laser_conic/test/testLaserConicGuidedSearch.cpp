@@ -197,7 +197,7 @@ TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
   // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured
   // 96.4-98.8 % found (mean 97.4 %), precision 1, second-pass RMS 0.15-0.30 px (mean 0.22). Before a followed
   // stripe that the red score lost was searched on its brightness (see
-  // AStripeWhoseColourJpegSmearedIsFollowedOnItsLuminance): 94.9-98.2 % (mean 96.8 %), precision 0.997-1, RMS
+  // AStripeWhoseColourJpegSmearedIsFollowedOnItsBrightness): 94.9-98.2 % (mean 96.8 %), precision 0.997-1, RMS
   // mean 0.19 px (the points found on the brightness are noisier). Seed 61's 0.30 px (0.31 px before):
   // its points within 1.5 px of the centre line; over all its second-pass points 0.306 px, as before a
   // stripe lost for a few samples was followed back (0.309 px; then 0.26 px within 1.5 px at precision
@@ -222,7 +222,7 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // 95.7 % of the ring at 3 sigma or more, precision 1, second-pass RMS 0.233 px (over seeds 73-82:
   // 94.1-96.9 %, mean 95.38 %, precision 0.991-1, RMS 0.17-0.25 px, mean 0.215 px; over seeds 83-102, which
   // the bounds were not set on: mean 94.6 %, precision 0.988-1; before a followed stripe that the red score
-  // lost was searched on its brightness, AStripeWhoseColourJpegSmearedIsFollowedOnItsLuminance: 93.6-96.8 %,
+  // lost was searched on its brightness, AStripeWhoseColourJpegSmearedIsFollowedOnItsBrightness: 93.6-96.8 %,
   // mean 95.21 %, and 94.3 %; before a stripe lost on a joint was followed back,
   // AStripeLostOnAJointIsFollowedBackFromWhereItIsFoundAgain: mean 95.02 % and 94.0 %). A follow that
   // drifted from the refitted conic onto a patch's edge now yields to a stripe near the conic, a followed
@@ -286,7 +286,7 @@ TEST(LaserConicGuidedSearch, AStripeLostOnAJointIsFollowedBackFromWhereItIsFound
   expectGuided(q, 0.95, 0.3);
 }
 
-TEST(LaserConicGuidedSearch, AStripeWhoseColourJpegSmearedIsFollowedOnItsLuminance)
+TEST(LaserConicGuidedSearch, AStripeWhoseColourJpegSmearedIsFollowedOnItsBrightness)
 {
   // The textured floor above, seed 80: a stripe at about 4 sigma crosses a joint near (515, 893) and is lost
   // for about 15 px on each side of it. Rendered without JPEG it is found there; JPEG stores the colour at
@@ -297,7 +297,7 @@ TEST(LaserConicGuidedSearch, AStripeWhoseColourJpegSmearedIsFollowedOnItsLuminan
   // brightness), the whole ring 94.13 % (93.55 %), precision 1, second-pass RMS 0.240 px (0.246).
   vpLaserConicDetector detector;
   std::vector<vpImagePoint> points;
-  const GuidedQuality q = runGuided("jpeg_luminance", tiltedGround(), fadingMosaic(), 80, detector, &points);
+  const GuidedQuality q = runGuided("jpeg_brightness", tiltedGround(), fadingMosaic(), 80, detector, &points);
   vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 80);
   std::vector<vpLaserConicSimulator::vpTraceTruth> near;
   for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(6000, fadingMosaic()))

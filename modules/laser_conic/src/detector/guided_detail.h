@@ -61,9 +61,9 @@ struct ProfileResult
   Crossing crossing;   //!< the point and its half-maximum run
   double offset = 0.0; //!< across the curve from the prediction (pixels)
   double noise = 0.0, threshold = 0.0;
-  double response = 0.0;  //!< the matched filter's best response
-  int lines = 0;          //!< image lines summed
-  bool luminance = false; //!< measured on the brightness (ProfileWindow::luminance): its noise is not the red's
+  double response = 0.0;   //!< the matched filter's best response
+  int lines = 0;           //!< image lines summed
+  bool brightness = false; //!< measured on the brightness (ProfileWindow::brightness): its noise is not the red's
   //! The noise of one image line (lines > 0): the summed lines' noise grows as the square root of their number
   double lineNoise() const { return noise / std::sqrt(static_cast<double>(lines)); }
 };
@@ -128,7 +128,7 @@ struct ProfileWindow
     a dim red stripe's dominance is smeared into a plateau several pixels wide, while its brightness keeps
     the stripe's bump.
   */
-  bool luminance = false;
+  bool brightness = false;
 };
 
 //! Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line.

@@ -171,7 +171,7 @@ ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNois
   return follow;
 }
 
-// A follow whose red score found nothing, measured on the brightness (ProfileWindow::luminance) within the
+// A follow whose red score found nothing, measured on the brightness (ProfileWindow::brightness) within the
 // follow's window around \e offset: its point is kept only within RidgeTuning::guidedMaxJump of that offset,
 // so that it continues the piece of curve (keepContinuingPieces()) rather than ending it (kept within the
 // window's 3 px, points 1-3 px off broke the faint shipped frame 56's runs into pieces too short to keep:
@@ -180,7 +180,7 @@ ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s
                                  double offset, bool fittedHere, ProfileBuffers &buffers)
 {
   ProfileWindow window = followWindow(s, offset, -1.0, false, fittedHere);
-  window.luminance = true;
+  window.brightness = true;
   ProfileResult r = measureProfile(I, s, settings, window, buffers);
   r.found = r.found && std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump;
   return r;
@@ -203,7 +203,7 @@ int followBackwards(const vpImage<vpRGBa> &I, const GuidedSettings &settings, co
     if (state[i] != MISSED || state[i + 1] != FOUND || results[i].lines == 0)
       continue;
     ProfileResult back;
-    if (!next.luminance) // a point found on the brightness has no noise of the red score to lend
+    if (!next.brightness) // a point found on the brightness has no noise of the red score to lend
       back = measureProfile(I, samples[i], settings,
                             followWindow(samples[i], next.offset, next.lineNoise(), false, fittedHere), buffers);
     if (!back.found)
@@ -277,7 +277,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
         thresholds.push_back(r.threshold / r.lines);
       }
     }
-    if (!r.found && lastWithPoint == i - 1) { // the followed stripe's colour lost (see ProfileWindow::luminance)
+    if (!r.found && lastWithPoint == i - 1) { // the followed stripe's colour lost (see ProfileWindow::brightness)
       const ProfileResult bright = followOnBrightness(I, s, settings, lastOffset, fittedHere, buffers);
       if (bright.found)
         r = bright;

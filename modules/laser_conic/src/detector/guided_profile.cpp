@@ -63,7 +63,7 @@ void addLine(const unsigned char *first, Stride stride, int n, int saturation, i
 }
 
 // Adds the brightness R + G + B of \e n pixels from \e first, \e stride bytes apart, to \e value, or writes it
-// there when \e overwrite (see ProfileWindow::luminance).
+// there when \e overwrite (see ProfileWindow::brightness).
 template <class Stride> void addBrightness(const unsigned char *first, Stride stride, int n, bool overwrite, int *value)
 {
   for (int k = 0; k < n; ++k) {
@@ -381,7 +381,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   const bool drifted = window.halfWidth > 0.0 && window.preferPrediction && std::fabs(window.centre) > near;
   int readLo = drifted ? std::min(lo, static_cast<int>(std::floor(s.pos - near))) : lo,
       readHi = drifted ? std::max(hi, static_cast<int>(std::ceil(s.pos + near))) : hi;
-  if (window.luminance) { // the whole margin read, for the brightness's noise (see ProfileWindow::luminance)
+  if (window.brightness) { // the whole margin read, for the brightness's noise (see ProfileWindow::brightness)
     readLo = std::min(readLo, static_cast<int>(std::floor(s.pos - s.halfWindow)));
     readHi = std::max(readHi, static_cast<int>(std::ceil(s.pos + s.halfWindow)));
   }
@@ -390,11 +390,11 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
     return result;
   const unsigned char *centreLine = nullptr;
   const int lines =
-      readLines(I, s, start, n, settings.saturation, window.lines / 2, window.luminance, buffers, centreLine);
+      readLines(I, s, start, n, settings.saturation, window.lines / 2, window.brightness, buffers, centreLine);
   if (lines == 0 || centreLine == nullptr)
     return result;
   result.lines = lines;
-  result.luminance = window.luminance;
+  result.brightness = window.brightness;
   MatchedFilter filter(buffers.prefix, h, f);
   double bestResponse = -1e30;
   const int first = std::max(reach, lo - start), last = std::min(n - 1 - reach, hi - start);
