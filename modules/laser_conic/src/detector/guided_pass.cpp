@@ -172,8 +172,9 @@ ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNois
 }
 
 // A follow whose red score found nothing, measured on the brightness (ProfileWindow::brightness) within the
-// follow's window around \e offset: its point is kept only within RidgeTuning::guidedMaxJump of that offset,
-// so that it continues the piece of curve (keepContinuingPieces()) rather than ending it (kept within the
+// follow's window around \e offset, three lines averaged then, where they find nothing, nine (as the red
+// profile of a faint stripe): its point is kept only within RidgeTuning::guidedMaxJump of that offset, so
+// that it continues the piece of curve (keepContinuingPieces()) rather than ending it (kept within the
 // window's 3 px, points 1-3 px off broke the faint shipped frame 56's runs into pieces too short to keep:
 // 0.965 -> 0.952 of its ring at 3 sigma, against 0.973 so).
 ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
@@ -181,8 +182,14 @@ ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s
 {
   ProfileWindow window = followWindow(s, offset, -1.0, false, fittedHere);
   window.brightness = true;
-  ProfileResult r = measureProfile(I, s, settings, window, buffers);
-  r.found = r.found && std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump;
+  ProfileResult r;
+  for (int lines : {RidgeTuning::guidedLines, RidgeTuning::guidedFaintLines}) {
+    window.lines = lines;
+    r = measureProfile(I, s, settings, window, buffers);
+    r.found = r.found && std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump;
+    if (r.found)
+      break;
+  }
   return r;
 }
 
