@@ -115,10 +115,10 @@ struct vpLaserConicDetectorRun
   (a bright stripe), the short profile reads the sample's line alone. Where the three-line profile finds
   nothing, one of nine lines is measured: a faint stripe's response grows as the lines averaged, the
   noise as their square root. Where all of these lose a followed stripe, the 3 px window is searched once
-  more on the brightness R + G + B (its noise measured across the whole margin), and a point within 1 px
-  of the followed one is kept: JPEG stores the colour at half resolution and coarser than the brightness,
-  and beside a colour edge it smears a dim red stripe's dominance into a plateau several pixels wide, while
-  the brightness keeps the stripe's bump. The walk goes one way round the curve: where it loses the stripe
+  more on the brightness R + G + B (three lines, nine where they find nothing; its noise measured across
+  the whole margin), and a point within 1 px of the followed one is kept: JPEG stores the colour at half
+  resolution and coarser than the brightness, and beside a colour edge it smears a dim red stripe's
+  dominance into a plateau several pixels wide, while the brightness keeps the stripe's bump. The walk goes one way round the curve: where it loses the stripe
   and finds it again a few profiles on, the profiles in between are followed back from there.
   Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
