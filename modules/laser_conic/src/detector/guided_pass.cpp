@@ -228,7 +228,8 @@ int followBackwards(const vpImage<vpRGBa> &I, const GuidedSettings &settings, co
 // the samples missed. A sample next to one with a point is first searched within RidgeTuning::guidedFollowMargin
 // of that point's offset, with the noise of the last full profile (see RidgeTuning::guidedFollowMargin); the
 // full margin is searched when that finds nothing, with RidgeTuning::guidedFaintLines lines when three find
-// nothing; then the missed samples before a point found are followed back from it (followBackwards()).
+// nothing, and a followed stripe that all of these lose is searched on its brightness (followOnBrightness());
+// then the missed samples before a point found are followed back from it (followBackwards()).
 // \e noises and \e thresholds: those of the full profiles, per image line. \e fittedHere: the samples'
 // conic was fitted to the points found over the whole image (ProfileWindow::preferPrediction).
 int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const std::vector<GuidedSample> &samples,

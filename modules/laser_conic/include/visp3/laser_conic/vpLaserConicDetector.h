@@ -118,8 +118,9 @@ struct vpLaserConicDetectorRun
   more on the brightness R + G + B (three lines, nine where they find nothing; its noise measured across
   the whole margin), and a point within 1 px of the followed one is kept: JPEG stores the colour at half
   resolution and coarser than the brightness, and beside a colour edge it smears a dim red stripe's
-  dominance into a plateau several pixels wide, while the brightness keeps the stripe's bump. The walk goes one way round the curve: where it loses the stripe
-  and finds it again a few profiles on, the profiles in between are followed back from there.
+  dominance into a plateau several pixels wide, while the brightness keeps the stripe's bump. The walk goes
+  one way round the curve: where it loses the stripe and finds it again a few profiles on, the profiles in
+  between are followed back from there.
   Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
