@@ -163,6 +163,24 @@ SeedMeans overSeeds(const std::string &name, const Settings &s, const std::vecto
   return means;
 }
 
+/*!
+  Share of the ring within \e radius pixels of \e centre (its part at 3 sigma or more, \e truth) that has a point
+  within 1.5 px of the centre line (vpLaserConicSimulator::stripeCoverage()), printed with how many truth samples
+  lie there.
+*/
+double coverageNear(const std::vector<vpLaserConicSimulator::vpTraceTruth> &truth,
+                    const std::vector<vpImagePoint> &points, const vpImagePoint &centre, double radius)
+{
+  std::vector<vpLaserConicSimulator::vpTraceTruth> near;
+  for (const vpLaserConicSimulator::vpTraceTruth &t : truth)
+    if (vpImagePoint::distance(t.point, centre) <= radius)
+      near.push_back(t);
+  const double found = vpLaserConicSimulator::stripeCoverage(near, points, 3.0, 1.5);
+  std::cout << "near " << centre << ": " << near.size() << " truth samples, " << 100.0 * found << " % found"
+            << std::endl;
+  return found;
+}
+
 //! \e count consecutive seeds from \e first.
 std::vector<unsigned int> seedRange(unsigned int first, unsigned int count)
 {
@@ -269,16 +287,8 @@ TEST(LaserConicGuidedSearch, AStripeLostOnAJointIsFollowedBackFromWhereItIsFound
   vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 76);
   const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, fadingMosaic());
   const vpImagePoint joints[] = {vpImagePoint(989.0, 777.0), vpImagePoint(852.0, 470.0)};
-  for (const vpImagePoint &joint : joints) {
-    std::vector<vpLaserConicSimulator::vpTraceTruth> near;
-    for (const vpLaserConicSimulator::vpTraceTruth &t : truth)
-      if (vpImagePoint::distance(t.point, joint) <= 12.0)
-        near.push_back(t);
-    const double found = vpLaserConicSimulator::stripeCoverage(near, points, 3.0, 1.5);
-    std::cout << "near " << joint << ": " << near.size() << " truth samples, " << 100.0 * found << " % found"
-              << std::endl;
-    EXPECT_GE(found, 0.7) << "near " << joint;
-  }
+  for (const vpImagePoint &joint : joints)
+    EXPECT_GE(coverageNear(truth, points, joint, 12.0), 0.7) << "near " << joint;
   expectGuided(q, 0.95, 0.3);
 }
 
@@ -295,13 +305,7 @@ TEST(LaserConicGuidedSearch, AStripeWhoseColourJpegSmearedIsFollowedOnItsBrightn
   std::vector<vpImagePoint> points;
   const GuidedQuality q = runGuided("jpeg_brightness", tiltedGround(), fadingMosaic(), 80, detector, &points);
   vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 80);
-  std::vector<vpLaserConicSimulator::vpTraceTruth> near;
-  for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(6000, fadingMosaic()))
-    if (vpImagePoint::distance(t.point, vpImagePoint(893.0, 515.0)) <= 20.0)
-      near.push_back(t);
-  const double found = vpLaserConicSimulator::stripeCoverage(near, points, 3.0, 1.5);
-  std::cout << "near the joint: " << near.size() << " truth samples, " << 100.0 * found << " % found" << std::endl;
-  EXPECT_GE(found, 0.7);
+  EXPECT_GE(coverageNear(sim.traceTruth(6000, fadingMosaic()), points, vpImagePoint(893.0, 515.0), 20.0), 0.7);
   expectGuided(q, 0.94, 0.3);
 }
 
