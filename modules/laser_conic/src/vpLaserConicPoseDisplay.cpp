@@ -22,31 +22,12 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 
+#include "detector/search_region.h"
 #include "laser_lens.h"
 
 namespace
 {
-//! Real roots of a t^2 + b t + c = 0 (a may be 0); returns how many were written.
-int solveQuadratic(double a, double b, double c, double roots[2])
-{
-  const double scale = std::fabs(a) + std::fabs(b) + std::fabs(c);
-  if (scale == 0.0)
-    return 0;
-  if (std::fabs(a) < 1e-14 * scale) {
-    if (std::fabs(b) < 1e-14 * scale)
-      return 0;
-    roots[0] = -c / b;
-    return 1;
-  }
-  const double disc = b * b - 4.0 * a * c;
-  if (disc < 0.0)
-    return 0;
-  // Stable form: no cancellation between -b and the square root.
-  const double q = -0.5 * (b + (b >= 0.0 ? std::sqrt(disc) : -std::sqrt(disc)));
-  roots[0] = q / a;
-  roots[1] = (q != 0.0) ? c / q : roots[0];
-  return 2;
-}
+using vsp::laser_detector::quadraticRoots; // the detector's, which samples conics on the image lines too
 
 typedef std::vector<std::pair<vpImagePoint, vpImagePoint> > vpSegments;
 
@@ -111,8 +92,8 @@ vpSegments conicSegments(const vpMatrix &C, const vpCameraParameters &cam, doubl
     bool have[2] = {false, false};
     vpImagePoint last[2];
     for (double t = -extent; t <= 2.0 * extent; t += 1.0) {
-      const int n = rows ? solveQuadratic(a, 2.0 * (b * t + d), c * t * t + 2.0 * e * t + f, roots)
-                         : solveQuadratic(c, 2.0 * (b * t + e), a * t * t + 2.0 * d * t + f, roots);
+      const int n = rows ? quadraticRoots(a, 2.0 * (b * t + d), c * t * t + 2.0 * e * t + f, roots)
+                         : quadraticRoots(c, 2.0 * (b * t + e), a * t * t + 2.0 * d * t + f, roots);
       if (n == 2 && roots[0] > roots[1])
         std::swap(roots[0], roots[1]);
       for (int r = 0; r < 2; ++r) {
