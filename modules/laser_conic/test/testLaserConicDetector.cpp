@@ -591,6 +591,15 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
   EXPECT_THROW(byConic.setSearchRegion(sim.tracePoints(10), 0.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(3, 3, 0.0), 20.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(vpMatrix(2, 3, 1.0), 20.0), vpLaserConicException);
+  // A conic without a real point (u^2 + v^2 + 1 = 0), and a circle far outside any image: no band to search.
+  vpMatrix imaginary(3, 3, 0.0), faraway(3, 3, 0.0);
+  imaginary[0][0] = imaginary[1][1] = imaginary[2][2] = 1.0;
+  faraway[0][0] = faraway[1][1] = 1.0; // (u + 1e5)^2 + (v + 1e5)^2 = 100^2
+  faraway[0][2] = faraway[2][0] = faraway[1][2] = faraway[2][1] = 1e5;
+  faraway[2][2] = 2e10 - 1e4;
+  EXPECT_THROW(byConic.setSearchRegion(imaginary, 20.0), vpLaserConicException);
+  EXPECT_THROW(byConic.setSearchRegion(faraway, 20.0), vpLaserConicException);
+  EXPECT_FALSE(byConic.hasSearchRegion());
 }
 
 TEST(LaserConicDetector, SearchRegionIgnoresThePreviousFrames)

@@ -112,24 +112,36 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots)
   double found[2];
   roots.insert(roots.end(), found, found + quadraticRoots(a, b, c, found));
 }
-std::vector<vpImagePoint> sampleConicOnLines(double a, double b, double c, double d, double e, double f, double margin)
+bool sampleConicOnLines(double a, double b, double c, double d, double e, double f, double margin,
+                        std::vector<vpImagePoint> *points)
 {
-  std::vector<vpImagePoint> points;
   std::vector<double> roots;
   const int extent = 16384;
+  bool any = false;
+  // The point (v, u) of a root kept when the root is in range; false once the first point is all the caller
+  // asked for.
+  auto keep = [&](double root, double v, double u) {
+    if (!(root > -margin - 1.0 && root < extent))
+      return true;
+    any = true;
+    if (points == nullptr)
+      return false;
+    points->push_back(vpImagePoint(v, u));
+    return true;
+  };
   for (int t = -static_cast<int>(margin) - 1; t < extent; ++t) {
     roots.clear();
     solveQuadratic(a, 2.0 * (b * t + d), c * t * t + 2.0 * e * t + f, roots); // row v = t: roots in u
     for (double u : roots)
-      if (u > -margin - 1.0 && u < extent)
-        points.push_back(vpImagePoint(t, u));
+      if (!keep(u, t, u))
+        return true;
     roots.clear();
     solveQuadratic(c, 2.0 * (b * t + e), a * t * t + 2.0 * d * t + f, roots); // column u = t: roots in v
     for (double v : roots)
-      if (v > -margin - 1.0 && v < extent)
-        points.push_back(vpImagePoint(v, t));
+      if (!keep(v, v, t))
+        return true;
   }
-  return points;
+  return any;
 }
 
 void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int stripeWidth, int H, int W,

@@ -25,10 +25,12 @@ void solveQuadratic(double a, double b, double c, std::vector<double> &roots);
 
 /*!
   The points of the conic a u^2 + 2 b uv + c v^2 + 2 d u + 2 e v + f = 0 on every row and every column of
-  a large image (16384 pixels, from -margin - 1): the points outside an image are ignored when the region
-  is rasterised.
+  a large image (16384 pixels, from -margin - 1), appended to \e points: the points outside an image are
+  ignored when the region is rasterised. With \e points null, the search stops at the first point. Returns
+  whether the conic has any.
 */
-std::vector<vpImagePoint> sampleConicOnLines(double a, double b, double c, double d, double e, double f, double margin);
+bool sampleConicOnLines(double a, double b, double c, double d, double e, double f, double margin,
+                        std::vector<vpImagePoint> *points);
 
 /*!
   Rasterises the band within \e margin pixels of the points \e region, for an image of H x W pixels and

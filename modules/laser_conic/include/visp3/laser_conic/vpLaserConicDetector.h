@@ -270,8 +270,8 @@ public:
     the vehicle climbs). The conic is one of the image searched: with a
     distorted camera, getImageConic() is that of the undistorted image, so the margin must cover the
     distortion along the trace, or the points of the previous trace serve as the region instead.
-    \exception vpLaserConicException::badValueError when \e C is not a finite 3x3 matrix, is zero, or the
-    margin is not positive and finite.
+    \exception vpLaserConicException::badValueError when \e C is not a finite 3x3 matrix, is zero, has no
+    real point near the image, or the margin is not positive and finite.
   */
   void setSearchRegion(const vpMatrix &C, double margin);
   //! Removes the search region: the whole image is searched.
@@ -281,7 +281,7 @@ public:
     m_regionIsConic = false;
   }
   //! True when a search region is set.
-  bool hasSearchRegion() const { return !m_region.empty(); }
+  bool hasSearchRegion() const { return m_regionIsConic || !m_region.empty(); }
 
   /*!
     Ridge method: runs the second pass guided by the conic of the first pass's points (see the class
@@ -400,7 +400,9 @@ private:
   unsigned int m_maxStripeWidth, m_saturationLevel, m_step;
   vpInstructionSet m_instructions;
   int m_maxHueLow, m_minHueHigh, m_minSaturation, m_minValue;
-  std::vector<vpImagePoint> m_region; //!< sampled search region (empty: whole image)
+  //! The search region's points (with m_regionIsConic, the conic's, sampled when the band is first searched;
+  //! empty without either: the whole image)
+  std::vector<vpImagePoint> m_region;
   double m_regionMargin;
   unsigned int m_regionGeneration; //!< changes with the region or the stripe width: the rasterisation is then redone
   mutable vpLaserConicImageMember<unsigned char> m_mask; //!< drawn from m_runs by getMask() when m_maskDirty
