@@ -230,11 +230,12 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
     std::vector<Eigen::Vector4d> truths;
     renderFrames(rig, seed + 7, 6, floors[f].second, images, truths);
     std::vector<vpLaserConicDetector> detectors(images.size());
+    std::vector<vpMatrix> conics(images.size(), vpMatrix(3, 3, 0.0)); // zeros: no plane, the whole frame
     vpLaserConicPose estimator = makeEstimator(rig);
     for (size_t i = 0; i < images.size() && tracking; ++i) {
       vpPlane plane;
       if (estimator.computePlane(detectors[i].detect(images[i]), vpLaserConicPose::GP3, plane))
-        detectors[i].setSearchRegion(estimator.getImageConic(), 20.0);
+        conics[i] = estimator.getImageConic();
     }
     int good = 0;
     size_t detected = 0;
@@ -243,6 +244,8 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
       // oneFrame: the first frame over and over, its profiles' pixels then stay in cache (the time without the
       // waits for memory that the frames in turn have).
       const size_t i = oneFrame ? 0 : static_cast<size_t>(k) % images.size();
+      if (conics[i].frobeniusNorm() > 0.0) // tracking: the previous conic set every frame, as a tracking loop does
+        detectors[i].setSearchRegion(conics[i], 20.0);
       const std::vector<vpImagePoint> trace = detectors[i].detect(images[i]);
       detected += trace.size();
       vpPlane plane;
@@ -397,7 +400,8 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
                "thread; success = GP-3 altitude error < 1 cm and attitude error < 1 deg. ROI: search region of "
                "20 px around the trace detected in the same frame (as from the previous frame of a sequence). "
                "Previous conic: the image conic of the frame's GP-3 estimate as the search region, searched by "
-               "the guided pass alone (tracking). Detection includes the conic-guided second pass (default).";
+               "the guided pass alone (tracking); each frame sets it (setSearchRegion), as a tracking loop does. "
+               "Detection includes the conic-guided second pass (default).";
   frame.ratioHeader = "Ratio to cvtColor";
 #ifdef VSP_HAVE_LASER_CONIC
   double worstWhole = 0.0, worstTracking = 0.0, cvtDark = -1.0;
@@ -454,25 +458,34 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
     // Tracking: the image conic of the frame's GP-3 estimate (as the previous frame's) is the prediction of
     // the guided pass, every line or every 3rd.
     std::vector<vpLaserConicDetector> tracked(images.size()), trackedSparse(images.size());
+    // 3x3 zeros where GP-3 found no plane (ViSP 3.5 copies an empty vpMatrix from a null pointer).
+    std::vector<vpMatrix> conics(images.size(), vpMatrix(3, 3, 0.0));
     for (int i = 0; i < nImages; ++i) {
       vpPlane plane;
       try {
-        if (!traces[i].empty() && estimator.computePlane(traces[i], vpLaserConicPose::GP3, plane)) {
-          tracked[i].setSearchRegion(estimator.getImageConic(), 20.0);
-          trackedSparse[i].setSearchRegion(estimator.getImageConic(), 20.0);
-          trackedSparse[i].setTrackingStep(3);
-        }
+        if (!traces[i].empty() && estimator.computePlane(traces[i], vpLaserConicPose::GP3, plane))
+          conics[i] = estimator.getImageConic();
       } catch (const vpException &) {
       }
+      trackedSparse[i].setTrackingStep(3);
     }
-    const double trackNs = vspBench::medianNsPerCall([&](int i) { whole(tracked[i], i); }, nImages, 9, 0.5);
-    const double trackSparseNs = vspBench::medianNsPerCall([&](int i) { whole(trackedSparse[i], i); }, nImages, 9, 0.5);
+    // A tracked frame: the previous conic set as the search region, as a tracking loop does every frame.
+    auto predicted = [&](vpLaserConicDetector &d, int i) -> vpLaserConicDetector & {
+      if (conics[i].frobeniusNorm() > 0.0)
+        d.setSearchRegion(conics[i], 20.0);
+      return d;
+    };
+    const double trackNs =
+        vspBench::medianNsPerCall([&](int i) { whole(predicted(tracked[i], i), i); }, nImages, 9, 0.5);
+    const double trackSparseNs =
+        vspBench::medianNsPerCall([&](int i) { whole(predicted(trackedSparse[i], i), i); }, nImages, 9, 0.5);
     // The tracking rows' two stages apart: the guided pass alone, and GP-3 alone on the points it returns.
     std::vector<std::vector<vpImagePoint> > trackedPoints(images.size());
     for (int i = 0; i < nImages; ++i)
-      trackedPoints[i] = tracked[i].detect(images[i]);
+      trackedPoints[i] = predicted(tracked[i], i).detect(images[i]);
     const double trackDetectNs = vspBench::medianNsPerCall(
-        [&](int i) { vspBench::consume(static_cast<double>(tracked[i].detect(images[i]).size())); }, nImages, 9, 0.5);
+        [&](int i) { vspBench::consume(static_cast<double>(predicted(tracked[i], i).detect(images[i]).size())); },
+        nImages, 9, 0.5);
     const double trackGp3Ns = vspBench::medianNsPerCall(
         [&](int i) {
           vpPlane plane;
