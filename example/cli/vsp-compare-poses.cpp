@@ -57,9 +57,7 @@ void summarize(const std::string &name, const std::vector<double> &v, double sca
             << ", max " << maxValue * scale << " " << unit << std::endl;
 }
 
-} // namespace
-
-int main(int argc, char **argv)
+int run(int argc, char **argv)
 {
   std::string estimateFile, truthFile, error;
   double maxTranslation = -1.0, maxRotationDeg = -1.0;
@@ -152,3 +150,6 @@ int main(int argc, char **argv)
   }
   return pass ? EXIT_SUCCESS : EXIT_FAILURE;
 }
+} // namespace
+
+int main(int argc, char **argv) { return vpCommandLine::runGuarded(run, argc, argv); }

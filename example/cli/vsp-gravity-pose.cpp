@@ -298,9 +298,7 @@ void printSequenceDiagnosis(const std::vector<vpPoseRow> &poses,
             << " frames fail the gravity checks (the gravity does not fit the points): " << advice
             << "; the poses of the other frames use the same gravity: do not trust them" << std::endl;
 }
-} // namespace
-
-int main(int argc, char **argv)
+int run(int argc, char **argv)
 {
   Options options;
   vpCommandLine cli = commandLine(options);
@@ -357,3 +355,6 @@ int main(int argc, char **argv)
   printSequenceDiagnosis(poses, mistakes, options, argv[0]);
   return EXIT_SUCCESS;
 }
+} // namespace
+
+int main(int argc, char **argv) { return vpCommandLine::runGuarded(run, argc, argv); }

@@ -528,7 +528,7 @@ std::string vpPoseGravity::getStatusMessage(vpPoseGravityStatus status)
     return "the measurements admit no pose (check the gravity vectors: down, in the sensor frame, after the "
            "IMU-to-sensor rotation)";
   case STATUS_NO_CONSENSUS:
-    return "RANSAC found no model with more inliers than the minimum consensus and than chance explains";
+    return "RANSAC found no model with at least the minimum consensus of inliers and more than chance explains";
   case STATUS_REFINEMENT_FAILED:
     return "the refinement gave no usable solution or put a point behind the camera; the pose was left unchanged";
   case STATUS_INCONSISTENT_GRAVITY:

@@ -52,7 +52,7 @@ void expectRoots(const std::vector<double> &k, const std::vector<std::complex<do
 // Simple roots of random quartics, cubics and quadratics (real and complex pairs, leading coefficients
 // from 1e-3 to 1e3): well separated simple roots of moderate size are found to about 1e-14; 1e-9 leaves
 // room for the conditioning of the random draws.
-TEST(PolynomialRoots, RandomPolynomialsOfKnownRoots)
+TEST(RobustPolynomialRoots, RandomPolynomialsOfKnownRoots)
 {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> value(-3.0, 3.0), logLead(-3.0, 3.0);
@@ -80,7 +80,7 @@ TEST(PolynomialRoots, RandomPolynomialsOfKnownRoots)
 }
 
 // A leading coefficient at 1e-16 of the others is dropped: the quartic is solved as its cubic.
-TEST(PolynomialRoots, NegligibleLeadingCoefficientLowersTheDegree)
+TEST(RobustPolynomialRoots, NegligibleLeadingCoefficientLowersTheDegree)
 {
   std::vector<double> k = fromRoots({1.0, -2.0, 0.5}, 2.0);
   k[4] = 1e-16;
@@ -89,7 +89,7 @@ TEST(PolynomialRoots, NegligibleLeadingCoefficientLowersTheDegree)
 }
 
 // Roots of very different sizes (the start circle is set by the largest) and a root at zero.
-TEST(PolynomialRoots, RootsOfDifferentScalesAndZero)
+TEST(RobustPolynomialRoots, RootsOfDifferentScalesAndZero)
 {
   expectRoots(fromRoots({1e-4, -1.0, 1e3, 30.0}, 1.0), {1e-4, -1.0, 1e3, 30.0}, 1e-10);
   expectRoots(fromRoots({0.0, 2.0, std::complex<double>(-1.0, 3.0), std::complex<double>(-1.0, -3.0)}, -0.5),
@@ -97,9 +97,12 @@ TEST(PolynomialRoots, RootsOfDifferentScalesAndZero)
 }
 
 // A double root splits into two roots about sqrt(eps) apart: each within 1e-7 of it.
-TEST(PolynomialRoots, DoubleRoot) { expectRoots(fromRoots({0.7, 0.7, -1.0, 2.0}, 1.0), {0.7, 0.7, -1.0, 2.0}, 1e-7); }
+TEST(RobustPolynomialRoots, DoubleRoot)
+{
+  expectRoots(fromRoots({0.7, 0.7, -1.0, 2.0}, 1.0), {0.7, 0.7, -1.0, 2.0}, 1e-7);
+}
 
-TEST(PolynomialRoots, RefusesConstantZeroAndNonFinitePolynomials)
+TEST(RobustPolynomialRoots, RefusesConstantZeroAndNonFinitePolynomials)
 {
   std::complex<double> roots[4];
   const double zero[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, constant[5] = {2.0, 0.0, 0.0, 0.0, 0.0};

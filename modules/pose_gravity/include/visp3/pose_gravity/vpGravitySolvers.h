@@ -134,7 +134,7 @@ VISP_EXPORT bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, c
   (\f$ \mathbf{P} = \mathbf{R}\mathbf{X}_i + \mathbf{t} \f$) are linear in
   \f$ (\cos\alpha, \sin\alpha, \mathbf{t}, 1) \f$; \f$ \mathbf{t} \f$ is eliminated (Schur
   complement) and the remaining quadratic form is minimised on the unit circle exactly: its
-  stationary points are the roots of a quartic in \f$ \tan(\phi/2) \f$ (companion matrix), polished
+  stationary points are the roots of a quartic in \f$ \tan(\phi/2) \f$ (vpPolynomialRoots()), polished
   by Newton steps. Only its minima (positive second derivative, at most two) are candidates, ranked by
   the sum of squared reprojection errors of their poses (infinite with a point behind the camera):
   the algebraic cost itself favours poses squeezed towards the camera, so that with an outlier its

@@ -50,12 +50,15 @@
   - computePoseCandidates(): the (up to) two P2P poses from the first two points.
   - computePose(P3P, cMo): first three points; LEAST_SQUARES: all points; RANSAC: 2-point samples,
     setRansacThreshold(), setRansacNbInliersToReachConsensus(), getRansacInliers().
-  - Every method checks its result: every used point in front of the camera and the points not
-    needed by the minimal solve reprojected within setConsistencyThreshold(). An inconsistent result
-    returns false with STATUS_GRAVITY_SIGN_REVERSED (the data fit with one gravity reversed: a
-    specific force passed as gravity), STATUS_GRAVITY_SWAPPED (the data fit with the camera and
-    object gravity exchanged), STATUS_INCONSISTENT_GRAVITY (wrong IMU-to-camera rotation,
-    IMU in motion, mismatched points) or STATUS_BEHIND_CAMERA.
+  - Every method checks its result (details in computePose()): P3P its three points in front of the
+    camera and the third one reprojected within setConsistencyThreshold(); LEAST_SQUARES every point
+    in front and the median reprojection error within it; RANSAC a consensus larger than chance
+    explains. An inconsistent result returns false with STATUS_GRAVITY_SIGN_REVERSED (the data fit
+    with one gravity reversed: a specific force passed as gravity), STATUS_GRAVITY_SWAPPED (the data
+    fit with the camera and object gravity exchanged), STATUS_INCONSISTENT_GRAVITY (wrong
+    IMU-to-camera rotation, IMU in motion, mismatched points) or STATUS_BEHIND_CAMERA; RANSAC without a consensus returns
+    false with STATUS_NO_CONSENSUS, getSuspectedMistake() naming the reversed or exchanged gravity
+    under which one exists.
   - refinePose(): Ceres maximum likelihood, optional robust loss (setRefineLoss()), gravity priors
     (setCameraGravityStdDev(), setObjectGravityStdDev()); setCovarianceComputation() /
     getCovarianceMatrix() as in vpPose.
@@ -93,7 +96,7 @@ public:
     STATUS_COINCIDENT_IMAGE_POINTS, //!< Lemma 1, second case: both image points on one ray not parallel to gravity; rotation unique, translation only up to the ray.
     STATUS_VERTICAL_RAY, //!< Lemma 1, third case: both image points on one ray parallel to gravity; infinitely many poses. Also reported when the yaw is unobservable from the pair for another reason (vertical object segment, both rays horizontal).
     STATUS_NO_SOLUTION,  //!< the measurements admit no pose (e.g. too inconsistent for the trigonometric equation).
-    STATUS_NO_CONSENSUS, //!< RANSAC found no model whose inliers are more than setRansacNbInliersToReachConsensus() and than chance explains.
+    STATUS_NO_CONSENSUS, //!< RANSAC found no model with at least setRansacNbInliersToReachConsensus() inliers and more than chance explains (getSuspectedMistake() tells whether the gravity reversed or exchanged has one).
     STATUS_REFINEMENT_FAILED, //!< refinePose() did not converge or moved a point behind the camera; the input pose was left unchanged.
     STATUS_INCONSISTENT_GRAVITY, //!< the best pose leaves points beyond setConsistencyThreshold(): wrong IMU-to-camera rotation, IMU in motion, wrong matches or outliers (use RANSAC).
     STATUS_GRAVITY_SIGN_REVERSED, //!< the points fit a pose only with one of the two gravity vectors reversed: an accelerometer reading (specific force, pointing up) was passed as gravity (which points down).
@@ -264,8 +267,8 @@ public:
     Significance of the RANSAC consensus against chance, default 0.01: a model is accepted only if
     the probability that this many points agree with the best of the models tried by chance alone
     is below it. An outlier falls within the threshold \f$ \tau \f$ of a prediction with probability
-    \f$ p = \pi\tau^2 / A \f$ (A: area of the bounding box of the image points); with m models scored
-    on n points the consensus k must satisfy \f$ m\, P(\mathrm{Bin}(n-2, p) \ge k-2) < \f$ significance.
+    \f$ p = \pi\tau^2 / A \f$ (A: area of the bounding box of the image points grown by
+    \f$ \tau \f$ on each side); with m models scored on n points the consensus k must satisfy \f$ m\, P(\mathrm{Bin}(n-2, p) \ge k-2) < \f$ significance.
     1 disables the test. Throws badParameterError unless in (0, 1].
   */
   void setRansacSignificance(double alpha);
