@@ -9,7 +9,7 @@
   altitude, roll and pitch.
 
   \verbatim
-  vsp-laser-altimeter --camera camera.xml [--camera-name Camera] --laser laser.txt
+  vsp-laser-altimeter --camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt
                       (--images DIR | --list images.txt) --output results.csv
                       [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]
                       [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
@@ -83,7 +83,7 @@ vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
 vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
 {
   vpCommandLine cli(
-      "--camera camera.xml [--camera-name Camera] --laser laser.txt\n"
+      "--camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt\n"
       "          (--images DIR | --list images.txt) --output results.csv\n"
       "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
       "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
@@ -96,7 +96,9 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
   cli.addString("--camera-name", options.cameraName, "NAME", "camera name in that file (default Camera)");
-  cli.addString("--laser", options.laser, "FILE", "laser calibration: 'opening_angle_deg A' then 'cMl' and its 4 rows");
+  cli.addString("--laser", options.laser, "FILE",
+                "laser calibration: the YAML of vsp-laser-calibrate, or text 'opening_angle_deg A' then 'cMl' and its "
+                "4 rows");
   cli.addString("--images", options.imagesDir, "DIR",
                 "folder of images (.png .jpg .jpeg .ppm .pgm), processed in name order");
   cli.addString("--list", options.listFile, "FILE",

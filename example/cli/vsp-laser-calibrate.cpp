@@ -75,7 +75,8 @@ vpCommandLine commandLine(Options &o)
                     "          [--report FILE] [--figure FILE.png] [--robust-scale PX | --no-robust] "
                     "[--max-reprojection PX]\n"
                     "          [--corner-clearance PX]",
-                    "Laser/camera calibration from images of a chessboard with the laser trace on it.");
+                    "Laser/camera calibration from images of a chessboard with the laser trace on it (--from-sequence: "
+                    "self-calibration from ordinary frames of the ground; --from-sequence --help lists its options).");
   cli.addString("--camera", o.camera, "FILE", "intrinsics in vpXmlParserCamera format (with distortion if it has it)");
   cli.addString("--camera-name", o.cameraName, "NAME", "camera name in that file (default Camera)");
   cli.addString("--images", o.imagesDir, "DIR", "folder of images (.png .jpg .jpeg .ppm .pgm), in name order");
