@@ -13,7 +13,7 @@
 #
 # Steps: adds a deb-src entry mirroring the Debian deb entry of apt's sources (deb822 or one-line
 # format), `apt-get update`, `apt-get source visp`, installs the build dependencies that are missing,
-# configures ViSP with only core, vision, io and robot plus our modules
+# configures ViSP with only core, vision, io, robot, visual_features and vs plus our modules
 # (-DVISP_CONTRIB_MODULES_PATH=<repo>/modules; no ViSP demos, examples, tutorials or apps), builds our
 # three libraries and their test executables only, and runs those tests. Needs root for apt (or sudo).
 set -euo pipefail
@@ -84,7 +84,7 @@ fi
 log "ViSP source: $src_dir"
 
 # --- 2. Build dependencies that are missing -----------------------------------------------------
-# What the minimal ViSP (core, vision, io, robot) and our modules need; the rest of ViSP's build
+# What the minimal ViSP (core, vision, io, robot, visual_features, vs) and our modules need; the rest of ViSP's build
 # dependencies (Debian's debian/control) is not required for these modules.
 needed=(build-essential cmake pkg-config libeigen3-dev liblapack-dev libblas-dev libpng-dev libjpeg-dev
         zlib1g-dev libopencv-dev libceres-dev libgtest-dev)
@@ -103,7 +103,8 @@ fi
 
 # --- 3. Configure a minimal ViSP with our modules -----------------------------------------------
 build="$work/build"
-off_modules=(ar blob detection gui imgproc klt mbt me sensor tt tt_mi visual_features vs java_bindings_generator)
+# laser_conic needs visual_features (vpFeatureLaserPlane is a vpBasicFeature) and its tests vs (vpServo).
+off_modules=(ar blob detection gui imgproc klt mbt me sensor tt tt_mi java_bindings_generator)
 module_flags=()
 for m in "${off_modules[@]}"; do module_flags+=("-DBUILD_MODULE_visp_$m=OFF"); done
 log "configuring ViSP in $build"
@@ -129,8 +130,9 @@ done
 if [ "$run_tests" -eq 1 ]; then targets+=("${test_names[@]}"); fi
 t_build=$(date +%s)
 # ViSP's own libraries first, so that a failure in our modules leaves them built for the next run.
-log "building ViSP's visp_core visp_vision visp_io visp_robot (nice -n 19, -j$jobs)"
-nice -n 19 cmake --build "$build" -j "$jobs" --target visp_core visp_vision visp_io visp_robot >"$work/build-visp.log" 2>&1 ||
+visp_targets=(visp_core visp_vision visp_io visp_robot visp_visual_features visp_vs)
+log "building ViSP's ${visp_targets[*]} (nice -n 19, -j$jobs)"
+nice -n 19 cmake --build "$build" -j "$jobs" --target "${visp_targets[@]}" >"$work/build-visp.log" 2>&1 ||
   { grep -E "error|Error" "$work/build-visp.log" | head -n 40; echo "build_as_visp_contrib.sh: ViSP build failed, see $work/build-visp.log" >&2; exit 1; }
 t_visp=$(date +%s)
 log "ViSP libraries built in $((t_visp - t_build)) s"
