@@ -209,6 +209,21 @@ std::vector<std::pair<std::string, vpLaserConicSimulator::vpRenderSettings> > be
   mosaic.laserPower = 200.0;
   return {{"dark floor", dark}, {"bright grey floor", grey}, {"colourful floor", mosaic}};
 }
+
+//! Margin of the search regions of the ROI and tracking rows (pixels around the predicted trace).
+constexpr double kRegionMargin = 20.0;
+
+/*!
+  \e detector with the previous frame's image conic as its search region, set before every frame as a
+  tracking loop does. A zero matrix stands for a frame where GP-3 found no plane (zeros rather than an
+  empty vpMatrix, which ViSP 3.5 copies from a null pointer) and leaves the whole frame searched.
+*/
+vpLaserConicDetector &withPreviousConic(vpLaserConicDetector &detector, const vpMatrix &conic)
+{
+  if (conic.frobeniusNorm() > 0.0)
+    detector.setSearchRegion(conic, kRegionMargin);
+  return detector;
+}
 #endif
 
 constexpr auto row = benchRow; // the shared builder of benchTable.h
@@ -230,7 +245,7 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
     std::vector<Eigen::Vector4d> truths;
     renderFrames(rig, seed + 7, 6, floors[f].second, images, truths);
     std::vector<vpLaserConicDetector> detectors(images.size());
-    std::vector<vpMatrix> conics(images.size(), vpMatrix(3, 3, 0.0)); // zeros: no plane, the whole frame
+    std::vector<vpMatrix> conics(images.size(), vpMatrix(3, 3, 0.0)); // see withPreviousConic()
     vpLaserConicPose estimator = makeEstimator(rig);
     for (size_t i = 0; i < images.size() && tracking; ++i) {
       vpPlane plane;
@@ -244,9 +259,7 @@ int runLaserProfileLoop(const std::string &methodName, double outlierRatio, int 
       // oneFrame: the first frame over and over, its profiles' pixels then stay in cache (the time without the
       // waits for memory that the frames in turn have).
       const size_t i = oneFrame ? 0 : static_cast<size_t>(k) % images.size();
-      if (conics[i].frobeniusNorm() > 0.0) // tracking: the previous conic set every frame, as a tracking loop does
-        detectors[i].setSearchRegion(conics[i], 20.0);
-      const std::vector<vpImagePoint> trace = detectors[i].detect(images[i]);
+      const std::vector<vpImagePoint> trace = withPreviousConic(detectors[i], conics[i]).detect(images[i]);
       detected += trace.size();
       vpPlane plane;
       try {
@@ -453,13 +466,12 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
     std::vector<vpLaserConicDetector> roi(images.size());
     for (int i = 0; i < nImages; ++i)
       if (!traces[i].empty())
-        roi[i].setSearchRegion(traces[i], 20.0);
+        roi[i].setSearchRegion(traces[i], kRegionMargin);
     const double roiNs = vspBench::medianNsPerCall([&](int i) { whole(roi[i], i); }, nImages, 9, 0.5);
     // Tracking: the image conic of the frame's GP-3 estimate (as the previous frame's) is the prediction of
     // the guided pass, every line or every 3rd.
     std::vector<vpLaserConicDetector> tracked(images.size()), trackedSparse(images.size());
-    // 3x3 zeros where GP-3 found no plane (ViSP 3.5 copies an empty vpMatrix from a null pointer).
-    std::vector<vpMatrix> conics(images.size(), vpMatrix(3, 3, 0.0));
+    std::vector<vpMatrix> conics(images.size(), vpMatrix(3, 3, 0.0)); // see withPreviousConic()
     for (int i = 0; i < nImages; ++i) {
       vpPlane plane;
       try {
@@ -471,9 +483,7 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
     }
     // A tracked frame: the previous conic set as the search region, as a tracking loop does every frame.
     auto predicted = [&](vpLaserConicDetector &d, int i) -> vpLaserConicDetector & {
-      if (conics[i].frobeniusNorm() > 0.0)
-        d.setSearchRegion(conics[i], 20.0);
-      return d;
+      return withPreviousConic(d, conics[i]);
     };
     const double trackNs =
         vspBench::medianNsPerCall([&](int i) { whole(predicted(tracked[i], i), i); }, nImages, 9, 0.5);
