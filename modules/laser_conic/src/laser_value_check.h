@@ -5,8 +5,8 @@
 /*!
   \file laser_value_check.h
   \brief Private checks of the values the laser_conic setters take: a vpLaserConicException
-  (badValueError unless said otherwise) with the caller's message when the value is refused, so that a check is written once (the settings of
-  vpLaserConicPose and of the two calibration classes).
+  (badValueError unless said otherwise) with the caller's message when the value is refused, so that a
+  check is written once (the settings of vpLaserConicPose and of the two calibration classes).
 */
 #ifndef VP_LASER_VALUE_CHECK_H
 #define VP_LASER_VALUE_CHECK_H

@@ -352,8 +352,9 @@ public:
   std::vector<vpImagePoint> detect(const vpImage<vpRGBa> &I);
   /*!
     Diagnostic mask of the last detection, the size of the image (ridge method: 255 on the accepted stripe
-    runs of the first pass, 170 on those of the guided pass, 100 on the rejected candidate runs, 0 elsewhere; HSV method: 255 on the thresholded pixels). Drawn
-    on the first call after a detection (the detection itself does not pay for it).
+    runs of the first pass, 170 on those of the guided pass, 100 on the rejected candidate runs, 0
+    elsewhere; HSV method: 255 on the thresholded pixels). Drawn on the first call after a detection (the
+    detection itself does not pay for it).
   */
   const vpImage<unsigned char> &getMask() const;
   //! Contrast threshold T used by the last ridge detection, grey levels.

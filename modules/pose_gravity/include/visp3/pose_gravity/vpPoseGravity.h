@@ -56,9 +56,9 @@
     explains. An inconsistent result returns false with STATUS_GRAVITY_SIGN_REVERSED (the data fit
     with one gravity reversed: a specific force passed as gravity), STATUS_GRAVITY_SWAPPED (the data
     fit with the camera and object gravity exchanged), STATUS_INCONSISTENT_GRAVITY (wrong
-    IMU-to-camera rotation, IMU in motion, mismatched points) or STATUS_BEHIND_CAMERA; RANSAC without a consensus returns
-    false with STATUS_NO_CONSENSUS, getSuspectedMistake() naming the reversed or exchanged gravity
-    under which one exists.
+    IMU-to-camera rotation, IMU in motion, mismatched points) or STATUS_BEHIND_CAMERA; RANSAC
+    without a consensus returns false with STATUS_NO_CONSENSUS, getSuspectedMistake() naming the
+    reversed or exchanged gravity under which one exists.
   - refinePose(): Ceres maximum likelihood, optional robust loss (setRefineLoss()), gravity priors
     (setCameraGravityStdDev(), setObjectGravityStdDev()); setCovarianceComputation() /
     getCovarianceMatrix() as in vpPose.
@@ -268,7 +268,8 @@ public:
     the probability that this many points agree with the best of the models tried by chance alone
     is below it. An outlier falls within the threshold \f$ \tau \f$ of a prediction with probability
     \f$ p = \pi\tau^2 / A \f$ (A: area of the bounding box of the image points grown by
-    \f$ \tau \f$ on each side); with m models scored on n points the consensus k must satisfy \f$ m\, P(\mathrm{Bin}(n-2, p) \ge k-2) < \f$ significance.
+    \f$ \tau \f$ on each side); with m models scored on n points the consensus k must satisfy
+    \f$ m\, P(\mathrm{Bin}(n-2, p) \ge k-2) < \f$ significance.
     1 disables the test. Throws badParameterError unless in (0, 1].
   */
   void setRansacSignificance(double alpha);
