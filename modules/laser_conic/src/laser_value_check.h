@@ -6,14 +6,17 @@
   \file laser_value_check.h
   \brief Private checks of the values the laser_conic setters take: a vpLaserConicException
   (badValueError unless said otherwise) with the caller's message when the value is refused, so that a
-  check is written once (the settings of vpLaserConicPose and of the two calibration classes).
+  check is written once (the settings of vpLaserConicPose and of the calibration classes, the camera of
+  every class that takes one).
 */
 #ifndef VP_LASER_VALUE_CHECK_H
 #define VP_LASER_VALUE_CHECK_H
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
+#include <visp3/core/vpCameraParameters.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
 namespace vsp::laser_value_check
@@ -38,6 +41,38 @@ inline void requireNonNegative(double value, const char *message)
 {
   if (!std::isfinite(value) || value < 0.0)
     throw vpLaserConicException(vpLaserConicException::badValueError, message);
+}
+/*!
+  Throws vpLaserConicException::badLaserError, the message beginning with \e who and giving the value, unless
+  \e openingAngle, the cone's full opening angle, is finite and in (0, pi) radians.
+*/
+inline void requireOpeningAngle(double openingAngle, const std::string &who)
+{
+  if (std::isfinite(openingAngle) && openingAngle > 0.0 && openingAngle < M_PI)
+    return;
+  std::ostringstream message;
+  message << who << ": the laser's full opening angle " << openingAngle << " rad is not in (0, pi)";
+  throw vpLaserConicException(vpLaserConicException::badLaserError, message.str());
+}
+
+/*!
+  Throws vpLaserConicException::badCameraError, the message beginning with \e who, unless \e cam can be used
+  by the laser classes: px, py, u0, v0, kud and kdu finite, px and py positive, one of the two perspective
+  models (the laser classes convert pixels with kdu and project with kud; the Kannala-Brandt model is not
+  one they apply). The same check for every class, so that no class computes silently with a camera another
+  refuses.
+*/
+inline void requireUsableCamera(const vpCameraParameters &cam, const std::string &who)
+{
+  const double values[6] = {cam.get_px(), cam.get_py(), cam.get_u0(), cam.get_v0(), cam.get_kud(), cam.get_kdu()};
+  for (double v : values)
+    require(std::isfinite(v), who + ": camera parameters must be finite", vpLaserConicException::badCameraError);
+  require(cam.get_px() > 0.0 && cam.get_py() > 0.0, who + ": focal lengths px and py must be positive",
+          vpLaserConicException::badCameraError);
+  require(cam.get_projModel() == vpCameraParameters::perspectiveProjWithoutDistortion ||
+              cam.get_projModel() == vpCameraParameters::perspectiveProjWithDistortion,
+          who + ": only the perspective projection models (with or without distortion) are supported",
+          vpLaserConicException::badCameraError);
 }
 } // namespace vsp::laser_value_check
 

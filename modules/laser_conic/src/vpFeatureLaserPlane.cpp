@@ -11,6 +11,10 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
+#include "laser_value_check.h"
+
+using vsp::laser_value_check::require;
+
 vpFeatureLaserPlane::vpFeatureLaserPlane() : m_gz(1.0) { init(); }
 
 void vpFeatureLaserPlane::init()
@@ -35,9 +39,8 @@ void vpFeatureLaserPlane::set(double h, double gx, double gy, double gz)
 
 void vpFeatureLaserPlane::buildFrom(double altitude, double roll, double pitch)
 {
-  if (!std::isfinite(altitude) || !std::isfinite(roll) || !std::isfinite(pitch) || !(altitude > 0.0))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpFeatureLaserPlane::buildFrom: altitude must be finite and > 0, angles finite");
+  require(std::isfinite(altitude) && std::isfinite(roll) && std::isfinite(pitch) && altitude > 0.0,
+          "vpFeatureLaserPlane::buildFrom: altitude must be finite and > 0, angles finite");
   const double cp = std::cos(pitch);
   set(altitude, std::sin(pitch), -std::sin(roll) * cp, std::cos(roll) * cp);
 }
@@ -46,9 +49,8 @@ void vpFeatureLaserPlane::buildFrom(const vpPlane &cPlane)
 {
   const double a = cPlane.getA(), b = cPlane.getB(), c = cPlane.getC(), d = cPlane.getD();
   const double norm = std::sqrt(a * a + b * b + c * c);
-  if (!(norm > 0.0) || !std::isfinite(norm) || !std::isfinite(d) || d == 0.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError, "vpFeatureLaserPlane::buildFrom: the plane needs "
-                                                                      "a non-zero normal and the camera off it");
+  require(norm > 0.0 && std::isfinite(norm) && std::isfinite(d) && d != 0.0,
+          "vpFeatureLaserPlane::buildFrom: the plane needs a non-zero normal and the camera off it");
   // Plane a x + b y + c z + d = 0: the camera centre is on the side of sign(d); the downward normal
   // points from the camera to the plane.
   const double sign = d > 0.0 ? -1.0 : 1.0;

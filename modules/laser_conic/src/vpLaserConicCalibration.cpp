@@ -32,19 +32,14 @@ vpLaserConicCalibration::vpLaserConicCalibration()
 
 void vpLaserConicCalibration::setCameraParameters(const vpCameraParameters &cam)
 {
-  if (!(cam.get_px() > 0) || !(cam.get_py() > 0) || !std::isfinite(cam.get_px()) || !std::isfinite(cam.get_py()) ||
-      !std::isfinite(cam.get_u0()) || !std::isfinite(cam.get_v0()))
-    throw vpLaserConicException(vpLaserConicException::badCameraError,
-                                "vpLaserConicCalibration: focal lengths must be positive and finite");
+  vsp::laser_value_check::requireUsableCamera(cam, "vpLaserConicCalibration");
   m_cam = cam;
   m_hasCam = true;
 }
 
 void vpLaserConicCalibration::setOpeningAngle(double openingAngle)
 {
-  if (!std::isfinite(openingAngle) || openingAngle <= 0.0 || openingAngle >= M_PI)
-    throw vpLaserConicException(vpLaserConicException::badLaserError,
-                                "vpLaserConicCalibration: the opening angle must be in (0, pi) radians");
+  vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicCalibration");
   m_openingAngle = openingAngle;
   m_openingAngleEstimate = openingAngle;
 }
@@ -81,9 +76,9 @@ void vpLaserConicCalibration::setMaxConditionNumber(double maxCondition)
 
 void vpLaserConicCalibration::setInitialGuess(const vpHomogeneousMatrix &cMl)
 {
-  if (!vsp::laser_pose_check::isFinitePose(cMl))
-    throw vpLaserConicException(vpLaserConicException::badLaserError,
-                                "vpLaserConicCalibration: the initial guess is not a finite rigid transformation");
+  vsp::laser_value_check::require(vsp::laser_pose_check::isFinitePose(cMl),
+                                  "vpLaserConicCalibration: the initial guess is not a finite rigid transformation",
+                                  vpLaserConicException::badLaserError);
   m_guess = cMl;
   m_hasGuess = true;
 }

@@ -12,13 +12,14 @@
 #include "detector/guided_pass.h"
 #include "detector/laser_detector.h"
 #include "detector/search_region.h"
+#include "laser_value_check.h"
 
 namespace
 {
+//! The settings' check: every message begins with the class's name.
 void check(bool ok, const char *message)
 {
-  if (!ok)
-    throw vpLaserConicException(vpLaserConicException::badValueError, std::string("vpLaserConicDetector: ") + message);
+  vsp::laser_value_check::require(ok, std::string("vpLaserConicDetector: ") + message);
 }
 
 // \e value if it is finite and > 0, else the error \e message.

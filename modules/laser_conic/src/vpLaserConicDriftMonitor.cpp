@@ -13,6 +13,8 @@
 
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
+#include "laser_value_check.h"
+
 namespace
 {
 //! Standard normal quantile (Acklam's rational approximation, relative error below 1.2e-9).
@@ -56,18 +58,16 @@ vpLaserConicDriftMonitor::vpLaserConicDriftMonitor()
 
 void vpLaserConicDriftMonitor::setWindow(unsigned int frames)
 {
-  if (frames == 0 || frames > 100000)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicDriftMonitor: the window must hold 1 to 100000 frames");
+  vsp::laser_value_check::require(frames > 0 && frames <= 100000,
+                                  "vpLaserConicDriftMonitor: the window must hold 1 to 100000 frames");
   m_window = frames;
   reset();
 }
 
 void vpLaserConicDriftMonitor::setFalseAlarmRate(double rate)
 {
-  if (!(rate > 0.0 && rate < 0.5))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicDriftMonitor: the false-alarm rate must be in (0, 0.5)");
+  vsp::laser_value_check::require(rate > 0.0 && rate < 0.5,
+                                  "vpLaserConicDriftMonitor: the false-alarm rate must be in (0, 0.5)");
   m_rate = rate;
   reset();
 }

@@ -10,12 +10,15 @@
 #include <Eigen/Cholesky>
 
 #include "laser_filter_model.h"
+#include "laser_value_check.h"
 
 using namespace vpLaserFilterModel;
+using vsp::laser_value_check::require;
+using vsp::laser_value_check::requireNonNegative;
+using vsp::laser_value_check::requirePositive;
 
 namespace
 {
-void badValue(const std::string &what) { throw vpLaserConicException(vpLaserConicException::badValueError, what); }
 
 //! Quantile of the chi-square distribution with 3 degrees of freedom (CDF erf(sqrt(x/2)) - sqrt(2x/pi) e^(-x/2)).
 double chi2Quantile3(double p)
@@ -283,8 +286,7 @@ vpLaserConicFilter::~vpLaserConicFilter() = default;
 void vpLaserConicFilter::setImuNoise(double gyro, double gyroBiasWalk, double acc, double accBiasWalk)
 {
   for (double v : {gyro, gyroBiasWalk, acc, accBiasWalk})
-    if (!(v > 0.0) || !std::isfinite(v))
-      badValue("vpLaserConicFilter::setImuNoise: noise densities must be finite and > 0");
+    requirePositive(v, "vpLaserConicFilter::setImuNoise: noise densities must be finite and > 0");
   m_impl->noise.gyro = gyro;
   m_impl->noise.gyroBiasWalk = gyroBiasWalk;
   m_impl->noise.acc = acc;
@@ -294,8 +296,7 @@ void vpLaserConicFilter::setImuNoise(double gyro, double gyroBiasWalk, double ac
 void vpLaserConicFilter::setInitialUncertainty(double verticalSpeed, double gyroBias, double accBias)
 {
   for (double v : {verticalSpeed, gyroBias, accBias})
-    if (!(v > 0.0) || !std::isfinite(v))
-      badValue("vpLaserConicFilter::setInitialUncertainty: standard deviations must be finite and > 0");
+    requirePositive(v, "vpLaserConicFilter::setInitialUncertainty: standard deviations must be finite and > 0");
   m_impl->sigmaVz0 = verticalSpeed;
   m_impl->sigmaBg0 = gyroBias;
   m_impl->sigmaBa0 = accBias;
@@ -303,24 +304,26 @@ void vpLaserConicFilter::setInitialUncertainty(double verticalSpeed, double gyro
 
 void vpLaserConicFilter::setImuToCameraRotation(const vpRotationMatrix &cRimu)
 {
+  Eigen::Matrix3d R;
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j)
-      m_impl->cRimu(i, j) = cRimu[i][j];
-  if (!m_impl->cRimu.allFinite() || !(m_impl->cRimu * m_impl->cRimu.transpose()).isIdentity(1e-6))
-    badValue("vpLaserConicFilter::setImuToCameraRotation: not a rotation matrix");
+      R(i, j) = cRimu[i][j];
+  // Checked before it replaces the mounting: a refused matrix leaves the one set before.
+  require(R.allFinite() && (R * R.transpose()).isIdentity(1e-6),
+          "vpLaserConicFilter::setImuToCameraRotation: not a rotation matrix");
+  m_impl->cRimu = R;
 }
 
 void vpLaserConicFilter::setGravityNorm(double g)
 {
-  if (!(g > 0.0) || !std::isfinite(g))
-    badValue("vpLaserConicFilter::setGravityNorm: the gravity norm must be finite and > 0");
+  requirePositive(g, "vpLaserConicFilter::setGravityNorm: the gravity norm must be finite and > 0");
   m_impl->gravity = g;
 }
 
 void vpLaserConicFilter::setMaxLatency(double seconds, unsigned int samples)
 {
-  if (!(seconds >= 0.0) || !std::isfinite(seconds) || samples < 2)
-    badValue("vpLaserConicFilter::setMaxLatency: the latency must be finite and >= 0, the history >= 2 samples");
+  require(seconds >= 0.0 && std::isfinite(seconds) && samples >= 2,
+          "vpLaserConicFilter::setMaxLatency: the latency must be finite and >= 0, the history >= 2 samples");
   m_impl->maxLatency = seconds;
   m_impl->ring.assign(samples, Entry());
   m_impl->count = 0;
@@ -329,15 +332,13 @@ void vpLaserConicFilter::setMaxLatency(double seconds, unsigned int samples)
 
 void vpLaserConicFilter::setMaxImuGap(double seconds)
 {
-  if (!(seconds > 0.0) || !std::isfinite(seconds))
-    badValue("vpLaserConicFilter::setMaxImuGap: the gap must be finite and > 0");
+  requirePositive(seconds, "vpLaserConicFilter::setMaxImuGap: the gap must be finite and > 0");
   m_impl->maxGap = seconds;
 }
 
 void vpLaserConicFilter::setGateProbability(double p)
 {
-  if (!(p > 0.0 && p < 1.0))
-    badValue("vpLaserConicFilter::setGateProbability: the probability must be in (0, 1)");
+  require(p > 0.0 && p < 1.0, "vpLaserConicFilter::setGateProbability: the probability must be in (0, 1)");
   m_impl->gateProbability = p;
   m_impl->gate = chi2Quantile3(p);
   m_impl->attitudeGate = -2.0 * std::log(1.0 - p); // chi-square quantile, 2 degrees of freedom
@@ -345,22 +346,19 @@ void vpLaserConicFilter::setGateProbability(double p)
 
 void vpLaserConicFilter::setStepFrames(unsigned int frames)
 {
-  if (frames == 0)
-    badValue("vpLaserConicFilter::setStepFrames: at least one frame");
+  require(frames > 0, "vpLaserConicFilter::setStepFrames: at least one frame");
   m_impl->stepFrames = frames;
 }
 
 void vpLaserConicFilter::setMinStepHeight(double metres)
 {
-  if (!(metres >= 0.0) || !std::isfinite(metres))
-    badValue("vpLaserConicFilter::setMinStepHeight: the height must be finite and >= 0");
+  requireNonNegative(metres, "vpLaserConicFilter::setMinStepHeight: the height must be finite and >= 0");
   m_impl->minStepHeight = metres;
 }
 
 void vpLaserConicFilter::setMaxRejections(unsigned int frames)
 {
-  if (frames == 0)
-    badValue("vpLaserConicFilter::setMaxRejections: at least one frame");
+  require(frames > 0, "vpLaserConicFilter::setMaxRejections: at least one frame");
   m_impl->maxRejections = frames;
 }
 
@@ -368,8 +366,7 @@ void vpLaserConicFilter::setInitialisationFrames(unsigned int frames) { m_impl->
 
 void vpLaserConicFilter::setPredictionTimeout(double seconds)
 {
-  if (!(seconds > 0.0) || !std::isfinite(seconds))
-    badValue("vpLaserConicFilter::setPredictionTimeout: the timeout must be finite and > 0");
+  requirePositive(seconds, "vpLaserConicFilter::setPredictionTimeout: the timeout must be finite and > 0");
   m_impl->predictionTimeout = seconds;
 }
 
@@ -387,8 +384,8 @@ vpLaserConicFilter::vpImuStatus vpLaserConicFilter::addImu(double t, const doubl
 
 vpLaserConicFilter::vpImuStatus vpLaserConicFilter::addImu(double t, const vpColVector &gyro, const vpColVector &acc)
 {
-  if (gyro.getRows() != 3 || acc.getRows() != 3)
-    badValue("vpLaserConicFilter::addImu: gyro and accelerometer readings must be 3-vectors");
+  require(gyro.getRows() == 3 && acc.getRows() == 3,
+          "vpLaserConicFilter::addImu: gyro and accelerometer readings must be 3-vectors");
   return addImu(t, gyro.data, acc.data);
 }
 

@@ -6,12 +6,12 @@
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "laser_value_check.h"
 
 using vsp::laser_value_check::require;
 using vsp::laser_value_check::requirePositive;
+using vsp::laser_value_check::requireUsableCamera;
 
 void vpLaserConicPose::setArcCoverageThreshold(double radians)
 {
@@ -22,26 +22,14 @@ void vpLaserConicPose::setArcCoverageThreshold(double radians)
 
 void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
 {
-  const double values[6] = {cam.get_px(), cam.get_py(), cam.get_u0(), cam.get_v0(), cam.get_kud(), cam.get_kdu()};
-  for (double v : values)
-    require(std::isfinite(v), "vpLaserConicPose: camera parameters must be finite",
-            vpLaserConicException::badCameraError);
-  require(cam.get_px() > 0.0 && cam.get_py() > 0.0, "vpLaserConicPose: focal lengths px and py must be positive",
-          vpLaserConicException::badCameraError);
-  require(cam.get_projModel() == vpCameraParameters::perspectiveProjWithoutDistortion ||
-              cam.get_projModel() == vpCameraParameters::perspectiveProjWithDistortion,
-          "vpLaserConicPose: only the perspective projection models (with or without distortion) are supported",
-          vpLaserConicException::badCameraError);
+  requireUsableCamera(cam, "vpLaserConicPose");
   m_cam = cam;
   m_hasCam = true;
 }
 
 void vpLaserConicPose::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
 {
-  std::ostringstream angle;
-  angle << "vpLaserConicPose: laser opening angle " << openingAngle << " rad is not in (0, pi)";
-  require(std::isfinite(openingAngle) && openingAngle > 0.0 && openingAngle < M_PI, angle.str(),
-          vpLaserConicException::badLaserError);
+  vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicPose");
   for (unsigned int i = 0; i < 4; ++i)
     for (unsigned int j = 0; j < 4; ++j)
       require(std::isfinite(cMl[i][j]), "vpLaserConicPose: the laser pose cMl is not finite",

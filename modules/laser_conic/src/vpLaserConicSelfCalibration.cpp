@@ -14,29 +14,25 @@
 
 #include <visp3/core/vpMath.h>
 
+#include "laser_pose_check.h"
 #include "laser_selfcal_steps.h"
+#include "laser_value_check.h"
+
+using vsp::laser_value_check::require;
+using vsp::laser_value_check::requireNonNegative;
+using vsp::laser_value_check::requirePositive;
 
 namespace
 {
-bool finitePose(const vpHomogeneousMatrix &M)
-{
-  for (unsigned int i = 0; i < 4; ++i)
-    for (unsigned int j = 0; j < 4; ++j)
-      if (!std::isfinite(M[i][j]))
-        return false;
-  return M.isAnHomogeneousMatrix();
-}
 
 void checkPoints(const std::vector<vpImagePoint> &points)
 {
-  if (points.size() < 5)
-    throw vpLaserConicException(vpLaserConicException::notEnoughPointError,
-                                "vpLaserConicSelfCalibration: a frame needs at least 5 laser points, got " +
-                                    std::to_string(points.size()));
+  require(points.size() >= 5,
+          "vpLaserConicSelfCalibration: a frame needs at least 5 laser points, got " + std::to_string(points.size()),
+          vpLaserConicException::notEnoughPointError);
   for (const vpImagePoint &p : points)
-    if (!std::isfinite(p.get_u()) || !std::isfinite(p.get_v()))
-      throw vpLaserConicException(vpLaserConicException::badPointError,
-                                  "vpLaserConicSelfCalibration: a laser point is not finite");
+    require(std::isfinite(p.get_u()) && std::isfinite(p.get_v()),
+            "vpLaserConicSelfCalibration: a laser point is not finite", vpLaserConicException::badPointError);
 }
 } // namespace
 
@@ -49,10 +45,7 @@ vpLaserConicSelfCalibration::vpLaserConicSelfCalibration()
 
 void vpLaserConicSelfCalibration::setCameraParameters(const vpCameraParameters &cam)
 {
-  if (!(cam.get_px() > 0.0) || !(cam.get_py() > 0.0) || !std::isfinite(cam.get_px()) || !std::isfinite(cam.get_py()) ||
-      !std::isfinite(cam.get_u0()) || !std::isfinite(cam.get_v0()) || !std::isfinite(cam.get_kdu()))
-    throw vpLaserConicException(vpLaserConicException::badCameraError,
-                                "vpLaserConicSelfCalibration: focal lengths must be positive and finite");
+  vsp::laser_value_check::requireUsableCamera(cam, "vpLaserConicSelfCalibration");
   m_cam = cam;
   m_hasCam = true;
   m_status = STATUS_NOT_COMPUTED;
@@ -60,13 +53,11 @@ void vpLaserConicSelfCalibration::setCameraParameters(const vpCameraParameters &
 
 void vpLaserConicSelfCalibration::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
 {
-  if (!(openingAngle > 0.0 && openingAngle < M_PI))
-    throw vpLaserConicException(vpLaserConicException::badLaserError,
-                                "vpLaserConicSelfCalibration: the full opening angle must be in (0, pi)");
-  if (!finitePose(cMl) || cMl.getTranslationVector().frobeniusNorm() < 1e-9)
-    throw vpLaserConicException(vpLaserConicException::badLaserError,
-                                "vpLaserConicSelfCalibration: the laser pose must be a finite rigid transformation "
-                                "with the apex away from the camera centre");
+  vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicSelfCalibration");
+  require(vsp::laser_pose_check::isFinitePose(cMl) && cMl.getTranslationVector().frobeniusNorm() >= 1e-9,
+          "vpLaserConicSelfCalibration: the laser pose must be a finite rigid transformation with the apex away "
+          "from the camera centre",
+          vpLaserConicException::badLaserError);
   m_openingAngle = openingAngle;
   m_cMl = cMl;
   m_hasLaser = true;
@@ -75,46 +66,34 @@ void vpLaserConicSelfCalibration::setLaser(double openingAngle, const vpHomogene
 
 void vpLaserConicSelfCalibration::setApexDistance(double metres)
 {
-  if (!(metres >= 0.0) || !std::isfinite(metres))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: the apex distance must be finite and >= 0");
+  requireNonNegative(metres, "vpLaserConicSelfCalibration: the apex distance must be finite and >= 0");
   m_apexDistance = metres;
   m_status = STATUS_NOT_COMPUTED;
 }
 
 void vpLaserConicSelfCalibration::setKnownAltitude(unsigned int frame, double altitude)
 {
-  if (frame >= m_frames.size())
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: no frame " + std::to_string(frame));
-  if (!(altitude > 0.0) || !std::isfinite(altitude))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: a known altitude must be positive and finite");
+  require(frame < m_frames.size(), "vpLaserConicSelfCalibration: no frame " + std::to_string(frame));
+  requirePositive(altitude, "vpLaserConicSelfCalibration: a known altitude must be positive and finite");
   m_frames[frame].knownAltitude = altitude;
   m_status = STATUS_NOT_COMPUTED;
 }
 
 void vpLaserConicSelfCalibration::setMaxFrames(unsigned int n)
 {
-  if (n < 3)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: at least 3 frames are needed");
+  require(n >= 3, "vpLaserConicSelfCalibration: at least 3 frames are needed");
   m_maxFrames = n;
 }
 
 void vpLaserConicSelfCalibration::setMaxAngularStdDeviation(double radians)
 {
-  if (!(radians > 0.0) || !std::isfinite(radians))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: the angular standard deviation limit must be positive");
+  requirePositive(radians, "vpLaserConicSelfCalibration: the angular standard deviation limit must be positive");
   m_maxStd = radians;
 }
 
 void vpLaserConicSelfCalibration::setMaxRmsPixels(double pixels)
 {
-  if (!(pixels > 0.0) || !std::isfinite(pixels))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: the RMS limit must be positive and finite");
+  requirePositive(pixels, "vpLaserConicSelfCalibration: the RMS limit must be positive and finite");
   m_maxRms = pixels;
 }
 
@@ -133,11 +112,10 @@ unsigned int vpLaserConicSelfCalibration::addFrame(const std::vector<vpImagePoin
   checkPoints(points);
   const double norm =
       std::sqrt(vpMath::sqr(roughPlane.getA()) + vpMath::sqr(roughPlane.getB()) + vpMath::sqr(roughPlane.getC()));
-  if (!(norm > 0.0) || !std::isfinite(norm) || !(roughPlane.getD() > 0.0) || !std::isfinite(roughPlane.getD()) ||
-      !(roughPlane.getC() < 0.0))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: the rough plane must be a finite ground plane in front "
-                                "of the camera (normal towards the camera, d > 0)");
+  require(norm > 0.0 && std::isfinite(norm) && roughPlane.getD() > 0.0 && std::isfinite(roughPlane.getD()) &&
+              roughPlane.getC() < 0.0,
+          "vpLaserConicSelfCalibration: the rough plane must be a finite ground plane in front of the camera "
+          "(normal towards the camera, d > 0)");
   FrameData f;
   f.points = points;
   f.hasPlane = true;
@@ -193,21 +171,17 @@ bool vpLaserConicSelfCalibration::fail(vpSelfCalibrationStatus status, const std
 
 void vpLaserConicSelfCalibration::checkReady() const
 {
-  if (!m_hasCam)
-    throw vpLaserConicException(vpLaserConicException::badCameraError,
-                                "vpLaserConicSelfCalibration: setCameraParameters() was not called");
-  if (!m_hasLaser)
-    throw vpLaserConicException(vpLaserConicException::badLaserError,
-                                "vpLaserConicSelfCalibration: setLaser() (initial guess) was not called");
-  if (m_frames.empty())
-    throw vpLaserConicException(vpLaserConicException::notEnoughPointError, "vpLaserConicSelfCalibration: no frame");
+  require(m_hasCam, "vpLaserConicSelfCalibration: setCameraParameters() was not called",
+          vpLaserConicException::badCameraError);
+  require(m_hasLaser, "vpLaserConicSelfCalibration: setLaser() (initial guess) was not called",
+          vpLaserConicException::badLaserError);
+  require(!m_frames.empty(), "vpLaserConicSelfCalibration: no frame", vpLaserConicException::notEnoughPointError);
   bool known = false;
   for (const FrameData &f : m_frames)
     known = known || f.knownAltitude > 0.0;
-  if (!(m_apexDistance > 0.0) && !known && !m_holdApex)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSelfCalibration: no scale constraint: images do not determine the apex "
-                                "distance; give setApexDistance() (ruler, previous baseline) or setKnownAltitude()");
+  require(m_apexDistance > 0.0 || known || m_holdApex,
+          "vpLaserConicSelfCalibration: no scale constraint: images do not determine the apex distance; give "
+          "setApexDistance() (ruler, previous baseline) or setKnownAltitude()");
 }
 
 bool vpLaserConicSelfCalibration::compute(vpHomogeneousMatrix &cMl, double &openingAngle)

@@ -26,6 +26,10 @@
 #include "laser_lens.h"
 #include "laser_pose_check.h"
 #include "laser_sim_sensor.h"
+#include "laser_value_check.h"
+
+using vsp::laser_value_check::require;
+using vsp::laser_value_check::requireNonNegative;
 
 vpLaserConicSimulator::vpLaserConicSimulator()
   : m_cam(), m_width(0), m_height(0), m_openingAngle(34.0 * M_PI / 180.0), m_cMl(), m_cMg(0, 0, 1, 0, 0, 0), m_seed(0),
@@ -36,12 +40,8 @@ vpLaserConicSimulator::vpLaserConicSimulator()
 
 void vpLaserConicSimulator::setCamera(const vpCameraParameters &cam, unsigned int width, unsigned int height)
 {
-  if (!(cam.get_px() > 0) || !(cam.get_py() > 0) || !std::isfinite(cam.get_px()) || !std::isfinite(cam.get_py()) ||
-      !std::isfinite(cam.get_u0()) || !std::isfinite(cam.get_v0()))
-    throw vpLaserConicException(vpLaserConicException::badCameraError,
-                                "vpLaserConicSimulator: focal lengths must be positive and finite");
-  if (width == 0 || height == 0)
-    throw vpLaserConicException(vpLaserConicException::badCameraError, "vpLaserConicSimulator: empty image size");
+  vsp::laser_value_check::requireUsableCamera(cam, "vpLaserConicSimulator");
+  require(width > 0 && height > 0, "vpLaserConicSimulator: empty image size", vpLaserConicException::badCameraError);
   m_cam = cam;
   m_width = width;
   m_height = height;
@@ -49,26 +49,21 @@ void vpLaserConicSimulator::setCamera(const vpCameraParameters &cam, unsigned in
 
 void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
 {
-  if (!std::isfinite(openingAngle) || openingAngle <= 0.0 || openingAngle >= M_PI)
-    throw vpLaserConicException(vpLaserConicException::badLaserError,
-                                "vpLaserConicSimulator: the laser opening angle must be in (0, pi) radians");
-  if (!vsp::laser_pose_check::isFinitePose(cMl))
-    throw vpLaserConicException(vpLaserConicException::badLaserError,
-                                "vpLaserConicSimulator: the laser pose is not a finite rigid transformation");
+  vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicSimulator");
+  require(vsp::laser_pose_check::isFinitePose(cMl),
+          "vpLaserConicSimulator: the laser pose is not a finite rigid transformation",
+          vpLaserConicException::badLaserError);
   m_openingAngle = openingAngle;
   m_cMl = cMl;
 }
 
 void vpLaserConicSimulator::setGroundPose(const vpHomogeneousMatrix &cMg)
 {
-  if (!vsp::laser_pose_check::isFinitePose(cMg))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the ground pose is not a finite rigid transformation");
+  require(vsp::laser_pose_check::isFinitePose(cMg),
+          "vpLaserConicSimulator: the ground pose is not a finite rigid transformation");
   // Signed distance of the camera centre to the plane Z = 0 of g.
   const double distance = -(cMg[0][2] * cMg[0][3] + cMg[1][2] * cMg[1][3] + cMg[2][2] * cMg[2][3]);
-  if (std::fabs(distance) < 1e-9)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the camera centre lies on the ground plane");
+  require(std::fabs(distance) >= 1e-9, "vpLaserConicSimulator: the camera centre lies on the ground plane");
   m_cMg = cMg;
 }
 
@@ -93,9 +88,8 @@ vpPlane vpLaserConicSimulator::getGroundPlane() const
 
 void vpLaserConicSimulator::checkCamera() const
 {
-  if (m_width == 0 || m_height == 0)
-    throw vpLaserConicException(vpLaserConicException::badCameraError,
-                                "vpLaserConicSimulator: call setCamera() before simulating images");
+  require(m_width > 0 && m_height > 0, "vpLaserConicSimulator: call setCamera() before simulating images",
+          vpLaserConicException::badCameraError);
 }
 
 bool vpLaserConicSimulator::groundPoint(double gamma, double P[3]) const
@@ -132,9 +126,7 @@ bool vpLaserConicSimulator::project(const double P[3], double &u, double &v) con
 std::vector<vpImagePoint> vpLaserConicSimulator::tracePoints(unsigned int n, double roughness)
 {
   checkCamera();
-  if (!std::isfinite(roughness) || roughness < 0.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the ground roughness must be finite and >= 0");
+  requireNonNegative(roughness, "vpLaserConicSimulator: the ground roughness must be finite and >= 0");
   std::normal_distribution<double> offset(0.0, 1.0);
   const double normal[3] = {m_cMg[0][2], m_cMg[1][2], m_cMg[2][2]};
   std::vector<vpImagePoint> points;
@@ -161,9 +153,7 @@ std::vector<vpImagePoint> vpLaserConicSimulator::tracePoints(unsigned int n, dou
 
 std::vector<vpImagePoint> vpLaserConicSimulator::addNoise(const std::vector<vpImagePoint> &points, double sigma)
 {
-  if (!std::isfinite(sigma) || sigma < 0.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the noise standard deviation must be finite and >= 0");
+  requireNonNegative(sigma, "vpLaserConicSimulator: the noise standard deviation must be finite and >= 0");
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::vector<vpImagePoint> noisy(points);
   for (vpImagePoint &p : noisy) {
@@ -178,9 +168,7 @@ std::vector<vpImagePoint> vpLaserConicSimulator::addOutliers(const std::vector<v
                                                              std::vector<bool> *isOutlier)
 {
   checkCamera();
-  if (!std::isfinite(ratio) || ratio < 0.0 || ratio > 1.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the outlier ratio must be in [0, 1]");
+  require(ratio >= 0.0 && ratio <= 1.0, "vpLaserConicSimulator: the outlier ratio must be in [0, 1]");
   const size_t n = points.size();
   const size_t nbOutliers = static_cast<size_t>(std::llround(ratio * static_cast<double>(n)));
 
@@ -214,9 +202,8 @@ std::vector<vpImagePoint> vpLaserConicSimulator::addOutliers(const std::vector<v
 void vpLaserConicSimulator::setGroundTexture(const vpImage<vpRGBa> &texture, double metresPerTexel, double x0,
                                              double y0)
 {
-  if (!std::isfinite(metresPerTexel) || metresPerTexel <= 0.0 || !std::isfinite(x0) || !std::isfinite(y0))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the texel size must be positive and the origin finite");
+  require(std::isfinite(metresPerTexel) && metresPerTexel > 0.0 && std::isfinite(x0) && std::isfinite(y0),
+          "vpLaserConicSimulator: the texel size must be positive and the origin finite");
   m_texture.image = texture;
   m_texelSize = metresPerTexel;
   m_textureX0 = x0;
@@ -229,9 +216,8 @@ void vpLaserConicSimulator::setGroundChessboard(unsigned int squaresX, unsigned 
     m_boardX = m_boardY = 0;
     return;
   }
-  if (squaresY == 0 || !std::isfinite(squareSize) || squareSize <= 0.0)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the chessboard needs squares of positive size");
+  require(squaresY > 0 && std::isfinite(squareSize) && squareSize > 0.0,
+          "vpLaserConicSimulator: the chessboard needs squares of positive size");
   m_boardX = squaresX;
   m_boardY = squaresY;
   m_boardSquare = squareSize;
@@ -341,23 +327,18 @@ void vpLaserConicSimulator::checkSettings(const vpRenderSettings &s)
 {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   auto nonNegative = [](double v) { return std::isfinite(v) && v >= 0.0; };
-  if (!positive(s.stripeWidth) || !positive(s.bloomWidth) || !positive(s.shininess))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the stripe width, bloom width and shininess must be positive");
-  if (!nonNegative(s.noise) || !nonNegative(s.ambient) || !nonNegative(s.specular) || !nonNegative(s.laserPower) ||
-      !nonNegative(s.whiteCore) || !nonNegative(s.bloom) || !nonNegative(s.blur) || !nonNegative(s.motionBlurLength) ||
-      !std::isfinite(s.motionBlurAngle) || !nonNegative(s.clutterRadius) || !std::isfinite(s.lampX) ||
-      !std::isfinite(s.lampY) || !std::isfinite(s.lampZ))
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: a render setting is negative or not finite (sensor noise, "
-                                "ambient, specular, laser power, white core, bloom, blur, clutter radius, lamp)");
-  if (!nonNegative(s.distanceFalloff) || !nonNegative(s.stripeFarFraction) || !(s.stripeFarFraction < 1.0))
-    throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicSimulator: the distance fall-off "
-                                                                      "must be finite and >= 0, the stripe's far "
-                                                                      "fraction in [0, 1)");
-  if (s.jpegQuality < 0 || s.jpegQuality > 100)
-    throw vpLaserConicException(vpLaserConicException::badValueError,
-                                "vpLaserConicSimulator: the JPEG quality must be in [1, 100] (0: no compression)");
+  require(positive(s.stripeWidth) && positive(s.bloomWidth) && positive(s.shininess),
+          "vpLaserConicSimulator: the stripe width, bloom width and shininess must be positive");
+  require(nonNegative(s.noise) && nonNegative(s.ambient) && nonNegative(s.specular) && nonNegative(s.laserPower) &&
+              nonNegative(s.whiteCore) && nonNegative(s.bloom) && nonNegative(s.blur) &&
+              nonNegative(s.motionBlurLength) && std::isfinite(s.motionBlurAngle) && nonNegative(s.clutterRadius) &&
+              std::isfinite(s.lampX) && std::isfinite(s.lampY) && std::isfinite(s.lampZ),
+          "vpLaserConicSimulator: a render setting is negative or not finite (sensor noise, ambient, specular, laser "
+          "power, white core, bloom, blur, clutter radius, lamp)");
+  require(nonNegative(s.distanceFalloff) && nonNegative(s.stripeFarFraction) && s.stripeFarFraction < 1.0,
+          "vpLaserConicSimulator: the distance fall-off must be finite and >= 0, the stripe's far fraction in [0, 1)");
+  require(s.jpegQuality >= 0 && s.jpegQuality <= 100,
+          "vpLaserConicSimulator: the JPEG quality must be in [1, 100] (0: no compression)");
 }
 
 namespace

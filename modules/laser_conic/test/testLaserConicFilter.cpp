@@ -237,6 +237,64 @@ TEST(LaserConicFilter, BadInputHasAStatus)
   EXPECT_FALSE(vpLaserConicFilter::getFrameStatusMessage(vpLaserConicFilter::FRAME_TOO_OLD).empty());
 }
 
+// A rotation refused by setImuToCameraRotation() leaves the one set before it: the filter fed afterwards gives
+// exactly what a filter that never saw the refused matrix gives (a tilted mounting, so that the rotation
+// matters to every output).
+TEST(LaserConicFilter, ARefusedImuRotationLeavesTheMountingUnchanged)
+{
+  const vpRotationMatrix cRimu(vpRxyzVector(0.2, -0.1, 0.3));
+  vpLaserConicFilter kept, refused;
+  kept.setImuToCameraRotation(cRimu);
+  refused.setImuToCameraRotation(cRimu);
+  vpRotationMatrix notFinite = cRimu, scaled = cRimu;
+  notFinite[1][2] = std::numeric_limits<double>::quiet_NaN();
+  for (unsigned int i = 0; i < 3; ++i)
+    scaled[i][0] *= 2.0;
+  EXPECT_THROW(refused.setImuToCameraRotation(notFinite), vpLaserConicException);
+  EXPECT_THROW(refused.setImuToCameraRotation(scaled), vpLaserConicException);
+
+  // At rest, the camera looking straight down: the specific force, 9.81 up (-Z of the camera), read in the IMU's
+  // frame.
+  const vpColVector up = cRimu.t() * vpColVector({0.0, 0.0, -9.80665});
+  const double w[3] = {0.01, -0.02, 0.005}, f[3] = {up[0], up[1], up[2]};
+  vpMatrix C(3, 3);
+  C.eye();
+  C *= 1e-6;
+  for (vpLaserConicFilter *filter : {&kept, &refused}) {
+    for (int k = 0; k <= 2; ++k)
+      filter->addImu(0.005 * k, w, f);
+    ASSERT_EQ(filter->addFrame(0.005, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_INITIALISED);
+    for (int k = 3; k <= 40; ++k)
+      filter->addImu(0.005 * k, w, f);
+  }
+  ASSERT_TRUE(std::isfinite(kept.getRoll()));
+  EXPECT_EQ(refused.getAltitude(), kept.getAltitude());
+  EXPECT_EQ(refused.getRoll(), kept.getRoll());
+  EXPECT_EQ(refused.getPitch(), kept.getPitch());
+  EXPECT_EQ(refused.getVerticalSpeed(), kept.getVerticalSpeed());
+}
+
+// The simulated IMU refuses what would make every reading NaN or its noise imaginary.
+TEST(LaserConicFilter, ImuSimulatorRefusesBadNoiseAndTimeSteps)
+{
+  vpLaserConicImuSimulator imu;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(imu.setNoise(1e-4, -1e-5, 2e-3, 3e-3), vpLaserConicException);
+  EXPECT_THROW(imu.setNoise(1e-4, 1e-5, nan, 3e-3), vpLaserConicException);
+  EXPECT_THROW(imu.drawInitialBias(nan, 0.05), vpLaserConicException);
+  EXPECT_THROW(imu.drawInitialBias(0.005, -0.05), vpLaserConicException);
+  const double w[3] = {0, 0, 0}, f[3] = {0, 0, -9.80665};
+  double gyro[3], acc[3];
+  EXPECT_THROW(imu.measure(0.0, w, f, gyro, acc), vpLaserConicException);
+  EXPECT_NO_THROW(imu.drawInitialBias(0.0, 0.0));
+  imu.setNoise(0.0, 0.0, 0.0, 0.0);
+  imu.measure(0.005, w, f, gyro, acc); // noiseless and unbiased: the truth
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(gyro[i], w[i]);
+    EXPECT_EQ(acc[i], f[i]);
+  }
+}
+
 // The latency is handled exactly: frames delivered 30 ms late give the same state as frames delivered
 // at once (the history is re-propagated, not approximated).
 TEST(LaserConicFilter, LatencyIsExact)

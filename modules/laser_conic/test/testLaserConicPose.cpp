@@ -6,12 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
 
 #include <visp3/io/vpImageIo.h>
+#include <visp3/laser_conic/vpLaserConicCalibration.h>
+#include <visp3/laser_conic/vpLaserConicGridCalibration.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
+#include <visp3/laser_conic/vpLaserConicSelfCalibration.h>
+#include <visp3/laser_conic/vpLaserConicSimulator.h>
 
 #include "laser_test_utils.h"
 
@@ -896,4 +901,64 @@ TEST(LaserConicPose, CovarianceInflationScalesBothCovariances)
     for (unsigned int j = 0; j < 4; ++j)
       EXPECT_NEAR(Pb[i][j], 4.0 * Pa[i][j], 1e-12 * std::abs(Pa[i][j]) + 1e-300);
   EXPECT_THROW(a.setCovarianceInflation(-1.0), vpLaserConicException);
+}
+
+namespace
+{
+//! Cameras no laser class can use, each named: a negative focal length (vpCameraParameters itself refuses a
+//! zero one), a centre or a distortion coefficient that is not finite, the Kannala-Brandt model (none of them
+//! projects with it).
+std::vector<std::pair<std::string, vpCameraParameters> > unusableCameras()
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::pair<std::string, vpCameraParameters> > cams;
+  cams.emplace_back("py < 0", vpCameraParameters(1500.0, -1500.0, 800.0, 600.0));
+  cams.emplace_back("u0 NaN", vpCameraParameters(1500.0, 1500.0, nan, 600.0));
+  cams.emplace_back("v0 infinite", vpCameraParameters(1500.0, 1500.0, 800.0, HUGE_VAL));
+  cams.emplace_back("kud NaN", vpCameraParameters(1500.0, 1500.0, 800.0, 600.0, nan, 0.1));
+  cams.emplace_back("kdu NaN", vpCameraParameters(1500.0, 1500.0, 800.0, 600.0, -0.1, nan));
+  vpCameraParameters fisheye;
+  fisheye.initProjWithKannalaBrandtDistortion(1500.0, 1500.0, 800.0, 600.0, {0.01, 0.0, 0.0, 0.0});
+  cams.emplace_back("Kannala-Brandt", fisheye);
+  return cams;
+}
+
+//! The camera setter of every laser class that takes a camera, each on a new object, by class name.
+std::vector<std::pair<std::string, std::function<void(const vpCameraParameters &)> > > cameraSetters()
+{
+  return {{"vpLaserConicPose", [](const vpCameraParameters &c) { vpLaserConicPose().setCameraParameters(c); }},
+          {"vpLaserConicCalibration",
+           [](const vpCameraParameters &c) { vpLaserConicCalibration().setCameraParameters(c); }},
+          {"vpLaserConicGridCalibration",
+           [](const vpCameraParameters &c) { vpLaserConicGridCalibration().setCameraParameters(c); }},
+          {"vpLaserConicSelfCalibration",
+           [](const vpCameraParameters &c) { vpLaserConicSelfCalibration().setCameraParameters(c); }},
+          {"vpLaserConicSimulator",
+           [](const vpCameraParameters &c) { vpLaserConicSimulator().setCamera(c, 1600, 1200); }}};
+}
+
+//! The error code \e set throws for \e cam, -1 when it takes it.
+int cameraErrorCode(const std::function<void(const vpCameraParameters &)> &set, const vpCameraParameters &cam)
+{
+  try {
+    set(cam);
+  } catch (const vpLaserConicException &e) {
+    return e.getCode();
+  }
+  return -1;
+}
+} // namespace
+
+// Every laser class that takes the camera validates it the same way at its setter: an estimate, a
+// calibration or a rendered image from a camera with a NaN distortion coefficient or a fish-eye model would
+// be wrong without saying so. A usable camera with distortion is taken by all of them.
+TEST(LaserConicPose, EveryLaserClassRefusesTheSameUnusableCameras)
+{
+  const vpCameraParameters distorted(1500.0, 1500.0, 800.0, 600.0, -0.1, 0.1);
+  for (const auto &setter : cameraSetters()) {
+    for (const auto &named : unusableCameras())
+      EXPECT_EQ(cameraErrorCode(setter.second, named.second), vpLaserConicException::badCameraError)
+          << setter.first << " accepted a camera with " << named.first;
+    EXPECT_EQ(cameraErrorCode(setter.second, distorted), -1) << setter.first << " refused a usable camera";
+  }
 }

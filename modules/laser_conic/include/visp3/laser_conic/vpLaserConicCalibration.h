@@ -116,7 +116,9 @@ public:
 
   /*!
     Camera intrinsics (used to back-project the laser points on the grids).
-    \exception vpLaserConicException::badCameraError when a focal length is not positive or finite.
+    \exception vpLaserConicException::badCameraError as vpLaserConicPose::setCameraParameters(): on
+    non-finite parameters (distortion coefficients included), non-positive focal lengths or a projection model
+    other than the two perspective ones.
   */
   void setCameraParameters(const vpCameraParameters &cam);
   /*!

@@ -79,7 +79,9 @@ public:
   /*!
     Camera intrinsics (also given to getCalibration()); the distortion of perspectiveProjWithDistortion
     is used through vpPixelMeterConversion.
-    \exception vpLaserConicException::badCameraError when a focal length is not positive or finite.
+    \exception vpLaserConicException::badCameraError as vpLaserConicPose::setCameraParameters(): on
+    non-finite parameters (distortion coefficients included), non-positive focal lengths or a projection model
+    other than the two perspective ones.
   */
   void setCameraParameters(const vpCameraParameters &cam);
   /*!

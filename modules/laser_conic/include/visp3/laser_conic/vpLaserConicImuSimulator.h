@@ -44,7 +44,10 @@ public:
   void setNoise(double gyro, double gyroBiasWalk, double acc, double accBiasWalk);
   //! Seeds the generator.
   void setSeed(unsigned int seed) { m_rng.seed(seed); }
-  //! Draws the initial biases, each axis normal with the given standard deviations (rad/s, m/s²).
+  /*!
+    Draws the initial biases, each axis normal with the given standard deviations (rad/s, m/s²).
+    \exception vpLaserConicException::badValueError on a negative or non-finite standard deviation.
+  */
   void drawInitialBias(double gyroSigma, double accSigma);
   /*!
     Advances the biases by \e dt seconds (> 0) and returns the readings of the true angular velocity

@@ -152,7 +152,9 @@ public:
 
   /*!
     Camera intrinsics, with or without distortion (as vpLaserConicPose::setCameraParameters()).
-    \exception vpLaserConicException::badCameraError on non-finite or non-positive focal lengths.
+    \exception vpLaserConicException::badCameraError as vpLaserConicPose::setCameraParameters(): on
+    non-finite parameters (distortion coefficients included), non-positive focal lengths or a projection model
+    other than the two perspective ones.
   */
   void setCameraParameters(const vpCameraParameters &cam);
   /*!

@@ -216,8 +216,9 @@ public:
 
   /*!
     Camera intrinsics and image size (pixels).
-    \exception vpLaserConicException::badCameraError when a focal length is not positive or finite or the
-    size is zero.
+    \exception vpLaserConicException::badCameraError as vpLaserConicPose::setCameraParameters(): on
+    non-finite parameters (distortion coefficients included), non-positive focal lengths or a projection model
+    other than the two perspective ones, or when the size is zero.
   */
   void setCamera(const vpCameraParameters &cam, unsigned int width, unsigned int height);
   /*!
