@@ -61,7 +61,10 @@ struct ProfileResult
   Crossing crossing;   //!< the point and its half-maximum run
   double offset = 0.0; //!< across the curve from the prediction (pixels)
   double noise = 0.0, threshold = 0.0;
-  double response = 0.0;   //!< the matched filter's best response
+  double response = 0.0; //!< the matched filter's best response
+  //! |left - right| of the matched filter's two background means where the prediction crosses the line (grey
+  //! levels of the summed lines; negative when its boxes leave the profile): a colour edge along the curve
+  double edgeAtPrediction = -1.0;
   int lines = 0;           //!< image lines summed
   bool brightness = false; //!< measured on the brightness (ProfileWindow::brightness): its noise is not the red's
   //! The noise of one image line (lines > 0): the summed lines' noise grows as the square root of their number

@@ -193,6 +193,28 @@ ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s
   return r;
 }
 
+// A sample whose red profile found nothing where the prediction crosses a colour edge, measured on its
+// brightness within RidgeTuning::guidedMaxJump of the prediction (see RidgeTuning::guidedColourEdge), three
+// lines averaged then, where they find nothing, nine; kept when the response of the profile that found it
+// reaches RidgeTuning::guidedBrightnessStrength times its threshold (nine lines are not tried after three that
+// found a weaker one: that took noise on the faint rings, second-pass RMS 0.30 px on one seed).
+ProfileResult brightnessAtPrediction(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
+                                     ProfileBuffers &buffers)
+{
+  ProfileWindow window;
+  window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
+  window.brightness = true;
+  ProfileResult r;
+  for (int lines : {RidgeTuning::guidedLines, RidgeTuning::guidedFaintLines}) {
+    window.lines = lines;
+    r = measureProfile(I, s, settings, window, buffers);
+    if (r.found)
+      break;
+  }
+  r.found = r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold;
+  return r;
+}
+
 // The walk follows a stripe forwards only: where it is lost for a few samples (a dim stretch on a dark joint,
 // whose whole-margin profiles find nothing) and found again, the samples in between are followed backwards
 // from where it is found again, as the walk would have followed them coming the other way: with the noise
@@ -287,6 +309,11 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
     }
     if (!r.found && lastWithPoint == i - 1) { // the followed stripe's colour lost (see ProfileWindow::brightness)
       const ProfileResult bright = followOnBrightness(I, s, settings, lastOffset, fittedHere, buffers);
+      if (bright.found)
+        r = bright;
+    }
+    if (!r.found && fittedHere && r.edgeAtPrediction >= RidgeTuning::guidedColourEdge * r.threshold) {
+      const ProfileResult bright = brightnessAtPrediction(I, s, settings, buffers);
       if (bright.found)
         r = bright;
     }

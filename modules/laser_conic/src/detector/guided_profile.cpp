@@ -179,6 +179,12 @@ struct MatchedFilter
   {
     return prefix[k + h + RidgeTuning::guidedGap + f + 1] - prefix[k + h + RidgeTuning::guidedGap + 1];
   }
+  // |left - right| of the background means at k (grey levels of the summed lines), -1 when a box leaves the
+  // profile: the step of a colour edge there.
+  double backgroundStep(int k) const
+  {
+    return k < lowest() || k > highest() ? -1.0 : std::abs(leftSum(k) - rightSum(k)) / static_cast<double>(f);
+  }
   template <bool Dimmer> int backgroundSum(int k) const
   {
     return Dimmer ? std::min(leftSum(k), rightSum(k)) : std::max(leftSum(k), rightSum(k));
@@ -410,6 +416,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
       std::max(RidgeTuning::guidedMinResponse * lines, settings.factor * result.noise * buffers.filterGain(h, f));
   selectStripe(filter, s, window, drifted, start, first, last, result.threshold, best, bestResponse);
   result.response = bestResponse;
+  result.edgeAtPrediction = filter.backgroundStep(static_cast<int>(std::lround(s.pos - start)));
   if (best < 0 || bestResponse < result.threshold)
     return result;
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the

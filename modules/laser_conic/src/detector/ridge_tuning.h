@@ -150,6 +150,19 @@ struct RidgeTuning
   //! farther than guidedNearMargin from a prediction fitted to the points of the whole image (not in tracking)
   //! yields likewise to a stripe near it (the same floor: mean of ten seeds 94.48 -> 94.96 %).
   static constexpr double guidedNearMargin = 3.0;
+  //! A sample whose red profile finds nothing where the prediction (fitted to the points of the whole image, not
+  //! in tracking) crosses a colour edge, its two background boxes there differing by at least guidedColourEdge
+  //! times the response threshold, is measured on its brightness within guidedMaxJump of the prediction, and
+  //! its point kept when the response reaches guidedBrightnessStrength times the threshold
+  //! (brightnessAtPrediction()). JPEG keeps the colour at half resolution: a stripe running along a patch's edge
+  //! is a plateau of the red dominance there, not a peak, while its brightness keeps a bump. Mosaic floor, ring
+  //! at 3 sigma: seeds 73-82 95.59 -> 95.82 %, held-out seeds 83-102 94.97 -> 95.34 %; faint rings 98.50 ->
+  //! 99.28 %. Measured and not kept: a window of 3 px (the faint rings' precision 0.97 on one seed: noise on
+  //! their grey tiles' steps); an edge of half the threshold and any response above it (every mosaic seed >= 95
+  //! %, but a faint ring's second-pass RMS 0.32 px, over the 0.3).
+  static constexpr double guidedColourEdge = 0.25;
+  //! See guidedColourEdge: 4 sigma at the default threshold factor of 3.
+  static constexpr double guidedBrightnessStrength = 4.0 / 3.0;
   //! Where the profile of guidedLines lines finds nothing, one of guidedFaintLines lines is measured: the stripe's
   //! response grows as the number of lines, its noise as its square root (three times the noise of one pixel
   //! then stands out by 3.5 times the noise of the response), and the predicted curve is straight within a
