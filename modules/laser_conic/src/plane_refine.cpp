@@ -211,6 +211,20 @@ bool validStart(const Eigen::Vector2d *points, int n, const Eigen::Vector4d &pla
 {
   return n >= 3 && points != nullptr && plane.allFinite() && plane.head<3>().norm() > 0.0 && plane(3) > 0.0;
 }
+
+// Weights finite and >= 0 with at least 3 positive (the plane's degrees of freedom); nullptr: unit weights.
+bool validWeights(const double *weights, int n)
+{
+  if (weights == nullptr)
+    return true;
+  int positive = 0;
+  for (int i = 0; i < n; ++i) {
+    if (!(weights[i] >= 0.0) || !std::isfinite(weights[i]))
+      return false;
+    positive += weights[i] > 0.0 ? 1 : 0;
+  }
+  return positive >= 3;
+}
 } // namespace
 
 bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Eigen::Vector4d &plane, int iterations)
@@ -221,7 +235,7 @@ bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCone &cone, Ei
 bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
                          Eigen::Vector4d &plane, int iterations)
 {
-  if (!validStart(points, n, plane))
+  if (!validStart(points, n, plane) || !validWeights(weights, n))
     return false;
   const Eigen::Matrix3d M = detail::laserConeForm(cone);
   Iterate current, next;

@@ -364,6 +364,22 @@ TEST(LaserConicSolvers, RefinePlaneConvergesOnExactPoints)
   EXPECT_FALSE(refinePlane(e.points.data(), 30, e.cone, bad));
   EXPECT_EQ(bad, Eigen::Vector4d(0.0, 0.0, 0.0, 1.0));
   EXPECT_FALSE(refinePlane(e.points.data(), 2, e.cone, bad));
+  // Weights that leave fewer than 3 points, or are negative or not finite, are refused likewise (all -1 and all
+  // 0 returned true with the start plane, 5 % off in altitude, as if refined).
+  Eigen::Vector4d start = e.scene.plane;
+  start(3) *= 1.05;
+  std::vector<double> w(30, 1.0);
+  Eigen::Vector4d refined = start;
+  ASSERT_TRUE(refinePlaneWeighted(e.points.data(), w.data(), 30, e.cone, refined));
+  EXPECT_LT(std::abs(refined(3) / e.scene.plane(3) - 1.0), 1e-6);
+  std::vector<std::vector<double> > refused = {std::vector<double>(30, -1.0), std::vector<double>(30, 0.0), w, w};
+  refused[2][7] = std::numeric_limits<double>::quiet_NaN();
+  std::fill(refused[3].begin() + 2, refused[3].end(), 0.0); // two points left
+  for (const std::vector<double> &weights : refused) {
+    Eigen::Vector4d plane = start;
+    EXPECT_FALSE(refinePlaneWeighted(e.points.data(), weights.data(), 30, e.cone, plane));
+    EXPECT_EQ(plane, start);
+  }
 }
 
 namespace

@@ -55,6 +55,13 @@ inline double reprojectionError2(const Pose &pose, const Eigen::Vector3d &x, con
   return ex * ex + ey * ey;
 }
 
+//! True when \e gCam and \e gObj are finite and of unit norm within 1e-6 (the solvers' contract: a vector of
+//! another norm would make uprightRotation() a matrix that is not a rotation).
+inline bool unitGravities(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj)
+{
+  return std::abs(gCam.squaredNorm() - 1.0) <= 2e-6 && std::abs(gObj.squaredNorm() - 1.0) <= 2e-6;
+}
+
 //! True when every coefficient of the vector is finite.
 template <typename Derived> inline bool allFinite(const Eigen::MatrixBase<Derived> &v) { return v.allFinite(); }
 

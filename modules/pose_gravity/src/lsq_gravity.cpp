@@ -242,7 +242,7 @@ bool solveWeighted(const Eigen::Matrix3d &wRc, const Eigen::Matrix3d &wRo, const
 bool leastSquares(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
                   const Eigen::Vector3d *X, int n, Pose &pose, int reweightingPasses)
 {
-  if (n < 2 || !detail::allFinite(gCam) || !detail::allFinite(gObj))
+  if (n < 2 || !detail::unitGravities(gCam, gObj))
     return false;
   const Eigen::Matrix3d wRc = uprightRotation(gCam);
   const Eigen::Matrix3d wRo = uprightRotation(gObj);

@@ -18,6 +18,7 @@
 */
 #include <cmath>
 
+#include "gravity_geometry.h"
 #include "gravity_pair_solver.h"
 
 namespace vpGravitySolvers
@@ -87,8 +88,7 @@ int p2p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::V
   P2PCase localCase = P2PCase::NoSolution;
   P2PCase &result = p2pCase ? *p2pCase : localCase;
   result = P2PCase::NoSolution;
-  const Eigen::Vector3d g[2] = {gCam, gObj};
-  if (!detail::allFinite(g, 2) || !detail::allFinite(x, 2) || !detail::allFinite(X, 2) || !(x[0].z() > 0.0) ||
+  if (!detail::unitGravities(gCam, gObj) || !detail::allFinite(x, 2) || !detail::allFinite(X, 2) || !(x[0].z() > 0.0) ||
       !(x[1].z() > 0.0))
     return 0;
 

@@ -19,6 +19,7 @@
 #include <limits>
 #include <utility>
 
+#include "gravity_geometry.h"
 #include "gravity_pair_solver.h"
 
 namespace vpGravitySolvers
@@ -76,8 +77,7 @@ inline int pairThird(int p) { return (p + 2) % 3; }
 bool p3p(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d x[3],
          const Eigen::Vector3d X[3], Pose &pose, P3PPairRule rule)
 {
-  const Eigen::Vector3d g[2] = {gCam, gObj};
-  if (!detail::allFinite(g, 2) || !detail::allFinite(x, 3) || !detail::allFinite(X, 3) || !(x[0].z() > 0.0) ||
+  if (!detail::unitGravities(gCam, gObj) || !detail::allFinite(x, 3) || !detail::allFinite(X, 3) || !(x[0].z() > 0.0) ||
       !(x[1].z() > 0.0) || !(x[2].z() > 0.0))
     return false;
 

@@ -54,6 +54,20 @@ bool parseNumbers(const std::string &line, std::vector<double> &values)
   return true;
 }
 
+// True when the 3x3 block of \e M is finite, R R^T within 1e-3 of the identity (Frobenius) and det R > 0: a
+// rotation up to the rounding of a file or of a composition.
+bool isRotation(const vpArray2D<double> &M)
+{
+  vpMatrix R(3, 3);
+  for (unsigned int r = 0; r < 3; ++r)
+    for (unsigned int c = 0; c < 3; ++c) {
+      if (!std::isfinite(M[r][c]))
+        return false;
+      R[r][c] = M[r][c];
+    }
+  return (R * R.t() - vpMatrix(vpRotationMatrix())).frobeniusNorm() <= 1e-3 && R.det() > 0.0;
+}
+
 bool blankOrComment(const std::string &line)
 {
   const size_t first = line.find_first_not_of(" \t\r");
@@ -72,6 +86,8 @@ vpColVector vpImuGravity::gravityFromSpecificForce(const vpColVector &f, const v
   if (f.size() != 3 || !std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
     throw vpPoseGravityException(vpPoseGravityException::badGravityError,
                                  "vpImuGravity::gravityFromSpecificForce: the reading must be a finite 3-vector");
+  if (!isRotation(sRimu))
+    badParameter("gravityFromSpecificForce: sRimu is not a rotation (R R^T != I, det < 0 or not finite)");
   const vpColVector s = sRimu * f;
   const double norm = std::sqrt(s.sumSquare());
   if (!(norm > 0.0) || !std::isfinite(norm))
@@ -122,8 +138,7 @@ vpRotationMatrix vpImuGravity::loadRotation(const std::string &file)
       if (!std::isfinite(M[r][c]))
         badFile(file, 0, "non-finite rotation coefficient");
     }
-  const vpMatrix E = M * M.t() - vpMatrix(vpRotationMatrix());
-  if (E.frobeniusNorm() > 1e-3 || M.det() < 0.0)
+  if (!isRotation(M))
     badFile(file, 0, "the matrix is not a rotation (R R^T != I or det < 0)");
   vpRotationMatrix R;
   for (unsigned int r = 0; r < 3; ++r)
@@ -132,6 +147,20 @@ vpRotationMatrix vpImuGravity::loadRotation(const std::string &file)
   // Re-orthonormalise the rounding of the file (vpRotationMatrix::orthogonalize is not in ViSP 3.5's API).
   const vpThetaUVector tu(R);
   return vpRotationMatrix(tu);
+}
+
+void vpImuGravity::setImuToSensorRotation(const vpRotationMatrix &sRimu)
+{
+  if (!isRotation(sRimu))
+    badParameter("setImuToSensorRotation: not a rotation (R R^T != I, det < 0 or not finite)");
+  m_sRimu = sRimu;
+}
+
+void vpImuGravity::setTimeOffset(double offset)
+{
+  if (!std::isfinite(offset))
+    badParameter("setTimeOffset: the offset must be finite");
+  m_timeOffset = offset;
 }
 
 void vpImuGravity::setGravityNorm(double g)
@@ -188,6 +217,20 @@ void vpImuGravity::loadCsv(const std::string &file, double timeScale)
   std::ifstream in(file.c_str());
   if (!in)
     badFile(file, 0, "cannot open the IMU file");
+  // A file refused part way leaves the stream as it was (the rows before the bad one are dropped again).
+  const size_t before = m_samples.size();
+  try {
+    readCsvRows(in, file, timeScale);
+  } catch (...) {
+    m_samples.resize(before);
+    throw;
+  }
+  if (m_samples.empty())
+    badFile(file, 0, "no IMU sample");
+}
+
+void vpImuGravity::readCsvRows(std::istream &in, const std::string &file, double timeScale)
+{
   vpColVector w(3), a(3);
   vpReadNumericCsv(
       in, 7, "timestamp, wx, wy, wz, ax, ay, az", parseNumbers,
@@ -203,8 +246,6 @@ void vpImuGravity::loadCsv(const std::string &file, double timeScale)
         }
       },
       [&](size_t lineNo, const std::string &what) { badFile(file, lineNo, what); });
-  if (m_samples.empty())
-    badFile(file, 0, "no IMU sample");
 }
 
 bool vpImuGravity::atRest(const Sample &s) const

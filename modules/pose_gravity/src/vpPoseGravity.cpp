@@ -381,6 +381,10 @@ void vpPoseGravity::updateCovariance(const vpHomogeneousMatrix &cMo, const std::
 bool vpPoseGravity::refinePose(vpHomogeneousMatrix &cMo)
 {
   checkReady(2, static_cast<unsigned int>(m_points.size()), "refinePose", false);
+  if (!cMo.isAnHomogeneousMatrix()) { // a pose that is not rigid would be refined into another one
+    m_status = STATUS_REFINEMENT_FAILED;
+    return false;
+  }
   const std::vector<unsigned int> *used = m_refineOnInliers ? &m_inlierIndex : nullptr;
   std::vector<Eigen::Vector3d> x, X;
   collectPoints(m_points, used, x, X);

@@ -274,3 +274,31 @@ TEST(PoseGravityDegenerate, ObjectFarFromItsOrigin)
     EXPECT_LT(methodError(s, vpPoseGravity::P3P), 1e-9);
   }
 }
+
+// The solvers take unit gravity vectors (vpPoseGravity normalises them): one of another norm is refused,
+// with no pose, rather than turned into a matrix that is not a rotation (twice the unit vector gave
+// |R R^T - I| = 3 and a pose returned as found). Within 1e-6 of unit norm is taken.
+TEST(PoseGravityDegenerate, SolversRefuseGravityThatIsNotUnit)
+{
+  SceneGenerator gen(28);
+  std::vector<Eigen::Vector3d> x, X;
+  for (int trial = 0; trial < 100; ++trial) {
+    const Scene s = gen.scene(5);
+    toSolverInput(s.points, x, X);
+    const Eigen::Vector3d gCam = toEigen(s.gCam), gObj = toEigen(s.gObj);
+    for (double scale : {2.0, 0.5, 1.0 + 1e-4}) {
+      vpGravitySolvers::Pose pose;
+      std::array<vpGravitySolvers::Pose, 2> poses;
+      vpGravitySolvers::P2PCase p2pCase = vpGravitySolvers::P2PCase::TwoSolutions;
+      EXPECT_FALSE(vpGravitySolvers::p3p(scale * gCam, gObj, x.data(), X.data(), pose)) << scale;
+      EXPECT_FALSE(vpGravitySolvers::p3p(gCam, scale * gObj, x.data(), X.data(), pose)) << scale;
+      EXPECT_FALSE(vpGravitySolvers::leastSquares(scale * gCam, gObj, x.data(), X.data(), 5, pose)) << scale;
+      EXPECT_EQ(vpGravitySolvers::p2p(gCam, scale * gObj, x.data(), X.data(), poses, &p2pCase), 0) << scale;
+      EXPECT_EQ(p2pCase, vpGravitySolvers::P2PCase::NoSolution);
+    }
+    vpGravitySolvers::Pose pose;
+    const double nearlyUnit = 1.0 + 1e-7;
+    ASSERT_TRUE(vpGravitySolvers::p3p(nearlyUnit * gCam, gObj, x.data(), X.data(), pose));
+    EXPECT_LT(poseError(pose, s.cMo), 1e-5);
+  }
+}

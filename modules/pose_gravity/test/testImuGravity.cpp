@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -192,4 +193,45 @@ TEST(PoseGravityImu, BadFilesAreReported)
   EXPECT_THROW(vpImuGravity::loadRotation(tempFile("bad_rotation.txt", "1 0 0\n0 2 0\n0 0 1\n")),
                vpPoseGravityException);
   EXPECT_THROW(vpImuGravity::loadRotation(tempFile("short_rotation.txt", "1 0 0\n0 1 0\n")), vpPoseGravityException);
+}
+
+// A file refused part way leaves the stream as it was: the rows before the bad one are not kept, so that
+// the corrected file then loads (it was refused as "times must be strictly increasing" before).
+TEST(PoseGravityImu, ARefusedFileLeavesTheStreamUnchanged)
+{
+  vpImuGravity imu;
+  imu.addSample(0.5, vec(0, 0, 0), vec(0, 0, kG));
+  const std::string bad = tempFile("imu_bad_row.csv", "1,0,0,0,0,0,9.8\n2,0,0,0,0,0,9.8\n3,0,0,0,0,x,9.8\n");
+  EXPECT_THROW(imu.loadCsv(bad, 1.0), vpPoseGravityException);
+  EXPECT_EQ(imu.size(), 1u);
+  const std::string backwards = tempFile("imu_backwards.csv", "1,0,0,0,0,0,9.8\n2,0,0,0,0,0,9.8\n1.5,0,0,0,0,0,9.8\n");
+  EXPECT_THROW(imu.loadCsv(backwards, 1.0), vpPoseGravityException);
+  EXPECT_EQ(imu.size(), 1u);
+  imu.loadCsv(tempFile("imu_good.csv", "1,0,0,0,0,0,9.8\n2,0,0,0,0,0,9.8\n3,0,0,0,0,0,9.8\n"), 1.0);
+  EXPECT_EQ(imu.size(), 4u);
+}
+
+// A matrix that is not a rotation is refused where a rotation is taken, as loadRotation() refuses it in a file:
+// a sheared matrix turned gravity by 27 deg without a word.
+TEST(PoseGravityImu, ANonRotationIsRefused)
+{
+  vpRotationMatrix sheared;
+  sheared[0][1] = 0.5;
+  vpRotationMatrix reflection;
+  reflection[2][2] = -1.0;
+  vpRotationMatrix notFinite;
+  notFinite[1][1] = std::numeric_limits<double>::quiet_NaN();
+  for (const vpRotationMatrix &R : {sheared, reflection, notFinite}) {
+    vpImuGravity imu;
+    EXPECT_THROW(imu.setImuToSensorRotation(R), vpPoseGravityException);
+    EXPECT_THROW(vpImuGravity::gravityFromSpecificForce(vec(0, 0, kG), R), vpPoseGravityException);
+  }
+  vpImuGravity imu;
+  EXPECT_THROW(imu.setTimeOffset(std::numeric_limits<double>::quiet_NaN()), vpPoseGravityException);
+  const vpRotationMatrix R(vpThetaUVector(0.1, -0.2, 0.3));
+  EXPECT_NO_THROW(imu.setImuToSensorRotation(R));
+  const vpColVector g = vpImuGravity::gravityFromSpecificForce(vec(0, 0, kG), R);
+  const vpColVector expected = -(R * vec(0, 0, 1));
+  for (unsigned int i = 0; i < 3; ++i)
+    EXPECT_NEAR(g[i], expected[i], 1e-12);
 }

@@ -248,21 +248,32 @@ TEST(PoseGravityApi, StatusesAndCandidateOrder)
   EXPECT_GT(twoCandidates, 0);
 }
 
+// An initial pose that is not finite, or not rigid (its rotation block scaled by 1.5), is refused with
+// STATUS_REFINEMENT_FAILED and left as given, on the 4-DOF path and on the 6-DOF one (a gravity standard
+// deviation set), which returned the scaled pose refined but still scaled, as a success.
 TEST(PoseGravityApi, RefineKeepsPoseOnFailure)
 {
   SceneGenerator gen(37);
   const Scene s = gen.scene(5);
-  vpPoseGravity pose = estimatorFor(s);
-  vpHomogeneousMatrix cMo = s.cMo;
-  cMo[0][3] = std::numeric_limits<double>::quiet_NaN();
-  const vpHomogeneousMatrix before = cMo;
-  EXPECT_FALSE(pose.refinePose(cMo));
-  EXPECT_EQ(pose.getStatus(), vpPoseGravity::STATUS_REFINEMENT_FAILED);
+  vpHomogeneousMatrix notFinite = s.cMo, scaled = s.cMo;
+  notFinite[0][3] = std::numeric_limits<double>::quiet_NaN();
   for (unsigned int r = 0; r < 3; ++r)
     for (unsigned int c = 0; c < 3; ++c)
-      EXPECT_EQ(cMo[r][c], before[r][c]);
-  // Exact data: the refinement of the true pose stays on it.
-  vpHomogeneousMatrix truth = s.cMo;
-  EXPECT_TRUE(pose.refinePose(truth));
-  EXPECT_LT(poseError(truth, s.cMo), 1e-9);
+      scaled[r][c] *= 1.5;
+  for (double gravitySigma : {0.0, 0.01}) {
+    vpPoseGravity pose = estimatorFor(s);
+    pose.setCameraGravityStdDev(gravitySigma);
+    for (const vpHomogeneousMatrix &before : {notFinite, scaled}) {
+      vpHomogeneousMatrix cMo = before;
+      EXPECT_FALSE(pose.refinePose(cMo)) << "gravity sigma " << gravitySigma;
+      EXPECT_EQ(pose.getStatus(), vpPoseGravity::STATUS_REFINEMENT_FAILED);
+      for (unsigned int r = 0; r < 4; ++r)
+        for (unsigned int c = 0; c < 4; ++c)
+          EXPECT_TRUE(cMo[r][c] == before[r][c] || (std::isnan(cMo[r][c]) && std::isnan(before[r][c])));
+    }
+    // Exact data: the refinement of the true pose stays on it.
+    vpHomogeneousMatrix truth = s.cMo;
+    EXPECT_TRUE(pose.refinePose(truth));
+    EXPECT_LT(poseError(truth, s.cMo), 1e-9);
+  }
 }

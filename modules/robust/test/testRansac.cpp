@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 
+#include <visp3/core/vpException.h>
 #include <visp3/robust/vpRansac.h>
 
 TEST(RobustRansacTrialCount, MatchesThePaperNumbers)
@@ -25,6 +27,17 @@ TEST(RobustRansacTrialCount, EdgeCases)
   EXPECT_EQ(vpRansacTrialCount(0.99, 0.999999, 5, 1000), 1000);
   EXPECT_EQ(vpRansacTrialCount(0.99, std::nan(""), 3, 1000), 1000);
   EXPECT_EQ(vpRansacTrialCount(0.0, 0.5, 3, 1000), 1);
+}
+
+TEST(RobustRansacSampler, RefusesMoreIndicesThanThereAre)
+{
+  int out[3];
+  vpRansacSampler two(2, 1), none(0, 1);
+  EXPECT_THROW(two.draw(3, out), vpException); // hung: no third distinct index
+  EXPECT_THROW(none.draw(1, out), vpException);
+  EXPECT_THROW(two.draw(-1, out), vpException);
+  EXPECT_NO_THROW(two.draw(2, out));
+  EXPECT_NE(out[0], out[1]);
 }
 
 TEST(RobustRansacSampler, DrawsDistinctIndicesReproducibly)
@@ -127,6 +140,38 @@ TEST(RobustRansacLoop, RefusesTooFewData)
   vpRansacReport report;
   EXPECT_FALSE(vpRansacLoop(est, vpRansacOptions(), best, report));
   EXPECT_EQ(report.trials, 0);
+}
+
+// A confidence that is not a probability is refused like a bad threshold: NaN gave one trial, and a
+// model of outliers returned as a success.
+TEST(RobustRansacLoop, RefusesAConfidenceThatIsNotAProbability)
+{
+  const LineEstimator est = makeLineData(200, 100, 21);
+  for (double p : {std::numeric_limits<double>::quiet_NaN(), 0.0, -0.5, 1.5}) {
+    vpRansacOptions opt;
+    opt.threshold = 0.05;
+    opt.probability = p;
+    LineEstimator::Model best;
+    vpRansacReport report;
+    EXPECT_FALSE(vpRansacLoop(est, opt, best, report)) << "probability " << p;
+    EXPECT_EQ(report.trials, 0);
+  }
+}
+
+// A pretest subset is rounded up to whole blocks of vpRansacPretestBlock: with few data it is switched off
+// rather than drawn larger than the data (pretestSize 1-3 and 4-15 data read past the data before).
+TEST(RobustRansacLoop, APretestLargerThanTheDataOnceRoundedIsSwitchedOff)
+{
+  const LineEstimator est = makeLineData(12, 2, 22);
+  vpRansacOptions plain, pretest;
+  plain.threshold = pretest.threshold = 0.05;
+  pretest.pretestSize = 2;
+  LineEstimator::Model a, b;
+  vpRansacReport ra, rb;
+  ASSERT_TRUE(vpRansacLoop(est, plain, a, ra));
+  ASSERT_TRUE(vpRansacLoop(est, pretest, b, rb));
+  EXPECT_EQ(rb.inliers, ra.inliers); // the same loop: no pretest on 12 data
+  EXPECT_EQ(rb.trials, ra.trials);
 }
 
 TEST(RobustRansacScore, EarlyStopNeverChangesTheRanking)

@@ -95,7 +95,8 @@ VISP_EXPORT bool refinePlane(const Eigen::Vector2d *points, int n, const LaserCo
 
 /*!
   refinePlane() minimising the weighted sum of squared Sampson distances (weights >= 0, one per point;
-  nullptr for unit weights): the step of an iteratively reweighted least-squares (IRLS) refit.
+  nullptr for unit weights): the step of an iteratively reweighted least-squares (IRLS) refit. False (plane
+  untouched) also when a weight is negative or not finite, or fewer than 3 are positive.
 */
 VISP_EXPORT bool refinePlaneWeighted(const Eigen::Vector2d *points, const double *weights, int n, const LaserCone &cone,
                                      Eigen::Vector4d &plane, int iterations = 20);

@@ -14,7 +14,8 @@
   - an image point is given by its normalized coordinates as the bearing
     \f$ \mathbf{x} = (x, y, 1)^T \f$ (any positive multiple is accepted);
   - \e gCam and \e gObj are the gravity direction measured in the camera and the object frames, of
-    unit norm (the facade normalises them);
+    unit norm (the facade normalises them; the solvers refuse a vector whose norm is more than 1e-6 off,
+    with no pose);
   - no function allocates on the heap; none throws: validation belongs to the facade, degenerate input gives a false / zero return;
   - the rotation is parametrised as \f$ {}^c\mathbf{R}_o = {}^w\mathbf{R}_c^T \mathbf{R}_z(\alpha)\,
     {}^w\mathbf{R}_o \f$ with \f$ {}^w\mathbf{R}_c = \f$ uprightRotation(gCam) and

@@ -9,6 +9,7 @@
 #ifndef VP_IMU_GRAVITY_H
 #define VP_IMU_GRAVITY_H
 
+#include <iosfwd>
 #include <limits>
 #include <string>
 #include <vector>
@@ -66,7 +67,8 @@ public:
   /*!
     Down gravity direction (unit) in the sensor frame from one accelerometer reading \e f (specific
     force, IMU frame, any unit): \f$ -{}^s\mathbf{R}_{imu} \mathbf{f} / |\mathbf{f}| \f$.
-    \exception vpPoseGravityException::badGravityError on a zero, non-finite or non-3-vector reading.
+    \exception vpPoseGravityException::badGravityError on a zero, non-finite or non-3-vector reading,
+    badParameterError when \e sRimu is not a rotation (see setImuToSensorRotation()).
   */
   static vpColVector gravityFromSpecificForce(const vpColVector &f, const vpRotationMatrix &sRimu = vpRotationMatrix());
   /*!
@@ -83,8 +85,12 @@ public:
   */
   static vpRotationMatrix loadRotation(const std::string &file);
 
-  //! IMU-to-sensor rotation \f$ {}^s\mathbf{R}_{imu} \f$ (maps IMU vectors into the sensor frame); default identity.
-  void setImuToSensorRotation(const vpRotationMatrix &sRimu) { m_sRimu = sRimu; }
+  /*!
+    IMU-to-sensor rotation \f$ {}^s\mathbf{R}_{imu} \f$ (maps IMU vectors into the sensor frame); default identity.
+    \exception vpPoseGravityException::badParameterError when \e sRimu is not a rotation (R R^T off the identity
+    by more than 1e-3, det < 0 or a coefficient not finite), as loadRotation() refuses it in a file.
+  */
+  void setImuToSensorRotation(const vpRotationMatrix &sRimu);
   //! Norm of gravity used by the motion flag, m/s²; default standardGravity(). Throws badParameterError unless > 0.
   void setGravityNorm(double g);
   //! Largest deviation of the reading's norm from the gravity norm at rest, m/s²; default 0.5. Throws badParameterError unless > 0.
@@ -93,8 +99,8 @@ public:
   void setGyroTolerance(double tolerance);
   //! Half-width (s) of the window around a requested time whose samples are all checked for motion; default 0 (the two bracketing samples).
   void setMotionWindow(double halfWidth);
-  //! Offset such that IMU time = requested time + offset (s); default 0.
-  void setTimeOffset(double offset) { m_timeOffset = offset; }
+  //! Offset such that IMU time = requested time + offset (s); default 0. Throws badParameterError unless finite.
+  void setTimeOffset(double offset);
 
   /*!
     Appends a sample: time (s, strictly increasing), gyro (rad/s) and accelerometer (m/s²), IMU frame.
@@ -106,7 +112,8 @@ public:
     Reads a CSV stream (format in the class description) and appends its samples; \e timeScale
     converts its timestamps to seconds (1e-9 for EuRoC / Kalibr nanoseconds, 1 for seconds).
     \exception vpPoseGravityException::badFileError naming the file and line on a read error, a
-    wrong column count, a field that is not a number or timestamps not increasing.
+    wrong column count, a field that is not a number or timestamps not increasing; the stream is then
+    left as it was before the call (none of the file's rows kept).
   */
   void loadCsv(const std::string &file, double timeScale = 1e-9);
   //! Removes all samples.
@@ -132,6 +139,8 @@ private:
     double a[3];
   };
   bool atRest(const Sample &s) const;
+  //! The rows of an IMU CSV stream appended (loadCsv(), which restores the stream when this throws).
+  void readCsvRows(std::istream &in, const std::string &file, double timeScale);
 
   std::vector<Sample> m_samples;
   vpRotationMatrix m_sRimu;

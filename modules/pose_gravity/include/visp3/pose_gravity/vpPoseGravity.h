@@ -217,7 +217,7 @@ public:
     \param cMo : initial pose (any method), replaced by the refined pose on success.
     \return true if Ceres returned a usable solution with every used point in front of the camera
     (cMo updated), false otherwise (cMo unchanged, status STATUS_REFINEMENT_FAILED), e.g. for a
-    non-finite initial pose.
+    non-finite initial pose or one that is not a rigid transformation.
     \exception vpPoseGravityException on missing gravity, fewer than 2 points or bad coordinates.
   */
   bool refinePose(vpHomogeneousMatrix &cMo);

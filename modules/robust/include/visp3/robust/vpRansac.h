@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <visp3/core/vpConfig.h>
+#include <visp3/core/vpException.h>
 
 /*!
   \ingroup group_robust
@@ -53,7 +54,8 @@ struct vpRansacOptions
     on the subset make it implausible that it has as many inliers as the best model so far
     (Chernoff-Hoeffding bound of the binomial tail, risk pretestRisk per look): most hypotheses of a
     contaminated data set are dropped after a few data instead of being scored on about half of them.
-    Only worth it for large data sets (ignored when the data are fewer than four times the subset).
+    Only worth it for large data sets (ignored when the data are fewer than four times the subset, rounded
+    up to whole blocks).
   */
   int pretestSize = 0;
   /*!
@@ -96,9 +98,14 @@ class vpRansacSampler
 public:
   //! Sampler over [0, n) drawing k-subsets, seeded for reproducibility.
   vpRansacSampler(int n, unsigned int seed) : m_n(n), m_rng(seed) {}
-  //! Writes k distinct indices into \e out (k must be <= n; k is small, rejection is cheap).
+  /*!
+    Writes k distinct indices into \e out (k is small, rejection is cheap).
+    \exception vpException::badValue when k is negative or larger than n (no k distinct indices exist).
+  */
   void draw(int k, int *out)
   {
+    if (k < 0 || k > m_n)
+      throw vpException(vpException::badValue, "vpRansacSampler::draw: %d distinct indices among %d", k, m_n);
     std::uniform_int_distribution<int> pick(0, m_n - 1);
     for (int i = 0; i < k; ++i) {
       bool fresh = false;
@@ -310,12 +317,10 @@ void localOptimisation(const Estimator &estimator, int rounds, double thr2, type
 template <class Estimator> class Pretest
 {
 public:
-  //! The subset for \e n data: none when \e n is under four times the pretest size (a full count is then cheap).
+  //! The subset for \e n data: none when \e n is under four times the pretest size, rounded up to whole blocks
+  //! (a full count is then cheap, and the subset is never larger than the data).
   Pretest(int n, const vpRansacOptions &options)
-    : m_size(options.pretestSize > 0 && n >= 4 * options.pretestSize
-                 ? (options.pretestSize + vpRansacPretestBlock - 1) / vpRansacPretestBlock * vpRansacPretestBlock
-                 : 0),
-      m_n(n), m_risk(options.pretestRisk), m_subset(static_cast<size_t>(m_size)),
+    : m_size(subsetSize(n, options)), m_n(n), m_risk(options.pretestRisk), m_subset(static_cast<size_t>(m_size)),
       m_minimum(static_cast<size_t>(m_size / vpRansacPretestBlock), 0), m_minimumFor(0)
   {
     if (m_size == 0)
@@ -329,6 +334,15 @@ public:
       std::swap(all[static_cast<size_t>(k)], all[static_cast<size_t>(pick(rng))]);
     }
     std::copy(all.begin(), all.begin() + m_size, m_subset.begin());
+  }
+
+  //! The pretest size rounded up to whole blocks of vpRansacPretestBlock, 0 when \e n is under four times that.
+  static int subsetSize(int n, const vpRansacOptions &options)
+  {
+    if (options.pretestSize <= 0)
+      return 0;
+    const int rounded = (options.pretestSize + vpRansacPretestBlock - 1) / vpRansacPretestBlock * vpRansacPretestBlock;
+    return n / 4 >= rounded ? rounded : 0;
   }
 
   //! False when hypothesis \e m shows too few inliers on the subset to beat a best model of \e bestCount inliers.
@@ -395,7 +409,8 @@ private:
   Local optimisation runs only when a sample gives a new best model.
 
   \return true when a model with at least kSampleSize inliers was found; then \e best and \e report
-  describe it.
+  describe it. False, with no trial, when there are fewer data than kSampleSize, options.maxTrials is not
+  positive, options.threshold is not positive or options.probability is not in (0, 1].
 */
 template <class Estimator>
 bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options, typename Estimator::Model &best,
@@ -405,7 +420,8 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options, ty
   constexpr int s = Estimator::kSampleSize;
   const int n = estimator.size();
   report = vpRansacReport();
-  if (n < s || options.maxTrials <= 0 || !(options.threshold > 0.0))
+  if (n < s || options.maxTrials <= 0 || !(options.threshold > 0.0) ||
+      !(options.probability > 0.0 && options.probability <= 1.0))
     return false;
 
   const double thr2 = options.threshold * options.threshold;
