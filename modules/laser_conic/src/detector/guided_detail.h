@@ -63,7 +63,8 @@ struct ProfileResult
   double noise = 0.0, threshold = 0.0;
   double response = 0.0; //!< the matched filter's best response
   //! |left - right| of the matched filter's two background means where the prediction crosses the line (grey
-  //! levels of the summed lines; negative when its boxes leave the profile): a colour edge along the curve
+  //! levels of the summed lines; negative when its boxes leave the profile, or when the stripe was found): a
+  //! colour edge along the curve
   double edgeAtPrediction = -1.0;
   int lines = 0;           //!< image lines summed
   bool brightness = false; //!< measured on the brightness (ProfileWindow::brightness): its noise is not the red's

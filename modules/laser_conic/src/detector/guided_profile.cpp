@@ -370,6 +370,15 @@ void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWi
       prefetch(rgba + 4 * (k * W + line - 1));
 }
 
+// A profile whose stripe was not found, with the colour edge where the prediction crosses it
+// (ProfileResult::edgeAtPrediction; only a profile that finds nothing is asked for it, so that a tracked frame's
+// profiles, which find their stripe, do not compute it).
+ProfileResult notFound(ProfileResult &result, const MatchedFilter &filter, const GuidedSample &s, int start)
+{
+  result.edgeAtPrediction = filter.backgroundStep(static_cast<int>(std::lround(s.pos - start)));
+  return result;
+}
+
 ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
                              const ProfileWindow &window, ProfileBuffers &buffers)
 {
@@ -416,9 +425,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
       std::max(RidgeTuning::guidedMinResponse * lines, settings.factor * result.noise * buffers.filterGain(h, f));
   selectStripe(filter, s, window, drifted, start, first, last, result.threshold, best, bestResponse);
   result.response = bestResponse;
-  result.edgeAtPrediction = filter.backgroundStep(static_cast<int>(std::lround(s.pos - start)));
   if (best < 0 || bestResponse < result.threshold)
-    return result;
+    return notFound(result, filter, s, start);
   // The centre: the vertex of the parabola through the matched filter's responses around its best (the
   // filter has averaged the noise; the first pass's centroid of the raw profile, the fallback, is noisier
   // here). Its neighbours need their background boxes inside the profile too: [reach, n - 1 - reach].
@@ -439,7 +447,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (!shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
                       filter, best, settings, flankThreshold, buffers.diffs, runFirst, runLast,
                       vertex ? nullptr : &centre))
-    return result;
+    return notFound(result, filter, s, start);
   const double along = start + centre;
   result.found = true;
   result.offset = (along - s.pos) * s.toNormal;
