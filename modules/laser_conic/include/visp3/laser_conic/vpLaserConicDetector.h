@@ -118,8 +118,11 @@ struct vpLaserConicDetectorRun
   more on the brightness R + G + B (three lines, nine where they find nothing; its noise measured across
   the whole margin), and a point within 1 px of the followed one is kept: JPEG stores the colour at half
   resolution and coarser than the brightness, and beside a colour edge it smears a dim red stripe's
-  dominance into a plateau several pixels wide, while the brightness keeps the stripe's bump. The walk goes
-  one way round the curve: where it loses the stripe and finds it again a few profiles on, the profiles in
+  dominance into a plateau several pixels wide, while the brightness keeps the stripe's bump. For the same
+  reason, a profile that finds nothing where the prediction crosses a colour edge (its two background boxes
+  there differ by a quarter of the threshold or more) is searched on the brightness within 1 px of the
+  prediction, its point kept at 4 times the noise (not in tracking, whose prediction is the previous frame's).
+  The walk goes one way round the curve: where it loses the stripe and finds it again a few profiles on, the profiles in
   between are followed back from there.
   Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
