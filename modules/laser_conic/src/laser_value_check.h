@@ -5,9 +5,9 @@
 /*!
   \file laser_value_check.h
   \brief Private checks of the values the laser_conic setters take: a vpLaserConicException
-  (badValueError unless said otherwise) with the caller's message when the value is refused, so that a
-  check is written once (the settings of vpLaserConicPose and of the calibration classes, the camera of
-  every class that takes one).
+  (badValueError unless said otherwise) with the caller's message when the value is refused. The
+  laser_conic setters check their values through these (the detector through its check(), which names the
+  class), so that a check, the camera's and the opening angle's among them, is written once.
 */
 #ifndef VP_LASER_VALUE_CHECK_H
 #define VP_LASER_VALUE_CHECK_H

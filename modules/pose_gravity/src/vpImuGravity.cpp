@@ -83,11 +83,16 @@ vpImuGravity::vpImuGravity()
 
 vpColVector vpImuGravity::gravityFromSpecificForce(const vpColVector &f, const vpRotationMatrix &sRimu)
 {
+  if (!isRotation(sRimu))
+    badParameter("gravityFromSpecificForce: sRimu is not a rotation (R R^T != I, det < 0 or not finite)");
+  return downGravity(f, sRimu);
+}
+
+vpColVector vpImuGravity::downGravity(const vpColVector &f, const vpRotationMatrix &sRimu)
+{
   if (f.size() != 3 || !std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2]))
     throw vpPoseGravityException(vpPoseGravityException::badGravityError,
                                  "vpImuGravity::gravityFromSpecificForce: the reading must be a finite 3-vector");
-  if (!isRotation(sRimu))
-    badParameter("gravityFromSpecificForce: sRimu is not a rotation (R R^T != I, det < 0 or not finite)");
   const vpColVector s = sRimu * f;
   const double norm = std::sqrt(s.sumSquare());
   if (!(norm > 0.0) || !std::isfinite(norm))
@@ -272,7 +277,7 @@ bool vpImuGravity::gravityAt(double t, vpColVector &g, bool &moving) const
     f[i] = (1.0 - u) * before->a[i] + u * after->a[i];
   if (!(std::sqrt(f.sumSquare()) > 0.0))
     return false;
-  g = gravityFromSpecificForce(f, m_sRimu);
+  g = downGravity(f, m_sRimu); // the rotation was checked when it was set
   moving = !atRest(*before) || !atRest(*after);
   // Every sample of the motion window too.
   auto lo = std::lower_bound(m_samples.begin(), m_samples.end(), ti - m_motionWindow,

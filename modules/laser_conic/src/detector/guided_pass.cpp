@@ -171,6 +171,25 @@ ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNois
   return follow;
 }
 
+// The brightness profile (ProfileWindow::brightness) of sample s within \e window: three lines averaged then,
+// where they find nothing, nine (as the red profile of a faint stripe); \e accept(result) decides which found
+// point counts as found, before the nine lines are tried.
+template <class Accept>
+ProfileResult brightnessProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
+                                ProfileWindow window, ProfileBuffers &buffers, Accept accept)
+{
+  window.brightness = true;
+  ProfileResult r;
+  for (int lines : {RidgeTuning::guidedLines, RidgeTuning::guidedFaintLines}) {
+    window.lines = lines;
+    r = measureProfile(I, s, settings, window, buffers);
+    r.found = r.found && accept(r);
+    if (r.found)
+      break;
+  }
+  return r;
+}
+
 // A follow whose red score found nothing, measured on the brightness (ProfileWindow::brightness) within the
 // follow's window around \e offset, three lines averaged then, where they find nothing, nine (as the red
 // profile of a faint stripe): its point is kept only within RidgeTuning::guidedMaxJump of that offset, so
@@ -180,17 +199,10 @@ ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNois
 ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
                                  double offset, bool fittedHere, ProfileBuffers &buffers)
 {
-  ProfileWindow window = followWindow(s, offset, -1.0, false, fittedHere);
-  window.brightness = true;
-  ProfileResult r;
-  for (int lines : {RidgeTuning::guidedLines, RidgeTuning::guidedFaintLines}) {
-    window.lines = lines;
-    r = measureProfile(I, s, settings, window, buffers);
-    r.found = r.found && std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump;
-    if (r.found)
-      break;
-  }
-  return r;
+  return brightnessProfile(I, s, settings, followWindow(s, offset, -1.0, false, fittedHere), buffers,
+                           [offset](const ProfileResult &r) {
+                             return std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump;
+                           });
 }
 
 // A sample whose red profile found nothing where the prediction crosses a colour edge, measured on its
@@ -203,14 +215,7 @@ ProfileResult brightnessAtPrediction(const vpImage<vpRGBa> &I, const GuidedSampl
 {
   ProfileWindow window;
   window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
-  window.brightness = true;
-  ProfileResult r;
-  for (int lines : {RidgeTuning::guidedLines, RidgeTuning::guidedFaintLines}) {
-    window.lines = lines;
-    r = measureProfile(I, s, settings, window, buffers);
-    if (r.found)
-      break;
-  }
+  ProfileResult r = brightnessProfile(I, s, settings, window, buffers, [](const ProfileResult &) { return true; });
   r.found = r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold;
   return r;
 }

@@ -139,6 +139,8 @@ private:
     double a[3];
   };
   bool atRest(const Sample &s) const;
+  //! gravityFromSpecificForce() for a rotation already checked (the stream's, checked when set).
+  static vpColVector downGravity(const vpColVector &f, const vpRotationMatrix &sRimu);
   //! The rows of an IMU CSV stream appended (loadCsv(), which restores the stream when this throws).
   void readCsvRows(std::istream &in, const std::string &file, double timeScale);
 
