@@ -19,6 +19,8 @@
 #include <visp3/core/vpCameraParameters.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
+#include "laser_pose_check.h"
+
 namespace vsp::laser_value_check
 {
 //! Throws vpLaserConicException with \e code and \e message unless \e ok (the checks that are not ranges).
@@ -73,6 +75,30 @@ inline void requireUsableCamera(const vpCameraParameters &cam, const std::string
               cam.get_projModel() == vpCameraParameters::perspectiveProjWithDistortion,
           who + ": only the perspective projection models (with or without distortion) are supported",
           vpLaserConicException::badCameraError);
+}
+
+/*!
+  Throws vpLaserConicException::badLaserError, the message beginning with \e who, unless the laser pose \e cMl
+  is a finite rigid transformation (laser_pose_check::isFinitePose()).
+*/
+inline void requireLaserPose(const vpHomogeneousMatrix &cMl, const std::string &who)
+{
+  require(laser_pose_check::isFinitePose(cMl), who + ": the laser pose cMl is not a finite rigid transformation",
+          vpLaserConicException::badLaserError);
+}
+
+/*!
+  The laser of a class that estimates from images: requireOpeningAngle(), requireLaserPose(), and the apex
+  away from the camera centre (at it, the imaged conic is that of the cone alone, whatever the ground: the
+  ground plane is unobservable). Throws vpLaserConicException::badLaserError, the message beginning with \e who.
+*/
+inline void requireLaserMounting(double openingAngle, const vpHomogeneousMatrix &cMl, const std::string &who)
+{
+  requireOpeningAngle(openingAngle, who);
+  requireLaserPose(cMl, who);
+  require(cMl.getTranslationVector().frobeniusNorm() >= 1e-9,
+          who + ": the laser apex is at the camera centre (zero baseline): the ground plane is then unobservable",
+          vpLaserConicException::badLaserError);
 }
 } // namespace vsp::laser_value_check
 

@@ -76,9 +76,7 @@ void vpLaserConicCalibration::setMaxConditionNumber(double maxCondition)
 
 void vpLaserConicCalibration::setInitialGuess(const vpHomogeneousMatrix &cMl)
 {
-  vsp::laser_value_check::require(vsp::laser_pose_check::isFinitePose(cMl),
-                                  "vpLaserConicCalibration: the initial guess is not a finite rigid transformation",
-                                  vpLaserConicException::badLaserError);
+  vsp::laser_value_check::requireLaserPose(cMl, "vpLaserConicCalibration: the initial guess");
   m_guess = cMl;
   m_hasGuess = true;
 }

@@ -29,18 +29,7 @@ void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
 
 void vpLaserConicPose::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
 {
-  vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicPose");
-  for (unsigned int i = 0; i < 4; ++i)
-    for (unsigned int j = 0; j < 4; ++j)
-      require(std::isfinite(cMl[i][j]), "vpLaserConicPose: the laser pose cMl is not finite",
-              vpLaserConicException::badLaserError);
-  require(cMl.isAnHomogeneousMatrix(), "vpLaserConicPose: the laser pose cMl is not a rigid transformation",
-          vpLaserConicException::badLaserError);
-  const double baseline = std::sqrt(cMl[0][3] * cMl[0][3] + cMl[1][3] * cMl[1][3] + cMl[2][3] * cMl[2][3]);
-  require(baseline >= 1e-9,
-          "vpLaserConicPose: the laser apex is at the camera centre (zero baseline): the ground plane is then "
-          "unobservable",
-          vpLaserConicException::badLaserError);
+  vsp::laser_value_check::requireLaserMounting(openingAngle, cMl, "vpLaserConicPose");
   m_openingAngle = openingAngle;
   m_cMl = cMl;
   m_hasLaser = true;

@@ -14,7 +14,6 @@
 
 #include <visp3/core/vpMath.h>
 
-#include "laser_pose_check.h"
 #include "laser_selfcal_steps.h"
 #include "laser_value_check.h"
 
@@ -53,11 +52,7 @@ void vpLaserConicSelfCalibration::setCameraParameters(const vpCameraParameters &
 
 void vpLaserConicSelfCalibration::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
 {
-  vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicSelfCalibration");
-  require(vsp::laser_pose_check::isFinitePose(cMl) && cMl.getTranslationVector().frobeniusNorm() >= 1e-9,
-          "vpLaserConicSelfCalibration: the laser pose must be a finite rigid transformation with the apex away "
-          "from the camera centre",
-          vpLaserConicException::badLaserError);
+  vsp::laser_value_check::requireLaserMounting(openingAngle, cMl, "vpLaserConicSelfCalibration");
   m_openingAngle = openingAngle;
   m_cMl = cMl;
   m_hasLaser = true;

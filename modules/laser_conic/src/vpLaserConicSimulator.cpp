@@ -50,9 +50,7 @@ void vpLaserConicSimulator::setCamera(const vpCameraParameters &cam, unsigned in
 void vpLaserConicSimulator::setLaser(double openingAngle, const vpHomogeneousMatrix &cMl)
 {
   vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicSimulator");
-  require(vsp::laser_pose_check::isFinitePose(cMl),
-          "vpLaserConicSimulator: the laser pose is not a finite rigid transformation",
-          vpLaserConicException::badLaserError);
+  vsp::laser_value_check::requireLaserPose(cMl, "vpLaserConicSimulator");
   m_openingAngle = openingAngle;
   m_cMl = cMl;
 }

@@ -937,16 +937,49 @@ std::vector<std::pair<std::string, std::function<void(const vpCameraParameters &
            [](const vpCameraParameters &c) { vpLaserConicSimulator().setCamera(c, 1600, 1200); }}};
 }
 
-//! The error code \e set throws for \e cam, -1 when it takes it.
-int cameraErrorCode(const std::function<void(const vpCameraParameters &)> &set, const vpCameraParameters &cam)
+//! The error code \e set throws for \e value, -1 when it takes it.
+template <typename T> int errorCode(const std::function<void(const T &)> &set, const T &value)
 {
   try {
-    set(cam);
+    set(value);
   } catch (const vpLaserConicException &e) {
     return e.getCode();
   }
   return -1;
 }
+
+//! Laser poses no class may take, by what is wrong with them.
+std::vector<std::pair<std::string, vpHomogeneousMatrix> > unusableLaserPoses()
+{
+  vpHomogeneousMatrix nan(0.1, 0.0, 0.0, 0.0, 0.0, 0.0);
+  nan[2][3] = std::numeric_limits<double>::quiet_NaN();
+  vpHomogeneousMatrix scaled(0.1, 0.0, 0.0, 0.0, 0.0, 0.0); // a rotation block 1 % too long: not rigid
+  for (unsigned int i = 0; i < 3; ++i)
+    scaled[i][i] = 1.01;
+  return {{"a NaN translation", nan}, {"a scaled rotation", scaled}};
+}
+
+//! The laser setter of every laser class that takes a laser pose, each on a new object, by class name; the
+//! flag says whether the class estimates from images (and so refuses an apex at the camera centre).
+struct LaserSetter
+{
+  std::string name;
+  std::function<void(const vpHomogeneousMatrix &)> set;
+  bool estimates;
+};
+std::vector<LaserSetter> laserSetters()
+{
+  const double opening = vpMath::rad(34.0);
+  return {{"vpLaserConicPose", [opening](const vpHomogeneousMatrix &M) { vpLaserConicPose().setLaser(opening, M); },
+           true},
+          {"vpLaserConicSelfCalibration",
+           [opening](const vpHomogeneousMatrix &M) { vpLaserConicSelfCalibration().setLaser(opening, M); }, true},
+          {"vpLaserConicSimulator",
+           [opening](const vpHomogeneousMatrix &M) { vpLaserConicSimulator().setLaser(opening, M); }, false},
+          {"vpLaserConicCalibration (initial guess)",
+           [](const vpHomogeneousMatrix &M) { vpLaserConicCalibration().setInitialGuess(M); }, false}};
+}
+
 } // namespace
 
 // Every laser class that takes the camera validates it the same way at its setter: an estimate, a
@@ -957,8 +990,26 @@ TEST(LaserConicPose, EveryLaserClassRefusesTheSameUnusableCameras)
   const vpCameraParameters distorted(1500.0, 1500.0, 800.0, 600.0, -0.1, 0.1);
   for (const auto &setter : cameraSetters()) {
     for (const auto &named : unusableCameras())
-      EXPECT_EQ(cameraErrorCode(setter.second, named.second), vpLaserConicException::badCameraError)
+      EXPECT_EQ(errorCode(setter.second, named.second), vpLaserConicException::badCameraError)
           << setter.first << " accepted a camera with " << named.first;
-    EXPECT_EQ(cameraErrorCode(setter.second, distorted), -1) << setter.first << " refused a usable camera";
+    EXPECT_EQ(errorCode(setter.second, distorted), -1) << setter.first << " refused a usable camera";
+  }
+}
+
+// Every laser class that takes a laser pose refuses the same non-finite or non-rigid ones; the two that
+// estimate from images refuse an apex at the camera centre as well (the ground plane is then unobservable),
+// while the simulator renders it and the calibration starts from it. A laser 10 cm beside the camera, turned
+// by 4 degrees, is taken by all of them.
+TEST(LaserConicPose, EveryLaserClassRefusesTheSameLaserPoses)
+{
+  const vpHomogeneousMatrix usable(0.1, 0.0, 0.0, 0.0, vpMath::rad(4.0), 0.0);
+  for (const LaserSetter &setter : laserSetters()) {
+    for (const auto &named : unusableLaserPoses())
+      EXPECT_EQ(errorCode(setter.set, named.second), vpLaserConicException::badLaserError)
+          << setter.name << " accepted a laser pose with " << named.first;
+    EXPECT_EQ(errorCode(setter.set, vpHomogeneousMatrix()),
+              setter.estimates ? vpLaserConicException::badLaserError : -1)
+        << setter.name << " on an apex at the camera centre";
+    EXPECT_EQ(errorCode(setter.set, usable), -1) << setter.name << " refused a usable laser pose";
   }
 }

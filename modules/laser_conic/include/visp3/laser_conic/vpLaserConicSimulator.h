@@ -224,7 +224,8 @@ public:
   /*!
     Laser: full opening angle (rad) and pose of the laser frame in the camera frame.
     \exception vpLaserConicException::badLaserError when the angle is outside (0, pi) or the pose is
-    not a finite rigid transformation.
+    not a finite rigid transformation. An apex at the camera centre is rendered (vpLaserConicPose refuses it:
+    its ground plane is unobservable).
   */
   void setLaser(double openingAngle, const vpHomogeneousMatrix &cMl);
   /*!
