@@ -366,15 +366,74 @@ bool refit(const std::vector<vpImagePoint> &points, bool fromFirstPass, Eigen::M
 
 // Drops the crossings farther than RidgeTuning::guidedFinalDistance pixels (Sampson distance) from the conic C
 // refitted on all the points: a piece that continued the prediction of an early, extrapolated fit but not
-// the curve that all the points make (a stripe-like texture near the curve).
-void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
+// the curve that all the points make (a stripe-like texture near the curve). Those dropped go to \e dropped.
+void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings, std::vector<Crossing> &dropped)
 {
   size_t kept = 0;
-  for (const Crossing &c : crossings)
+  for (const Crossing &c : crossings) {
     if (vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(c.point.get_u(), c.point.get_v())) <=
         RidgeTuning::guidedFinalDistance)
       crossings[kept++] = c;
+    else
+      dropped.push_back(c);
+  }
   crossings.resize(kept);
+}
+
+// A crossing's image line and its position along it, ordered by line.
+struct LinePosition
+{
+  int line; // rows first, then columns (H + column)
+  double pos;
+  bool operator<(const LinePosition &o) const { return line < o.line || (line == o.line && pos < o.pos); }
+};
+
+std::vector<LinePosition> linePositions(const std::vector<Crossing> &crossings, int H)
+{
+  std::vector<LinePosition> positions;
+  positions.reserve(crossings.size());
+  for (const Crossing &c : crossings)
+    positions.push_back({c.alongRow ? c.line : H + c.line, c.alongRow ? c.point.get_u() : c.point.get_v()});
+  std::sort(positions.begin(), positions.end());
+  return positions;
+}
+
+// Whether one of \e positions (sorted) lies on the line of sample s within its margin.
+bool onSampleProfile(const std::vector<LinePosition> &positions, const GuidedSample &s, int H)
+{
+  const int line = s.alongRow ? s.line : H + s.line;
+  auto it = std::lower_bound(positions.begin(), positions.end(), LinePosition{line, s.pos - s.halfWindow});
+  return it != positions.end() && it->line == line && it->pos <= s.pos + s.halfWindow;
+}
+
+// Where a walk followed a neighbouring structure away from the ring, keepOnTheFinalCurve() drops the points it
+// took there and leaves the ring without any: beside a red cable, the stripe's red dominance is a shoulder on
+// the cable's flank, and a follow window moving a fraction of a pixel a sample slides onto the flank (data/
+// laser_hard frame 27: the offset to the prediction growing to 9 px over 20 samples while the fitted conic
+// stays within a pixel of the ring). The samples of the final conic C whose profile held such a dropped point
+// and holds no kept one are measured again at C, on the brightness within RidgeTuning::guidedMaxJump of it
+// (brightnessAtPrediction(), whose bump the stripe keeps there), kept at RidgeTuning::guidedRemeasureStrength
+// times the threshold; a point found farther off is a flank, as where the image of the ring is not quite an
+// ellipse (a lens's distortion) and C lies beside the stripe. Appends the points found to \e kept; returns
+// how many.
+int remeasureWhereDropped(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                          const std::vector<Crossing> &dropped, ProfileBuffers &buffers, std::vector<Crossing> &kept)
+{
+  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
+  std::vector<GuidedSample> samples;
+  if (dropped.empty() || !sampleConic(C, W, H, settings.margin, settings.step, samples))
+    return 0;
+  const std::vector<LinePosition> droppedAt = linePositions(dropped, H), keptAt = linePositions(kept, H);
+  const size_t before = kept.size();
+  for (const GuidedSample &s : samples) {
+    if (!onSampleProfile(droppedAt, s, H) || onSampleProfile(keptAt, s, H))
+      continue;
+    const ProfileResult r = brightnessAtPrediction(I, s, settings, buffers);
+    if (r.found && std::fabs(r.offset) <= RidgeTuning::guidedMaxJump &&
+        r.response >= RidgeTuning::guidedRemeasureStrength * r.threshold)
+      kept.push_back(r.crossing);
+  }
+  return static_cast<int>(kept.size() - before);
 }
 
 double median(std::vector<double> &values)
@@ -443,7 +502,10 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     if (added == 0 || missed == 0 || !refitted)
       break;
   }
-  keepOnTheFinalCurve(C, work.guided);
+  std::vector<Crossing> dropped;
+  keepOnTheFinalCurve(C, work.guided, dropped);
+  if (fittedHere)
+    remeasureWhereDropped(I, settings, C, dropped, buffers, work.guided);
   smoothAlongCurve(C, work.guided);
   points.reserve(points.size() + work.guided.size());
   for (const Crossing &c : work.guided)
@@ -451,92 +513,5 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   report.added = static_cast<int>(work.guided.size());
   report.noise = median(noises);
   report.threshold = median(thresholds);
-}
-
-namespace
-{
-int medianWidth(std::vector<int> &widths, int fallback) { return widths.empty() ? fallback : middleValue(widths); }
-} // namespace
-
-int observedStripeWidth(const RidgeWorkspace &work, int fallback)
-{
-  std::vector<int> widths;
-  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
-    if (work.keep[k])
-      widths.push_back(work.crossings[k].last - work.crossings[k].first + 1);
-  return medianWidth(widths, fallback);
-}
-
-int guidedStripeWidth(const RidgeWorkspace &work, int fallback)
-{
-  std::vector<int> widths;
-  widths.reserve(work.guided.size());
-  for (const Crossing &c : work.guided)
-    widths.push_back(c.last - c.first + 1);
-  return medianWidth(widths, fallback);
-}
-
-int observedStripeWidth(const RidgeWorkspace &work, const Eigen::Matrix3d &C, const std::vector<int> &inliers,
-                        int fallback)
-{
-  // The kept crossings in order, as the points returned (the inliers index those).
-  std::vector<const Crossing *> kept;
-  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
-    if (work.keep[k])
-      kept.push_back(&work.crossings[k]);
-  std::vector<int> widths;
-  for (int index : inliers) {
-    if (index < 0 || static_cast<size_t>(index) >= kept.size())
-      continue;
-    const Crossing &c = *kept[static_cast<size_t>(index)];
-    // A run along a row is the width across the stripe over |n_u|, along a column over |n_v| (n: the unit
-    // normal; the gradient's direction will do).
-    const Eigen::Vector3d g = C * Eigen::Vector3d(c.point.get_u(), c.point.get_v(), 1.0);
-    const double nu = std::fabs(g(0)), nv = std::fabs(g(1)), steeper = std::max(nu, nv);
-    if (!(steeper > 0.0))
-      continue;
-    const double run = c.last - c.first + 1;
-    widths.push_back(static_cast<int>(std::lround(run * (c.alongRow ? nu : nv) / steeper)));
-  }
-  return medianWidth(widths, fallback);
-}
-
-namespace
-{
-// Of the kept crossings of work (in order, the points of the pass), keeps those \e selected marks.
-void keepSelectedCrossings(const std::vector<unsigned char> &selected, RidgeWorkspace &work)
-{
-  size_t index = 0;
-  for (size_t k = 0; k < work.crossings.size() && k < work.keep.size(); ++k)
-    if (work.keep[k])
-      work.keep[k] = index < selected.size() && selected[index++];
-}
-} // namespace
-
-std::vector<vpImagePoint> keepSteepRowCrossings(const std::vector<vpImagePoint> &points,
-                                                const std::vector<int> &inliers, const Eigen::Matrix3d &C,
-                                                RidgeWorkspace &work)
-{
-  std::vector<unsigned char> steep(points.size(), 0);
-  std::vector<vpImagePoint> kept;
-  kept.reserve(inliers.size());
-  for (int k : inliers) {
-    const vpImagePoint &p = points[static_cast<size_t>(k)];
-    const Eigen::Vector3d g = C * Eigen::Vector3d(p.get_u(), p.get_v(), 1.0);
-    if (std::fabs(g(0)) >= std::fabs(g(1))) {
-      steep[static_cast<size_t>(k)] = 1;
-      kept.push_back(p);
-    }
-  }
-  keepSelectedCrossings(steep, work);
-  return kept;
-}
-
-void keepInlierCrossings(size_t count, const std::vector<int> &inliers, RidgeWorkspace &work)
-{
-  std::vector<unsigned char> selected(count, 0);
-  for (int k : inliers)
-    selected[static_cast<size_t>(k)] = 1;
-  keepSelectedCrossings(selected, work);
 }
 } // namespace vsp::laser_detector
