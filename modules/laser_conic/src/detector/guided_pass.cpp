@@ -410,12 +410,13 @@ bool onSampleProfile(const std::vector<LinePosition> &positions, const GuidedSam
 // took there and leaves the ring without any: beside a red cable, the stripe's red dominance is a shoulder on
 // the cable's flank, and a follow window moving a fraction of a pixel a sample slides onto the flank (data/
 // laser_hard frame 27: the offset to the prediction growing to 9 px over 20 samples while the fitted conic
-// stays within a pixel of the ring). The samples of the final conic C whose profile held such a dropped point
-// and holds no kept one are measured again at C, on the brightness within RidgeTuning::guidedMaxJump of it
-// (brightnessAtPrediction(), whose bump the stripe keeps there), kept at RidgeTuning::guidedRemeasureStrength
-// times the threshold; a point found farther off is a flank, as where the image of the ring is not quite an
-// ellipse (a lens's distortion) and C lies beside the stripe. Appends the points found to \e kept; returns
-// how many.
+// stays within a pixel of the ring); on a mosaic, onto a joint's edge beside the stripe. The samples of the
+// final conic C whose profile held such a dropped point and holds no kept one are measured again at C, within
+// RidgeTuning::guidedMaxJump of it: on the red score (the stripe the follow left), then on the brightness
+// (brightnessAtPrediction(), whose bump the stripe keeps beside a cable), each at its own strength (see
+// RidgeTuning::guidedRemeasureStrength). A point found farther off is a flank, as where the image of the
+// ring is not quite an ellipse (a lens's distortion) and C lies beside the stripe. Appends the points found
+// to \e kept; returns how many.
 int remeasureWhereDropped(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
                           const std::vector<Crossing> &dropped, ProfileBuffers &buffers, std::vector<Crossing> &kept)
 {
@@ -428,10 +429,18 @@ int remeasureWhereDropped(const vpImage<vpRGBa> &I, const GuidedSettings &settin
   for (const GuidedSample &s : samples) {
     if (!onSampleProfile(droppedAt, s, H) || onSampleProfile(keptAt, s, H))
       continue;
-    const ProfileResult r = brightnessAtPrediction(I, s, settings, buffers);
-    if (r.found && std::fabs(r.offset) <= RidgeTuning::guidedMaxJump &&
-        r.response >= RidgeTuning::guidedRemeasureStrength * r.threshold)
-      kept.push_back(r.crossing);
+    ProfileWindow atConic;
+    atConic.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
+    const ProfileResult red = measureProfile(I, s, settings, atConic, buffers);
+    if (red.found && std::fabs(red.offset) <= RidgeTuning::guidedMaxJump &&
+        red.response >= RidgeTuning::guidedRemeasureRedStrength * red.threshold) {
+      kept.push_back(red.crossing);
+      continue;
+    }
+    const ProfileResult bright = brightnessAtPrediction(I, s, settings, buffers);
+    if (bright.found && std::fabs(bright.offset) <= RidgeTuning::guidedMaxJump &&
+        bright.response >= RidgeTuning::guidedRemeasureStrength * bright.threshold)
+      kept.push_back(bright.crossing);
   }
   return static_cast<int>(kept.size() - before);
 }

@@ -164,13 +164,18 @@ struct RidgeTuning
   //! See guidedColourEdge: 4 sigma at the default threshold factor of 3.
   static constexpr double guidedBrightnessStrength = 4.0 / 3.0;
   //! A sample of the final conic whose profile held a point dropped as off the final curve (a walk that
-  //! followed a red cable's flank away from the ring beside it) and holds no kept one is measured again on its
-  //! brightness within guidedMaxJump of the conic, its point kept when the response reaches
-  //! guidedRemeasureStrength times the threshold (6 sigma at the default factor; remeasureWhereDropped()): the
-  //! walk was misled there, and a clear bump is asked. data/laser_hard, ring at 3 sigma: frame 27 (red cable)
-  //! 0.942 -> 0.956, frame 56 (faint) 0.976 -> 0.983, no frame lower; mosaic held-out seeds 83-102 95.34 ->
-  //! 95.45 %. At 4 sigma: frame 27 0.963, held-out 95.58 %, but seed 93's second-pass RMS 0.411 -> 0.426 px.
+  //! followed a red cable's flank, or a joint's edge, away from the ring beside it) and holds no kept one is
+  //! measured again within guidedMaxJump of the conic (remeasureWhereDropped()): on the red score, its point
+  //! kept at guidedRemeasureRedStrength times the threshold (4 sigma at the default factor, as
+  //! guidedBrightnessStrength), then on the brightness, kept at guidedRemeasureStrength times (6 sigma: the
+  //! walk was misled there, and a clear bump is asked). Mosaic floor, ring at 3 sigma: seeds 73-82 95.82 ->
+  //! 96.22 %, every seed >= 95 % (seed 80 94.59 -> 95.17 %), held-out seeds 83-102 95.34 -> 95.78 %;
+  //! data/laser_hard frame 27 (red cable) 0.942 -> 0.964, frame 56 (faint) 0.976 -> 0.983, no frame lower.
+  //! Measured and not kept: the brightness at 4 sigma (without the red step: seed 93's second-pass RMS 0.411
+  //! -> 0.426 px), the red at 3 sigma (seed 93 0.427 px, against 0.420 at 4).
   static constexpr double guidedRemeasureStrength = 2.0;
+  //! See guidedRemeasureStrength.
+  static constexpr double guidedRemeasureRedStrength = 4.0 / 3.0;
   //! Where the profile of guidedLines lines finds nothing, one of guidedFaintLines lines is measured: the stripe's
   //! response grows as the number of lines, its noise as its square root (three times the noise of one pixel
   //! then stands out by 3.5 times the noise of the response), and the predicted curve is straight within a

@@ -128,9 +128,10 @@ struct vpLaserConicDetectorRun
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
   times). Points more than 2.5 px from the final ellipse are dropped (a walk that slid onto a red cable's
-  flank beside the stripe, or followed a texture); where a profile of the final ellipse held such a point and
-  holds no kept one, its brightness within 1 px of the ellipse is measured, the point kept at 6 times the noise
-  (not in tracking). Last, the centres of this pass are regularised along the curve: each one's offset to the final
+  flank or a joint's edge beside the stripe); where a profile of the final ellipse held such a point and
+  holds no kept one, it is measured again within 1 px of the ellipse, on the red score (kept at 4 times the
+  noise), then on the brightness (6 times; not in tracking). Last, the centres of this pass are regularised
+  along the curve: each one's offset to the final
   ellipse is replaced by a straight-line fit of the offsets over 40 px of arc around it (offsets more than
   1 px from a first fit left out), since one profile's centre is noisy (sensor noise, JPEG's 8 x 8 blocks)
   but the centre line is smooth. The points of this pass follow those of the first pass in the list
