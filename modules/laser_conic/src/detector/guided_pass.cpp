@@ -3,7 +3,8 @@
  * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
  */
 // The conic-guided pass of the ridge detector: walks the predicted conic, measures a profile where no point
-// is known yet, keeps the pieces of curve that continue it, refits and walks again until no point is added.
+// is known yet, keeps the pieces of curve that continue it, refits and walks again until no point is added;
+// then drops the points off the final conic and measures their profiles again at it.
 #include "guided_detail.h"
 
 #include <algorithm>
