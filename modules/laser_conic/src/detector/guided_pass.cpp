@@ -172,6 +172,14 @@ ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNois
   return follow;
 }
 
+// The window within RidgeTuning::guidedMaxJump (across the curve) of sample s's predicted crossing.
+ProfileWindow predictionWindow(const GuidedSample &s)
+{
+  ProfileWindow window;
+  window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
+  return window;
+}
+
 // The brightness profile (ProfileWindow::brightness) of sample s within \e window: three lines averaged then,
 // where they find nothing, nine (as the red profile of a faint stripe); \e accept(result) decides which found
 // point counts as found, before the nine lines are tried.
@@ -214,9 +222,8 @@ ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s
 ProfileResult brightnessAtPrediction(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
                                      ProfileBuffers &buffers)
 {
-  ProfileWindow window;
-  window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
-  ProfileResult r = brightnessProfile(I, s, settings, window, buffers, [](const ProfileResult &) { return true; });
+  ProfileResult r =
+      brightnessProfile(I, s, settings, predictionWindow(s), buffers, [](const ProfileResult &) { return true; });
   r.found = r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold;
   return r;
 }
@@ -417,33 +424,31 @@ bool onSampleProfile(const std::vector<LinePosition> &positions, const GuidedSam
 // (brightnessAtPrediction(), whose bump the stripe keeps beside a cable), each at its own strength (see
 // RidgeTuning::guidedRemeasureStrength). A point found farther off is a flank, as where the image of the
 // ring is not quite an ellipse (a lens's distortion) and C lies beside the stripe. Appends the points found
-// to \e kept; returns how many.
-int remeasureWhereDropped(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
-                          const std::vector<Crossing> &dropped, ProfileBuffers &buffers, std::vector<Crossing> &kept)
+// to \e kept.
+void remeasureWhereDropped(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                           const std::vector<Crossing> &dropped, ProfileBuffers &buffers, std::vector<Crossing> &kept)
 {
   const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
   std::vector<GuidedSample> samples;
   if (dropped.empty() || !sampleConic(C, W, H, settings.margin, settings.step, samples))
-    return 0;
+    return;
   const std::vector<LinePosition> droppedAt = linePositions(dropped, H), keptAt = linePositions(kept, H);
-  const size_t before = kept.size();
+  // A point within guidedMaxJump of C whose response reaches \e strength times its threshold.
+  const auto atConic = [](const ProfileResult &r, double strength) {
+    return r.found && std::fabs(r.offset) <= RidgeTuning::guidedMaxJump && r.response >= strength * r.threshold;
+  };
   for (const GuidedSample &s : samples) {
     if (!onSampleProfile(droppedAt, s, H) || onSampleProfile(keptAt, s, H))
       continue;
-    ProfileWindow atConic;
-    atConic.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
-    const ProfileResult red = measureProfile(I, s, settings, atConic, buffers);
-    if (red.found && std::fabs(red.offset) <= RidgeTuning::guidedMaxJump &&
-        red.response >= RidgeTuning::guidedRemeasureRedStrength * red.threshold) {
+    const ProfileResult red = measureProfile(I, s, settings, predictionWindow(s), buffers);
+    if (atConic(red, RidgeTuning::guidedRemeasureRedStrength)) {
       kept.push_back(red.crossing);
       continue;
     }
     const ProfileResult bright = brightnessAtPrediction(I, s, settings, buffers);
-    if (bright.found && std::fabs(bright.offset) <= RidgeTuning::guidedMaxJump &&
-        bright.response >= RidgeTuning::guidedRemeasureStrength * bright.threshold)
+    if (atConic(bright, RidgeTuning::guidedRemeasureStrength))
       kept.push_back(bright.crossing);
   }
-  return static_cast<int>(kept.size() - before);
 }
 
 double median(std::vector<double> &values)
