@@ -181,6 +181,31 @@ double coverageNear(const std::vector<vpLaserConicSimulator::vpTraceTruth> &trut
   return found;
 }
 
+//! A place of the image (i = v, j = u) and a radius around it.
+struct Place
+{
+  vpImagePoint centre;
+  double radius;
+};
+
+/*!
+  The colourful mosaic (fadingMosaic(), tiltedGround()) of seed \e seed at the default settings: its quality, and
+  per place of \e places the share of its ring at 3 sigma found within the radius (coverageNear()).
+*/
+GuidedQuality mosaicNear(const std::string &name, unsigned int seed, const std::vector<Place> &places,
+                         std::vector<double> &near)
+{
+  vpLaserConicDetector detector;
+  std::vector<vpImagePoint> points;
+  const GuidedQuality q = runGuided(name, tiltedGround(), fadingMosaic(), seed, detector, &points);
+  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), seed);
+  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, fadingMosaic());
+  near.clear();
+  for (const Place &place : places)
+    near.push_back(coverageNear(truth, points, place.centre, place.radius));
+  return q;
+}
+
 //! \e count consecutive seeds from \e first.
 std::vector<unsigned int> seedRange(unsigned int first, unsigned int count)
 {
@@ -212,8 +237,8 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
-  // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured 98.8-99.98 %
-  // found (mean 99.32 %), precision 0.990-1, second-pass RMS 0.21-0.29 px (mean 0.252); the per-seed bounds leave a margin
+  // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured 98.9-99.98 %
+  // found (mean 99.45 %), precision 0.992-1, second-pass RMS 0.22-0.29 px (mean 0.253); the per-seed bounds leave a margin
   // under the worst seed, the mean is held to the issue's bounds. What is missed lies between 3 and 3.3 sigma,
   // where JPEG at quality 90 leaves a matched-filter response of 0-2 grey levels per line (it rounds the weak
   // chroma detail away; without JPEG 99.1 % is found for seed 72): a profile averages nine lines where three
@@ -232,8 +257,9 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
 {
   const Settings s = fadingMosaic();
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured over
-  // seeds 73-82: 95.2-97.4 % of the ring at 3 sigma or more, mean 96.22 % (every seed >= 95 %; seed 80 95.17 %),
-  // precision 0.988-1, second-pass RMS 0.15-0.26 px (mean 0.210). Of the ring at 3 sigma not found, about half has no
+  // seeds 73-82: 96.6-98.7 % of the ring at 3 sigma or more, mean 97.69 % (96.22 % before the final conic was
+  // refitted on its inliers and every sample it left uncovered measured again at it), precision 0.997-1,
+  // second-pass RMS 0.16-0.25 px (mean 0.215). Of the ring at 3 sigma not found, about half has no
   // point within 3 px: the stripe dimmed by the dark joints' reflectance under the threshold, or running
   // inside or along a joint (a ridge within a valley as wide, or a shoulder on a tile's step, which no
   // background box sees as a peak); the rest has a point 1.5-3 px off. JPEG is the limit there: the chroma,
@@ -241,17 +267,17 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // compressed image's red-dominance peak lies 1-2 px from the uncompressed one along such a step; rendered
   // without JPEG, seed 80 misses 1.5 % of its ring at 3 sigma instead of 4.8 %). What was tried on this floor
   // and dropped: CHANGELOG.md.
-  // Every seed is held to the issue's bounds.
+  // Every seed is held to the issue's bounds, the mean coverage to the measured one with a margin.
   const SeedMeans means = overSeeds("fading_mosaic", s, seedRange(73, 10),
                                     [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); });
-  EXPECT_GE(means.coverage3, 0.95);
+  EXPECT_GE(means.coverage3, 0.97);
   EXPECT_LE(means.rmsGuided, 0.25);
 }
 
 // The same floor and seeds without the JPEG step: what the compression costs. The red dominance
 // R - max(G, B) is a difference of colour channels, which JPEG keeps at half resolution and quantises more
-// coarsely than the brightness. Measured: 97.3-99.5 % of the ring at 3 sigma on every seed, mean 98.58 %
-// (96.22 % with JPEG 90), precision 0.9988-1, second-pass RMS 0.05-0.12 px, mean 0.078 (0.210 with JPEG).
+// coarsely than the brightness. Measured: 98.0-99.9 % of the ring at 3 sigma on every seed, mean 99.07 %
+// (97.69 % with JPEG 90), precision 0.9992-1, second-pass RMS 0.05-0.12 px, mean 0.079 (0.215 with JPEG).
 // Every seed meets the issue's bounds here; the means' bounds are the measured ones with a margin, so that a
 // change that loses ring or precision on this floor fails here too. Seeds 73-75 under the sanitizers.
 TEST(LaserConicGuidedSearch, FadingMosaicWithoutJpegMeetsTheBoundsOnEverySeed)
@@ -261,7 +287,7 @@ TEST(LaserConicGuidedSearch, FadingMosaicWithoutJpegMeetsTheBoundsOnEverySeed)
   const SeedMeans means = overSeeds("fading_mosaic_no_jpeg", s,
                                     seedRange(73, static_cast<unsigned int>(laser_test::trials(10, 3))),
                                     [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); });
-  EXPECT_GE(means.coverage3, 0.98);
+  EXPECT_GE(means.coverage3, 0.985);
   EXPECT_LE(means.rmsGuided, 0.15);
 }
 
@@ -271,15 +297,13 @@ TEST(LaserConicGuidedSearch, AStripeLostOnAJointIsFollowedBackFromWhereItIsFound
   // again a few samples on, with the whole margin's profiles; the samples in between were left missed, the
   // walk going one way only. Two such stretches, about 20 px of ring each, beside the joints near (777, 989)
   // and (470, 852). Measured: 88 % and 78 % of the ring within 12 px of them found (31 % and 42 % before
-  // the backward follow), the whole ring 95.66 % (94.60 %), precision 0.999, second-pass RMS 0.251 px.
-  vpLaserConicDetector detector;
-  std::vector<vpImagePoint> points;
-  const GuidedQuality q = runGuided("joint_backwards", tiltedGround(), fadingMosaic(), 76, detector, &points);
-  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 76);
-  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, fadingMosaic());
-  const vpImagePoint joints[] = {vpImagePoint(989.0, 777.0), vpImagePoint(852.0, 470.0)};
-  for (const vpImagePoint &joint : joints)
-    EXPECT_GE(coverageNear(truth, points, joint, 12.0), 0.7) << "near " << joint;
+  // the backward follow), the whole ring 95.66 % (94.60 %), precision 0.999, second-pass RMS 0.251 px; with the
+  // final conic's remeasure 100 % and 94 %, the whole ring 97.98 %, RMS 0.241 px.
+  std::vector<double> near;
+  const GuidedQuality q =
+      mosaicNear("joint_backwards", 76, {{vpImagePoint(989.0, 777.0), 12.0}, {vpImagePoint(852.0, 470.0), 12.0}}, near);
+  for (double found : near)
+    EXPECT_GE(found, 0.7);
   expectGuided(q, 0.95, 0.3);
 }
 
@@ -291,12 +315,11 @@ TEST(LaserConicGuidedSearch, AStripeWhoseColourJpegSmearedIsFollowedOnItsBrightn
   // is smeared into a plateau several pixels wide (a profile across it: 28 grey levels from -2 to +2 px, 25
   // to +6 px, 21-23 beyond), while its brightness, R + G + B, keeps a bump 3 px wide. Measured: 77.7 % of the
   // ring within 20 px of that point found (37.2 % before a follow that the red score lost was searched on the
-  // brightness), the whole ring 94.59 % (93.55 %), precision 1, second-pass RMS 0.236 px (0.246).
-  vpLaserConicDetector detector;
-  std::vector<vpImagePoint> points;
-  const GuidedQuality q = runGuided("jpeg_brightness", tiltedGround(), fadingMosaic(), 80, detector, &points);
-  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 80);
-  EXPECT_GE(coverageNear(sim.traceTruth(6000, fadingMosaic()), points, vpImagePoint(893.0, 515.0), 20.0), 0.7);
+  // brightness), the whole ring 94.59 % (93.55 %), precision 1, second-pass RMS 0.236 px (0.246); with the
+  // final conic's remeasure 100 % and 96.60 %.
+  std::vector<double> near;
+  const GuidedQuality q = mosaicNear("jpeg_brightness", 80, {{vpImagePoint(893.0, 515.0), 20.0}}, near);
+  EXPECT_GE(near[0], 0.7);
   expectGuided(q, 0.94, 0.3);
 }
 
@@ -306,14 +329,11 @@ TEST(LaserConicGuidedSearch, AStripeAlongAColourEdgeIsFoundOnItsBrightnessAtTheP
   // close to its edge, where JPEG's half-resolution chroma leaves its red dominance a plateau that no profile
   // finds, and no point before it to follow. Where the prediction crosses such a colour edge, the brightness
   // within 1 px of the prediction is searched (RidgeTuning::guidedColourEdge). Measured: 90.0 % of the ring within 10 px of that point found (35.0 % before), the whole ring 96.22 %
-  // (95.73 %), precision 1, second-pass RMS 0.222 px (0.233).
-  vpLaserConicDetector detector;
-  std::vector<vpImagePoint> points;
-  const GuidedQuality q = runGuided("colour_edge", tiltedGround(), fadingMosaic(), 73, detector, &points);
-  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 73);
-  const double near = coverageNear(sim.traceTruth(6000, fadingMosaic()), points, vpImagePoint(906.0, 1058.0), 10.0);
-  std::cout << "near (1058, 906): " << 100.0 * near << " % found" << std::endl;
-  EXPECT_GE(near, 0.7);
+  // (95.73 %), precision 1, second-pass RMS 0.222 px (0.233); with the final conic's remeasure 100 % and
+  // 97.75 %.
+  std::vector<double> near;
+  const GuidedQuality q = mosaicNear("colour_edge", 73, {{vpImagePoint(906.0, 1058.0), 10.0}}, near);
+  EXPECT_GE(near[0], 0.7);
   expectGuided(q, 0.95, 0.3);
 }
 
@@ -322,25 +342,45 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
   // The textured floor above over twenty other seeds (83-102), which its bounds were not set on. The worst,
   // seed 93, has its ring along patch joints for stretches, broken into short pieces, and the straight-line
   // regularisation extrapolated at their ends, 2-3 px off the centre line: precision 0.9715. With the mean of
-  // the offsets at the ends (RidgeTuning::guidedSmoothEnd): 0.9875. Measured over the twenty: mean 95.78 % of
+  // the offsets at the ends (RidgeTuning::guidedSmoothEnd): 0.9875. Measured over the twenty: mean 97.33 % of
   // the ring at 3 sigma (94.3 % before the brightness follow, 94.97 % before the brightness at the prediction,
-  // 95.34 % before the remeasure where points were dropped), precision 0.985-1, RMS mean 0.20 px. Short of the
-  // issue's bounds on seed 93: 86.6 % (84.2 %; dim stretches
-  // along joints, see above, and about 100 px of ring along a joint beside a bright tile, where the stripe's red
-  // dominance is a shoulder on the tile's edge, not a peak, and the walk follows the other edge of the joint
-  // instead, so that the brightness at the prediction is not searched) and RMS 0.420 px (0.39 px before the
-  // brightness at the prediction, 0.411 before the remeasure, whose points lie 1-1.5 px off there; the chroma's
-  // pull beside a step of the floor's red); seeds 98 and 100, 94.3 and 94.97 %.
+  // 95.34 % before the remeasure where points were dropped, 95.78 % before the final conic was refitted on its
+  // inliers and every sample it left uncovered measured again), every seed >= 95 % but seed 93, precision
+  // 0.986-1, RMS 0.12-0.37 px, mean 0.20 px. Short of the issue's bounds on seed 93: 93.3 % (86.6 % before),
+  // RMS 0.365 px (0.420): about 100 px of its ring run inside a joint beside an orange tile, where the
+  // stripe's red fills the joint's dip in red dominance and the profile is a step, not a peak (see
+  // TheFinalConicIsTheRingsNotThatOfAWalkBesideIt); the points found there lie 1-1.5 px off, on the tile's
+  // edge (the chroma's pull beside a step of the floor's red).
   const SeedMeans means =
       overSeeds("fading_mosaic", fadingMosaic(), seedRange(83, 20), [](unsigned int seed, const GuidedQuality &q) {
         EXPECT_GE(q.precision, 0.98) << "seed " << seed;
-        EXPECT_GE(q.coverage3, 0.83) << "seed " << seed;
-        EXPECT_LE(q.rmsGuided, 0.43) << "seed " << seed;
+        EXPECT_GE(q.coverage3, 0.92) << "seed " << seed;
+        EXPECT_LE(q.rmsGuided, 0.38) << "seed " << seed;
       });
   std::cout << "seeds 83-102: mean coverage " << 100.0 * means.coverage3 << " %, mean second-pass RMS "
             << means.rmsGuided << " px" << std::endl;
-  EXPECT_GE(means.coverage3, 0.94);
+  EXPECT_GE(means.coverage3, 0.965);
   EXPECT_LE(means.rmsGuided, 0.25);
+}
+
+TEST(LaserConicGuidedSearch, TheFinalConicIsTheRingsNotThatOfAWalkBesideIt)
+{
+  // The textured floor above, seed 93 (one of the twenty held out): for about 100 px around (515, 203) the ring
+  // runs inside a joint beside an orange tile, where its red fills the joint's dip in red dominance and the
+  // profile is a step; the walk follows the tile's edge 3-5 px off. The least-squares conic of all the points
+  // was pulled by that run (and by shorter ones) to 2.1 px off the true centre line on the far side of the ring
+  // (around (830, 987)), where the points it then dropped as off the final curve were on the ring. The final
+  // conic is now refitted on the points within 2.5 px of it (refitOnItsInliers(): 0.17 px off at its worst),
+  // and the samples no point covers are measured once more at it. Measured: 93.3 % of the ring at 3 sigma,
+  // precision 0.986, second-pass RMS 0.365 px, near (830, 987) 96.8 %, along the joint 31.6 % (before: 86.6 %,
+  // 0.985, 0.420 px, 58.3 %, 24.0 %). The issue's bounds are not met on this seed (see PiecesOfCurveEndOnTheRing).
+  std::vector<double> near; // the far side, and the joint (printed)
+  const GuidedQuality q =
+      mosaicNear("ring_in_a_joint", 93, {{vpImagePoint(987.0, 830.0), 40.0}, {vpImagePoint(203.0, 515.0), 50.0}}, near);
+  EXPECT_GE(near[0], 0.95);
+  EXPECT_GE(q.coverage3, 0.92);
+  EXPECT_GE(q.precision, 0.98);
+  EXPECT_LE(q.rmsGuided, 0.38);
 }
 
 TEST(LaserConicGuidedSearch, SaturatedStripeThroughALampsGlare)
@@ -401,8 +441,8 @@ TEST(LaserConicGuidedSearch, DistractorsStayOut)
                    Distractor::line(-0.3, 0.2, 0.1, 0.3, 0.004)};
   s.clutter = 80;
   s.clutterRadius = 0.5;
-  // Measured: 98.8 % of the ring at 3 sigma (the first pass alone 78.3 %), none of the second pass's
-  // points off the line, second-pass RMS 0.10 px, precision 1 (the first pass alone 0.816, the full
+  // Measured: 99.7 % of the ring at 3 sigma (98.8 % before the final conic's remeasure; the first pass alone
+  // 78.3 %), none of the second pass's points off the line, second-pass RMS 0.11 px, precision 1 (the first pass alone 0.816, the full
   // search and the second pass 0.845: the cable's points were the first pass's).
   vpLaserConicDetector detector, firstPass;
   firstPass.setGuidedSearch(false);
@@ -481,11 +521,11 @@ TEST(LaserConicGuidedSearch, AStripeBesideARedCableIsFound)
 {
   // A red cable 8 px wide laid along the dim side of a fading ring (20 grey levels, 10 sigma), its centre line
   // 10, 13 or 14 px from the stripe's where it is closest: the background box on the cable's side reaches its
-  // flank. Measured over the 160 px of ring beside it: at 13 px 94.1 % found at 3 sigma (78.5 % when the
+  // flank. Measured over the 160 px of ring beside it: at 13 px 95.3 % found at 3 sigma (78.5 % when the
   // stripe was read against the brighter of its two sides only, as a step edge is; 90.9 % before the samples
-  // whose points were dropped off the final curve were measured again on their brightness), at 14 px 97.3 %
-  // (89.7 %; 96.2 %), at 10 px, where the stripe and the cable's flank make one slope, 29.2 % (28.0 %);
-  // precision 1.
+  // whose points were dropped off the final curve were measured again on their brightness, 94.1 % before
+  // every sample the final conic left uncovered was), at 14 px 97.3 % (89.7 %; 96.2 %), at 10 px, where the
+  // stripe and the cable's flank make one slope, 40.4 % (28.0 %; 29.2 %); precision 1.
   const struct
   {
     double gap, minBeside;
@@ -683,7 +723,7 @@ TEST(LaserConicGuidedSearch, ChessboardViewsWithReflectanceScaledLight)
       EXPECT_LE(guidedOff, guided / 25);
       worst = std::min(worst, kept);
     }
-  // Measured: 99.8-100 % of the trace on the board kept (the issue: >= 90 %), every view. Before the flank
+  // Measured: 99.87-100 % of the trace on the board kept (the issue: >= 90 %), every view. Before the flank
   // test of the second pass took one line's noise as its scale, 77-94 %: the white cores on the white squares
   // (pink flanks of 10-20 grey levels of red) were refused as white light.
   std::cout << "worst view: " << 100 * worst << " %" << std::endl;

@@ -91,6 +91,11 @@ struct RidgeTuning
   //! them: 94.9 -> 95.8 % of the ring found on FadingRingOnATexturedFloorWithReflectanceScaledLight, 93.4 ->
   //! 94.5 % on average over ten seeds of it, precision 0.999 -> 0.998.
   static constexpr double guidedFinalDistance = 2.5;
+  //! Refits of the final conic on the points within guidedFinalDistance of it (refitOnItsInliers()).
+  static constexpr int guidedFinalRefits = 2;
+  //! Covered samples on each side of a gap whose offsets to the final conic are interpolated across it
+  //! (ringOffsets()).
+  static constexpr int guidedGapEnds = 5;
   //! Refits at most: the coverage stops growing after two or three on every case seen.
   static constexpr int guidedMaxIterations = 4;
   //! Side (2^guidedCellShift pixels) of the cells that record where points were found (a sample near one is not
@@ -163,16 +168,12 @@ struct RidgeTuning
   static constexpr double guidedColourEdge = 0.25;
   //! See guidedColourEdge: 4 sigma at the default threshold factor of 3.
   static constexpr double guidedBrightnessStrength = 4.0 / 3.0;
-  //! A sample of the final conic whose profile held a point dropped as off the final curve (a walk that
-  //! followed a red cable's flank, or a joint's edge, away from the ring beside it) and holds no kept one is
-  //! measured again within guidedMaxJump of the conic (remeasureWhereDropped()): on the red score, its point
-  //! kept at guidedRemeasureRedStrength times the threshold (4 sigma at the default factor, as
+  //! A sample of the final conic that no point covers (the walk lost the stripe there, or followed a red
+  //! cable's flank or a joint's edge beside it and its points were dropped as off the final curve) is measured
+  //! again within guidedMaxJump of the conic (measureAlongTheFinalCurve()): on the red score, three lines then
+  //! nine, its point kept at guidedRemeasureRedStrength times the threshold (4 sigma at the default factor, as
   //! guidedBrightnessStrength), then on the brightness, kept at guidedRemeasureStrength times (6 sigma: the
-  //! walk was misled there, and a clear bump is asked). Mosaic floor, ring at 3 sigma: seeds 73-82 95.82 ->
-  //! 96.22 %, every seed >= 95 % (seed 80 94.59 -> 95.17 %), held-out seeds 83-102 95.34 -> 95.78 %;
-  //! data/laser_hard frame 27 (red cable) 0.942 -> 0.964, frame 56 (faint) 0.976 -> 0.983, no frame lower.
-  //! Measured and not kept: the brightness at 4 sigma (without the red step: seed 93's second-pass RMS 0.411
-  //! -> 0.426 px), the red at 3 sigma (seed 93 0.427 px, against 0.420 at 4).
+  //! walk was misled there, and a clear bump is asked).
   static constexpr double guidedRemeasureStrength = 2.0;
   //! See guidedRemeasureStrength.
   static constexpr double guidedRemeasureRedStrength = 4.0 / 3.0;

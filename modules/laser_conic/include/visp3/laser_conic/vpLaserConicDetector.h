@@ -127,10 +127,14 @@ struct vpLaserConicDetectorRun
   Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
-  times). Points more than 2.5 px from the final ellipse are dropped (a walk that slid onto a red cable's
-  flank or a joint's edge beside the stripe); where a profile of the final ellipse held such a point and
-  holds no kept one, it is measured again within 1 px of the ellipse, on the red score (kept at 4 times the
-  noise), then on the brightness (6 times; not in tracking). Last, the centres of this pass are regularised
+  times). Over the whole image the final ellipse is then refitted on the points within 2.5 px of it, twice
+  (the fit of all the points was pulled by the pieces a walk took beside the ring), and the points more
+  than 2.5 px from it are dropped (a walk that slid onto a red cable's flank or a joint's edge beside the
+  stripe). Every profile of the final ellipse that no point covers is measured once more within 1 px of
+  where the points on either side put the ring (the ellipse itself on an undistorted image), on the red
+  score (three lines then nine, kept at 4 times the noise), then on the brightness (6 times), its points
+  kept in pieces as the walk's are (not in tracking, whose prediction is the previous frame's and whose
+  points are dropped at the ellipse refitted on them all). Last, the centres of this pass are regularised
   along the curve: each one's offset to the final
   ellipse is replaced by a straight-line fit of the offsets over 40 px of arc around it (offsets more than
   1 px from a first fit left out), since one profile's centre is noisy (sensor noise, JPEG's 8 x 8 blocks)
