@@ -4,13 +4,14 @@
  */
 // The conic-guided pass of the ridge detector: walks the predicted conic, measures a profile where no point
 // is known yet, keeps the pieces of curve that continue it, refits and walks again until no point is added;
-// then refits the final conic on the points near it, drops those off it and measures the samples of it that
-// no point covers within a pixel of it.
+// then refits the final conic on the points near it, drops those off it and measures the samples of its short
+// gaps that no point covers within a pixel of it.
 #include "guided_detail.h"
 #include "guided_found_cells.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
@@ -337,16 +338,24 @@ void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossi
   crossings.resize(kept);
 }
 
+// The image point of sample s's predicted crossing.
+vpImagePoint samplePoint(const GuidedSample &s)
+{
+  return s.alongRow ? vpImagePoint(s.line, s.pos) : vpImagePoint(s.pos, s.line);
+}
+
 // The offsets across the final conic (as ProfileResult::offset) of the points that cover its samples
-// (\e found: the first pass's and the kept ones), and in the runs of samples that none covers the offsets
-// interpolated from the covered samples on either side (the median of the RidgeTuning::guidedGapEnds nearest
-// on each, along the closed curve): a ring imaged through a distorting lens is not an ellipse, and the
-// ellipse lies up to 3-3.5 px beside it (data/laser_hard). Empty when no sample is covered.
+// (\e found: the first pass's and the kept ones; \e covered set there), and in the gaps between them the
+// offsets interpolated from the covered samples on either side (the median of the RidgeTuning::guidedGapEnds
+// nearest on each, along the closed curve): a ring imaged through a distorting lens is not an ellipse, and
+// the ellipse lies up to 3-3.5 px beside it (data/laser_hard). NaN in a gap whose ends lie more than
+// RidgeTuning::guidedGapLength apart: across it the ends say nothing of where the ring lies, which may have
+// left the ellipse (its part on a box beside the floor, an object over it). Empty when no sample is covered.
 std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const FoundCells &found,
                                 std::vector<unsigned char> &covered)
 {
   const size_t n = samples.size();
-  std::vector<double> offsets(n, 0.0);
+  std::vector<double> offsets(n, std::numeric_limits<double>::quiet_NaN());
   covered.assign(n, 0);
   std::vector<size_t> coveredAt;
   for (size_t i = 0; i < n; ++i)
@@ -367,11 +376,11 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
     return side[side.size() / 2];
   };
   for (size_t k = 0; k < m; ++k) { // the gap after coveredAt[k]
-    const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], length = (to + n - from) % n;
-    if (length == 1)
-      continue;
+    const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], gap = (to + n - from) % n;
+    if (gap <= 1 ||
+        vpImagePoint::distance(samplePoint(samples[from]), samplePoint(samples[to])) > RidgeTuning::guidedGapLength)
+      continue; // 0: a single covered sample, the gap goes round
     const double before = sideOffset(k, true), after = sideOffset((k + 1) % m, false);
-    const size_t gap = length == 0 ? n : length; // 0: one covered sample, the gap goes round
     for (size_t j = 1; j < gap; ++j)
       offsets[(from + j) % n] = before + (after - before) * static_cast<double>(j) / gap;
   }
@@ -379,8 +388,9 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
 }
 
 // The samples of the final conic C (refitOnItsInliers()) that no point covers (\e found: the first pass's and
-// the kept ones) are measured once more within RidgeTuning::guidedMaxJump of where the ring lies across C
-// (ringOffsets(): C itself on an undistorted image, to a few tenths of a pixel): where the walk lost the stripe
+// the kept ones), in gaps of at most RidgeTuning::guidedGapLength, are measured once more within
+// RidgeTuning::guidedMaxJump of where the ring lies across C (ringOffsets(): C itself on an undistorted image,
+// to a few tenths of a pixel): where the walk lost the stripe
 // (a dim stretch whose profiles over the whole margin found a stronger neighbour, a joint's edge beside it) or
 // followed a neighbouring structure (a red cable's flank, a joint's edge: the points it took there dropped as
 // off the final curve). On the red score (the stripe the walk left), then on the brightness
@@ -397,13 +407,12 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
   if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
     return;
   const std::vector<double> offsets = ringOffsets(samples, found, covered);
-  std::vector<SampleState> state(offsets.size(), MISSED);
+  std::vector<SampleState> state(offsets.size());
   std::vector<ProfileResult> results(offsets.size());
   for (size_t i = 0; i < offsets.size(); ++i) {
-    if (covered[i]) {
-      state[i] = KNOWN;
+    state[i] = covered[i] ? KNOWN : MISSED;
+    if (covered[i] || std::isnan(offsets[i]))
       continue;
-    }
     const GuidedSample &s = samples[i];
     const double at = offsets[i];
     // A point within guidedMaxJump of the ring whose response reaches \e strength times its threshold.

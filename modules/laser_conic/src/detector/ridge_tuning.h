@@ -96,6 +96,15 @@ struct RidgeTuning
   //! Covered samples on each side of a gap whose offsets to the final conic are interpolated across it
   //! (ringOffsets()).
   static constexpr int guidedGapEnds = 5;
+  //! Longest gap (pixels between the covered samples at its ends) across which the final conic's samples are
+  //! measured again (ringOffsets()): a stretch where the walk lost the stripe (a joint crossed, a cable's
+  //! flank), not one where the ring may have left the ellipse. On the servo-landing tutorial (ctest
+  //! tutorial_laser_servo_landing), whose ring steps onto a box beside the landing pad, longer gaps measured
+  //! again fed GP-3 points of the box's arc near the ellipse, and through the next frame's search region
+  //! more of them, until its plane lay 80-130 mm above the floor: without a limit, or at 60 or 80 px, the
+  //! filter rejected 60-61 frames and diverged; at 30, 40 or 50 px it rejected 1 (as before the step). Mosaic
+  //! floor, seeds 73-102, ring at 3 sigma: 97.45 % without a limit, 97.37 % at 40 px, 97.33 % at 30 px.
+  static constexpr double guidedGapLength = 30.0;
   //! Refits at most: the coverage stops growing after two or three on every case seen.
   static constexpr int guidedMaxIterations = 4;
   //! Side (2^guidedCellShift pixels) of the cells that record where points were found (a sample near one is not
@@ -168,9 +177,10 @@ struct RidgeTuning
   static constexpr double guidedColourEdge = 0.25;
   //! See guidedColourEdge: 4 sigma at the default threshold factor of 3.
   static constexpr double guidedBrightnessStrength = 4.0 / 3.0;
-  //! A sample of the final conic that no point covers (the walk lost the stripe there, or followed a red
-  //! cable's flank or a joint's edge beside it and its points were dropped as off the final curve) is measured
-  //! again within guidedMaxJump of the conic (measureAlongTheFinalCurve()): on the red score, three lines then
+  //! A sample of the final conic that no point covers, in a gap of at most guidedGapLength (the walk lost the
+  //! stripe there, or followed a red cable's flank or a joint's edge beside it and its points were dropped as
+  //! off the final curve), is measured again within guidedMaxJump of the ring (measureAlongTheFinalCurve()):
+  //! on the red score, three lines then
   //! nine, its point kept at guidedRemeasureRedStrength times the threshold (4 sigma at the default factor, as
   //! guidedBrightnessStrength), then on the brightness, kept at guidedRemeasureStrength times (6 sigma: the
   //! walk was misled there, and a clear bump is asked).

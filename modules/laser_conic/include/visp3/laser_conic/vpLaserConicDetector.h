@@ -130,8 +130,9 @@ struct vpLaserConicDetectorRun
   times). Over the whole image the final ellipse is then refitted on the points within 2.5 px of it, twice
   (the fit of all the points was pulled by the pieces a walk took beside the ring), and the points more
   than 2.5 px from it are dropped (a walk that slid onto a red cable's flank or a joint's edge beside the
-  stripe). Every profile of the final ellipse that no point covers is measured once more within 1 px of
-  where the points on either side put the ring (the ellipse itself on an undistorted image), on the red
+  stripe). Every profile of the final ellipse that no point covers, in a gap of at most 30 px between points
+  (longer, the ring may have left the ellipse: onto a box, under an object), is measured once more within
+  1 px of where the points on either side put the ring (the ellipse itself on an undistorted image), on the red
   score (three lines then nine, kept at 4 times the noise), then on the brightness (6 times), its points
   kept in pieces as the walk's are (not in tracking, whose prediction is the previous frame's and whose
   points are dropped at the ellipse refitted on them all). Last, the centres of this pass are regularised
