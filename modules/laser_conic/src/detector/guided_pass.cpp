@@ -390,14 +390,14 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
 // The samples of the final conic C (refitOnItsInliers()) that no point covers (\e found: the first pass's and
 // the kept ones), in gaps of at most RidgeTuning::guidedGapLength, are measured once more within
 // RidgeTuning::guidedMaxJump of where the ring lies across C (ringOffsets(): C itself on an undistorted image,
-// to a few tenths of a pixel): where the walk lost the stripe
-// (a dim stretch whose profiles over the whole margin found a stronger neighbour, a joint's edge beside it) or
-// followed a neighbouring structure (a red cable's flank, a joint's edge: the points it took there dropped as
-// off the final curve). On the red score (the stripe the walk left), then on the brightness
-// (brightnessAtPrediction(), whose bump the stripe keeps beside a cable), each at its own strength (see
-// RidgeTuning::guidedRemeasureStrength). The points found are kept as the walk's are, in pieces that continue
-// a covered sample or are long enough (keepContinuingPieces()): a few isolated responses within a pixel of C
-// where an object hides the ring (data/laser_hard frame 36) are not the stripe. Appends them to \e kept.
+// to a few tenths of a pixel): where the walk lost the stripe (a dim stretch whose profiles over the whole
+// margin found a stronger neighbour, a joint's edge beside it) or followed a neighbouring structure (a red
+// cable's flank, a joint's edge: the points it took there dropped as off the final curve). On the red score
+// (the stripe the walk left), then on the brightness (brightnessAtPrediction(), whose bump the stripe keeps
+// beside a cable), each at its own strength (see RidgeTuning::guidedRemeasureStrength). The points found are
+// kept as the walk's are, in pieces that continue a covered sample or are long enough
+// (keepContinuingPieces()): a few isolated responses within a pixel of C are not the stripe (on an object
+// that hid the ring in data/laser_hard frame 36, before the gaps were limited). Appends them to \e kept.
 void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
                                const FoundCells &found, ProfileBuffers &buffers, std::vector<Crossing> &kept)
 {
