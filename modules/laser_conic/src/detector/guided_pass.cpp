@@ -124,6 +124,17 @@ ProfileResult threeThenNineLines(const vpImage<vpRGBa> &I, const GuidedSample &s
   return r;
 }
 
+// Takes a point found within RidgeTuning::guidedMaxJump of \e offset (across the curve, as ProfileResult::offset)
+// whose response reaches \e strength times its threshold (the threshold itself at 0).
+struct NearOffset
+{
+  double offset, strength;
+  bool operator()(const ProfileResult &r) const
+  {
+    return std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump && r.response >= strength * r.threshold;
+  }
+};
+
 // \e window read on the brightness (ProfileWindow::brightness).
 ProfileWindow onBrightness(ProfileWindow window)
 {
@@ -141,9 +152,7 @@ ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s
                                  double offset, bool fittedHere, ProfileBuffers &buffers)
 {
   return threeThenNineLines(I, s, settings, onBrightness(followWindow(s, offset, -1.0, false, fittedHere)), buffers,
-                            [offset](const ProfileResult &r) {
-                              return std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump;
-                            });
+                            NearOffset{offset, 0.0});
 }
 
 // A sample whose red profile found nothing where the prediction crosses a colour edge, measured on its
@@ -311,10 +320,10 @@ bool refit(const std::vector<vpImagePoint> &points, bool fromFirstPass, Eigen::M
 // (seed 93: 2.11 -> 0.17 px). The outliers were the cause, not the algebraic fit: the points weighted by the
 // inverse of their gradient (the Sampson distance's) moved the worst point by 0.01 px at most (seeds 90-95,
 // three refits at 1.5 px). The points dropped as off the final curve, the samples measured again at it and
-// the centres regularised along it all read it. \e points start with the first pass's (see refit());
-// \e inliers: work space.
-void refitOnItsInliers(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C, std::vector<vpImagePoint> &inliers)
+// the centres regularised along it all read it. \e points start with the first pass's (see refit()).
+void refitOnItsInliers(const std::vector<vpImagePoint> &points, Eigen::Matrix3d &C)
 {
+  std::vector<vpImagePoint> inliers;
   for (int round = 0; round < RidgeTuning::guidedFinalRefits; ++round) {
     inliers.clear();
     for (const vpImagePoint &p : points)
@@ -415,17 +424,11 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
       continue;
     const GuidedSample &s = samples[i];
     const double at = offsets[i];
-    // A point within guidedMaxJump of the ring whose response reaches \e strength times its threshold.
-    const auto onTheRing = [at](double strength) {
-      return [at, strength](const ProfileResult &r) {
-        return std::fabs(r.offset - at) <= RidgeTuning::guidedMaxJump && r.response >= strength * r.threshold;
-      };
-    };
     ProfileResult r = threeThenNineLines(I, s, settings, predictionWindow(s, at), buffers,
-                                         onTheRing(RidgeTuning::guidedRemeasureRedStrength));
+                                         NearOffset{at, RidgeTuning::guidedRemeasureRedStrength});
     if (!r.found) {
       r = brightnessAtPrediction(I, s, settings, predictionWindow(s, at), buffers);
-      r.found = r.found && onTheRing(RidgeTuning::guidedRemeasureStrength)(r);
+      r.found = r.found && NearOffset{at, RidgeTuning::guidedRemeasureStrength}(r);
     }
     if (r.found) {
       state[i] = FOUND;
@@ -459,7 +462,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   FoundCells found(W, H, work);
   for (const vpImagePoint &p : anchors)
     found.mark(p);
-  std::vector<vpImagePoint> fitPoints = anchors, inliers;
+  std::vector<vpImagePoint> fitPoints = anchors;
   std::vector<GuidedSample> samples;
   std::vector<SampleState> state;
   std::vector<ProfileResult> results;
@@ -508,7 +511,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   }
   // Not in tracking, whose walks fit the pass's own points only (and whose time is short).
   if (fittedHere && !work.guided.empty())
-    refitOnItsInliers(fitPoints, C, inliers);
+    refitOnItsInliers(fitPoints, C);
   keepOnTheFinalCurve(C, work.guided);
   if (fittedHere) {
     found.clear();

@@ -83,13 +83,14 @@ struct RidgeTuning
   static constexpr double guidedMaxJump = 1.0;
   //! See guidedMaxJump.
   static constexpr double guidedPerSampleJump = 0.5;
-  //! Largest distance (pixels) of a second-pass point to the conic refitted on all the points: the first
-  //! pass's inlier threshold (its centres are within a few tenths of a pixel of a conic trace), plus half a
-  //! pixel for JPEG: where the stripe runs along a step of the floor's red, the chroma (at half resolution)
-  //! moves its red-dominance peak 1-2 px towards the brighter side, and such a point is still the stripe
-  //! (regularised along the curve, smoothAlongCurve(), it is moved onto its neighbours' line). 2 px dropped
-  //! them: 94.9 -> 95.8 % of the ring found on FadingRingOnATexturedFloorWithReflectanceScaledLight, 93.4 ->
-  //! 94.5 % on average over ten seeds of it, precision 0.999 -> 0.998.
+  //! Largest distance (pixels) of a second-pass point to the final conic, and of the points that conic is
+  //! refitted on (refitOnItsInliers()) to the fit of them all: the first pass's inlier threshold (its centres
+  //! are within a few tenths of a pixel of a conic trace), plus half a pixel for JPEG: where the stripe runs
+  //! along a step of the floor's red, the chroma (at half resolution) moves its red-dominance peak 1-2 px
+  //! towards the brighter side, and such a point is still the stripe (regularised along the curve,
+  //! smoothAlongCurve(), it is moved onto its neighbours' line). 2 px dropped them: 94.9 -> 95.8 % of the ring
+  //! found on FadingRingOnATexturedFloorWithReflectanceScaledLight, 93.4 -> 94.5 % on average over ten seeds of
+  //! it, precision 0.999 -> 0.998.
   static constexpr double guidedFinalDistance = 2.5;
   //! Refits of the final conic on the points within guidedFinalDistance of it (refitOnItsInliers()).
   static constexpr int guidedFinalRefits = 2;
@@ -179,11 +180,10 @@ struct RidgeTuning
   static constexpr double guidedBrightnessStrength = 4.0 / 3.0;
   //! A sample of the final conic that no point covers, in a gap of at most guidedGapLength (the walk lost the
   //! stripe there, or followed a red cable's flank or a joint's edge beside it and its points were dropped as
-  //! off the final curve), is measured again within guidedMaxJump of the ring (measureAlongTheFinalCurve()):
-  //! on the red score, three lines then
-  //! nine, its point kept at guidedRemeasureRedStrength times the threshold (4 sigma at the default factor, as
-  //! guidedBrightnessStrength), then on the brightness, kept at guidedRemeasureStrength times (6 sigma: the
-  //! walk was misled there, and a clear bump is asked).
+  //! off the final curve), is measured again within guidedMaxJump of the ring (measureAlongTheFinalCurve()): on
+  //! the red score, three lines then nine, its point kept at guidedRemeasureRedStrength times the threshold (4
+  //! sigma at the default factor, as guidedBrightnessStrength), then on the brightness, kept at
+  //! guidedRemeasureStrength times (6 sigma: the walk was misled there, and a clear bump is asked).
   static constexpr double guidedRemeasureStrength = 2.0;
   //! See guidedRemeasureStrength.
   static constexpr double guidedRemeasureRedStrength = 4.0 / 3.0;
