@@ -363,6 +363,30 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
   EXPECT_LE(means.rmsGuided, 0.25);
 }
 
+// A study of seeds that no setting was measured on: thirty more seeds of the mosaic (103-132) and twenty of the
+// faint ring (100-119), looked at once the final-ellipse step was in place (disabled: about 40 s; run with
+// --gtest_also_run_disabled_tests --gtest_filter='*NeverTunedOn*'). Measured: mosaic mean 97.21 % of the ring
+// at 3 sigma, every seed >= 94.58 % (seed 124, the ring inside a joint, as seed 93's), precision >= 0.978;
+// faint ring mean 99.55 %, every seed >= 98.91 %, precision >= 0.989 (the code before the step, f126958:
+// mosaic 95.99 %, five seeds under 95 %; faint 99.38 %). The bounds leave a margin under the measured.
+TEST(LaserConicGuidedSearch, DISABLED_SeedsNeverTunedOn)
+{
+  const SeedMeans mosaic =
+      overSeeds("fading_mosaic", fadingMosaic(), seedRange(103, 30), [](unsigned int seed, const GuidedQuality &q) {
+        EXPECT_GE(q.coverage3, 0.94) << "seed " << seed;
+        EXPECT_GE(q.precision, 0.975) << "seed " << seed;
+      });
+  const SeedMeans faint =
+      overSeeds("faint", fadingRing(40.0, 4.0), seedRange(100, 20), [](unsigned int seed, const GuidedQuality &q) {
+        EXPECT_GE(q.coverage3, 0.98) << "seed " << seed;
+        EXPECT_GE(q.precision, 0.985) << "seed " << seed;
+      });
+  std::cout << "mosaic seeds 103-132: mean coverage " << 100.0 * mosaic.coverage3
+            << " %; faint seeds 100-119: " << 100.0 * faint.coverage3 << " %" << std::endl;
+  EXPECT_GE(mosaic.coverage3, 0.965);
+  EXPECT_GE(faint.coverage3, 0.99);
+}
+
 TEST(LaserConicGuidedSearch, TheFinalConicIsTheRingsNotThatOfAWalkBesideIt)
 {
   // The textured floor above, seed 93 (one of the twenty held out): for about 100 px around (515, 203) the ring
