@@ -7,6 +7,7 @@
   distance map, the stripe's fall-off along the ring, and the stripe, white core and bloom drawn from them
   (scaled by the surface's reflectance when asked); traceTruth(), the ground truth of that stripe.
 */
+#include <visp3/laser_conic/vpLaserConicException.h>
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
 #include <algorithm>
@@ -264,9 +265,9 @@ std::vector<vpLaserConicSimulator::vpTraceTruth> vpLaserConicSimulator::traceTru
   return truth;
 }
 
-double vpLaserConicSimulator::stripeCoverage(const std::vector<vpTraceTruth> &truth,
-                                             const std::vector<vpImagePoint> &points, double minOverNoise,
-                                             double radius)
+double vpLaserConicSimulator::coverageOf(const std::vector<vpTraceTruth> &truth,
+                                         const std::vector<vpImagePoint> &points, double radius,
+                                         const std::function<bool(const vpTraceTruth &)> &counts)
 {
   // The points by cell of side 2 radius (at least 1 px): a query reads its 3 x 3 cells.
   const double cellSize = std::max(1.0, 2.0 * radius);
@@ -289,7 +290,7 @@ double vpLaserConicSimulator::stripeCoverage(const std::vector<vpTraceTruth> &tr
   double visible = 0.0, found = 0.0;
   const size_t n = truth.size();
   for (size_t k = 0; k < n; ++k) {
-    if (!(truth[k].peakOverNoise >= minOverNoise))
+    if (!counts(truth[k]))
       continue;
     double length = 0.0;
     for (size_t m : {(k + n - 1) % n, (k + 1) % n}) {
@@ -300,4 +301,79 @@ double vpLaserConicSimulator::stripeCoverage(const std::vector<vpTraceTruth> &tr
     found += covered(truth[k].point) ? length : 0.0;
   }
   return visible > 0.0 ? found / visible : 0.0;
+}
+
+double vpLaserConicSimulator::stripeCoverage(const std::vector<vpTraceTruth> &truth,
+                                             const std::vector<vpImagePoint> &points, double minOverNoise,
+                                             double radius)
+{
+  return coverageOf(truth, points, radius,
+                    [minOverNoise](const vpTraceTruth &t) { return t.peakOverNoise >= minOverNoise; });
+}
+
+double vpLaserConicSimulator::ridgeCoverage(const std::vector<vpTraceTruth> &truth,
+                                            const std::vector<vpImagePoint> &points, double minOverNoise, double radius)
+{
+  for (const vpTraceTruth &t : truth)
+    if (std::isnan(t.prominenceOverNoise))
+      throw vpLaserConicException(vpLaserConicException::badValueError,
+                                  "ridgeCoverage(): the prominence of the truth was not measured "
+                                  "(call measureProminence() with the settings of traceTruth())");
+  return coverageOf(truth, points, radius, [minOverNoise](const vpTraceTruth &t) {
+    return t.peakOverNoise >= minOverNoise && t.prominenceOverNoise >= minOverNoise;
+  });
+}
+
+bool vpLaserConicSimulator::curveNormal(double gamma, double n[2]) const
+{
+  // The chord between two rays 1e-4 rad apart on either side (under a hundredth of a pixel on the rings drawn).
+  const double h = 1e-4;
+  double P[3], Q[3], u0 = 0.0, v0 = 0.0, u1 = 0.0, v1 = 0.0;
+  if (!groundPoint(gamma - h, P) || !groundPoint(gamma + h, Q) || !project(P, u0, v0) || !project(Q, u1, v1))
+    return false;
+  const double length = std::hypot(u1 - u0, v1 - v0);
+  if (!(length > 0.0))
+    return false;
+  n[0] = -(v1 - v0) / length;
+  n[1] = (u1 - u0) / length;
+  return true;
+}
+
+void vpLaserConicSimulator::measureProminence(std::vector<vpTraceTruth> &truth, const vpRenderSettings &settings) const
+{
+  checkCamera();
+  checkSettings(settings);
+  vpRenderSettings clean = settings;
+  clean.noise = 0.0;
+  clean.jpegQuality = 0;
+  vpImage<vpRGBa> I;
+  vpLaserConicSimulator(*this).render(I, clean);
+  // Red dominance of the pixel nearest to (u, v), the image's border repeated. (Pixels, not an interpolation,
+  // which reads a stripe's peak lower wherever the normal passes between pixel centres.)
+  auto dominance = [&I](double u, double v) {
+    const long j = std::min(std::max(std::lround(u), 0L), static_cast<long>(I.getWidth()) - 1),
+               i = std::min(std::max(std::lround(v), 0L), static_cast<long>(I.getHeight()) - 1);
+    const vpRGBa &p = I[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
+    return static_cast<double>(p.R) - std::max(p.G, p.B);
+  };
+  // The stripe's extent after the optical blur: its top is looked for within half its width at half maximum
+  // of the centre line, the scene beside it read where its own light is 0.2 % of its peak.
+  const double sigma = std::hypot(settings.stripeWidth / kFwhmPerSigma, settings.blur);
+  const double top = 0.5 * kFwhmPerSigma * sigma, side = 3.5 * sigma;
+  for (vpTraceTruth &t : truth) {
+    double n[2] = {0.0, 0.0};
+    if (t.peakDominance > 0.0 && curveNormal(t.gamma, n)) {
+      const double u = t.point.get_u(), v = t.point.get_v();
+      double peak = -std::numeric_limits<double>::infinity();
+      for (double di = std::ceil(v - top); di <= v + top; ++di)
+        for (double dj = std::ceil(u - top); dj <= u + top; ++dj)
+          if (std::hypot(dj - u, di - v) <= top)
+            peak = std::max(peak, dominance(dj, di));
+      t.prominence =
+          peak - std::max(dominance(u - side * n[0], v - side * n[1]), dominance(u + side * n[0], v + side * n[1]));
+    } else
+      t.prominence = 0.0;
+    t.prominenceOverNoise = settings.noise > 0.0 ? t.prominence / settings.noise
+                                                 : (t.prominence > 0.0 ? std::numeric_limits<double>::infinity() : 0.0);
+  }
 }

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include <visp3/core/vpMath.h>
@@ -77,12 +78,19 @@ struct GuidedQuality
   double precision = 0.0; //!< share of all the points within 1.5 px of the centre line
   double rmsGuided = 0.0; //!< RMS distance (px) of the second pass's points within 1.5 px of the line
   double guidedOff = 0.0; //!< share of the second pass's points farther than 1.5 px
+  //! coverage3 over the ring seen as a ridge of the image (vpLaserConicSimulator::ridgeCoverage()); NaN unless
+  //! runGuided() was asked for it (a second render of the frame)
+  double ridge3 = std::numeric_limits<double>::quiet_NaN();
   size_t points = 0, guided = 0;
 };
 
+//! Whether runGuided() measures GuidedQuality::ridge3.
+enum class Ridges { skip, measure };
+
 //! Renders the case (seeded), detects, measures against the ground truth.
 GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg, const Settings &s, unsigned int seed,
-                        vpLaserConicDetector &detector, std::vector<vpImagePoint> *detected = nullptr)
+                        vpLaserConicDetector &detector, std::vector<vpImagePoint> *detected = nullptr,
+                        Ridges ridges = Ridges::skip)
 {
   vpLaserConicSimulator sim = makeSimulator(cMg, seed);
   vpImage<vpRGBa> I;
@@ -91,10 +99,14 @@ GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg,
   const std::vector<vpImagePoint> points = detector.detect(I);
   if (detected)
     *detected = points;
-  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
+  std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
   const TraceLine line(sim);
   GuidedQuality q;
   q.coverage3 = vpLaserConicSimulator::stripeCoverage(truth, points, 3.0, 1.5);
+  if (ridges == Ridges::measure) {
+    sim.measureProminence(truth, s);
+    q.ridge3 = vpLaserConicSimulator::ridgeCoverage(truth, points, 3.0, 1.5);
+  }
   q.points = points.size();
   q.guided = detector.getGuidedPointCount();
   size_t on = 0, guidedOn = 0;
@@ -115,7 +127,10 @@ GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg,
   q.guidedOff = q.guided ? 1.0 - static_cast<double>(guidedOn) / q.guided : 0.0;
   std::cout << name << ": " << q.points << " points (" << q.guided << " of the second pass), coverage >= 3 sigma "
             << 100 * q.coverage3 << " %, precision " << q.precision << ", second-pass RMS " << q.rmsGuided << " px ("
-            << 100 * q.guidedOff << " % off)" << std::endl;
+            << 100 * q.guidedOff << " % off)";
+  if (ridges == Ridges::measure)
+    std::cout << ", seen as a ridge: " << 100 * q.ridge3 << " %";
+  std::cout << std::endl;
   return q;
 }
 
@@ -143,6 +158,7 @@ void expectGuided(const GuidedQuality &q, double minCoverage, double maxRms)
 struct SeedMeans
 {
   double coverage3 = 0.0, rmsGuided = 0.0;
+  double ridge3 = 0.0; //!< NaN unless the ridges were measured
 };
 
 /*!
@@ -150,15 +166,18 @@ struct SeedMeans
   seed's quality: the means over the seeds.
 */
 template <class Check>
-SeedMeans overSeeds(const std::string &name, const Settings &s, const std::vector<unsigned int> &seeds, Check check)
+SeedMeans overSeeds(const std::string &name, const Settings &s, const std::vector<unsigned int> &seeds, Check check,
+                    Ridges ridges = Ridges::skip)
 {
   SeedMeans means;
   for (unsigned int seed : seeds) {
     vpLaserConicDetector detector;
-    const GuidedQuality q = runGuided(name + "_" + std::to_string(seed), tiltedGround(), s, seed, detector);
+    const GuidedQuality q =
+        runGuided(name + "_" + std::to_string(seed), tiltedGround(), s, seed, detector, nullptr, ridges);
     check(seed, q);
     means.coverage3 += q.coverage3 / seeds.size();
     means.rmsGuided += q.rmsGuided / seeds.size();
+    means.ridge3 += q.ridge3 / seeds.size();
   }
   return means;
 }
@@ -197,7 +216,7 @@ GuidedQuality mosaicNear(const std::string &name, unsigned int seed, const std::
 {
   vpLaserConicDetector detector;
   std::vector<vpImagePoint> points;
-  const GuidedQuality q = runGuided(name, tiltedGround(), fadingMosaic(), seed, detector, &points);
+  const GuidedQuality q = runGuided(name, tiltedGround(), fadingMosaic(), seed, detector, &points, Ridges::measure);
   vpLaserConicSimulator sim = makeSimulator(tiltedGround(), seed);
   const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, fadingMosaic());
   near.clear();
@@ -350,16 +369,23 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
   // RMS 0.356 px (0.420): about 100 px of its ring run inside a joint beside an orange tile, where the
   // stripe's red fills the joint's dip in red dominance and the profile is a step, not a peak (see
   // TheFinalConicIsTheRingsNotThatOfAWalkBesideIt); the points found there lie 1-1.5 px off, on the tile's
-  // edge (the chroma's pull beside a step of the floor's red).
-  const SeedMeans means =
-      overSeeds("fading_mosaic", fadingMosaic(), seedRange(83, 20), [](unsigned int seed, const GuidedQuality &q) {
+  // edge (the chroma's pull beside a step of the floor's red). Over the ring seen as a ridge of the image
+  // (vpLaserConicSimulator::ridgeCoverage(): the stripe also 3 sigma above the scene on both sides, 96-99 % of
+  // the ring at 3 sigma here), every seed meets the 95 %: 96.52-99.49 %, mean 98.30 %, seed 93 the
+  // lowest.
+  const SeedMeans means = overSeeds(
+      "fading_mosaic", fadingMosaic(), seedRange(83, 20),
+      [](unsigned int seed, const GuidedQuality &q) {
         EXPECT_GE(q.precision, 0.98) << "seed " << seed;
         EXPECT_GE(q.coverage3, 0.92) << "seed " << seed;
+        EXPECT_GE(q.ridge3, 0.95) << "seed " << seed;
         EXPECT_LE(q.rmsGuided, 0.38) << "seed " << seed;
-      });
-  std::cout << "seeds 83-102: mean coverage " << 100.0 * means.coverage3 << " %, mean second-pass RMS "
-            << means.rmsGuided << " px" << std::endl;
+      },
+      Ridges::measure);
+  std::cout << "seeds 83-102: mean coverage " << 100.0 * means.coverage3 << " % (seen as a ridge "
+            << 100.0 * means.ridge3 << " %), mean second-pass RMS " << means.rmsGuided << " px" << std::endl;
   EXPECT_GE(means.coverage3, 0.965);
+  EXPECT_GE(means.ridge3, 0.975);
   EXPECT_LE(means.rmsGuided, 0.25);
 }
 
@@ -368,21 +394,25 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
 // --gtest_also_run_disabled_tests --gtest_filter='*NeverTunedOn*'). Measured: mosaic mean 97.21 % of the ring
 // at 3 sigma, every seed >= 94.58 % (seed 124, the ring inside a joint, as seed 93's), precision >= 0.978;
 // faint ring mean 99.55 %, every seed >= 98.91 %, precision >= 0.989 (the code before the step, f126958:
-// mosaic 95.99 %, five seeds under 95 %; faint 99.38 %). The bounds leave a margin under the measured.
+// mosaic 95.99 %, five seeds under 95 %; faint 99.38 %). The bounds leave a margin under the measured. Of the
+// mosaic's ring seen as a ridge of the image (ridgeCoverage()): mean 98.22 %, every seed >= 95.33 % (seed 124).
 TEST(LaserConicGuidedSearch, DISABLED_SeedsNeverTunedOn)
 {
-  const SeedMeans mosaic =
-      overSeeds("fading_mosaic", fadingMosaic(), seedRange(103, 30), [](unsigned int seed, const GuidedQuality &q) {
+  const SeedMeans mosaic = overSeeds(
+      "fading_mosaic", fadingMosaic(), seedRange(103, 30),
+      [](unsigned int seed, const GuidedQuality &q) {
         EXPECT_GE(q.coverage3, 0.94) << "seed " << seed;
+        EXPECT_GE(q.ridge3, 0.95) << "seed " << seed;
         EXPECT_GE(q.precision, 0.975) << "seed " << seed;
-      });
+      },
+      Ridges::measure);
   const SeedMeans faint =
       overSeeds("faint", fadingRing(40.0, 4.0), seedRange(100, 20), [](unsigned int seed, const GuidedQuality &q) {
         EXPECT_GE(q.coverage3, 0.98) << "seed " << seed;
         EXPECT_GE(q.precision, 0.985) << "seed " << seed;
       });
-  std::cout << "mosaic seeds 103-132: mean coverage " << 100.0 * mosaic.coverage3
-            << " %; faint seeds 100-119: " << 100.0 * faint.coverage3 << " %" << std::endl;
+  std::cout << "mosaic seeds 103-132: mean coverage " << 100.0 * mosaic.coverage3 << " % (seen as a ridge "
+            << 100.0 * mosaic.ridge3 << " %); faint seeds 100-119: " << 100.0 * faint.coverage3 << " %" << std::endl;
   EXPECT_GE(mosaic.coverage3, 0.965);
   EXPECT_GE(faint.coverage3, 0.99);
 }
@@ -397,12 +427,15 @@ TEST(LaserConicGuidedSearch, TheFinalConicIsTheRingsNotThatOfAWalkBesideIt)
   // conic is now refitted on the points within 2.5 px of it (refitOnItsInliers(): 0.17 px off at its worst),
   // and the samples of short gaps that no point covers are measured once more at it. Measured: 93.0 % of the ring at 3 sigma,
   // precision 0.991, second-pass RMS 0.356 px, near (830, 987) 96.8 %, along the joint 27.5 % (before: 86.6 %,
-  // 0.985, 0.420 px, 58.3 %, 24.0 %). The bounds are not met on this seed (see PiecesOfCurveEndOnTheRing).
+  // 0.985, 0.420 px, 58.3 %, 24.0 %). The bounds are not met on this seed (see PiecesOfCurveEndOnTheRing)
+  // but on the ring seen as a ridge of the image: 96.52 % (4.1 % of the ring at 3 sigma is a step, not a ridge,
+  // most of it along that joint).
   std::vector<double> near; // the far side, and the joint (printed)
   const GuidedQuality q =
       mosaicNear("ring_in_a_joint", 93, {{vpImagePoint(987.0, 830.0), 40.0}, {vpImagePoint(203.0, 515.0), 50.0}}, near);
   EXPECT_GE(near[0], 0.95);
   EXPECT_GE(q.coverage3, 0.92);
+  EXPECT_GE(q.ridge3, 0.95);
   EXPECT_GE(q.precision, 0.98);
   EXPECT_LE(q.rmsGuided, 0.38);
 }

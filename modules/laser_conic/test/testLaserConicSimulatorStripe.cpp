@@ -331,6 +331,94 @@ TEST(LaserConicSimulatorStripe, CoverageCountsTheRingWhereTheStripeIsStrong)
   EXPECT_LT(vpLaserConicSimulator::stripeCoverage(truth, weakOnly), 0.01);
 }
 
+namespace
+{
+//! The truth sample nearest to the image point (u, v).
+const Truth &nearestSample(const std::vector<Truth> &truth, double u, double v)
+{
+  return *std::min_element(truth.begin(), truth.end(), [u, v](const Truth &a, const Truth &b) {
+    return std::hypot(a.point.get_u() - u, a.point.get_v() - v) < std::hypot(b.point.get_u() - u, b.point.get_v() - v);
+  });
+}
+} // namespace
+
+TEST(LaserConicSimulatorStripe, ProminenceIsThePeakOnAnEvenFloor)
+{
+  // An even grey floor: the image's ridge is the stripe's peak. The prominence reads pixels, whose centres lie
+  // up to 0.5 px off the centre line (the Gaussian of sigma 1.46 px, blur included, is 6 % lower there) and are
+  // rounded to grey levels.
+  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 3);
+  sim.setGroundTexture(vpImage<vpRGBa>(8, 8, vpRGBa(90, 90, 90, 255)), 1.0, -4.0, -4.0);
+  Settings s = fadingSettings(0.2);
+  s.laserPower = 60.0;
+  s.noise = 2.0;
+  std::vector<Truth> truth = sim.traceTruth(2000, s);
+  EXPECT_THROW(vpLaserConicSimulator::ridgeCoverage(truth, {}), vpLaserConicException); // not measured yet
+  sim.measureProminence(truth, s);
+  for (const Truth &t : truth) {
+    EXPECT_NEAR(t.prominence, t.peakDominance, 0.06 * t.peakDominance + 1.0) << t.point;
+    EXPECT_DOUBLE_EQ(t.prominenceOverNoise, t.prominence / s.noise);
+  }
+  // The stripe at 4.8 sigma or more all round: all of it a ridge, so both coverages count the same ring.
+  std::vector<vpImagePoint> all, half;
+  for (size_t k = 0; k < truth.size(); ++k) {
+    all.push_back(truth[k].point);
+    if (k % 2 == 0 && k < truth.size() / 2)
+      half.push_back(truth[k].point);
+  }
+  EXPECT_DOUBLE_EQ(vpLaserConicSimulator::ridgeCoverage(truth, all), 1.0);
+  const double halfCoverage = vpLaserConicSimulator::ridgeCoverage(truth, half);
+  EXPECT_GT(halfCoverage, 0.3);
+  EXPECT_LT(halfCoverage, 0.7);
+  EXPECT_DOUBLE_EQ(halfCoverage, vpLaserConicSimulator::stripeCoverage(truth, half));
+  s.laserOn = false;
+  truth = sim.traceTruth(100, s);
+  sim.measureProminence(truth, s);
+  for (const Truth &t : truth)
+    EXPECT_EQ(t.prominence, 0.0);
+}
+
+TEST(LaserConicSimulatorStripe, ProminenceIsNoneWhereTheRingRunsInAJointBesideARedTile)
+{
+  // The colourful mosaic with the light scaled by its reflectance (the guided search's tests, seed 93). Around
+  // (490, 227) and (770, 81) the centre line runs inside a dark joint (reflectance 0.18): the stripe adds 15-21
+  // grey levels of red dominance there, 7-10 times the noise, but fills the joint only up to a brighter red tile
+  // beside it, and the image has a step there, not a ridge (noise-free profiles printed across the curve: joint
+  // 1, stripe 17, tile 40). At (940, 965) it crosses an even red tile and stands out by its whole peak.
+  Settings s = fadingSettings(20.0 / 150.0);
+  s.floor = vpLaserConicSimulator::FLOOR_MOSAIC;
+  s.ambient = 0.6;
+  s.reflectanceScaled = true;
+  s.noise = 2.0;
+  s.jpegQuality = 90;
+  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), 93);
+  std::vector<Truth> truth = sim.traceTruth(6000, s);
+  vpImage<vpRGBa> before, after, again;
+  sim.setSeed(93);
+  sim.render(before, s);
+  sim.render(after, s);
+  sim.setSeed(93);
+  sim.render(before, s);
+  sim.measureProminence(truth, s);
+  sim.render(again, s);
+  EXPECT_TRUE(again == after); // the simulator's random sequence left as it was
+  for (const vpImagePoint &joint : {vpImagePoint(227.0, 490.0), vpImagePoint(81.0, 770.0)}) {
+    const Truth &t = nearestSample(truth, joint.get_u(), joint.get_v());
+    EXPECT_GT(t.peakOverNoise, 7.0) << joint;
+    EXPECT_LT(t.prominenceOverNoise, 0.0) << joint;
+  }
+  const Truth &even = nearestSample(truth, 940.0, 965.0);
+  EXPECT_NEAR(even.prominence, even.peakDominance, 1.0);
+  size_t strong = 0, ridge = 0;
+  for (const Truth &t : truth) {
+    strong += t.peakOverNoise >= 3.0 ? 1 : 0;
+    ridge += t.peakOverNoise >= 3.0 && t.prominenceOverNoise >= 3.0 ? 1 : 0;
+  }
+  std::cout << "ring at 3 sigma: " << strong << " samples, " << ridge << " of them a ridge of the image" << std::endl;
+  EXPECT_LT(ridge, strong);
+  EXPECT_GT(ridge, strong * 9 / 10);
+}
+
 TEST(LaserConicSimulatorStripe, BadStripeSettingsThrow)
 {
   vpLaserConicSimulator sim = makeSimulator();

@@ -10,6 +10,8 @@
 #define VP_LASER_CONIC_SIMULATOR_H
 
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -209,6 +211,17 @@ public:
     double peakDominance = 0.0;
     //! peakDominance over the sensor noise standard deviation (+inf without noise, 0 when the laser is off).
     double peakOverNoise = 0.0;
+    /*!
+      How far the stripe stands above the scene beside it, grey levels of red dominance, in the image render()
+      draws without sensor noise and JPEG (measureProminence()): the highest dominance across the curve within
+      half the blurred stripe's width of the centre line, less the higher of the two dominances 3.5 blurred
+      stripe sigmas away on either side. Near peakDominance on an even surface; below it, or negative, where
+      the ring runs in a dark joint beside a brighter red tile: there the image has a step, not a ridge, however
+      much red the stripe adds. 0 where peakDominance is 0; NaN until measured.
+    */
+    double prominence = std::numeric_limits<double>::quiet_NaN();
+    //! prominence over the sensor noise standard deviation (+inf without noise when positive); NaN until measured.
+    double prominenceOverNoise = std::numeric_limits<double>::quiet_NaN();
   };
 
   //! Simulator with no camera, a 34 degree laser at the camera centre, ground 1 m in front, seed 0.
@@ -312,6 +325,23 @@ public:
   */
   static double stripeCoverage(const std::vector<vpTraceTruth> &truth, const std::vector<vpImagePoint> &points,
                                double minOverNoise = 3.0, double radius = 1.5);
+  /*!
+    Fills vpTraceTruth::prominence and prominenceOverNoise of \e truth, the traceTruth() of this simulator with
+    the same \e settings: renders the scene once more without sensor noise and JPEG (on a copy: the random
+    sequence of this simulator is left as it was) and reads the red dominance across the curve at each sample.
+    \exception vpLaserConicException as traceTruth().
+  */
+  void measureProminence(std::vector<vpTraceTruth> &truth, const vpRenderSettings &settings) const;
+  /*!
+    stripeCoverage() over the samples where the stripe is also a ridge of the image: it stands at least
+    \e minOverNoise times the sensor noise above the scene on both sides (prominenceOverNoise). The part of the
+    ring a person sees as a line; what stripeCoverage() adds to it is where the stripe's red only fills a dark
+    joint up to the tile beside it.
+    \exception vpLaserConicException::badValueError when a sample's prominence was not measured
+    (measureProminence()).
+  */
+  static double ridgeCoverage(const std::vector<vpTraceTruth> &truth, const std::vector<vpImagePoint> &points,
+                              double minOverNoise = 3.0, double radius = 1.5);
 
   /*!
     Renders a colour image of the camera's view with the default vpRenderSettings but for the stripe
@@ -352,6 +382,10 @@ private:
   void updateRayMap();
   //! Throws vpLaserConicException::badValueError when a render setting is out of its range.
   static void checkSettings(const vpRenderSettings &settings);
+  //! Share of the ring's length, over the samples of \e truth that \e counts keeps, with a point of \e points
+  //! within \e radius pixels (stripeCoverage(), ridgeCoverage()).
+  static double coverageOf(const std::vector<vpTraceTruth> &truth, const std::vector<vpImagePoint> &points,
+                           double radius, const std::function<bool(const vpTraceTruth &)> &counts);
   //! Renders the ground (floor, texture, chessboard, distractors, lamp) into a float RGB image; with
   //! \e reflectance not null, the red reflectance of each pixel's surface too.
   void renderGround(float *rgb, const vpRenderSettings &settings, const vpImage<vpRGBa> *stretchedTexture,
@@ -385,6 +419,8 @@ private:
   bool groundPoint(double gamma, double P[3]) const;
   //! Projects a camera-frame point; false when it is not in front of the camera.
   bool project(const double P[3], double &u, double &v) const;
+  //! Unit normal \e n (u, v) of the image trace at the cone ray of angle gamma; false where it is not seen.
+  bool curveNormal(double gamma, double n[2]) const;
   /*!
     Squared distance of each pixel within \e radius of the exact image trace to that trace (+inf elsewhere);
     with \e falloff not null, the stripe's fall-off at the nearest point of the trace, per pixel.
