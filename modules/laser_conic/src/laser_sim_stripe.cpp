@@ -356,10 +356,11 @@ void vpLaserConicSimulator::measureProminence(std::vector<vpTraceTruth> &truth, 
     const vpRGBa &p = I[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
     return static_cast<double>(p.R) - std::max(p.G, p.B);
   };
-  // The stripe's extent after the optical blur: its top is looked for within half its width at half maximum
-  // of the centre line, the scene beside it read where its own light is 0.2 % of its peak.
+  // The stripe's extent after the optical blur: its top is the brightest pixel within half its width at half
+  // maximum of the centre point (at least 0.75 px, so that some pixel centre is in reach), the scene beside it
+  // read where the stripe's own light is 0.2 % of its peak.
   const double sigma = std::hypot(settings.stripeWidth / kFwhmPerSigma, settings.blur);
-  const double top = 0.5 * kFwhmPerSigma * sigma, side = 3.5 * sigma;
+  const double top = std::max(0.75, 0.5 * kFwhmPerSigma * sigma), side = 3.5 * sigma;
   for (vpTraceTruth &t : truth) {
     double n[2] = {0.0, 0.0};
     if (t.peakDominance > 0.0 && curveNormal(t.gamma, n)) {

@@ -435,9 +435,13 @@ TEST(LaserConicSimulatorStripe, BadStripeSettingsThrow)
   for (size_t k = 0; k < bad.size(); ++k) {
     EXPECT_THROW(sim.render(I, bad[k]), vpLaserConicException) << k;
     EXPECT_THROW(sim.traceTruth(100, bad[k]), vpLaserConicException) << k;
+    std::vector<Truth> truth = sim.traceTruth(100, Settings());
+    EXPECT_THROW(sim.measureProminence(truth, bad[k]), vpLaserConicException) << k;
   }
   vpLaserConicSimulator unset;
   EXPECT_THROW(unset.traceTruth(100, Settings()), vpLaserConicException);
+  std::vector<Truth> none;
+  EXPECT_THROW(unset.measureProminence(none, Settings()), vpLaserConicException);
   // A failed render leaves the simulator usable.
   EXPECT_NO_THROW(sim.render(I, Settings()));
 }

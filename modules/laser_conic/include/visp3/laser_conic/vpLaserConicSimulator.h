@@ -213,9 +213,9 @@ public:
     double peakOverNoise = 0.0;
     /*!
       How far the stripe stands above the scene beside it, grey levels of red dominance, in the image render()
-      draws without sensor noise and JPEG (measureProminence()): the highest dominance across the curve within
-      half the blurred stripe's width of the centre line, less the higher of the two dominances 3.5 blurred
-      stripe sigmas away on either side. Near peakDominance on an even surface; below it, or negative, where
+      draws without sensor noise and JPEG (measureProminence()): the highest dominance of the pixels within half
+      the blurred stripe's width (at half maximum) of the centre point, less the higher of the two pixels 3.5
+      blurred stripe sigmas away on either side across the curve. Near peakDominance on an even surface; below it, or negative, where
       the ring runs in a dark joint beside a brighter red tile: there the image has a step, not a ridge, however
       much red the stripe adds. 0 where peakDominance is 0; NaN until measured.
     */
