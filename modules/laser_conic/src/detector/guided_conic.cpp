@@ -209,7 +209,8 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, b
   for (const vpImagePoint &p : points) {
     const unsigned int iu = static_cast<unsigned int>(std::max(0.0, p.get_u())),
                        iv = static_cast<unsigned int>(std::max(0.0, p.get_v()));
-    if (((iu * 73856093u) ^ (iv * 19349663u)) % stride == 0)
+    // Every point when the stride is 1 (a tracked frame's 700), without the modulo's division.
+    if (stride == 1 || ((iu * 73856093u) ^ (iv * 19349663u)) % stride == 0)
       sample.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
   }
   if (byPosition)
@@ -372,13 +373,15 @@ void appendCrossings(const ConicCoefficients &k, const LineRoots &roots, int fir
       const double u = AlongRow ? x : t, v = AlongRow ? t : x;
       const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e;
       const double along = std::fabs(AlongRow ? fu : fv), across = std::fabs(AlongRow ? fv : fu);
+      // About half the crossings are the other family's: the sample's divisions and square root only for a kept one.
+      if (!(roots.count[i] > root && x >= -margin && x <= n - 1 + margin && along > 0.0 && along >= across &&
+            (AlongRow || along != across)))
+        continue;
       const double norm = std::sqrt(fu * fu + fv * fv);
       const double toNormal = along / norm;
       const double slope = -(AlongRow ? fv : fu) / (AlongRow ? fu : fv);
-      const GuidedSample sample{AlongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope};
-      if (roots.count[i] > root && x >= -margin && x <= n - 1 + margin && along > 0.0 && along >= across &&
-          (AlongRow || along != across))
-        arcs[root].push_back(sample);
+      arcs[root].push_back(
+          GuidedSample{AlongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
     }
 }
 

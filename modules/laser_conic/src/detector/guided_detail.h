@@ -135,8 +135,13 @@ struct ProfileWindow
   bool brightness = false;
 };
 
-//! Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line.
-void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth);
+/*!
+  Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line: on
+  the sample's line and its two neighbours, or with \e oneLine on its line alone, all that the profiles of a
+  strong stripe followed read (a row profile's neighbours are rows of their own: asking for them doubled the
+  cache lines, and the pages, brought in along the rows of a tracked ring).
+*/
+void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth, bool oneLine);
 
 /*!
   Measures the profile of sample s in the RGBA image I within \e window (kept inside the sample's margin).

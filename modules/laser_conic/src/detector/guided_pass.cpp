@@ -221,10 +221,10 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
     const GuidedSample &s = samples[static_cast<size_t>(i)];
     // The pixels of a profile a few samples on are asked for now: a frame just captured is not in cache,
     // and the profiles' reads, a few dozen bytes a row, each wait for memory otherwise (a sixth of the
-    // tracking mode's time).
+    // tracking mode's time). Along a strong stripe, the profiles read the sample's line alone.
     if (i + RidgeTuning::guidedPrefetchAhead < static_cast<int>(samples.size()))
       prefetchProfile(I, samples[static_cast<size_t>(i) + RidgeTuning::guidedPrefetchAhead],
-                      RidgeTuning::guidedPrefetchReach);
+                      RidgeTuning::guidedPrefetchReach, strong);
     double offset = 0.0;
     if (found.covers(s, offset)) {
       state[static_cast<size_t>(i)] = KNOWN;
@@ -490,12 +490,16 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     report.coverage = walkCoverage(samples, limit, H, state, keep, searched);
     if (iteration == 0)
       report.predictionSamples = static_cast<int>(searched);
+    // The points found are looked up by the next walk only, and there is none when no sample was missed (the
+    // measurement along the final curve marks them again): a tracked frame's walk, which misses none, marks none.
+    const bool lookedUp = missed > 0;
     int added = 0;
     for (size_t i = 0; i < samples.size(); ++i)
       if (keep[i]) {
         fitPoints.push_back(results[i].crossing.point);
         work.guided.push_back(results[i].crossing);
-        found.mark(results[i].crossing.point);
+        if (lookedUp)
+          found.mark(results[i].crossing.point);
         ++added;
       }
     // The walk stops when the coverage stops growing, when no sample was missed (another walk along the

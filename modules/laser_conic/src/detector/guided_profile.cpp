@@ -126,10 +126,17 @@ int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n,
 double profileNoise(ProfileBuffers &b, int n, int lines, int skipFirst, int skipLast)
 {
   const double floor = RidgeTuning::guidedNoiseFloor * std::sqrt(static_cast<double>(lines));
-  b.diffs.clear();
-  for (int k = 2; k + 2 < n; ++k)
-    if (k + 2 < skipFirst || k - 2 > skipLast)
-      b.diffs.push_back(std::abs(b.value[k + 2] - 2 * b.value[k] + b.value[k - 2]));
+  // The positions before the skipped stretch, then those after it (k + 2 < skipFirst or k - 2 > skipLast):
+  // two loops without a test per position.
+  b.diffs.resize(static_cast<size_t>(std::max(0, n - 4)));
+  size_t count = 0;
+  const int *v = b.value.data();
+  int k = 2;
+  for (; k + 2 < n && k + 2 < skipFirst; ++k)
+    b.diffs[count++] = std::abs(v[k + 2] - 2 * v[k] + v[k - 2]);
+  for (k = std::max(k, skipLast + 3); k + 2 < n; ++k)
+    b.diffs[count++] = std::abs(v[k + 2] - 2 * v[k] + v[k - 2]);
+  b.diffs.resize(count);
   if (b.diffs.empty())
     return floor;
   const double mad = middleValue(b.diffs);
@@ -349,7 +356,7 @@ int middleValue(std::vector<int> &values)
   return values[static_cast<size_t>(rank)];
 }
 
-void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth)
+void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth, bool oneLine)
 {
   const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
   const ptrdiff_t W = static_cast<ptrdiff_t>(I.getWidth());
@@ -359,15 +366,17 @@ void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWi
             to = std::min(lineLength - 1, static_cast<int>(s.pos) + halfWidth);
   if (from > to || lineCount < 3)
     return;
-  const int line = std::min(lineCount - 2, std::max(1, s.line)); // the sample's line and its two neighbours
+  // The sample's line and its two neighbours, or the line alone (see the declaration).
+  const int reach = oneLine ? 0 : 1;
+  const int line = std::min(lineCount - 1 - reach, std::max(reach, s.line));
   if (s.alongRow) {
     constexpr int pixelsPerCacheLine = 16; // of 64 bytes
-    for (int j = -1; j <= 1; ++j)
+    for (int j = -reach; j <= reach; ++j)
       for (int k = from; k < to + pixelsPerCacheLine; k += pixelsPerCacheLine)
         prefetch(rgba + 4 * ((line + j) * W + std::min(k, to)));
   } else
     for (int k = from; k <= to; ++k) // the three columns share a cache line but for one in sixteen
-      prefetch(rgba + 4 * (k * W + line - 1));
+      prefetch(rgba + 4 * (k * W + line - reach));
 }
 
 // A profile whose stripe was not found, with the colour edge where the prediction crosses it
