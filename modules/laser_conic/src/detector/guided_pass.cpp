@@ -443,6 +443,25 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
       kept.push_back(results[i].crossing);
 }
 
+// Appends the points of the kept samples to \e fitPoints and their crossings to \e guided, and marks them in
+// \e found when \e lookedUp; returns how many. The points found are looked up by the next walk only, and there is
+// none when no sample was missed (the measurement along the final curve marks them again): a tracked frame's
+// walk, which misses none, marks none.
+int addKeptPoints(const std::vector<unsigned char> &keep, const std::vector<ProfileResult> &results, bool lookedUp,
+                  std::vector<vpImagePoint> &fitPoints, std::vector<Crossing> &guided, FoundCells &found)
+{
+  int added = 0;
+  for (size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) {
+      fitPoints.push_back(results[i].crossing.point);
+      guided.push_back(results[i].crossing);
+      if (lookedUp)
+        found.mark(results[i].crossing.point);
+      ++added;
+    }
+  return added;
+}
+
 double median(std::vector<double> &values)
 {
   if (values.empty())
@@ -490,18 +509,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     report.coverage = walkCoverage(samples, limit, H, state, keep, searched);
     if (iteration == 0)
       report.predictionSamples = static_cast<int>(searched);
-    // The points found are looked up by the next walk only, and there is none when no sample was missed (the
-    // measurement along the final curve marks them again): a tracked frame's walk, which misses none, marks none.
-    const bool lookedUp = missed > 0;
-    int added = 0;
-    for (size_t i = 0; i < samples.size(); ++i)
-      if (keep[i]) {
-        fitPoints.push_back(results[i].crossing.point);
-        work.guided.push_back(results[i].crossing);
-        if (lookedUp)
-          found.mark(results[i].crossing.point);
-        ++added;
-      }
+    const int added = addKeptPoints(keep, results, missed > 0, fitPoints, work.guided, found);
     // The walk stops when the coverage stops growing, when no sample was missed (another walk along the
     // refitted conic would measure nothing) or when there is no better prediction. The conic is refitted
     // even then, as the points' (sorted) fit whatever the order the first pass returned them in: it is the
