@@ -32,6 +32,12 @@ struct GuidedSample
   double slope;      //!< d pos / d line of the predicted curve (the neighbouring lines' shift)
 };
 
+//! The image point at \e along on sample s's line (its predicted crossing at s.pos).
+inline vpImagePoint samplePoint(const GuidedSample &s, double along)
+{
+  return s.alongRow ? vpImagePoint(s.line, along) : vpImagePoint(along, s.line);
+}
+
 /*!
   A number that orders directions (dx, dy) as std::atan2(dy, dx) does, from -pi (excluded) to pi, without a
   transcendental function (the order of the points along the curve was a tenth of the tracking mode's time):

@@ -347,12 +347,6 @@ void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossi
   crossings.resize(kept);
 }
 
-// The image point of sample s's predicted crossing.
-vpImagePoint samplePoint(const GuidedSample &s)
-{
-  return s.alongRow ? vpImagePoint(s.line, s.pos) : vpImagePoint(s.pos, s.line);
-}
-
 // The offsets across the final conic (as ProfileResult::offset) of the points that cover its samples
 // (\e found: the first pass's and the kept ones; \e covered set there), and in the gaps between them the
 // offsets interpolated from the covered samples on either side (the median of the RidgeTuning::guidedGapEnds
@@ -386,8 +380,8 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
   };
   for (size_t k = 0; k < m; ++k) { // the gap after coveredAt[k]
     const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], gap = (to + n - from) % n;
-    if (gap <= 1 ||
-        vpImagePoint::distance(samplePoint(samples[from]), samplePoint(samples[to])) > RidgeTuning::guidedGapLength)
+    if (gap <= 1 || vpImagePoint::distance(samplePoint(samples[from], samples[from].pos),
+                                           samplePoint(samples[to], samples[to].pos)) > RidgeTuning::guidedGapLength)
       continue; // 0: a single covered sample, the gap goes round
     const double before = sideOffset(k, true), after = sideOffset((k + 1) % m, false);
     for (size_t j = 1; j < gap; ++j)

@@ -464,7 +464,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   result.crossing.line = s.line;
   result.crossing.first = start + runFirst;
   result.crossing.last = start + runLast;
-  result.crossing.point = s.alongRow ? vpImagePoint(s.line, along) : vpImagePoint(along, s.line);
+  result.crossing.point = samplePoint(s, along);
   return result;
 }
 } // namespace vsp::laser_detector
