@@ -288,9 +288,15 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // without JPEG, seed 80 misses 1.5 % of its ring at 3 sigma instead of 4.8 %). What was tried on this floor
   // and dropped: CHANGELOG.md.
   // Every seed is held to the bounds, the mean coverage to the measured one with a margin.
-  const SeedMeans means = overSeeds("fading_mosaic", s, seedRange(73, 10),
-                                    [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); });
+  // Of the ring seen as a ridge of the image (ridgeCoverage(): 96-98 % of the ring at 3 sigma here, the rest
+  // a stripe inside a joint beside a brighter tile, a step): 97.25-99.03 %, mean 98.53 %.
+  const SeedMeans means = overSeeds(
+      "fading_mosaic", s, seedRange(73, 10), [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); },
+      Ridges::measure);
+  std::cout << "seeds 73-82: mean coverage " << 100.0 * means.coverage3 << " % (seen as a ridge "
+            << 100.0 * means.ridge3 << " %)" << std::endl;
   EXPECT_GE(means.coverage3, 0.97);
+  EXPECT_GE(means.ridge3, 0.975);
   EXPECT_LE(means.rmsGuided, 0.25);
 }
 
