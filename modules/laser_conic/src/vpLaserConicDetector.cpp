@@ -29,6 +29,14 @@ double positive(double value, const char *message)
   return value;
 }
 
+// \e value if it is a margin the detector takes (> 0, at most vpLaserConicDetector::getMaxMargin(): beyond,
+// the pixel positions a search window spans no longer fit its integers), else the error \e message.
+double validMargin(double value, const char *message)
+{
+  check(value > 0.0 && value <= vpLaserConicDetector::getMaxMargin(), message);
+  return value;
+}
+
 // \e value if it is > 0, else the error \e message.
 unsigned int positive(unsigned int value, const char *message)
 {
@@ -115,7 +123,7 @@ void vpLaserConicDetector::setMinSegmentLength(double pixels)
 
 void vpLaserConicDetector::setGuidedMargin(double pixels)
 {
-  m_guidedMargin = positive(pixels, "the guided search margin must be positive and finite");
+  m_guidedMargin = validMargin(pixels, "the guided search margin must be positive and at most 10000 pixels");
 }
 
 void vpLaserConicDetector::setGuidedStep(unsigned int lines)
@@ -176,7 +184,7 @@ void vpLaserConicDetector::setMinSaturationValue(int minSaturation, int minValue
 
 void vpLaserConicDetector::setSearchRegion(const std::vector<vpImagePoint> &trace, double margin)
 {
-  check(std::isfinite(margin) && margin > 0.0, "the search margin must be positive and finite");
+  validMargin(margin, "the search margin must be positive and at most 10000 pixels");
   check(!trace.empty(), "the search region needs at least one point");
   for (const vpImagePoint &p : trace)
     check(std::isfinite(p.get_u()) && std::isfinite(p.get_v()), "a point of the search region is not finite");
@@ -189,7 +197,7 @@ void vpLaserConicDetector::setSearchRegion(const std::vector<vpImagePoint> &trac
 void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 {
   check(C.getRows() == 3 && C.getCols() == 3, "the conic must be a 3x3 matrix");
-  check(std::isfinite(margin) && margin > 0.0, "the search margin must be positive and finite");
+  validMargin(margin, "the search margin must be positive and at most 10000 pixels");
   double norm = 0.0;
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j) {

@@ -703,6 +703,19 @@ TEST(LaserConicGuidedSearch, SettingsAreCheckedAndTheSecondPassCanBeTurnedOff)
   EXPECT_TRUE(detector.getGuidedSearch());
   EXPECT_THROW(detector.setGuidedMargin(0.0), vpLaserConicException);
   EXPECT_THROW(detector.setGuidedMargin(std::nan("")), vpLaserConicException);
+  // Found by the detector's fuzz target: a margin of 8e146 px was taken, and the guided pass's window on a
+  // line overflowed its integers (a read far outside the image).
+  EXPECT_THROW(detector.setGuidedMargin(8.18846e146), vpLaserConicException);
+  EXPECT_THROW(detector.setGuidedMargin(vpLaserConicDetector::getMaxMargin() * 1.001), vpLaserConicException);
+  EXPECT_THROW(detector.setSearchRegion(std::vector<vpImagePoint>{vpImagePoint(10.0, 10.0)}, 1e12),
+               vpLaserConicException);
+  vpMatrix circle(3, 3); // (u - 80)^2 + (v - 60)^2 = 50^2
+  circle[0][0] = circle[1][1] = 1.0;
+  circle[0][2] = circle[2][0] = -80.0;
+  circle[1][2] = circle[2][1] = -60.0;
+  circle[2][2] = 80.0 * 80.0 + 60.0 * 60.0 - 50.0 * 50.0;
+  EXPECT_THROW(detector.setSearchRegion(circle, 1e12), vpLaserConicException);
+  EXPECT_NO_THROW(detector.setSearchRegion(circle, vpLaserConicDetector::getMaxMargin()));
   EXPECT_THROW(detector.setGuidedStep(0), vpLaserConicException);
   EXPECT_THROW(detector.setTrackingStep(0), vpLaserConicException);
   EXPECT_THROW(detector.setGuidedThresholdFactor(-1.0), vpLaserConicException);
@@ -710,6 +723,17 @@ TEST(LaserConicGuidedSearch, SettingsAreCheckedAndTheSecondPassCanBeTurnedOff)
   const GuidedQuality off = runGuided("first_pass_only", tiltedGround(), fadingRing(150.0, 15.0), 70, detector);
   EXPECT_EQ(off.guided, 0u);
   EXPECT_LT(off.coverage3, 0.95); // what the second pass is for
+}
+
+TEST(LaserConicGuidedSearch, TheWidestMarginAllowedStillFindsTheRing)
+{
+  // The largest margins the setters take: the guided pass's profiles then span whole image lines, and its
+  // preference for a stripe near the prediction keeps the ring's points (a test of bounds, not a setting).
+  vpLaserConicDetector detector;
+  detector.setGuidedMargin(vpLaserConicDetector::getMaxMargin());
+  const GuidedQuality wide = runGuided("widest_margin", tiltedGround(), fadingRing(150.0, 15.0), 70, detector);
+  EXPECT_GE(wide.coverage3, 0.95);
+  EXPECT_GE(wide.precision, 0.98);
 }
 
 namespace

@@ -528,6 +528,15 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     measureAlongTheFinalCurve(I, settings, C, found, buffers, work.guided);
   }
   smoothAlongCurve(C, work.guided);
+  // The regularisation moves a point along the curve's normal: beside the image's border it can move it out
+  // of the image (found by the detector's fuzz target: -0.58 px), where no pixel measured it.
+  const double right = W - 0.5, bottom = H - 0.5;
+  work.guided.erase(std::remove_if(work.guided.begin(), work.guided.end(),
+                                   [right, bottom](const Crossing &c) {
+                                     const double u = c.point.get_u(), v = c.point.get_v();
+                                     return !(u >= -0.5 && v >= -0.5 && u <= right && v <= bottom);
+                                   }),
+                    work.guided.end());
   points.reserve(points.size() + work.guided.size());
   for (const Crossing &c : work.guided)
     points.push_back(c.point);

@@ -266,8 +266,8 @@ public:
   /*!
     Ridge method: searches only within \e margin pixels of the given points (e.g. the trace or the inliers
     of the previous frame; consecutive points along the curve must be closer than the margin).
-    \exception vpLaserConicException::badValueError when the margin is not positive and finite, a point is
-    not finite or the list is empty.
+    \exception vpLaserConicException::badValueError when the margin is not positive or above getMaxMargin(),
+    a point is not finite or the list is empty.
   */
   void setSearchRegion(const std::vector<vpImagePoint> &trace, double margin);
   /*!
@@ -283,7 +283,7 @@ public:
     distorted camera, getImageConic() is that of the undistorted image, so the margin must cover the
     distortion along the trace, or the points of the previous trace serve as the region instead.
     \exception vpLaserConicException::badValueError when \e C is not a finite 3x3 matrix, is zero, has no
-    real point near the image, or the margin is not positive and finite.
+    real point near the image, or the margin is not positive or above getMaxMargin().
   */
   void setSearchRegion(const vpMatrix &C, double margin);
   //! Removes the search region: the whole image is searched.
@@ -307,9 +307,15 @@ public:
     Ridge method: the guided pass searches within this many pixels (across the curve) of the conic fitted
     to the first pass's points; default 12 (the fit's extrapolation over a missing part of the ring is off
     by a few pixels; a wider band lets more distractors in). A conic search region uses its own margin.
-    \exception vpLaserConicException::badValueError when not positive and finite.
+    \exception vpLaserConicException::badValueError when not positive or above getMaxMargin().
   */
   void setGuidedMargin(double pixels);
+  /*!
+    The largest margin setGuidedMargin() and setSearchRegion() take: 10000 pixels. A margin wider than the
+    image already searches whole image lines; beyond this one a margin is taken for a mistake (a value in
+    other units, an uninitialised number).
+  */
+  static double getMaxMargin() { return 10000.0; }
   //! Margin of the guided pass, pixels.
   double getGuidedMargin() const { return m_guidedMargin; }
   /*!
