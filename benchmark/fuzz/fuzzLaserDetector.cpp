@@ -28,7 +28,7 @@ unsigned char consumeLevel(FuzzedDataProvider &fdp)
 {
   static const unsigned char levels[] = {0, 1, 128, 240, 249, 250, 254, 255};
   return fdp.ConsumeIntegralInRange<int>(0, 5) == 0 ? levels[fdp.ConsumeIntegralInRange<int>(0, 7)]
-                                                      : fdp.ConsumeIntegral<unsigned char>();
+                                                    : fdp.ConsumeIntegral<unsigned char>();
 }
 
 //! Every pixel straight from the input (the remaining bytes, repeated when they run out).
@@ -89,7 +89,8 @@ void drawRing(FuzzedDataProvider &fdp, vpImage<vpRGBa> &I)
 //! the image, sometimes arbitrary entries), with a fuzzed margin.
 void setRegion(FuzzedDataProvider &fdp, vpLaserConicDetector &detector, unsigned int W, unsigned int H)
 {
-  const double margin = fdp.ConsumeBool() ? vspFuzz::consumeDouble(fdp) : fdp.ConsumeFloatingPointInRange<double>(0.5, 40.0);
+  const double margin = fdp.ConsumeBool() ? vspFuzz::consumeDouble(fdp)
+                                          : fdp.ConsumeFloatingPointInRange<double>(0.5, 40.0);
   if (fdp.ConsumeBool()) {
     std::vector<vpImagePoint> trace(fdp.ConsumeIntegralInRange<size_t>(0, 60));
     for (vpImagePoint &p : trace)
