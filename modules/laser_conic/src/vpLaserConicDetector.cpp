@@ -30,10 +30,15 @@ double positive(double value, const char *message)
 }
 
 // \e value if it is a margin the detector takes (> 0, at most vpLaserConicDetector::getMaxMargin(): beyond,
-// the pixel positions a search window spans no longer fit its integers), else the error \e message.
-double validMargin(double value, const char *message)
+// the pixel positions a search window spans no longer fit its integers), else an error naming \e what and
+// the bound (the message is built from the bound, so the two cannot disagree).
+double validMargin(double value, const char *what)
 {
-  check(value > 0.0 && value <= vpLaserConicDetector::getMaxMargin(), message);
+  const double largest = vpLaserConicDetector::getMaxMargin();
+  if (!(value > 0.0 && value <= largest))
+    check(false, (std::string(what) + " must be positive and at most " + std::to_string(static_cast<long>(largest)) +
+                  " pixels")
+                     .c_str());
   return value;
 }
 
@@ -123,7 +128,7 @@ void vpLaserConicDetector::setMinSegmentLength(double pixels)
 
 void vpLaserConicDetector::setGuidedMargin(double pixels)
 {
-  m_guidedMargin = validMargin(pixels, "the guided search margin must be positive and at most 10000 pixels");
+  m_guidedMargin = validMargin(pixels, "the guided search margin");
 }
 
 void vpLaserConicDetector::setGuidedStep(unsigned int lines)
@@ -184,7 +189,7 @@ void vpLaserConicDetector::setMinSaturationValue(int minSaturation, int minValue
 
 void vpLaserConicDetector::setSearchRegion(const std::vector<vpImagePoint> &trace, double margin)
 {
-  validMargin(margin, "the search margin must be positive and at most 10000 pixels");
+  validMargin(margin, "the search margin");
   check(!trace.empty(), "the search region needs at least one point");
   for (const vpImagePoint &p : trace)
     check(std::isfinite(p.get_u()) && std::isfinite(p.get_v()), "a point of the search region is not finite");
@@ -197,7 +202,7 @@ void vpLaserConicDetector::setSearchRegion(const std::vector<vpImagePoint> &trac
 void vpLaserConicDetector::setSearchRegion(const vpMatrix &C, double margin)
 {
   check(C.getRows() == 3 && C.getCols() == 3, "the conic must be a 3x3 matrix");
-  validMargin(margin, "the search margin must be positive and at most 10000 pixels");
+  validMargin(margin, "the search margin");
   double norm = 0.0;
   for (unsigned int i = 0; i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j) {
