@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -140,6 +141,42 @@ TEST(LaserConicDetector, SamplingStepThinsThePoints)
   }
   std::cout << "farthest from its line: " << farthest << " px" << std::endl;
   EXPECT_LE(farthest, 0.5);
+}
+
+TEST(LaserConicDetector, AMinimumSegmentLongerThanAnyImageKeepsNoPoint)
+{
+  // The minimum segment length has no upper bound: a length no chain of any image reaches (up to the
+  // largest double) keeps nothing, and the coarse-to-fine search it scales stays defined (2.5e299 px was
+  // converted to an int, out of range, found by fuzz-laser-detector).
+  vpLaserConicSimulator sim = makeSimulator(groundPoses()[0], 3);
+  vpImage<vpRGBa> I;
+  sim.render(I);
+  vpLaserConicDetector detector;
+  EXPECT_GT(detector.detect(I).size(), 1000u);
+  for (double length : {1.0e5, 2.5e299, std::numeric_limits<double>::max()}) {
+    detector.setMinSegmentLength(length);
+    EXPECT_TRUE(detector.detect(I).empty()) << length;
+    EXPECT_EQ(detector.getGuidedPointCount(), 0u) << length;
+  }
+}
+
+TEST(LaserConicDetector, ThresholdFactorsUpToTheLargestDoubleKeepTheirMeaning)
+{
+  // The noise factor and the guided threshold factor have no upper bound either: the thresholds they give
+  // are bounded before they become grey levels. A first-pass threshold above 255 grey levels of red
+  // dominance finds no stripe; a guided threshold no profile reaches leaves the first pass's points alone.
+  vpLaserConicSimulator sim = makeSimulator(groundPoses()[0], 3);
+  vpImage<vpRGBa> I;
+  sim.render(I);
+  vpLaserConicDetector detector;
+  detector.setGuidedThresholdFactor(std::numeric_limits<double>::max());
+  const size_t firstPass = detector.detect(I).size();
+  EXPECT_GT(firstPass, 1000u);
+  EXPECT_EQ(detector.getGuidedPointCount(), 0u);
+  detector.setGuidedSearch(false);
+  EXPECT_EQ(detector.detect(I).size(), firstPass);
+  detector.setNoiseFactor(std::numeric_limits<double>::max());
+  EXPECT_TRUE(detector.detect(I).empty());
 }
 
 TEST(LaserConicDetector, MaskMarksTheStripe)

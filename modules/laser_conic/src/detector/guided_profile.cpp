@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "ridge_profile.h"
@@ -156,6 +157,13 @@ double dominanceNoise(const ProfileView &view, std::vector<int> &diffs, int skip
   return diffs.empty() ? 0.0 : 1.4826 * middleValue(diffs) / std::sqrt(2.0);
 }
 
+// A threshold in the profile's integer units, rounded up. Bounded while still a double: the threshold factor
+// has no upper bound, and any level beyond an int's range already refuses every response.
+int thresholdLevel(double level)
+{
+  return static_cast<int>(std::ceil(std::min(level, static_cast<double>(std::numeric_limits<int>::max()))));
+}
+
 // The matched filter: mean over the stripe box [k - h, k + h] minus the larger mean of the background boxes
 // of f pixels beyond a gap on each side (a step edge has one bright side and fails, as in the first pass).
 // In integers, scaled by (2h + 1) f, then one multiplication (the divisions of three means per response
@@ -300,9 +308,9 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
   if (b - a + 1 > settings.maxWidth)
     return false;
   if (whiteWithoutRedFlanks(view, a, b, settings.saturation, flankThreshold)) {
-    const int glareThreshold = static_cast<int>(
-        std::ceil(std::max(RidgeTuning::guidedMinResponse,
-                           settings.factor * dominanceNoise(view, diffs, a - filter.tails(), b + filter.tails()))));
+    const int glareThreshold =
+        thresholdLevel(std::max(RidgeTuning::guidedMinResponse,
+                                settings.factor * dominanceNoise(view, diffs, a - filter.tails(), b + filter.tails())));
     if (glareThreshold >= flankThreshold || whiteWithoutRedFlanks(view, a, b, settings.saturation, glareThreshold))
       return false;
   }
@@ -452,7 +460,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
   // in the sum of the lines, refused every white core with pink flanks: the laser on white paper.)
   const int flankThreshold =
-      static_cast<int>(std::ceil(std::max(RidgeTuning::guidedMinResponse, settings.factor * result.noise / rootLines)));
+      thresholdLevel(std::max(RidgeTuning::guidedMinResponse, settings.factor * result.noise / rootLines));
   if (!shapeAndCentre(ProfileView{buffers, n, centreLine, s.alongRow ? 4 : 4 * static_cast<ptrdiff_t>(I.getWidth())},
                       filter, best, settings, flankThreshold, buffers.diffs, runFirst, runLast,
                       vertex ? nullptr : &centre))

@@ -11,8 +11,10 @@ namespace vsp::laser_detector
 {
 int coarseFactor(const RidgeSettings &settings)
 {
-  return std::min(RidgeTuning::maxCoarseFactor,
-                  static_cast<int>(settings.minSegment / (RidgeTuning::coarseLinesPerChain * settings.step)));
+  // Bounded while still a double: the minimum segment length has no upper bound (a length no chain reaches
+  // keeps nothing), and converting a ratio beyond an int's range would be undefined.
+  const double lines = settings.minSegment / (RidgeTuning::coarseLinesPerChain * settings.step);
+  return static_cast<int>(std::min(static_cast<double>(RidgeTuning::maxCoarseFactor), lines));
 }
 
 void markCellsAroundKept(RidgeWorkspace &work, int W, int H, int reach)

@@ -124,6 +124,6 @@ int beginDetection(const vpImage<vpRGBa> &I, const RidgeSettings &settings, cons
     return -1;
   report.noise = estimateNoise(I, region, settings.instructions);
   report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
-  return std::min(255, static_cast<int>(std::ceil(report.threshold)));
+  return static_cast<int>(std::min(255.0, std::ceil(report.threshold))); // the factor has no upper bound
 }
 } // namespace vsp::laser_detector

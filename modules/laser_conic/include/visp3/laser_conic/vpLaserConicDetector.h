@@ -211,7 +211,8 @@ public:
   double getMinContrast() const { return m_minContrast; }
   /*!
     Ridge method: the threshold is at least this many times the score noise estimated from the image;
-    default 5. 0 uses the minimum contrast alone.
+    default 5. 0 uses the minimum contrast alone; no upper bound (the threshold is capped at 255 grey
+    levels, the largest score).
     \exception vpLaserConicException::badValueError when negative or not finite.
   */
   void setNoiseFactor(double factor);
@@ -236,7 +237,8 @@ public:
   unsigned int getSaturationLevel() const { return m_saturationLevel; }
   /*!
     Ridge method: chains of points shorter than this (bounding-box diagonal, pixels) are dropped; default
-    50 (red clutter and the thin corners of red floor patches make shorter chains). 0 keeps every point.
+    50 (red clutter and the thin corners of red floor patches make shorter chains). 0 keeps every point; no
+    upper bound (a length longer than the image's diagonal keeps nothing).
     \exception vpLaserConicException::badValueError when negative or not finite.
   */
   void setMinSegmentLength(double pixels);
@@ -345,7 +347,8 @@ public:
   /*!
     Ridge method: a profile of the guided pass holds a stripe when its matched-filter response exceeds
     this many times the response's noise, measured along that profile; default 3.5 (the continuity rule
-    removes the rare noise peak that passes).
+    removes the rare noise peak that passes). No upper bound: a factor no profile reaches leaves the first
+    pass's points alone.
     \exception vpLaserConicException::badValueError when not positive and finite.
   */
   void setGuidedThresholdFactor(double factor);
