@@ -137,7 +137,7 @@ struct vpLaserConicDetectorRun
   kept in pieces as the walk's are (not in tracking, whose prediction is the previous frame's and whose
   points are dropped at the ellipse refitted on them all). Last, the centres of this pass are regularised
   along the curve: each one's offset to the final
-  ellipse is replaced by a straight-line fit of the offsets over 40 px of arc around it (offsets more than
+  ellipse is replaced by a straight-line fit of the offsets within 80 px of arc on either side (offsets more than
   1 px from a first fit left out), since one profile's centre is noisy (sensor noise, JPEG's 8 x 8 blocks)
   but the centre line is smooth. The points of this pass follow those of the first pass in the list
   returned (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve

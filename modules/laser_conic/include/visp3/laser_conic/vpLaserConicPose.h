@@ -198,11 +198,11 @@ public:
     points of a detected stripe are not (blur, JPEG blocks, the stripe-width and sampling errors of the
     ridge are shared by neighbours along the trace), and hundreds of them in a frame then average far
     less than independent errors would; its guided pass moreover regularises its centres along the curve
-    over 40 px, which shrinks the residuals the scale is measured from. On frames rendered by
+    over 80 px on each side, which shrinks the residuals the scale is measured from. On frames rendered by
     vpLaserConicSimulator and read back as JPEG, found by vpLaserConicDetector at its default settings
-    (testLaserConicCovarianceRendered), the mean NEES of (altitude, roll, pitch) is 72-84 instead of 3
-    (median 62-67 instead of 2.37); recommendedDetectorInflation(), 20, brings it to 3.4-4.2 (it was set
-    when the regularisation spanned 20 px: 55-64, median 48-53, brought to about 3). A frame
+    (testLaserConicCovarianceRendered, seeds 101-104), the mean NEES of (altitude, roll, pitch) is 88-105
+    instead of 3 (median 72-86 instead of 2.37); recommendedDetectorInflation(), 32, brings it to 2.7-3.3
+    (median 2.3-2.7). A frame
     whose ring the detector's sample of rows cannot locate goes through its full search, whose centres are
     mostly not regularised: its covariance is then about 4 times too large (conservative). Keep 1 for
     independent point noise (e.g. points from another front-end).
@@ -212,7 +212,7 @@ public:
   //! Variance scale set with setCovarianceInflation().
   double getCovarianceInflation() const { return m_covarianceInflation; }
   //! The variance scale measured for vpLaserConicDetector's traces (see setCovarianceInflation()).
-  static double recommendedDetectorInflation() { return 20.0; }
+  static double recommendedDetectorInflation() { return 32.0; }
 
   /*!
     Refit the best model on its inliers (default true), during the RANSAC loop (kept when it scores
