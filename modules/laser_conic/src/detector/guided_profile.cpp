@@ -157,12 +157,9 @@ double dominanceNoise(const ProfileView &view, std::vector<int> &diffs, int skip
   return diffs.empty() ? 0.0 : 1.4826 * middleValue(diffs) / std::sqrt(2.0);
 }
 
-// A threshold in the profile's integer units, rounded up. Bounded while still a double: the threshold factor
-// has no upper bound, and any level beyond an int's range already refuses every response.
-int thresholdLevel(double level)
-{
-  return static_cast<int>(std::ceil(std::min(level, static_cast<double>(std::numeric_limits<int>::max()))));
-}
+// A threshold in the profile's integer units, rounded up (a level beyond an int's range already refuses
+// every response).
+int thresholdLevel(double level) { return toIntAtMost(std::ceil(level), std::numeric_limits<int>::max()); }
 
 // The matched filter: mean over the stripe box [k - h, k + h] minus the larger mean of the background boxes
 // of f pixels beyond a gap on each side (a step edge has one bright side and fails, as in the first pass).

@@ -10,6 +10,7 @@
 #ifndef VP_LASER_DETECTOR_H
 #define VP_LASER_DETECTOR_H
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -39,6 +40,16 @@ struct RegionSpans
   //! One past the last span of row i.
   const Span *end(int i) const { return spans.data() + bandStart[static_cast<size_t>(i >> bandShift) + 1]; }
 };
+
+/*!
+  \e value converted to an int no larger than \e highest, the bound applied while it is still a double: the
+  minimum segment length and the threshold factors have no upper bound, and a double beyond an int's range
+  converted to it is undefined behaviour. A NaN gives \e highest.
+*/
+inline int toIntAtMost(double value, int highest)
+{
+  return static_cast<int>(std::min(static_cast<double>(highest), value)); // std::min keeps its first on NaN
+}
 
 //! Settings of the ridge detector (see vpLaserConicDetector).
 struct RidgeSettings

@@ -11,10 +11,8 @@ namespace vsp::laser_detector
 {
 int coarseFactor(const RidgeSettings &settings)
 {
-  // Bounded while still a double: the minimum segment length has no upper bound (a length no chain reaches
-  // keeps nothing), and converting a ratio beyond an int's range would be undefined.
-  const double lines = settings.minSegment / (RidgeTuning::coarseLinesPerChain * settings.step);
-  return static_cast<int>(std::min(static_cast<double>(RidgeTuning::maxCoarseFactor), lines));
+  return toIntAtMost(settings.minSegment / (RidgeTuning::coarseLinesPerChain * settings.step),
+                     RidgeTuning::maxCoarseFactor);
 }
 
 void markCellsAroundKept(RidgeWorkspace &work, int W, int H, int reach)

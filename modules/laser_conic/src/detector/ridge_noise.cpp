@@ -124,6 +124,6 @@ int beginDetection(const vpImage<vpRGBa> &I, const RidgeSettings &settings, cons
     return -1;
   report.noise = estimateNoise(I, region, settings.instructions);
   report.threshold = std::max(settings.minContrast, settings.noiseFactor * report.noise);
-  return static_cast<int>(std::min(255.0, std::ceil(report.threshold))); // the factor has no upper bound
+  return toIntAtMost(std::ceil(report.threshold), 255);
 }
 } // namespace vsp::laser_detector
