@@ -282,7 +282,8 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // The light scaled by the mosaic's red reflectance: dimmer still on its blue and green patches. Measured over
   // seeds 73-82: 96.4-98.7 % of the ring at 3 sigma or more, mean 97.62 % (96.22 % before the final conic was
   // refitted on its inliers and the short gaps it left uncovered measured again at it), precision 0.9988-1,
-  // second-pass RMS 0.094-0.180 px (mean 0.137; 0.214 with the regularisation along 40 px of arc). Of the ring at 3 sigma not found, about half has no
+  // second-pass RMS 0.094-0.180 px (mean 0.137; 0.214 with the regularisation along 40 px of arc). Of the ring at 3
+  // sigma not found, about half has no
   // point within 3 px: the stripe dimmed by the dark joints' reflectance under the threshold, or running
   // inside or along a joint (a ridge within a valley as wide, or a shoulder on a tile's step, which no
   // background box sees as a peak); the rest has a point 1.5-3 px off. JPEG is the limit there: the chroma,
@@ -516,7 +517,8 @@ TEST(LaserConicGuidedSearch, DistractorsStayOut)
   s.clutter = 80;
   s.clutterRadius = 0.5;
   // Measured: 99.7 % of the ring at 3 sigma (98.8 % before the final conic's remeasure; the first pass alone
-  // 78.3 %), none of the second pass's points off the line, second-pass RMS 0.11 px (0.06 px with the regularisation along 80 px of arc), precision 1 (the first pass alone 0.816, the full
+  // 78.3 %), none of the second pass's points off the line, second-pass RMS 0.11 px (0.06 px with the regularisation
+  // along 80 px of arc), precision 1 (the first pass alone 0.816, the full
   // search and the second pass 0.845: the cable's points were the first pass's).
   vpLaserConicDetector detector, firstPass;
   firstPass.setGuidedSearch(false);
