@@ -128,7 +128,7 @@ struct RidgeTuning
   //! (vpLaserConicPose::setCovarianceInflation(): raw NEES 55-64 -> 72-84 on its seeds 101-104). 80 px against
   //! 40 px: mosaic seeds 73-102 RMS mean 0.202 -> 0.135 px, worst seed 0.356 -> 0.258 px, precision 0.9988 ->
   //! 0.9996, ring at 3 sigma 97.33 -> 97.45 %; seeds 103-132 RMS 0.210 -> 0.146 px (worst 0.318 -> 0.239),
-  //! worst precision 0.978 -> 0.998; faint ring (forty seeds) RMS 0.245 -> 0.197 px; the distorted lens's trace
+  //! worst precision 0.978 -> 0.998; faint ring (seeds 100-119) RMS 0.252 -> 0.201 px; the distorted lens's trace
   //! 0.018 px. 120 px went further on these rendered rings (mosaic 0.106 px) whose centre line is an exact conic
   //! of the image but for the lens's distortion; a real floor's ring is not, so the window stops at 80 px. Raw
   //! NEES 74-87 -> 88-105 (recommendedDetectorInflation() 20 -> 32).
