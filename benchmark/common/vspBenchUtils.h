@@ -59,6 +59,67 @@ double medianNsPerCall(Call &&call, int nInstances, int repetitions = 15, double
       nInstances, repetitions, minSeconds);
 }
 
+/*!
+  CPU time of the calling thread, nanoseconds (a monotonic wall clock where the system has no per-thread
+  clock). Defined in benchmark/peers/benchTimer.cpp.
+*/
+double threadCpuNs();
+
+//! A ratio of two times measured in interleaved rounds: the median over the rounds and its quartiles.
+struct RatioRounds
+{
+  double median = -1.0, lowQuartile = -1.0, highQuartile = -1.0; //!< negative when not measured
+  int rounds = 0;
+};
+
+/*!
+  Ratio of the time of \e ours() to that of \e peer(), measured in \e rounds rounds that each time one call of
+  \e peer() and \e oursRepeat calls of \e ours() back to back (thread CPU time; which of the two comes first
+  alternates from round to round), the median of the rounds' ratios and its quartiles. A load on the shared
+  machine that lasts seconds then slows both sides of a ratio alike, where two medians taken seconds apart
+  (Google Benchmark's, as in the tables) each see their own share of it. \e oursRepeat makes both sides of a
+  round last about as long. Each side runs once untimed before it is timed in a round: the caches hold what
+  it reads, as when Google Benchmark repeats one function (the other side would otherwise have evicted it,
+  which costs a memory-bound function that reads a few of the frame's pixels more than one that streams
+  through all of them).
+*/
+template <typename Ours, typename Peer>
+RatioRounds interleavedRatio(Ours &&ours, Peer &&peer, int rounds, int oursRepeat)
+{
+  std::vector<double> ratios;
+  ratios.reserve(static_cast<size_t>(rounds));
+  const int repeat = std::max(1, oursRepeat);
+  for (int r = 0; r < rounds; ++r) {
+    double oursNs = 0.0, peerNs = 0.0;
+    for (int side = 0; side < 2; ++side) {
+      const bool oursNow = (side == 0) == (r % 2 == 0);
+      if (oursNow)
+        ours();
+      else
+        peer();
+      const double start = threadCpuNs();
+      if (oursNow)
+        for (int k = 0; k < repeat; ++k)
+          ours();
+      else
+        peer();
+      (oursNow ? oursNs : peerNs) = threadCpuNs() - start;
+    }
+    if (peerNs > 0.0)
+      ratios.push_back(oursNs / repeat / peerNs);
+  }
+  RatioRounds result;
+  result.rounds = static_cast<int>(ratios.size());
+  if (ratios.empty())
+    return result;
+  std::sort(ratios.begin(), ratios.end());
+  const auto at = [&ratios](double q) { return ratios[static_cast<size_t>(std::lround(q * (ratios.size() - 1)))]; };
+  result.median = at(0.5);
+  result.lowQuartile = at(0.25);
+  result.highQuartile = at(0.75);
+  return result;
+}
+
 //! Human-readable duration from nanoseconds ("85 ns", "17.3 us", "1.21 ms").
 inline std::string formatNs(double ns)
 {

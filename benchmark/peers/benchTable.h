@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "vspBenchUtils.h"
+
 //! One measured method: its median time and, for estimators run on noisy data, a success rate.
 struct BenchRow
 {
@@ -46,8 +48,9 @@ struct BenchTargets
   double oursP3P = -1.0, cvAp3p = -1.0, vpPoseLagrange4 = -1.0;
   double gp3At50 = -1.0;
   double gp3Vs2000FitEllipse = -1.0; //!< GP-3 on 1000 trace points + 1000 outliers / cv::fitEllipse on them
-  double wholeFrame = -1.0, cvtColor = -1.0;
-  double trackingFrame = -1.0; //!< tracking (previous conic) + GP-3, worst floor, on the scale of cvtColor
+  //! detection + GP-3 / one cvtColor BGR->HSV on the same frames, interleaved rounds, worst floor
+  vspBench::RatioRounds wholeFrame;
+  vspBench::RatioRounds trackingFrame; //!< the same for tracking (previous conic) + GP-3
   double filterPropagate = -1.0, filterUpdate = -1.0,
          filterAllocationsPerSample = -1.0; //!< vpLaserConicFilter (ns, ns, count)
   double selfCalibration20 = -1.0;          //!< laser self-calibration on 20 frames of 1000 points, ns

@@ -4,9 +4,12 @@
   \brief vspBench::medianNsPerBatch(), the timer of the peer benchmark, on Google Benchmark: every row
   of the tables is one Google Benchmark run (its own iteration count estimate, repetitions, median
   aggregate of the CPU time of the benchmark thread), read back by a reporter that prints nothing, so
-  that the program still prints its side-by-side markdown tables.
+  that the program still prints its side-by-side markdown tables; vspBench::threadCpuNs(), the clock of
+  the interleaved ratios of the targets.
 */
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -51,5 +54,15 @@ double medianNsPerBatch(const std::function<void()> &batch, int nInstances, int 
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::ClearRegisteredBenchmarks();
   return reporter.medianNs / nInstances;
+}
+
+double threadCpuNs()
+{
+#if defined(CLOCK_THREAD_CPUTIME_ID)
+  timespec t{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) == 0)
+    return 1e9 * static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec);
+#endif
+  return std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 } // namespace vspBench
