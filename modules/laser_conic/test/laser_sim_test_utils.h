@@ -39,6 +39,14 @@ const double kOpening = vpMath::rad(34.0); //!< full opening angle of the laser 
 
 inline vpCameraParameters camera() { return vpCameraParameters(1500.0, 1500.0, 800.0, 600.0); }
 
+//! A camera with a wide lens (about 80 x 60 deg over 1600 x 1200) and a barrel distortion (kdu = 0.15: the
+//! undistorted radius grows), its kud fitted: the image of a trace on a plane is then not a conic.
+inline vpCameraParameters wideCamera()
+{
+  return vpLaserConicSimulator::fitInverseDistortion(vpCameraParameters(1000.0, 1000.0, 805.0, 596.0, 0.0, 0.15),
+                                                     kWidth, kHeight);
+}
+
 //! Laser 10 cm beside the camera, axis tilted by a few degrees (a typical rig).
 inline vpHomogeneousMatrix laserPose()
 {

@@ -289,13 +289,6 @@ struct HardCase
   vpHomogeneousMatrix cMg = groundPose();
 };
 
-//! A camera with a wide lens (about 80 x 60 deg over 1600 x 1200) and a barrel distortion.
-vpCameraParameters wideCamera()
-{
-  return vpLaserConicSimulator::fitInverseDistortion(vpCameraParameters(1000.0, 1000.0, 805.0, 596.0, 0.0, 0.15),
-                                                     kWidth, kHeight);
-}
-
 //! True when \e p is inside (or within 4 px of) one of the occluders.
 bool occluded(const vpLaserConicSimulator::vpRenderSettings &settings, const vpImagePoint &p)
 {

@@ -87,12 +87,13 @@ struct GuidedQuality
 //! Whether runGuided() measures GuidedQuality::ridge3.
 enum class Ridges { skip, measure };
 
-//! Renders the case (seeded), detects, measures against the ground truth.
+//! Renders the case (seeded) through the camera \e cam, detects, measures against the ground truth.
 GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg, const Settings &s, unsigned int seed,
                         vpLaserConicDetector &detector, std::vector<vpImagePoint> *detected = nullptr,
-                        Ridges ridges = Ridges::skip)
+                        Ridges ridges = Ridges::skip, const vpCameraParameters &cam = camera())
 {
   vpLaserConicSimulator sim = makeSimulator(cMg, seed);
+  sim.setCamera(cam, kWidth, kHeight);
   vpImage<vpRGBa> I;
   sim.render(I, s);
   dumpIfRequested("guided_" + name, I);
@@ -162,18 +163,18 @@ struct SeedMeans
 };
 
 /*!
-  The case \e s on the tilted ground rendered with each of \e seeds (run \e name_seed), \e check called on each
-  seed's quality: the means over the seeds.
+  The case \e s on the tilted ground rendered through \e cam with each of \e seeds (run \e name_seed), \e check
+  called on each seed's quality: the means over the seeds.
 */
 template <class Check>
 SeedMeans overSeeds(const std::string &name, const Settings &s, const std::vector<unsigned int> &seeds, Check check,
-                    Ridges ridges = Ridges::skip)
+                    Ridges ridges = Ridges::skip, const vpCameraParameters &cam = camera())
 {
   SeedMeans means;
   for (unsigned int seed : seeds) {
     vpLaserConicDetector detector;
     const GuidedQuality q =
-        runGuided(name + "_" + std::to_string(seed), tiltedGround(), s, seed, detector, nullptr, ridges);
+        runGuided(name + "_" + std::to_string(seed), tiltedGround(), s, seed, detector, nullptr, ridges, cam);
     check(seed, q);
     means.coverage3 += q.coverage3 / seeds.size();
     means.rmsGuided += q.rmsGuided / seeds.size();
@@ -274,6 +275,25 @@ TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
                                     [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.94, 0.33); });
   EXPECT_GE(means.coverage3, 0.95); // the bounds, on the mean over the seeds
   EXPECT_LE(means.rmsGuided, 0.25); // and the measured mean with a margin
+}
+
+TEST(LaserConicGuidedSearch, FaintRingThroughAWideDistortedLens)
+{
+  // The faint ring above through the wide lens with barrel distortion (wideCamera()): the image of the trace is
+  // not a conic, and the guided pass's prediction and its regularisation along the fitted ellipse follow it only
+  // to within its distortion. Measured on the same seven seeds: 95.9-99.7 % of the ring at 3 sigma (mean
+  // 98.57 %), precision 0.991-1, second-pass RMS 0.15-0.33 px (mean 0.246). The bounds on coverage and
+  // precision hold on every seed; its 0.3 px does not on seeds 61 and 65 (0.318, 0.328 px): as through the
+  // undistorted lens, the far side's centres at 2-3 sigma are moved by JPEG (rendered without it, the same two
+  // seeds: 0.030 and 0.048 px, precision 1). The per-seed RMS bound is the measured worst with a margin, the
+  // means' the measured ones with a margin. Twenty more seeds: DISABLED_SeedsNeverTunedOn.
+  std::vector<unsigned int> seeds = {72u, 60u, 61u, 62u, 63u, 64u, 65u};
+  seeds.resize(static_cast<size_t>(laser_test::trials(7, 2))); // two under the sanitizers
+  const SeedMeans means = overSeeds(
+      "faint_wide", fadingRing(40.0, 4.0), seeds,
+      [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.35); }, Ridges::skip, wideCamera());
+  EXPECT_GE(means.coverage3, 0.98);
+  EXPECT_LE(means.rmsGuided, 0.27);
 }
 
 TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLight)
@@ -412,6 +432,11 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
 // With the regularisation along 80 px of arc instead of 40: mosaic mean 97.52 %, every seed >= 95.91 % (seed
 // 124 96.82 %), precision >= 0.9979, second-pass RMS mean 0.146 px, at most 0.239 px (0.210, 0.318 along 40);
 // faint ring RMS mean 0.201 px, at most 0.328 px (seed 117; 0.252, 0.360 along 40), two seeds above 0.3 px.
+// The faint ring through the wide distorted lens (FaintRingThroughAWideDistortedLens), seeds 100-119: mean
+// 98.98 % of the ring at 3 sigma, every seed >= 96.93 %; second-pass RMS mean 0.219 px, at most 0.344 px (seed
+// 117), three seeds above 0.3 px; precision 0.964 on seed 113 and 0.977 on seed 104 (1 or nearly elsewhere):
+// points on the far side where the stripe is at 1.6-1.9 sigma, below the faintest, 1.1-2.1 px inside
+// the ring (rendered without JPEG, seed 113: precision 1, RMS 0.047 px).
 TEST(LaserConicGuidedSearch, DISABLED_SeedsNeverTunedOn)
 {
   const SeedMeans mosaic = overSeeds(
@@ -427,12 +452,21 @@ TEST(LaserConicGuidedSearch, DISABLED_SeedsNeverTunedOn)
         EXPECT_GE(q.coverage3, 0.98) << "seed " << seed;
         EXPECT_GE(q.precision, 0.985) << "seed " << seed;
       });
+  const SeedMeans faintWide = overSeeds(
+      "faint_wide", fadingRing(40.0, 4.0), seedRange(100, 20),
+      [](unsigned int seed, const GuidedQuality &q) {
+        EXPECT_GE(q.coverage3, 0.96) << "seed " << seed;
+        EXPECT_GE(q.precision, 0.96) << "seed " << seed;
+      },
+      Ridges::skip, wideCamera());
   std::cout << "mosaic seeds 103-132: mean coverage " << 100.0 * mosaic.coverage3 << " % (seen as a ridge "
             << 100.0 * mosaic.ridge3 << " %), mean second-pass RMS " << mosaic.rmsGuided
             << " px; faint seeds 100-119: " << 100.0 * faint.coverage3 << " %, mean second-pass RMS " << faint.rmsGuided
-            << " px" << std::endl;
+            << " px; through the wide lens: " << 100.0 * faintWide.coverage3 << " %, mean second-pass RMS "
+            << faintWide.rmsGuided << " px" << std::endl;
   EXPECT_GE(mosaic.coverage3, 0.965);
   EXPECT_GE(faint.coverage3, 0.99);
+  EXPECT_GE(faintWide.coverage3, 0.98);
 }
 
 TEST(LaserConicGuidedSearch, TheFinalConicIsTheRingsNotThatOfAWalkBesideIt)

@@ -340,13 +340,6 @@ TEST(LaserConicSimulator, BadSettingsThrow)
 
 namespace
 {
-//! A wide-angle camera with barrel distortion (kdu > 0: the undistorted radius grows), kud fitted.
-vpCameraParameters distortedCamera()
-{
-  return vpLaserConicSimulator::fitInverseDistortion(vpCameraParameters(1000.0, 1000.0, 805.0, 596.0, 0.0, 0.15),
-                                                     kWidth, kHeight);
-}
-
 //! Pixel of a ground point (frame g) through the exact inverse of the camera's pixel-to-metre model.
 vpImagePoint groundPixel(const vpCameraParameters &cam, const vpHomogeneousMatrix &cMg, double X, double Y)
 {
@@ -362,7 +355,7 @@ const vpRGBa &at(const vpImage<vpRGBa> &I, const vpImagePoint &p)
 
 TEST(LaserConicSimulator, FitInverseDistortionInvertsTheModel)
 {
-  const vpCameraParameters cam = distortedCamera();
+  const vpCameraParameters cam = wideCamera();
   EXPECT_LT(cam.get_kud(), 0.0); // barrel kdu > 0 is undone by kud < 0
   // Round trip meter -> pixel (kud) -> meter (kdu) over the image: a fitted inverse, not an exact one.
   double worst = 0.0;
@@ -387,13 +380,13 @@ TEST(LaserConicSimulator, DistortedTracePointsConvertExactlyToTheTrueTrace)
   // With distortion, vpPixelMeterConversion maps each trace pixel onto the normalized point of the true
   // trace: its ray meets the plane on the laser cone (cone angle = half opening angle to rounding).
   vpLaserConicSimulator sim = makeSimulator();
-  sim.setCamera(distortedCamera(), kWidth, kHeight);
+  sim.setCamera(wideCamera(), kWidth, kHeight);
   const std::vector<vpImagePoint> points = sim.tracePoints(720);
   ASSERT_GT(points.size(), 600u);
   double worst = 0.0;
   for (const vpImagePoint &p : points)
-    worst = std::max(worst,
-                     std::fabs(coneAngleOf(p, distortedCamera(), laserPose(), sim.getGroundPlane()) - 0.5 * kOpening));
+    worst =
+        std::max(worst, std::fabs(coneAngleOf(p, wideCamera(), laserPose(), sim.getGroundPlane()) - 0.5 * kOpening));
   EXPECT_LT(worst, 1e-12);
 }
 
@@ -401,7 +394,7 @@ TEST(LaserConicSimulator, DistortedRenderFollowsTheDistortedTrace)
 {
   vpLaserConicSimulator sim =
       makeSimulator(vpHomogeneousMatrix(0.05, -0.03, 0.9, vpMath::rad(10), vpMath::rad(-8), 0.3));
-  sim.setCamera(distortedCamera(), kWidth, kHeight);
+  sim.setCamera(wideCamera(), kWidth, kHeight);
   vpImage<vpRGBa> I;
   vpLaserConicSimulator::vpRenderSettings settings;
   settings.noise = 0.0;
@@ -427,7 +420,7 @@ TEST(LaserConicSimulator, DistortedRenderFollowsTheDistortedTrace)
 
 TEST(LaserConicSimulator, ChessboardAndTextureLieAtTheirGroundCoordinates)
 {
-  const vpCameraParameters cam = distortedCamera();
+  const vpCameraParameters cam = wideCamera();
   const vpHomogeneousMatrix cMg(-0.12, -0.08, 0.7, vpMath::rad(15), vpMath::rad(-10), 0.4);
   vpLaserConicSimulator sim = makeSimulator(cMg);
   sim.setCamera(cam, kWidth, kHeight);
@@ -548,14 +541,14 @@ TEST(LaserConicSimulator, EveryEstimatorRecoversTheExactPlaneFromDistortedTraceP
   for (const vpHomogeneousMatrix &cMg :
        {groundPose(), vpHomogeneousMatrix(-0.1, 0.05, 0.7, vpMath::rad(-15), vpMath::rad(12), 1.0)}) {
     vpLaserConicSimulator sim = makeSimulator(cMg);
-    sim.setCamera(distortedCamera(), kWidth, kHeight);
+    sim.setCamera(wideCamera(), kWidth, kHeight);
     const std::vector<vpImagePoint> points = sim.tracePoints(400);
     ASSERT_GT(points.size(), 300u);
     const vpPlane truth = sim.getGroundPlane();
     for (vpLaserConicPose::vpLaserConicMethod method :
          {vpLaserConicPose::GP3, vpLaserConicPose::PP3, vpLaserConicPose::PP5, vpLaserConicPose::PLANE_PAIR}) {
       vpLaserConicPose estimator;
-      estimator.setCameraParameters(distortedCamera());
+      estimator.setCameraParameters(wideCamera());
       estimator.setLaser(kOpening, laserPose());
       estimator.setRansacSeed(1);
       vpPlane plane;
