@@ -259,11 +259,12 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
-  // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured 98.9-99.98 %
-  // found (mean 99.45 %), precision 1, second-pass RMS 0.17-0.31 px (mean 0.209; 0.22-0.29 px, mean 0.255, with
-  // the regularisation along 40 px of arc: the longer one keeps more points within 1.5 px of the line, seed 60's
-  // far side among them, 1 px off, which takes its RMS from 0.29 to 0.31 px); the per-seed bounds leave a margin
-  // under the worst seed, the mean is held to the bounds. What is missed lies between 3 and 3.3 sigma,
+  // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured 98.9-99.93 %
+  // found (mean 99.54 %), precision 1, second-pass RMS 0.16-0.28 px (mean 0.196). Before a point measured at the
+  // prediction had to be a peak of the response inside its window (ProfileWindow::peakWithin): 0.17-0.31 px, mean
+  // 0.209, seed 60 over the 0.3 px with far-side points placed on the flank of the stripe at the window's
+  // end. Every seed is held to the bounds, the means to the measured ones with a margin. What is
+  // missed lies between 3 and 3.3 sigma,
   // where JPEG at quality 90 leaves a matched-filter response of 0-2 grey levels per line (it rounds the weak
   // chroma detail away; without JPEG 99.1 % is found for seed 72): a profile averages nine lines where three
   // find nothing, a followed stripe lost on the red score is searched on its brightness, and so is the
@@ -272,28 +273,45 @@ TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
   // is 0.30 px: the regularisation along the curve is what brings the RMS under it. (How each step of the
   // guided pass moved these figures: CHANGELOG.md.)
   const SeedMeans means = overSeeds("faint", fadingRing(40.0, 4.0), {72u, 60u, 61u, 62u, 63u, 64u, 65u},
-                                    [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.94, 0.33); });
-  EXPECT_GE(means.coverage3, 0.95); // the bounds, on the mean over the seeds
-  EXPECT_LE(means.rmsGuided, 0.25); // and the measured mean with a margin
+                                    [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); });
+  EXPECT_GE(means.coverage3, 0.99);
+  EXPECT_LE(means.rmsGuided, 0.22);
 }
 
 TEST(LaserConicGuidedSearch, FaintRingThroughAWideDistortedLens)
 {
   // The faint ring above through the wide lens with barrel distortion (wideCamera()): the image of the trace is
   // not a conic, and the guided pass's prediction and its regularisation along the fitted ellipse follow it only
-  // to within its distortion. Measured on the same seven seeds: 95.9-99.7 % of the ring at 3 sigma (mean
-  // 98.57 %), precision 0.991-1, second-pass RMS 0.15-0.33 px (mean 0.246). The bounds on coverage and
-  // precision hold on every seed; its 0.3 px does not on seeds 61 and 65 (0.318, 0.328 px): as through the
-  // undistorted lens, the far side's centres at 2-3 sigma are moved by JPEG (rendered without it, the same two
-  // seeds: 0.030 and 0.048 px, precision 1). The per-seed RMS bound is the measured worst with a margin, the
-  // means' the measured ones with a margin. Twenty more seeds: DISABLED_SeedsNeverTunedOn.
+  // to within its distortion. Measured on the same seven seeds: 96.5-99.6 % of the ring at 3 sigma (mean
+  // 98.57 %), precision 1, second-pass RMS 0.14-0.36 px (mean 0.214; 0.991-1 and 0.15-0.33 px, mean 0.246,
+  // before ProfileWindow::peakWithin). The bounds on coverage and precision hold on every seed; its
+  // 0.3 px does not on seed 61 (0.358 px): the far side's centres at 2-3 sigma are moved by JPEG (rendered
+  // without it: 0.030 px, precision 1). The per-seed RMS bound is the measured worst with a margin, the means'
+  // the measured ones with a margin. Twenty more seeds: DISABLED_SeedsNeverTunedOn.
   std::vector<unsigned int> seeds = {72u, 60u, 61u, 62u, 63u, 64u, 65u};
   seeds.resize(static_cast<size_t>(laser_test::trials(7, 2))); // two under the sanitizers
   const SeedMeans means = overSeeds(
       "faint_wide", fadingRing(40.0, 4.0), seeds,
-      [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.35); }, Ridges::skip, wideCamera());
+      [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.38); }, Ridges::skip, wideCamera());
   EXPECT_GE(means.coverage3, 0.98);
-  EXPECT_LE(means.rmsGuided, 0.27);
+  EXPECT_LE(means.rmsGuided, 0.25);
+}
+
+TEST(LaserConicGuidedSearch, TheFlankOfAStripeBesideThePredictionIsNotItsPoint)
+{
+  // Seed 113 of the faint ring through the wide lens (held out in DISABLED_SeedsNeverTunedOn): on the far side,
+  // where the stripe is at 1.6-1.9 sigma, the ellipse fitted to the distorted trace runs 1.5-2 px inside it. A
+  // sample whose red profile found nothing beside a JPEG colour edge was measured on its brightness within 1 px
+  // of that prediction, whose best response was at the window's end on the flank of the stripe's bump: 49
+  // points 1.1-2.1 px inside the ring, precision 0.964. A point measured at a prediction must now be a peak of
+  // the response inside its window (ProfileWindow::peakWithin): measured precision 0.989, 98.86 % of the ring
+  // at 3 sigma (as before), second-pass RMS 0.313 px (0.315).
+  vpLaserConicDetector detector;
+  const GuidedQuality q = runGuided("flank_beside_prediction", tiltedGround(), fadingRing(40.0, 4.0), 113, detector,
+                                    nullptr, Ridges::skip, wideCamera());
+  EXPECT_GE(q.precision, 0.98);
+  EXPECT_GE(q.coverage3, 0.98);
+  EXPECT_LE(q.rmsGuided, 0.34);
 }
 
 TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLight)
@@ -423,7 +441,7 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
 }
 
 // A study of seeds that no setting was measured on: thirty more seeds of the mosaic (103-132) and twenty of the
-// faint ring (100-119), looked at once the final-ellipse step was in place (disabled: about 40 s; run with
+// faint ring (100-119), looked at once the final-ellipse step was in place (disabled: about 70 s; run with
 // --gtest_also_run_disabled_tests --gtest_filter='*NeverTunedOn*'). Measured: mosaic mean 97.21 % of the ring
 // at 3 sigma, every seed >= 94.58 % (seed 124, the ring inside a joint, as seed 93's), precision >= 0.978;
 // faint ring mean 99.55 %, every seed >= 98.91 %, precision >= 0.989 (the code before the step, f126958:
@@ -435,8 +453,13 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
 // The faint ring through the wide distorted lens (FaintRingThroughAWideDistortedLens), seeds 100-119: mean
 // 98.98 % of the ring at 3 sigma, every seed >= 96.93 %; second-pass RMS mean 0.219 px, at most 0.344 px (seed
 // 117), three seeds above 0.3 px; precision 0.964 on seed 113 and 0.977 on seed 104 (1 or nearly elsewhere):
-// points on the far side where the stripe is at 1.6-1.9 sigma, below the faintest, 1.1-2.1 px inside
-// the ring (rendered without JPEG, seed 113: precision 1, RMS 0.047 px).
+// points on the far side where the stripe is at 1.6-1.9 sigma, 1.1-2.1 px inside the ring (rendered without
+// JPEG, seed 113: precision 1, RMS 0.047 px), see TheFlankOfAStripeBesideThePredictionIsNotItsPoint. Since a
+// point measured at a prediction must be a peak inside its window (ProfileWindow::peakWithin): through the
+// wide lens 99.02 %, every seed >= 97.08 %, precision >= 0.988, RMS mean 0.222 px, at most 0.339 px (seed
+// 117), four seeds above 0.3 px; faint ring 99.44 %, every seed >= 98.15 %, precision >= 0.986, RMS mean
+// 0.196 px, at most 0.311 px (seed 117), one seed above 0.3 px; mosaic 97.50 %, every seed >= 95.72 %,
+// precision >= 0.9979, RMS mean 0.147 px, at most 0.236 px.
 TEST(LaserConicGuidedSearch, DISABLED_SeedsNeverTunedOn)
 {
   const SeedMeans mosaic = overSeeds(

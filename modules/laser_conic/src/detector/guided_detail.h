@@ -139,6 +139,14 @@ struct ProfileWindow
     the stripe's bump.
   */
   bool brightness = false;
+  /*!
+    The stripe's peak must lie inside the window: a best response at an end of the window with a larger one
+    just beyond it is the flank of a stripe outside, not found. For the windows of a pixel or so around a
+    prediction (predictionWindow()): where the prediction runs beside the stripe (the ellipse fitted to the
+    trace of a distorted lens, 1-2 px inside it on a faint far side), the flank's point was placed on the
+    prediction instead of on the stripe.
+  */
+  bool peakWithin = false;
 };
 
 /*!

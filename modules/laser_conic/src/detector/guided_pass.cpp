@@ -97,12 +97,14 @@ ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNois
 }
 
 // The window within RidgeTuning::guidedMaxJump (across the curve) of sample s's predicted crossing, moved by
-// \e offset across the curve (as ProfileResult::offset).
+// \e offset across the curve (as ProfileResult::offset); the stripe's peak must lie inside it
+// (ProfileWindow::peakWithin).
 ProfileWindow predictionWindow(const GuidedSample &s, double offset = 0.0)
 {
   ProfileWindow window;
   window.centre = offset / s.toNormal;
   window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
+  window.peakWithin = true;
   return window;
 }
 

@@ -448,6 +448,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   bool vertex = false;
   if (best - 1 >= reach && best + 1 <= n - 1 - reach) {
     const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
+    if (window.peakWithin && (r0 > bestResponse || r2 > bestResponse))
+      return notFound(result, filter, s, start);
     const double curvature = r0 - 2.0 * bestResponse + r2;
     vertex = curvature < 0.0;
     if (vertex)
