@@ -318,6 +318,26 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
   return true;
 }
 
+// The centre: the vertex of the parabola through the matched filter's responses around its best (the filter
+// has averaged the noise; the first pass's centroid of the raw profile, the fallback, is noisier here), in
+// \e centre when \e vertex. Its neighbours need their background boxes inside the profile too: [lowest(),
+// \e highest]. False when \e peakWithin and a neighbour's response is larger (ProfileWindow::peakWithin).
+bool responseVertex(const MatchedFilter &filter, int best, double bestResponse, int highest, bool peakWithin,
+                    double &centre, bool &vertex)
+{
+  vertex = false;
+  if (best - 1 < filter.lowest() || best + 1 > highest)
+    return true;
+  const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
+  if (peakWithin && (r0 > bestResponse || r2 > bestResponse))
+    return false;
+  const double curvature = r0 - 2.0 * bestResponse + r2;
+  vertex = curvature < 0.0;
+  if (vertex)
+    centre = best + std::max(-0.5, std::min(0.5, 0.5 * (r0 - r2) / curvature));
+  return true;
+}
+
 // Half width h of the matched filter's stripe box (2h + 1 pixels). The box is as wide as the observed
 // half-maximum run, or a pixel narrower when that is even: a box wider than the stripe flattens the responses
 // the centre is read from (a run of 4 pixels, measured on the 3 px stripes of data/laser_sequence, with a box
@@ -441,20 +461,10 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   result.response = bestResponse;
   if (best < 0 || bestResponse < result.threshold)
     return notFound(result, filter, s, start);
-  // The centre: the vertex of the parabola through the matched filter's responses around its best (the
-  // filter has averaged the noise; the first pass's centroid of the raw profile, the fallback, is noisier
-  // here). Its neighbours need their background boxes inside the profile too: [reach, n - 1 - reach].
   double centre = 0.0;
   bool vertex = false;
-  if (best - 1 >= reach && best + 1 <= n - 1 - reach) {
-    const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
-    if (window.peakWithin && (r0 > bestResponse || r2 > bestResponse))
-      return notFound(result, filter, s, start);
-    const double curvature = r0 - 2.0 * bestResponse + r2;
-    vertex = curvature < 0.0;
-    if (vertex)
-      centre = best + std::max(-0.5, std::min(0.5, 0.5 * (r0 - r2) / curvature));
-  }
+  if (!responseVertex(filter, best, bestResponse, n - 1 - reach, window.peakWithin, centre, vertex))
+    return notFound(result, filter, s, start);
   int runFirst = 0, runLast = 0;
   // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
   // in the sum of the lines, refused every white core with pink flanks: the laser on white paper.)
