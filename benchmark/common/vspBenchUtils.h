@@ -89,20 +89,17 @@ RatioRounds interleavedRatio(Ours &&ours, Peer &&peer, int rounds, int oursRepea
   std::vector<double> ratios;
   ratios.reserve(static_cast<size_t>(rounds));
   const int repeat = std::max(1, oursRepeat);
+  const auto run = [&ours, &peer](bool oursSide, int times) {
+    for (int k = 0; k < times; ++k)
+      oursSide ? ours() : peer();
+  };
   for (int r = 0; r < rounds; ++r) {
     double oursNs = 0.0, peerNs = 0.0;
     for (int side = 0; side < 2; ++side) {
       const bool oursNow = (side == 0) == (r % 2 == 0);
-      if (oursNow)
-        ours();
-      else
-        peer();
+      run(oursNow, 1); // untimed: the caches warmed (see above)
       const double start = threadCpuNs();
-      if (oursNow)
-        for (int k = 0; k < repeat; ++k)
-          ours();
-      else
-        peer();
+      run(oursNow, oursNow ? repeat : 1);
       (oursNow ? oursNs : peerNs) = threadCpuNs() - start;
     }
     if (peerNs > 0.0)

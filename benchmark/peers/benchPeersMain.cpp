@@ -83,14 +83,10 @@ void printVerdict(std::ostream &os, const char *target, double measured, double 
 // A ratio of interleaved rounds: its median judged, its quartiles printed beside it.
 void printVerdict(std::ostream &os, const char *target, const vspBench::RatioRounds &ratio, double required)
 {
-  if (ratio.median < 0.0) {
-    printVerdict(os, target, -1.0, required, false, "x");
-    return;
-  }
-  std::ostringstream value;
-  value << std::setprecision(3) << ratio.median << "x (quartiles " << ratio.lowQuartile << "-" << ratio.highQuartile
-        << ", " << ratio.rounds << " rounds)";
-  os << "| " << target << " | " << value.str() << " | " << (ratio.median <= required ? "met" : "**not met**") << " |\n";
+  std::ostringstream spread;
+  spread << std::setprecision(3) << "x (quartiles " << ratio.lowQuartile << "-" << ratio.highQuartile << ", "
+         << ratio.rounds << " rounds)";
+  printVerdict(os, target, ratio.median, required, false, spread.str().c_str());
 }
 
 void printTargets(std::ostream &os, const BenchTargets &t)

@@ -44,6 +44,9 @@ Settings fadingRing(double nearPeak, double farPeak)
   return s;
 }
 
+//! The noise seeds of the faint-ring tests.
+const std::vector<unsigned int> kFaintSeeds = {72u, 60u, 61u, 62u, 63u, 64u, 65u};
+
 //! The fading ring on the colourful mosaic floor, the laser light scaled by its red reflectance.
 Settings fadingMosaic()
 {
@@ -272,7 +275,7 @@ TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
   // bound of one three-line profile there (Gaussian stripe of 3 px FWHM, peak 6 over a dominance noise of 2.6)
   // is 0.30 px: the regularisation along the curve is what brings the RMS under it. (How each step of the
   // guided pass moved these figures: CHANGELOG.md.)
-  const SeedMeans means = overSeeds("faint", fadingRing(40.0, 4.0), {72u, 60u, 61u, 62u, 63u, 64u, 65u},
+  const SeedMeans means = overSeeds("faint", fadingRing(40.0, 4.0), kFaintSeeds,
                                     [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); });
   EXPECT_GE(means.coverage3, 0.99);
   EXPECT_LE(means.rmsGuided, 0.22);
@@ -288,7 +291,7 @@ TEST(LaserConicGuidedSearch, FaintRingThroughAWideDistortedLens)
   // 0.3 px does not on seed 61 (0.358 px): the far side's centres at 2-3 sigma are moved by JPEG (rendered
   // without it: 0.030 px, precision 1). The per-seed RMS bound is the measured worst with a margin, the means'
   // the measured ones with a margin. Twenty more seeds: DISABLED_SeedsNeverTunedOn.
-  std::vector<unsigned int> seeds = {72u, 60u, 61u, 62u, 63u, 64u, 65u};
+  std::vector<unsigned int> seeds = kFaintSeeds;
   seeds.resize(static_cast<size_t>(laser_test::trials(7, 2))); // two under the sanitizers
   const SeedMeans means = overSeeds(
       "faint_wide", fadingRing(40.0, 4.0), seeds,

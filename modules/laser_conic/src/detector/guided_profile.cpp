@@ -321,12 +321,12 @@ bool shapeAndCentre(const ProfileView &view, const MatchedFilter &filter, int k,
 // The centre: the vertex of the parabola through the matched filter's responses around its best (the filter
 // has averaged the noise; the first pass's centroid of the raw profile, the fallback, is noisier here), in
 // \e centre when \e vertex. Its neighbours need their background boxes inside the profile too: [lowest(),
-// \e highest]. False when \e peakWithin and a neighbour's response is larger (ProfileWindow::peakWithin).
-bool responseVertex(const MatchedFilter &filter, int best, double bestResponse, int highest, bool peakWithin,
-                    double &centre, bool &vertex)
+// highest()]. False when \e peakWithin and a neighbour's response is larger (ProfileWindow::peakWithin).
+bool responseVertex(const MatchedFilter &filter, int best, double bestResponse, bool peakWithin, double &centre,
+                    bool &vertex)
 {
   vertex = false;
-  if (best - 1 < filter.lowest() || best + 1 > highest)
+  if (best - 1 < filter.lowest() || best + 1 > filter.highest())
     return true;
   const double r0 = filter.response(best - 1), r2 = filter.response(best + 1);
   if (peakWithin && (r0 > bestResponse || r2 > bestResponse))
@@ -463,7 +463,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
     return notFound(result, filter, s, start);
   double centre = 0.0;
   bool vertex = false;
-  if (!responseVertex(filter, best, bestResponse, n - 1 - reach, window.peakWithin, centre, vertex))
+  if (!responseVertex(filter, best, bestResponse, window.peakWithin, centre, vertex))
     return notFound(result, filter, s, start);
   int runFirst = 0, runLast = 0;
   // The flanks of a saturated core: red out of one line's noise by the threshold factor. (Half the contrast,
