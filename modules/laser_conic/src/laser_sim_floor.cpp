@@ -59,21 +59,23 @@ void mosaic(double X, double Y, uint32_t seed, float rgb[3], float &gloss)
   // Voronoi patches around jittered points of a 9 cm lattice; grout where two patches meet.
   const double size = 0.09;
   const int cx = cell(X, size), cy = cell(Y, size);
+  // Squared distances while ranking the nine points (the floor's hot loop: one square root per pixel
+  // instead of nine calls to std::hypot, which guards against overflow these distances cannot reach).
   double best = 1e30, second = 1e30;
   uint32_t bestHash = 0;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       const uint32_t h = hash(cx + dx, cy + dy, seed);
       const double px = (cx + dx + 0.15 + 0.7 * unit(h)) * size, py = (cy + dy + 0.15 + 0.7 * unit(h >> 7)) * size;
-      const double d = std::hypot(X - px, Y - py);
-      if (d < best) {
+      const double d2 = (X - px) * (X - px) + (Y - py) * (Y - py);
+      if (d2 < best) {
         second = best;
-        best = d;
+        best = d2;
         bestHash = h;
-      } else if (d < second)
-        second = d;
+      } else if (d2 < second)
+        second = d2;
     }
-  if (second - best < 0.003) { // grout line, 3 mm wide
+  if (std::sqrt(second) - std::sqrt(best) < 0.003) { // grout line, 3 mm wide
     rgb[0] = rgb[1] = rgb[2] = 45.f;
     gloss = 0.1f;
     return;

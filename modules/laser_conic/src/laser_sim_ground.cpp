@@ -50,19 +50,22 @@ float chessboardGrey(double X, double Y, unsigned int nx, unsigned int ny, doubl
   return ((kx + ky) % 2 == 0) ? 28.f : 215.f;
 }
 
-// True when the ground point (X, Y) lies on the distractor.
+// True when the ground point (X, Y) lies on the distractor. Called for every object at every pixel: squared
+// distances, no std::hypot (its overflow guard costs more than the rest of the test).
 bool onDistractor(const vpLaserConicSimulator::vpDistractor &d, double X, double Y)
 {
+  const double radius = 0.5 * d.size;
   switch (d.shape) {
   case vpLaserConicSimulator::DISTRACTOR_RECTANGLE:
-    return std::fabs(X - d.x) <= 0.5 * d.size && std::fabs(Y - d.y) <= 0.5 * d.size;
+    return std::fabs(X - d.x) <= radius && std::fabs(Y - d.y) <= radius;
   case vpLaserConicSimulator::DISTRACTOR_LINE: {
     const double dx = d.x2 - d.x, dy = d.y2 - d.y, len2 = dx * dx + dy * dy;
     const double t = len2 > 0 ? std::min(1.0, std::max(0.0, ((X - d.x) * dx + (Y - d.y) * dy) / len2)) : 0.0;
-    return std::hypot(X - d.x - t * dx, Y - d.y - t * dy) <= 0.5 * d.size;
+    const double ex = X - d.x - t * dx, ey = Y - d.y - t * dy;
+    return ex * ex + ey * ey <= radius * radius;
   }
   default:
-    return std::hypot(X - d.x, Y - d.y) <= 0.5 * d.size;
+    return (X - d.x) * (X - d.x) + (Y - d.y) * (Y - d.y) <= radius * radius;
   }
 }
 
@@ -174,6 +177,7 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
                           {gMc[2][0], gMc[2][1], gMc[2][2]}};
   const double C[3] = {gMc[0][3], gMc[1][3], gMc[2][3]}; // camera centre in the ground frame
   const double maxDistance = 50.0 * std::fabs(C[2]);
+  const double maxDistance2 = maxDistance * maxDistance;
 
   // Texture of render(I, texture): stretched over the footprint square (historical behaviour).
   double stretchX0 = 0.0, stretchY0 = 0.0, stretchTexel = 1.0;
@@ -207,7 +211,7 @@ void vpLaserConicSimulator::renderGround(float *rgb, const vpRenderSettings &set
       if (!(lambda > 0.0) || !std::isfinite(lambda))
         continue; // the ray goes to the sky
       const double X = C[0] + lambda * d[0], Y = C[1] + lambda * d[1];
-      if (std::hypot(X - C[0], Y - C[1]) > maxDistance)
+      if ((X - C[0]) * (X - C[0]) + (Y - C[1]) * (Y - C[1]) > maxDistance2)
         continue; // a few pixels per metre: plain far grey
 
       float albedo[3], gloss = 0.f;

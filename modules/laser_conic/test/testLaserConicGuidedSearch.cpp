@@ -17,6 +17,7 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <visp3/core/vpMath.h>
 
@@ -335,10 +336,12 @@ TEST(LaserConicGuidedSearch, FadingRingOnATexturedFloorWithReflectanceScaledLigh
   // Every seed is held to the bounds, the mean coverage to the measured one with a margin.
   // Of the ring seen as a ridge of the image (ridgeCoverage(): 96-98 % of the ring at 3 sigma here, the rest
   // a stripe inside a joint beside a brighter tile, a step): 97.28-99.03 %, mean 98.59 %.
+  // Seeds 73-75 under the sanitizers (their means: 97.74 %, ridge 98.59 %, RMS 0.137 px).
+  const unsigned int count = static_cast<unsigned int>(laser_test::trials(10, 3));
   const SeedMeans means = overSeeds(
-      "fading_mosaic", s, seedRange(73, 10), [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); },
-      Ridges::measure);
-  std::cout << "seeds 73-82: mean coverage " << 100.0 * means.coverage3 << " % (seen as a ridge "
+      "fading_mosaic", s, seedRange(73, count),
+      [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); }, Ridges::measure);
+  std::cout << "seeds 73-" << 72 + count << ": mean coverage " << 100.0 * means.coverage3 << " % (seen as a ridge "
             << 100.0 * means.ridge3 << " %)" << std::endl;
   EXPECT_GE(means.coverage3, 0.97);
   EXPECT_GE(means.ridge3, 0.975);
@@ -427,8 +430,10 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
   // edge (the chroma's pull beside a step of the floor's red). Over the ring seen as a ridge of the image
   // (vpLaserConicSimulator::ridgeCoverage(): the stripe also 3 sigma above the scene on both sides, 96-99 % of
   // the ring at 3 sigma here), every seed meets the 95 %: 96.77-99.51 %, mean 98.43 %.
+  // Seeds 83-85 under the sanitizers (their means: 97.29 %, ridge 98.31 %, RMS 0.132 px).
+  const unsigned int count = static_cast<unsigned int>(laser_test::trials(20, 3));
   const SeedMeans means = overSeeds(
-      "fading_mosaic", fadingMosaic(), seedRange(83, 20),
+      "fading_mosaic", fadingMosaic(), seedRange(83, count),
       [](unsigned int seed, const GuidedQuality &q) {
         EXPECT_GE(q.precision, 0.98) << "seed " << seed;
         EXPECT_GE(q.coverage3, 0.92) << "seed " << seed;
@@ -436,7 +441,7 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
         EXPECT_LE(q.rmsGuided, 0.3) << "seed " << seed;
       },
       Ridges::measure);
-  std::cout << "seeds 83-102: mean coverage " << 100.0 * means.coverage3 << " % (seen as a ridge "
+  std::cout << "seeds 83-" << 82 + count << ": mean coverage " << 100.0 * means.coverage3 << " % (seen as a ridge "
             << 100.0 * means.ridge3 << " %), mean second-pass RMS " << means.rmsGuided << " px" << std::endl;
   EXPECT_GE(means.coverage3, 0.965);
   EXPECT_GE(means.ridge3, 0.975);
@@ -753,7 +758,7 @@ TEST(LaserConicGuidedSearch, TrackingAFrameWithoutTheLaserFindsNoRing)
   const vpMatrix Cv = imageConicOf(cMg);
   for (int floor = vpLaserConicSimulator::FLOOR_DARK_TILES; floor <= vpLaserConicSimulator::FLOOR_WHITE_TILES;
        ++floor) {
-    for (unsigned int seed = 76; seed < 80; ++seed) {
+    for (unsigned int seed = 76; seed < 76 + static_cast<unsigned int>(laser_test::trials(4, 1)); ++seed) {
       Settings s = fadingRing(150.0, 20.0);
       s.floor = static_cast<vpLaserConicSimulator::vpFloorType>(floor);
       s.reflectanceScaled = true;
@@ -836,7 +841,9 @@ TEST(LaserConicGuidedSearch, ChessboardViewsWithReflectanceScaledLight)
   const vpHomogeneousMatrix centre(0.5 * squaresX * square, 0.5 * squaresY * square, 0, 0, 0, 0);
   unsigned int seed = 80;
   double worst = 1.0;
-  for (double d : {0.6, 0.8, 1.0})
+  // The four tilts at 0.6 m only under the sanitizers.
+  const std::vector<double> distances = {0.6, 0.8, 1.0};
+  for (double d : std::vector<double>(distances.begin(), distances.begin() + laser_test::trials(3, 1)))
     for (const std::pair<double, double> &tilt : {std::make_pair(18.0, 0.0), std::make_pair(0.0, 18.0),
                                                   std::make_pair(-18.0, 0.0), std::make_pair(0.0, -18.0)}) {
       const vpHomogeneousMatrix cMg =
