@@ -13,9 +13,12 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMeterPixelConversion.h>
+
+#include "laser_test_utils.h"
 
 namespace
 {
@@ -78,9 +81,11 @@ TEST(LaserConicGridCalibration, GridPoseMatchesTheRenderingWithTheCornersUnderTh
   const vpCameraParameters cam = distortedCamera();
   vpLaserConicGridCalibration grid = makeGrid(cam), noClearance = makeGrid(cam);
   noClearance.setCornerClearance(0.0);
-  const vpHomogeneousMatrix poses[3] = {boardPose(0.6, 18, 0, -15), boardPose(0.8, 0, -18, 5),
-                                        boardPose(1.0, -12, 10, 20)};
-  for (const vpHomogeneousMatrix &truth : poses) {
+  const std::vector<vpHomogeneousMatrix> poses = {boardPose(0.6, 18, 0, -15), boardPose(0.8, 0, -18, 5),
+                                                  boardPose(1.0, -12, 10, 20)};
+  // The first board only under the sanitizers (OpenCV's corner search, not instrumented, is most of the time).
+  for (size_t k = 0; k < static_cast<size_t>(laser_test::trials(3, 1)); ++k) {
+    const vpHomogeneousMatrix &truth = poses[k];
     const vpImage<vpRGBa> I = renderBoard(cam, truth, true);
     ASSERT_EQ(grid.addImage(I), vpLaserConicGridCalibration::VIEW_OK);
     ASSERT_EQ(noClearance.addImage(I), vpLaserConicGridCalibration::VIEW_OK);
