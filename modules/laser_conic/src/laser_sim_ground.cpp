@@ -54,18 +54,18 @@ float chessboardGrey(double X, double Y, unsigned int nx, unsigned int ny, doubl
 // distances, no std::hypot (its overflow guard costs more than the rest of the test).
 bool onDistractor(const vpLaserConicSimulator::vpDistractor &d, double X, double Y)
 {
-  const double radius = 0.5 * d.size;
+  const double halfSize = 0.5 * d.size; // half side of a square, radius of a disc, half width of a line
   switch (d.shape) {
   case vpLaserConicSimulator::DISTRACTOR_RECTANGLE:
-    return std::fabs(X - d.x) <= radius && std::fabs(Y - d.y) <= radius;
+    return std::fabs(X - d.x) <= halfSize && std::fabs(Y - d.y) <= halfSize;
   case vpLaserConicSimulator::DISTRACTOR_LINE: {
     const double dx = d.x2 - d.x, dy = d.y2 - d.y, len2 = dx * dx + dy * dy;
     const double t = len2 > 0 ? std::min(1.0, std::max(0.0, ((X - d.x) * dx + (Y - d.y) * dy) / len2)) : 0.0;
     const double ex = X - d.x - t * dx, ey = Y - d.y - t * dy;
-    return ex * ex + ey * ey <= radius * radius;
+    return ex * ex + ey * ey <= halfSize * halfSize;
   }
   default:
-    return (X - d.x) * (X - d.x) + (Y - d.y) * (Y - d.y) <= radius * radius;
+    return (X - d.x) * (X - d.x) + (Y - d.y) * (Y - d.y) <= halfSize * halfSize;
   }
 }
 

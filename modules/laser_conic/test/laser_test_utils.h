@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -37,6 +38,13 @@ inline int trials(int full, int reduced)
 {
   const char *env = std::getenv("VSP_REDUCED_TRIALS");
   return env != nullptr && std::string(env) == "1" ? reduced : full;
+}
+
+//! The cases of a test: all of \e cases, or their first \e reduced under VSP_REDUCED_TRIALS=1 (trials()).
+template <typename T> std::vector<T> trialsOf(const std::vector<T> &cases, size_t reduced)
+{
+  const size_t count = static_cast<size_t>(trials(static_cast<int>(cases.size()), static_cast<int>(reduced)));
+  return std::vector<T>(cases.begin(), cases.begin() + static_cast<std::ptrdiff_t>(std::min(count, cases.size())));
 }
 
 //! The typical rig of the paper's experiment: 1600x1200 camera, px = py = 1200, 34 deg laser.

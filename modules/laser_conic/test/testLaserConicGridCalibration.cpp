@@ -84,8 +84,7 @@ TEST(LaserConicGridCalibration, GridPoseMatchesTheRenderingWithTheCornersUnderTh
   const std::vector<vpHomogeneousMatrix> poses = {boardPose(0.6, 18, 0, -15), boardPose(0.8, 0, -18, 5),
                                                   boardPose(1.0, -12, 10, 20)};
   // The first board only under the sanitizers (OpenCV's corner search, not instrumented, is most of the time).
-  for (size_t k = 0; k < static_cast<size_t>(laser_test::trials(3, 1)); ++k) {
-    const vpHomogeneousMatrix &truth = poses[k];
+  for (const vpHomogeneousMatrix &truth : laser_test::trialsOf(poses, 1)) {
     const vpImage<vpRGBa> I = renderBoard(cam, truth, true);
     ASSERT_EQ(grid.addImage(I), vpLaserConicGridCalibration::VIEW_OK);
     ASSERT_EQ(noClearance.addImage(I), vpLaserConicGridCalibration::VIEW_OK);

@@ -842,8 +842,7 @@ TEST(LaserConicGuidedSearch, ChessboardViewsWithReflectanceScaledLight)
   unsigned int seed = 80;
   double worst = 1.0;
   // The four tilts at 0.6 m only under the sanitizers.
-  const std::vector<double> distances = {0.6, 0.8, 1.0};
-  for (double d : std::vector<double>(distances.begin(), distances.begin() + laser_test::trials(3, 1)))
+  for (double d : laser_test::trialsOf<double>({0.6, 0.8, 1.0}, 1))
     for (const std::pair<double, double> &tilt : {std::make_pair(18.0, 0.0), std::make_pair(0.0, 18.0),
                                                   std::make_pair(-18.0, 0.0), std::make_pair(0.0, -18.0)}) {
       const vpHomogeneousMatrix cMg =
