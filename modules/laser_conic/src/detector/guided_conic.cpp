@@ -366,7 +366,8 @@ template <bool AlongRow>
 void appendCrossings(const ConicCoefficients &k, const LineRoots &roots, int first, int step, int n, double margin,
                      double uc, double vc, std::vector<GuidedSample> arcs[2])
 {
-  for (int root = 0; root < 2; ++root)
+  for (int root = 0; root < 2; ++root) {
+    arcs[root].reserve(arcs[root].size() + roots.count.size()); // one crossing a line at most
     for (size_t i = 0; i < roots.count.size(); ++i) {
       const int t = first + static_cast<int>(i) * step;
       const double x = root == 0 ? roots.low[i] : roots.high[i];
@@ -383,6 +384,7 @@ void appendCrossings(const ConicCoefficients &k, const LineRoots &roots, int fir
       arcs[root].push_back(
           GuidedSample{AlongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
     }
+  }
 }
 
 // Puts the samples of \e run, one arc of the curve in the order of its lines, in increasing angle: reversed
