@@ -81,6 +81,8 @@ struct ProfileResult
 //! Buffers of the profile measurements, reused from sample to sample.
 struct ProfileBuffers
 {
+  //! The profile's values and their prefix sums: the first n and n + 1 entries for a profile of n pixels (the
+  //! vectors only grow); the differences its noise is measured on.
   std::vector<int> value, prefix, diffs;
   /*!
     The noise of the matched filter's response per unit of pixel noise, sqrt(1 / (2h + 1) + 1 / f), for a
@@ -149,13 +151,25 @@ struct ProfileWindow
   bool peakWithin = false;
 };
 
+//! The cache lines prefetchProfile() last asked for along a column: those of the columns of a sample (the
+//! same in every row: \e block, that of the first row), from row \e from to row \e to (block -1: none).
+struct PrefetchedColumns
+{
+  long long block = -1;
+  int from = 0, to = -1;
+};
+
 /*!
   Asks the processor to bring to cache the pixels a profile of sample s reads, \e halfWidth along its line: on
   the sample's line and its two neighbours, or with \e oneLine on its line alone, all that the profiles of a
   strong stripe followed read (a row profile's neighbours are rows of their own: asking for them doubled the
-  cache lines, and the pages, brought in along the rows of a tracked ring).
+  cache lines, and the pages, brought in along the rows of a tracked ring). Along a column, the rows that
+  \e last already asked for in the same block of columns are not asked for again (the samples a few columns
+  apart share their cache lines: a column profile asked for about 25 of them, mostly the same as the sample
+  before it); \e last is updated.
 */
-void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth, bool oneLine);
+void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth, bool oneLine,
+                     PrefetchedColumns &last);
 
 /*!
   Measures the profile of sample s in the RGBA image I within \e window (kept inside the sample's margin).

@@ -217,6 +217,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
 {
   const int H = static_cast<int>(I.getHeight());
   int missed = 0, lastWithPoint = -2, noiseSample = 0;
+  PrefetchedColumns prefetched;
   double lastOffset = 0.0, lineNoise = -1.0;
   bool strong = false;
   for (int i = 0; i < static_cast<int>(samples.size()); ++i) {
@@ -226,7 +227,7 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
     // tracking mode's time). Along a strong stripe, the profiles read the sample's line alone.
     if (i + RidgeTuning::guidedPrefetchAhead < static_cast<int>(samples.size()))
       prefetchProfile(I, samples[static_cast<size_t>(i) + RidgeTuning::guidedPrefetchAhead],
-                      RidgeTuning::guidedPrefetchReach, strong);
+                      RidgeTuning::guidedPrefetchReach, strong, prefetched);
     double offset = 0.0;
     if (found.covers(s, offset)) {
       state[static_cast<size_t>(i)] = KNOWN;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <type_traits>
 
@@ -80,8 +81,12 @@ template <class Stride> void addBrightness(const unsigned char *first, Stride st
 int readLines(const vpImage<vpRGBa> &I, const GuidedSample &s, int start, int n, int saturation, int half,
               bool brightness, ProfileBuffers &b, const unsigned char *&centre)
 {
-  b.value.resize(static_cast<size_t>(n));
-  b.prefix.resize(static_cast<size_t>(n) + 1);
+  // Grown only: the profiles alternate between short and long, and every entry used is written below (a
+  // resize to each profile's length filled the new entries with zeros first).
+  if (b.value.size() < static_cast<size_t>(n))
+    b.value.resize(static_cast<size_t>(n));
+  if (b.prefix.size() < static_cast<size_t>(n) + 1)
+    b.prefix.resize(static_cast<size_t>(n) + 1);
   const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
   const ptrdiff_t W = static_cast<ptrdiff_t>(I.getWidth());
   const int lineLength = static_cast<int>(s.alongRow ? I.getWidth() : I.getHeight());
@@ -168,17 +173,18 @@ int thresholdLevel(double level) { return toIntAtMost(std::ceil(level), std::num
 // followed beside a brighter region (see measureProfile()), whose flank the half-maximum run then keeps out.
 struct MatchedFilter
 {
-  const std::vector<int> &prefix;
+  const std::vector<int> &prefix; //!< the profile's prefix sums (the first n + 1 entries)
+  int n;                          //!< the profile's pixels
   int h, f;
   double scale;               //!< 1 / ((2h + 1) f): from a scaled response to grey levels
   bool againstDimmer = false; //!< the background is the dimmer box, not the brighter
-  MatchedFilter(const std::vector<int> &prefix_, int h_, int f_)
-    : prefix(prefix_), h(h_), f(f_), scale(1.0 / ((2.0 * h_ + 1.0) * f_))
+  MatchedFilter(const std::vector<int> &prefix_, int n_, int h_, int f_)
+    : prefix(prefix_), n(n_), h(h_), f(f_), scale(1.0 / ((2.0 * h_ + 1.0) * f_))
   {
   }
   // The positions whose boxes lie inside the profile.
   int lowest() const { return h + RidgeTuning::guidedGap + f; }
-  int highest() const { return static_cast<int>(prefix.size()) - 2 - lowest(); }
+  int highest() const { return n - 1 - lowest(); }
   // Pixels on each side of a response's position covered by its stripe box and gap: the stripe and its tails,
   // which a noise estimate beside it leaves out.
   int tails() const { return h + RidgeTuning::guidedGap + 1; }
@@ -381,7 +387,8 @@ int middleValue(std::vector<int> &values)
   return values[static_cast<size_t>(rank)];
 }
 
-void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth, bool oneLine)
+void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWidth, bool oneLine,
+                     PrefetchedColumns &last)
 {
   const unsigned char *rgba = reinterpret_cast<const unsigned char *>(I.bitmap);
   const ptrdiff_t W = static_cast<ptrdiff_t>(I.getWidth());
@@ -399,9 +406,30 @@ void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWi
     for (int j = -reach; j <= reach; ++j)
       for (int k = from; k < to + pixelsPerCacheLine; k += pixelsPerCacheLine)
         prefetch(rgba + 4 * ((line + j) * W + std::min(k, to)));
-  } else
-    for (int k = from; k <= to; ++k) // the three columns share a cache line but for one in sixteen
+    last.block = -1;
+  } else {
+    // The three columns share a cache line but for one in sixteen. When a row is a whole number of cache
+    // lines, the cache line of these columns is the same one in every row: the rows the sample before asked
+    // for in that line are not asked for again.
+    constexpr std::uintptr_t cacheLine = 64;
+    const std::uintptr_t firstByte = reinterpret_cast<std::uintptr_t>(rgba + 4 * (line - reach)),
+                         lastByte = reinterpret_cast<std::uintptr_t>(rgba + 4 * (line + reach) + 3);
+    const long long block = (4 * W) % static_cast<ptrdiff_t>(cacheLine) == 0 &&
+                                    firstByte / cacheLine == lastByte / cacheLine
+                                ? static_cast<long long>(firstByte / cacheLine)
+                                : -1;
+    const bool asked = block >= 0 && block == last.block;
+    // The rows before those asked for, then those after them (all of them when none were asked for).
+    const int beforeAsked = asked ? std::min(to, last.from - 1) : to,
+              afterAsked = asked ? std::max(from, last.to + 1) : to + 1;
+    for (int k = from; k <= beforeAsked; ++k)
       prefetch(rgba + 4 * (k * W + line - reach));
+    for (int k = afterAsked; k <= to; ++k)
+      prefetch(rgba + 4 * (k * W + line - reach));
+    last.block = block;
+    last.from = from;
+    last.to = to;
+  }
 }
 
 // A profile whose stripe was not found, with the colour edge where the prediction crosses it
@@ -444,7 +472,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
     return result;
   result.lines = lines;
   result.brightness = window.brightness;
-  MatchedFilter filter(buffers.prefix, h, f);
+  MatchedFilter filter(buffers.prefix, n, h, f);
   double bestResponse = -1e30;
   const int first = std::max(reach, lo - start), last = std::min(n - 1 - reach, hi - start);
   int best = filter.best(first, last, bestResponse);
