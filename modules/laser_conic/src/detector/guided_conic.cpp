@@ -171,6 +171,8 @@ void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence,
   const bool closed = chord(order[n - 1], order[0]) <= R && length > 4.0 * R;
   sequence.clear();
   arc.clear();
+  sequence.reserve(closed ? 2 * n : n); // the points, and on a closed ring those repeated at its seam
+  arc.reserve(sequence.capacity());
   for (size_t k = 0; closed && k < n; ++k)
     if (along[k] - length >= -R) {
       sequence.push_back(order[k]);
@@ -312,6 +314,7 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
   std::vector<double> arc, offset, fitted;
   size_t first = 0;
   arcSequence(points, sequence, arc, first);
+  offset.reserve(sequence.size());
   for (int p : sequence)
     offset.push_back(points[static_cast<size_t>(p)].offset);
   // A fit on every point, then again without those farther than RidgeTuning::guidedSmoothOutlier from it.
