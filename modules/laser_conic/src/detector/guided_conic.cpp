@@ -171,8 +171,9 @@ void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence,
   const bool closed = chord(order[n - 1], order[0]) <= R && length > 4.0 * R;
   sequence.clear();
   arc.clear();
-  sequence.reserve(closed ? 2 * n : n); // the points, and on a closed ring those repeated at its seam
-  arc.reserve(sequence.capacity());
+  const size_t positions = closed ? 2 * n : n; // at most: the points, on a closed ring those repeated at its seam
+  sequence.reserve(positions);
+  arc.reserve(positions);
   for (size_t k = 0; closed && k < n; ++k)
     if (along[k] - length >= -R) {
       sequence.push_back(order[k]);

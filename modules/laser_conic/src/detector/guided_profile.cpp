@@ -356,6 +356,18 @@ int stripeHalfBox(const GuidedSettings &settings, const ProfileWindow &window)
   return std::max(1, run / 2);
 }
 
+constexpr int kCacheLineBytes = 64;
+
+// The cache line holding columns [first, last] of row 0 of an RGBA image W pixels wide, when it holds them in
+// every row (a row is a whole number of cache lines, and they do not straddle two), else -1.
+long long sharedColumnLine(const unsigned char *rgba, ptrdiff_t W, int first, int last)
+{
+  const std::uintptr_t line = reinterpret_cast<std::uintptr_t>(rgba + 4 * first) / kCacheLineBytes;
+  const bool shared = (4 * W) % kCacheLineBytes == 0 &&
+                      reinterpret_cast<std::uintptr_t>(rgba + 4 * last + 3) / kCacheLineBytes == line;
+  return shared ? static_cast<long long>(line) : -1;
+}
+
 // A hint to bring the cache line of \e p to cache (nothing where the compiler has no such builtin).
 inline void prefetch(const unsigned char *p)
 {
@@ -401,35 +413,30 @@ void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWi
   // The sample's line and its two neighbours, or the line alone (see the declaration).
   const int reach = oneLine ? 0 : 1;
   const int line = std::min(lineCount - 1 - reach, std::max(reach, s.line));
+  const auto address = [&](int row, int column) { return rgba + 4 * (row * W + column); };
   if (s.alongRow) {
-    constexpr int pixelsPerCacheLine = 16; // of 64 bytes
+    constexpr int pixelsPerCacheLine = kCacheLineBytes / 4;
     for (int j = -reach; j <= reach; ++j)
       for (int k = from; k < to + pixelsPerCacheLine; k += pixelsPerCacheLine)
-        prefetch(rgba + 4 * ((line + j) * W + std::min(k, to)));
+        prefetch(address(line + j, std::min(k, to)));
     last.block = -1;
-  } else {
-    // The three columns share a cache line but for one in sixteen. When a row is a whole number of cache
-    // lines, the cache line of these columns is the same one in every row: the rows the sample before asked
-    // for in that line are not asked for again.
-    constexpr std::uintptr_t cacheLine = 64;
-    const std::uintptr_t firstByte = reinterpret_cast<std::uintptr_t>(rgba + 4 * (line - reach)),
-                         lastByte = reinterpret_cast<std::uintptr_t>(rgba + 4 * (line + reach) + 3);
-    const long long block = (4 * W) % static_cast<ptrdiff_t>(cacheLine) == 0 &&
-                                    firstByte / cacheLine == lastByte / cacheLine
-                                ? static_cast<long long>(firstByte / cacheLine)
-                                : -1;
-    const bool asked = block >= 0 && block == last.block;
-    // The rows before those asked for, then those after them (all of them when none were asked for).
-    const int beforeAsked = asked ? std::min(to, last.from - 1) : to,
-              afterAsked = asked ? std::max(from, last.to + 1) : to + 1;
-    for (int k = from; k <= beforeAsked; ++k)
-      prefetch(rgba + 4 * (k * W + line - reach));
-    for (int k = afterAsked; k <= to; ++k)
-      prefetch(rgba + 4 * (k * W + line - reach));
-    last.block = block;
-    last.from = from;
-    last.to = to;
+    return;
   }
+  // The three columns share a cache line but for one in sixteen: one address a row. The rows the sample
+  // before asked for in the same cache line are not asked for again.
+  const auto ask = [&](int firstRow, int lastRow) {
+    for (int k = firstRow; k <= lastRow; ++k)
+      prefetch(address(k, line - reach));
+  };
+  const long long block = sharedColumnLine(rgba, W, line - reach, line + reach);
+  if (block >= 0 && block == last.block) {
+    ask(from, std::min(to, last.from - 1));
+    ask(std::max(from, last.to + 1), to);
+  } else
+    ask(from, to);
+  last.block = block;
+  last.from = from;
+  last.to = to;
 }
 
 // A profile whose stripe was not found, with the colour edge where the prediction crosses it
