@@ -352,9 +352,10 @@ public:
     sensor noise. A JPEG stream's noise is correlated over the codec's blocks: on the rendered faint rings
     at quality 90 the responses spread 1.9-2.7 times that estimate (1.0 uncompressed), so the default
     stands at about 1.5 of their real spread there, and the dim side's centres at 2-3 times the sensor
-    noise come out 0.2-0.6 px RMS from the stripe (0.04 px uncompressed), near what such a frame holds: the
-    profiles averaged along the true centre line over 80 px of arc put the stripe 0.27-0.62 px RMS from it
-    there (0.11 px uncompressed). Uncompressed frames keep that side's colour; a larger factor finds less of it.
+    noise come out 0.2-0.6 px RMS from the stripe (0.04 px uncompressed), about what such a frame holds: the
+    profiles averaged along the true centre line over 80 px of arc put the stripe 0.25-0.62 px RMS from it
+    there (0.07-0.15 px uncompressed). Uncompressed frames keep that side's colour; a larger factor finds less
+    of it.
     \exception vpLaserConicException::badValueError when not positive and finite.
   */
   void setGuidedThresholdFactor(double factor);
