@@ -164,6 +164,21 @@ inline void dumpIfRequested(const std::string &name, const vpImage<vpRGBa> &I)
   if (dir != nullptr && *dir != '\0')
     vpImageIo::write(I, std::string(dir) + "/" + name + ".png");
 }
+
+//! Red dominance R - max(G, B) of I at (u, v), bilinear between the four pixels around it; NaN outside.
+inline double redDominanceAt(const vpImage<vpRGBa> &I, double u, double v)
+{
+  const int iu = static_cast<int>(std::floor(u)), iv = static_cast<int>(std::floor(v));
+  if (iu < 0 || iv < 0 || iu + 1 >= static_cast<int>(I.getWidth()) || iv + 1 >= static_cast<int>(I.getHeight()))
+    return std::numeric_limits<double>::quiet_NaN();
+  const auto at = [&I](int x, int y) {
+    const vpRGBa &p = I[static_cast<unsigned int>(y)][static_cast<unsigned int>(x)];
+    return static_cast<double>(static_cast<int>(p.R) - std::max(static_cast<int>(p.G), static_cast<int>(p.B)));
+  };
+  const double a = u - iu, b = v - iv;
+  return (1 - a) * (1 - b) * at(iu, iv) + a * (1 - b) * at(iu + 1, iv) + (1 - a) * b * at(iu, iv + 1) +
+         a * b * at(iu + 1, iv + 1);
+}
 } // namespace laser_sim_test
 
 #endif

@@ -244,21 +244,6 @@ std::vector<unsigned int> seedRange(unsigned int first, unsigned int count)
 // The reading of a faint stripe that knows where it is: the red dominance sampled across the true centre line,
 // averaged over a stretch of arc and located by a matched filter (see TheDimSideThroughJpegHoldsItsLineToAFewTenths).
 
-//! Red dominance R - max(G, B) of I at (u, v), bilinear; NaN outside.
-double redDominanceAt(const vpImage<vpRGBa> &I, double u, double v)
-{
-  const int iu = static_cast<int>(std::floor(u)), iv = static_cast<int>(std::floor(v));
-  if (iu < 0 || iv < 0 || iu + 1 >= static_cast<int>(I.getWidth()) || iv + 1 >= static_cast<int>(I.getHeight()))
-    return std::numeric_limits<double>::quiet_NaN();
-  const auto at = [&I](int x, int y) {
-    const vpRGBa &p = I[static_cast<unsigned int>(y)][static_cast<unsigned int>(x)];
-    return static_cast<double>(static_cast<int>(p.R) - std::max(static_cast<int>(p.G), static_cast<int>(p.B)));
-  };
-  const double a = u - iu, b = v - iv;
-  return (1 - a) * (1 - b) * at(iu, iv) + a * (1 - b) * at(iu + 1, iv) + (1 - a) * b * at(iu, iv + 1) +
-         a * b * at(iu + 1, iv + 1);
-}
-
 //! Samples per pixel across the line, and the half length of a profile (pixels).
 constexpr int kAcrossPerPixel = 4, kAcrossHalf = 8;
 

@@ -271,12 +271,8 @@ TEST(LaserConicSimulatorStripe, JpegChangesPixelsButKeepsTheStripeCentre)
     const double nu = -tv / len, nv = tu / len;
     double sw = 0.0, swx = 0.0;
     for (int k = -8; k <= 8; ++k) {
-      const double o = 0.5 * k, u = p.get_u() + o * nu, v = p.get_v() + o * nv;
-      const int j = static_cast<int>(std::floor(u)), i = static_cast<int>(std::floor(v));
-      const double fu = u - j, fv = v - i;
-      const double w = (1 - fu) * (1 - fv) * dominance(I[i][j]) + fu * (1 - fv) * dominance(I[i][j + 1]) +
-                       (1 - fu) * fv * dominance(I[i + 1][j]) + fu * fv * dominance(I[i + 1][j + 1]);
-      const double weight = std::max(0.0, w - 10.0);
+      const double o = 0.5 * k;
+      const double weight = std::max(0.0, redDominanceAt(I, p.get_u() + o * nu, p.get_v() + o * nv) - 10.0);
       sw += weight;
       swx += weight * o;
     }
