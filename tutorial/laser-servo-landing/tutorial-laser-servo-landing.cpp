@@ -399,7 +399,8 @@ bool report(const vpHomogeneousMatrix &wMc, const Summary &sum, bool check)
 }
 
 //! [Loop]
-bool runServoLanding(double duration, const std::string &outputDir, bool display, const std::string &exportDir)
+bool runServoLanding(double duration, unsigned int seed, const std::string &outputDir, bool display,
+                     const std::string &exportDir)
 {
   const Rig rig;
   FlightExport exporter(exportDir, rig);
@@ -436,7 +437,7 @@ bool runServoLanding(double duration, const std::string &outputDir, bool display
   task.addFeature(s, sd);
   task.addFeature(p, pd);
 
-  std::mt19937 rng(5);
+  std::mt19937 rng(seed); // which frames are lost, the pad's pixel noise
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::deque<PendingFrame> pending;
   Record rec;
@@ -540,16 +541,17 @@ bool runServoLanding(double duration, const std::string &outputDir, bool display
 
 int main(int argc, char **argv)
 {
-  int seconds = 12;
+  int seconds = 12, seed = 5;
   std::string exportDir;
-  vpTutorialProgram program("[--seconds N] [--export DIR]",
+  vpTutorialProgram program("[--seconds N] [--seed N] [--export DIR]",
                             "Closed-loop landing on a circular laser fused with an IMU (vpLaserConicFilter, "
                             "vpFeatureLaserPlane, vpServo); writes laser-servo-landing-*.png.");
   program.addOption("--seconds", seconds, 2, "duration of the flight");
+  program.addOption("--seed", seed, 0, "seed of the frame losses and of the pad's pixel noise (default 5)");
   program.addString("--export", exportDir, "DIR",
                     "write the flight as a data set (JPEG frames, imu.csv, frame_times.csv, camera.xml, laser.txt, "
                     "truth.csv) for vsp-laser-altimeter");
   return program.run(argc, argv, [&](const std::string &outputDir) {
-    return runServoLanding(seconds, outputDir, program.display(), exportDir);
+    return runServoLanding(seconds, static_cast<unsigned int>(seed), outputDir, program.display(), exportDir);
   });
 }

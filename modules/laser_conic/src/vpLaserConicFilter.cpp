@@ -58,7 +58,11 @@ struct vpLaserConicFilter::Impl
   bool initialised = false, diverged = false, stepPending = false;
   double lastFrameTime = -std::numeric_limits<double>::infinity();
   double lastAcceptTime = -std::numeric_limits<double>::infinity();
-  unsigned int accepted = 0, rejectedInRow = 0, stepCandidates = 0, stepCount = 0;
+  // Frames rejected in a row: with an attitude that agrees with the prediction, and (tiltedInRow) with one that
+  // does not (see waitsForAgreeingAttitude()).
+  unsigned int accepted = 0, rejectedInRow = 0, tiltedInRow = 0, stepCandidates = 0, stepCount = 0;
+  //! Frames whose attitude disagrees, in a row, that declare a divergence: this many times maxRejections.
+  static constexpr unsigned int kTiltedRejections = 5;
   double stepOffset = 0.0, stepVariance = 0.0;
   vpFrameStatus lastFrameStatus = FRAME_MISSING;
   double lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
@@ -70,14 +74,14 @@ struct vpLaserConicFilter::Impl
   void clearState()
   {
     initialised = diverged = stepPending = false;
-    accepted = rejectedInRow = stepCandidates = 0;
+    accepted = rejectedInRow = tiltedInRow = stepCandidates = 0;
     lastFrameTime = lastAcceptTime = -std::numeric_limits<double>::infinity();
   }
 
   //! A frame at \e t updated the state (\e step: by a ground step): the rejection counts start again.
   void frameUsed(double t, bool step)
   {
-    rejectedInRow = stepCandidates = 0;
+    rejectedInRow = tiltedInRow = stepCandidates = 0;
     stepPending = step;
     lastAcceptTime = t;
   }
@@ -88,6 +92,18 @@ struct vpLaserConicFilter::Impl
   void initialise(State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
   vpFrameStatus gateAndUpdate(double t, State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
   bool stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S);
+  bool waitsForAgreeingAttitude(const Entry &before, size_t k, double t, const Eigen::Vector3d &z,
+                                const Eigen::Matrix3d &R);
+  //! Propagates (x, P), the state of the k-th sample, to \e t (not after the next sample) with the mean of the
+  //! two samples' readings.
+  void propagateFrom(size_t k, double t, State &x, Covariance &P)
+  {
+    const Entry &before = at(k);
+    if (t > before.t) {
+      const Entry &after = (k + 1 < count) ? at(k + 1) : before;
+      propagate(x, P, 0.5 * (before.w + after.w), 0.5 * (before.f + after.f), t - before.t, gravity, noise);
+    }
+  }
   void repropagate(size_t k, double t, const State &x, const Covariance &P);
 };
 
@@ -158,8 +174,18 @@ void vpLaserConicFilter::Impl::initialise(State &x, Covariance &P, const Eigen::
   initialised = true;
   diverged = stepPending = false;
   accepted = 1;
-  rejectedInRow = stepCandidates = 0;
+  rejectedInRow = tiltedInRow = stepCandidates = 0;
 }
+
+namespace
+{
+//! Squared Mahalanobis distance of the attitude part (roll, pitch) of an innovation y of covariance S.
+double attitudeDistance(const Eigen::Vector3d &y, const Eigen::Matrix3d &S)
+{
+  const Eigen::Vector2d ya = y.tail<2>();
+  return ya.dot(S.bottomRightCorner<2, 2>().ldlt().solve(ya));
+}
+} // namespace
 
 /*!
   A rejected frame is a ground-step candidate when its attitude agrees with the prediction, its altitude
@@ -168,8 +194,7 @@ void vpLaserConicFilter::Impl::initialise(State &x, Covariance &P, const Eigen::
 */
 bool vpLaserConicFilter::Impl::stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S)
 {
-  const Eigen::Vector2d ya = y.tail<2>();
-  const double attitude = ya.dot(S.bottomRightCorner<2, 2>().ldlt().solve(ya));
+  const double attitude = attitudeDistance(y, S);
   // A step is a jump no noise explains: at least minStepHeight, and twice the gate's distance in altitude.
   const bool large = std::abs(y(0)) >= minStepHeight && y(0) * y(0) >= 4.0 * gate * S(0, 0);
   if (!(attitude <= attitudeGate) || !large) {
@@ -210,9 +235,40 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::gateAndUpdate(double
     frameUsed(t, true);
     return FRAME_GROUND_STEP;
   }
-  if (++rejectedInRow >= maxRejections)
+  // A frame whose attitude disagrees with the gyros' is more likely biased (a ring across a box's edge) than
+  // the prediction wrong: such frames declare a divergence only after kTiltedRejections times as many.
+  if (attitudeDistance(y, S) > attitudeGate ? ++tiltedInRow >= kTiltedRejections * maxRejections
+                                            : ++rejectedInRow >= maxRejections)
     diverged = true;
   return FRAME_REJECTED;
+}
+
+/*!
+  Whether the diverged filter refuses the frame at \e t (after the k-th sample, \e before) instead of being
+  re-initialised by it: its roll and pitch disagree with those the gyros carried on. A ring across a box's
+  edge gives GP-3 one plane tilted between the two surfaces, its trace explained within a pixel or two,
+  for as long as the edge stays in the ring (2-3 s, 60-90 frames, in the landing tutorial's descent), and a
+  divergence declared meanwhile by frames whose altitude alone disagreed was re-initialised by the next
+  such plane, tilted by 15 degrees, which the servo then followed. The gyros' attitude stays right over
+  such a stretch; the frames' is taken only once kTiltedRejections times setMaxRejections() frames in a
+  row have disagreed with it (the filter's own attitude is then in doubt).
+*/
+bool vpLaserConicFilter::Impl::waitsForAgreeingAttitude(const Entry &before, size_t k, double t,
+                                                        const Eigen::Vector3d &z, const Eigen::Matrix3d &R)
+{
+  if (!initialised || !diverged || !before.valid || tiltedInRow >= kTiltedRejections * maxRejections)
+    return false;
+  State x = before.x;
+  Covariance P = before.P;
+  propagateFrom(k, t, x, P);
+  Eigen::Vector3d y;
+  Eigen::Matrix3d S;
+  lastMahalanobis = innovation(x, P, z, R, y, S);
+  if (attitudeDistance(y, S) <= attitudeGate)
+    return false;
+  ++tiltedInRow;
+  lastFrameTime = t;
+  return true;
 }
 
 vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::addFrame(double t, const Eigen::Vector3d &z,
@@ -225,6 +281,8 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::addFrame(double t, c
   while (k > 0 && at(k).t > t)
     --k;
   const Entry &before = at(k);
+  if (waitsForAgreeingAttitude(before, k, t, z, R))
+    return FRAME_REJECTED;
   State x = before.x;
   Covariance P = before.P;
   vpFrameStatus status = FRAME_INITIALISED;
@@ -236,10 +294,7 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::addFrame(double t, c
     lastAcceptTime = t;
     lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
   } else {
-    if (t > before.t) {
-      const Entry &after = (k + 1 < count) ? at(k + 1) : before;
-      propagate(x, P, 0.5 * (before.w + after.w), 0.5 * (before.f + after.f), t - before.t, gravity, noise);
-    }
+    propagateFrom(k, t, x, P);
     status = gateAndUpdate(t, x, P, z, R);
     if (status == FRAME_REJECTED && !confirmed) {
       x = before.x;

@@ -134,6 +134,9 @@ struct FrameEvents
   double dropFrom = -1.0, dropTo = -1.0; //!< no plane in the frames of [dropFrom, dropTo)
   std::vector<int> outlierFrames;        //!< frames whose altitude is offset
   double outlierSigmas = 5.0;            //!< offset, in standard deviations of the innovation
+  //! Frames exposed in [tiltedFrom, tiltedTo) give a plane off by tiltedAltitude (m) and tiltedPitch (rad): the
+  //! one tilted plane GP-3 fits to a ring across a box's edge.
+  double tiltedFrom = -1.0, tiltedTo = -1.0, tiltedAltitude = 0.0, tiltedPitch = 0.0;
 };
 
 /*!
@@ -198,6 +201,10 @@ inline void fly(const Flight &flight, double duration, unsigned int seed, vpLase
             const vpMatrix P = filter.getCovarianceMatrix();
             p.h += events.outlierSigmas * std::sqrt(p.C[0][0] + P[0][0]);
           }
+        if (p.t >= events.tiltedFrom && p.t < events.tiltedTo) {
+          p.h += events.tiltedAltitude;
+          p.p += events.tiltedPitch;
+        }
         rec.h = p.h;
         rec.status = filter.addFrame(p.t, p.h, p.r, p.p, p.C);
       } else

@@ -196,6 +196,69 @@ TEST(LaserConicFilter, DetectsGroundStepWithinThreeFrames)
   EXPECT_GE(allInside, 0.95 * allAfter);
 }
 
+// A ring across a box's edge: for 2.5 s (75 frames, more than setMaxRejections()' 30) every plane is 12 cm
+// low and tilted by 15 degrees (GP-3's one plane between the box and the floor). The filter rejects them
+// and carries its attitude on the gyros: its pitch stays within a degree of the truth, it never declares a
+// divergence (the landing tutorial's servo followed the 15 degrees when a divergence was re-initialised by
+// such a frame), and the first frames after the edge are accepted: 0.1 s later its altitude is within 5 mm.
+TEST(LaserConicFilter, PlanesTiltedByABoxEdgeDoNotTakeTheAttitude)
+{
+  for (unsigned int run = 0; run < 4; ++run) {
+    FrameEvents events;
+    events.tiltedFrom = 2.0;
+    events.tiltedTo = 4.5;
+    events.tiltedAltitude = -0.12;
+    events.tiltedPitch = vpMath::rad(15.0);
+    const FlightRun flown(Flight(1100 + run), 6.0, 1200 + run, events);
+    int tilted = 0, rejected = 0;
+    for (const FrameRecord &f : flown.frames)
+      if (f.hasPlane && f.t >= events.tiltedFrom && f.t < events.tiltedTo) {
+        ++tilted;
+        rejected += f.status == vpLaserConicFilter::FRAME_REJECTED;
+      }
+    EXPECT_GT(tilted, 60) << "run " << run;
+    EXPECT_EQ(rejected, tilted) << "run " << run;
+    double worstPitch = 0.0, worstAltitudeAfter = 0.0;
+    int diverged = 0;
+    for (const Sample &s : flown.samples) {
+      diverged += s.status == vpLaserConicFilter::STATUS_DIVERGED;
+      if (s.t > kWarmUp)
+        worstPitch = std::max(worstPitch, std::abs(laser_flight::error(s)(3)));
+      if (s.t > events.tiltedTo + 0.1 + 0.03)
+        worstAltitudeAfter = std::max(worstAltitudeAfter, std::abs(s.x(0) - s.truth.h));
+    }
+    std::printf("run %u: %d tilted planes, %d rejected, worst pitch error after the warm-up %.3f deg, worst altitude "
+                "error from 0.1 s after them %.2f mm\n",
+                run, tilted, rejected, vpMath::deg(worstPitch), 1e3 * worstAltitudeAfter);
+    EXPECT_EQ(diverged, 0) << "run " << run << ": IMU samples with STATUS_DIVERGED";
+    EXPECT_LE(worstPitch, vpMath::rad(1.0)) << "run " << run;
+    EXPECT_LE(worstAltitudeAfter, 0.005) << "run " << run;
+    EXPECT_EQ(flown.filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING) << "run " << run;
+  }
+}
+
+// The other way round: from 2 s on every plane is tilted by 10 degrees and stays so (the filter's attitude,
+// not the frames', is what is wrong). After five times setMaxRejections() frames disagreeing in a row (5 s)
+// the filter declares the divergence and the next frame re-initialises it: from then on it follows the frames.
+TEST(LaserConicFilter, FramesThatKeepDisagreeingOnTheAttitudeReinitialiseIt)
+{
+  FrameEvents events;
+  events.tiltedFrom = 2.0;
+  events.tiltedTo = 100.0;
+  events.tiltedPitch = vpMath::rad(10.0);
+  const FlightRun flown(Flight(1300), 9.0, 1400, events);
+  double reinitialised = -1.0;
+  for (const FrameRecord &f : flown.frames)
+    if (reinitialised < 0.0 && f.t > events.tiltedFrom && f.status == vpLaserConicFilter::FRAME_INITIALISED)
+      reinitialised = f.t;
+  std::printf("re-initialised by the frame at %.3f s\n", reinitialised);
+  EXPECT_GE(reinitialised, events.tiltedFrom + 4.9);
+  EXPECT_LE(reinitialised, events.tiltedFrom + 5.3);
+  const Sample &last = flown.samples.back();
+  EXPECT_NEAR(last.x(3), last.truth.pitch + events.tiltedPitch, vpMath::rad(0.5));
+  EXPECT_EQ(flown.filter.getStatus(), vpLaserConicFilter::STATUS_TRACKING);
+}
+
 // Bad input never crashes, names what is wrong and keeps the earlier estimate.
 TEST(LaserConicFilter, BadInputHasAStatus)
 {

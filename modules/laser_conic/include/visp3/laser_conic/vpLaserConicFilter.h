@@ -47,7 +47,8 @@
   FRAME_REJECTED, never averaged in. Rejected frames whose attitude agrees with the prediction and whose
   altitudes agree with each other but jump from the prediction by more than setMinStepHeight() (a box, a
   table edge: a change of ground) re-initialise the altitude after setStepFrames() of them
-  (FRAME_GROUND_STEP). addMissingFrame() records
+  (FRAME_GROUND_STEP); a long run of rejected frames declares a divergence (setMaxRejections()).
+  addMissingFrame() records
   a frame without a plane: the prediction runs on with its growing covariance.
 
   \code
@@ -141,10 +142,14 @@ public:
   */
   void setMinStepHeight(double metres);
   /*!
-    Frames rejected in a row after which the filter is declared diverged and re-initialised by the next
-    frame (default 30: one second at 30 Hz). Biased frames in a row are not a divergence: a box edge
-    across the ring shifts part of the trace by a pixel or two, which GP-3 keeps as inliers, and a
-    fraction of a second of such planes is rejected while the prediction stays right.
+    Frames rejected in a row after which the filter is declared diverged (default 30: one second at 30 Hz)
+    and re-initialised by the next frame whose roll and pitch agree with those the gyros carried on.
+    Biased frames in a row are not a divergence: a box edge across the ring shifts part of the trace by a
+    pixel or two, which GP-3 keeps as inliers, and for as long as the edge stays in the ring (2-3 s in the
+    landing tutorial's descents) each plane is tilted between the box and the floor (10-20 degrees). Frames
+    whose attitude disagrees with the prediction therefore count apart: five times as many of them in a
+    row declare the divergence, and only then does such a frame re-initialise the filter (its own attitude
+    is then in doubt).
   */
   void setMaxRejections(unsigned int frames);
   //! Frames accepted before the status leaves STATUS_INITIALISING (default 3).
