@@ -12,10 +12,15 @@
   vsp-laser-calibrate --from-sequence (camera, previous calibration, points of the frames after the knock).
 
   \verbatim
-  laser-drift-demo [--output DIR] [--frames N] [--knock-frame K] [--knock-deg D] [--write-sequence DIR] [--check]
+  laser-drift-demo [--output DIR] [--frames N] [--knock-frame K] [--knock-deg D] [--seed N] [--write-sequence DIR]
+                   [--check]
   \endverbatim
-  --check: exit 1 unless the knock is detected within 30 frames and the recalibrated errors are within
-  3 times those before the knock.
+  --check: exit 1 unless the knock is detected within 30 frames, the self-calibrated axis lies within 3 of
+  its standard deviations (vpLaserConicSelfCalibration::getAxisStdDeviation()) of the knocked laser's, and
+  the altitude error after the self-calibration is under half that of the knocked frames. (Its altitude
+  error follows the axis's, about 126 mm per degree over this flight: over seeds 1-20 the axis came out
+  0.0004-0.024 degree off for a standard deviation of 0.0096, the altitude 0.39-3.09 mm RMS against 0.44-0.57
+  before the knock and 9.0-9.1 knocked; a bound of 3 times the error before the knock failed seeds 2 and 16.)
 */
 #include <algorithm>
 #include <cmath>
@@ -45,6 +50,7 @@ struct Options
   std::string output = "laser-drift-demo", sequence;
   unsigned int frames = 240, knockFrame = 120, calibrationFrames = 60;
   double knockDeg = 1.0;
+  unsigned int seed = 1;
   bool check = false;
 };
 
@@ -66,13 +72,15 @@ struct Record
 int run(int argc, char **argv)
 {
   Options o;
-  vpCommandLine cli("[--output DIR] [--frames N] [--knock-frame K] [--knock-deg D] [--write-sequence DIR] [--check]",
+  vpCommandLine cli("[--output DIR] [--frames N] [--knock-frame K] [--knock-deg D] [--seed N] [--write-sequence DIR] "
+                    "[--check]",
                     "A flight whose laser mount is knocked halfway: drift detected, laser self-calibrated, errors "
                     "restored.");
   cli.addString("--output", o.output, "DIR", "folder of the plots and the CSV (default laser-drift-demo)");
   cli.addUnsigned("--frames", o.frames, "N", "frames of the flight (default 240)", 100, 100000);
   cli.addUnsigned("--knock-frame", o.knockFrame, "K", "frame of the knock (default 120)", 30);
   cli.addDouble("--knock-deg", o.knockDeg, "D", "rotation of the laser by the knock, degrees (default 1)");
+  cli.addUnsigned("--seed", o.seed, "N", "seed of the trace points' noise (default 1)", 0, 4294967295u);
   cli.addString("--write-sequence", o.sequence, "DIR", "also write camera.xml, laser_previous.yaml, points.csv");
   cli.addFlag("--check", o.check, "exit 1 unless the knock is detected and the errors restored");
   if (!cli.parse(argc, argv))
@@ -90,7 +98,7 @@ int run(int argc, char **argv)
   const vpHomogeneousMatrix knocked = calibrated * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(o.knockDeg), 0, 0);
   vpLaserConicSimulator sim;
   sim.setCamera(cam, vspLaserRig::kWidth, vspLaserRig::kHeight);
-  sim.setSeed(1);
+  sim.setSeed(o.seed);
   vpLaserConicPose estimator;
   estimator.setCameraParameters(cam);
   estimator.setLaser(A, calibrated);
@@ -102,6 +110,7 @@ int run(int argc, char **argv)
   std::vector<Record> records(o.frames);
   std::vector<std::vector<vpImagePoint> > afterKnock;
   int detected = -1, recalibrated = -1;
+  double axisError = std::numeric_limits<double>::quiet_NaN(), axisStd = std::numeric_limits<double>::quiet_NaN();
   bool collecting = false;
   for (unsigned int k = 0; k < o.frames; ++k) {
     double h, roll, pitch;
@@ -136,11 +145,12 @@ int run(int argc, char **argv)
         monitor.reset();
         recalibrated = static_cast<int>(k);
         records[k].recalibrated = true;
+        axisError = std::acos(std::min(1.0, vpColVector::dotProd(cMl.getRotationMatrix().getCol(2),
+                                                                 knocked.getRotationMatrix().getCol(2))));
+        axisStd = selfcal.getAxisStdDeviation();
         std::cout << "frame " << k << ": self-calibrated on " << o.calibrationFrames << " frames, axis off the knocked "
-                  << "laser by "
-                  << vpMath::deg(std::acos(std::min(1.0, vpColVector::dotProd(cMl.getRotationMatrix().getCol(2),
-                                                                              knocked.getRotationMatrix().getCol(2)))))
-                  << " deg" << std::endl;
+                  << "laser by " << vpMath::deg(axisError) << " deg (its standard deviation " << vpMath::deg(axisStd)
+                  << " deg)" << std::endl;
       } else {
         std::cout << "frame " << k
                   << ": self-calibration failed: " << vpLaserConicSelfCalibration::getStatusMessage(selfcal.getStatus())
@@ -230,7 +240,7 @@ int run(int argc, char **argv)
   }
   if (o.check) {
     const bool ok = detected >= 0 && detected < static_cast<int>(o.knockFrame + 30) && recalibrated > 0 &&
-                    after < 3.0 * before + 1.0 && during > 3.0 * after;
+                    axisError <= 3.0 * axisStd && during > 2.0 * after;
     std::cout << (ok ? "check passed" : "check FAILED") << std::endl;
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   }
