@@ -91,7 +91,7 @@ struct vpLaserConicFilter::Impl
   vpFrameStatus addFrame(double t, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
   void initialise(State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
   vpFrameStatus gateAndUpdate(double t, State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
-  bool stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S);
+  bool stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S, bool attitudeAgrees);
   bool waitsForAgreeingAttitude(const Entry &before, size_t k, double t, const Eigen::Vector3d &z,
                                 const Eigen::Matrix3d &R);
   //! Propagates (x, P), the state of the k-th sample, to \e t (not after the next sample) with the mean of the
@@ -179,25 +179,25 @@ void vpLaserConicFilter::Impl::initialise(State &x, Covariance &P, const Eigen::
 
 namespace
 {
-//! Squared Mahalanobis distance of the attitude part (roll, pitch) of an innovation y of covariance S.
-double attitudeDistance(const Eigen::Vector3d &y, const Eigen::Matrix3d &S)
+//! Whether the attitude part (roll, pitch) of an innovation y of covariance S passes \e gate, a squared
+//! Mahalanobis distance (false when that distance is not a number).
+bool attitudeWithin(const Eigen::Vector3d &y, const Eigen::Matrix3d &S, double gate)
 {
   const Eigen::Vector2d ya = y.tail<2>();
-  return ya.dot(S.bottomRightCorner<2, 2>().ldlt().solve(ya));
+  return ya.dot(S.bottomRightCorner<2, 2>().ldlt().solve(ya)) <= gate;
 }
 } // namespace
 
 /*!
-  A rejected frame is a ground-step candidate when its attitude agrees with the prediction, its altitude
-  is off by a jump (not by a tail of the noise) and that jump agrees with the previous candidate's (the
-  ground moved, the vehicle did not jump).
+  A rejected frame is a ground-step candidate when its attitude agrees with the prediction (\e attitudeAgrees),
+  its altitude is off by a jump (not by a tail of the noise) and that jump agrees with the previous
+  candidate's (the ground moved, the vehicle did not jump).
 */
-bool vpLaserConicFilter::Impl::stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S)
+bool vpLaserConicFilter::Impl::stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S, bool attitudeAgrees)
 {
-  const double attitude = attitudeDistance(y, S);
   // A step is a jump no noise explains: at least minStepHeight, and twice the gate's distance in altitude.
   const bool large = std::abs(y(0)) >= minStepHeight && y(0) * y(0) >= 4.0 * gate * S(0, 0);
-  if (!(attitude <= attitudeGate) || !large) {
+  if (!attitudeAgrees || !large) {
     stepCandidates = 0;
     return false;
   }
@@ -222,7 +222,8 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::gateAndUpdate(double
     frameUsed(t, false);
     return FRAME_ACCEPTED;
   }
-  if (stepCandidate(y, S)) {
+  const bool attitudeAgrees = attitudeWithin(y, S, attitudeGate);
+  if (stepCandidate(y, S, attitudeAgrees)) {
     // Re-initialise the altitude: forget what it was (and its correlations), then update normally,
     // so that the altitude takes this frame's value and the attitude still gains from it.
     x(H) = z(0);
@@ -237,8 +238,7 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::gateAndUpdate(double
   }
   // A frame whose attitude disagrees with the gyros' is more likely biased (a ring across a box's edge) than
   // the prediction wrong: such frames declare a divergence only after kTiltedRejections times as many.
-  if (attitudeDistance(y, S) > attitudeGate ? ++tiltedInRow >= kTiltedRejections * maxRejections
-                                            : ++rejectedInRow >= maxRejections)
+  if (attitudeAgrees ? ++rejectedInRow >= maxRejections : ++tiltedInRow >= kTiltedRejections * maxRejections)
     diverged = true;
   return FRAME_REJECTED;
 }
@@ -264,7 +264,7 @@ bool vpLaserConicFilter::Impl::waitsForAgreeingAttitude(const Entry &before, siz
   Eigen::Vector3d y;
   Eigen::Matrix3d S;
   lastMahalanobis = innovation(x, P, z, R, y, S);
-  if (attitudeDistance(y, S) <= attitudeGate)
+  if (attitudeWithin(y, S, attitudeGate))
     return false;
   ++tiltedInRow;
   lastFrameTime = t;
