@@ -285,7 +285,7 @@ bool runServoTutorial(int seed, const std::string &outputDir, bool display)
   // rotation error of a few tenths of a degree (for the gravity method, mostly the 0.16 deg tilt noise
   // of each IMU); seen from the target, 0.3 deg moves the camera by 0.75 m x 0.005 rad ~ 4 mm. The loop
   // (gain 1.5 x 0.04 s per iteration) averages about 15 estimates, so the steady-state RMS is 1-5 mm
-  // and 0.1-0.4 deg over seeds 1-12; 8 mm and 0.8 deg leave a margin over that, far below the
+  // and 0.1-0.4 deg over seeds 1-30; 8 mm and 0.8 deg leave a margin over that, far below the
   // 30 cm / 50 deg of the start.
   const size_t tail = 50;
   const double boundMm = 8.0, boundDeg = 0.8;

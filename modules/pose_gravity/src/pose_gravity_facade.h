@@ -46,6 +46,15 @@ void collectFirst(const std::vector<vpPoint> &points, size_t count, std::vector<
 
 //! Largest absolute coordinate of the object points (the scale of kDuplicateTolerance).
 double objectScale(const std::vector<vpPoint> &points, unsigned int count);
+
+/*!
+  True when exchanging the camera and object gravity \e gCam, \e gObj (unit vectors) changes the problem by
+  more than their noise: they differ by more than 3 times the root sum of squares of their standard deviations
+  and by at least 1 degree, what IMUs give the vertical to when none was stated (the default 0). An upright
+  camera facing an upright target has them equal: their exchange is then no mistake that points could show.
+*/
+bool exchangeChangesTheProblem(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, double gCamStdDev,
+                               double gObjStdDev);
 } // namespace vsp::pose_gravity_facade
 
 #endif

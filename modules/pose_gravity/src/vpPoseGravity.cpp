@@ -335,6 +335,7 @@ bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMa
                         {gObj, gCam, GRAVITY_MISTAKE_SWAPPED, STATUS_GRAVITY_SWAPPED}};
     double bestError = std::numeric_limits<double>::infinity();
     const bool fitted = m_status == STATUS_OK;
+    const bool distinctVectors = exchangeChangesTheProblem(gCam, gObj, m_gCamStdDev, m_gObjStdDev);
     const bool vertical = m_status == STATUS_NO_SOLUTION && onOneVerticalLine(X, gObj);
     for (const auto &alternative : alternatives) {
       const vpPoseGravityStatus status = solveClosedForm(method == P3P, m_pairRule, alternative.gCam, alternative.gObj,
@@ -345,8 +346,10 @@ bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMa
       // points must not lie on one vertical line (no solution with the given vectors, but a pose with
       // any other). Least squares keeps the bound alone: the relative rule called 7 of 300 wrong IMU
       // rotations an exchange (1 with the bound).
+      // Nor are vectors equal within their noise called exchanged (an upright camera facing an upright target):
+      // three points then fit either by chance.
       const bool withinNoise = reversedError <= 2.0 * noise || (method == P3P && 4.0 * reversedError <= error);
-      if (alternative.mistake == GRAVITY_MISTAKE_SWAPPED && (!withinNoise || vertical))
+      if (alternative.mistake == GRAVITY_MISTAKE_SWAPPED && (!withinNoise || vertical || !distinctVectors))
         continue;
       if (status == STATUS_OK && (!fitted || 2.0 * reversedError < error) && reversedError < bestError) {
         bestError = reversedError;

@@ -296,7 +296,8 @@ bool vpPoseGravity::computeRansac(vpHomogeneousMatrix &cMo)
   }
   // The exchange is not told apart from the stated vectors when it tilts them by less than their noise.
   const double tiltNoise = std::max(m_imageStdDev, 3.0 * std::hypot(m_gCamStdDev, m_gObjStdDev));
-  if (exchangeExplainsMore(gCam, gObj, x, X, inliers, best, rule, tiltNoise)) {
+  if (exchangeChangesTheProblem(gCam, gObj, m_gCamStdDev, m_gObjStdDev) &&
+      exchangeExplainsMore(gCam, gObj, x, X, inliers, best, rule, tiltNoise)) {
     m_mistake = GRAVITY_MISTAKE_SWAPPED;
     m_status = STATUS_GRAVITY_SWAPPED;
     return false;

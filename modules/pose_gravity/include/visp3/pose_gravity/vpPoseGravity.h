@@ -195,8 +195,10 @@ public:
     given one is not, or leaves more error than the noise explains (3 times the root sum of squares
     of setImageStdDev() and the two gravity standard deviations) and more than twice the reversed
     one's, the status is STATUS_GRAVITY_SIGN_REVERSED and no pose is returned (with 3 points the two
-    redundant equations alone cannot always reject a wrong sign). Setting the sensors' standard
-    deviations before computePose() thus makes the test fit their noise.
+    redundant equations alone cannot always reject a wrong sign). The same holds for the two vectors
+    exchanged (STATUS_GRAVITY_SWAPPED), unless they are equal within their noise (see
+    getSuspectedMistake()). Setting the sensors' standard deviations before computePose() thus makes the
+    test fit their noise.
     \param method : P3P, LEAST_SQUARES or RANSAC.
     \param cMo : receives the pose on success.
     \exception vpPoseGravityException on missing gravity, too few points for the method (3),
@@ -333,7 +335,9 @@ public:
     vectors explain more of the points than chance explains), GRAVITY_MISTAKE_SWAPPED. Limits: P3P
     keeps about 1 % of exchanged-vector scenes, where the stated vectors fit the three points within
     3 times the image noise as the exchanged ones do (one frame cannot tell them); RANSAC accepts an
-    exchange that tilts the pose by less than about a degree. GRAVITY_MISTAKE_NONE after a success or
+    exchange that tilts the pose by less than about a degree. Two vectors equal within their noise (3 times
+    the root sum of squares of the gravity standard deviations, at least 1 degree: an upright camera facing
+    an upright target) are never called exchanged, by any method. GRAVITY_MISTAKE_NONE after a success or
     when no alternative fits. A wrong or
     missing IMU-to-sensor rotation is not among the alternatives (the class only sees the rotated
     vectors): STATUS_INCONSISTENT_GRAVITY, or a consensus under no alternative, points to it.
