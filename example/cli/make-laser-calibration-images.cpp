@@ -162,14 +162,15 @@ int render(const Options &options)
 int run(int argc, char **argv)
 {
   Options options;
-  vpCommandLine cli("--output DIR [--seed N] [--laser-light MODE] | --output DIR --check laser.yaml [--max-apex-mm MM] "
+  vpCommandLine cli("--output DIR [--seed N] [--laser-light additive|reflectance] | --output DIR --check laser.yaml "
+                    "[--max-apex-mm MM] "
                     "[--max-axis-deg DEG] [--max-angle-deg DEG]",
                     "Renders chessboard views of a camera/laser rig for vsp-laser-calibrate, or checks a calibration "
                     "against the rendering's laser.");
   cli.addString("--output", options.output, "DIR", "folder of camera.xml, laser_true.yaml and images/");
   cli.addUnsigned("--seed", options.seed, "N", "sensor noise seed (default 3)");
   cli.addChoice("--laser-light", options.laserLight, {"additive", "reflectance"}, "MODE",
-                "laser light added whatever the surface (default) or scaled by its reflectance");
+                "'additive': the laser light added whatever the surface (default), 'reflectance': scaled by it");
   cli.addString("--check", options.check, "FILE", "laser calibration to compare with DIR/laser_true.yaml");
   cli.addDouble("--max-apex-mm", options.maxApexMm, "MM", "largest apex error (default 1)", vpCommandLine::POSITIVE);
   cli.addDouble("--max-axis-deg", options.maxAxisDeg, "DEG", "largest axis error (default 0.1)",
