@@ -153,7 +153,7 @@ bool exchangeChangesTheProblem(const Eigen::Vector3d &gCam, const Eigen::Vector3
   // At 0.16 degree of tilt noise on each IMU (0.002 per component), not stated, the two vectors of an upright
   // camera facing an upright target differ by 0.23 degree RMS, 0.6 degree once in a thousand; three points
   // fitted the exchange better by chance in 1.5 % of such scenes (PoseGravityMistakes.ASharedVerticalIsNever
-  // CalledSwapped).
+  // CalledMistaken).
   constexpr double kOneDegree = M_PI / 180.0;
   return (gCam - gObj).norm() > std::max(kOneDegree, 3.0 * std::hypot(gCamStdDev, gObjStdDev));
 }
