@@ -38,9 +38,12 @@ namespace
 // The simulated camera of the sequence (see make-gravity-sequence.cpp), used only to draw overlays.
 const vpCameraParameters kCamera(800.0, 800.0, 320.0, 240.0);
 const unsigned int kWidth = 640, kHeight = 480;
-// RANSAC inlier threshold in normalized coordinates: 2.5e-3 is 2 px at f = 800 px, four times the
-// 0.5 px image noise, far below the displacement of a mismatched point.
-const double kRansacThreshold = 2.5e-3;
+// RANSAC inlier threshold in normalized coordinates: 5e-3 is 4 px at f = 800 px, about 3.5 times what a
+// right point is off by, 0.5 px of image noise and about 1 px from the IMUs' 0.3 deg of tilt across the
+// 0.3 m target at 1 m; far below the displacement of a mismatched point (over 10 px). (Four times the
+// image noise alone, 2 px, kept 4-6 of the 7-8 right points on 13 % of the frames and found no consensus
+// on one frame of 2400 over 40 regenerated sequences; 4 px keeps them all but on one frame.)
+const double kRansacThreshold = 5e-3;
 // Image noise of the sequence in normalized coordinates: 0.5 px at f = 800 px.
 const double kImageSigma = 0.5 / 800.0;
 
@@ -145,7 +148,8 @@ std::vector<vpAccuracyBound> gravityBounds()
   // (about 0.6 deg of relative tilt) give, at 0.8-1.2 m, errors of a few millimetres and about
   // 0.6 deg (measured medians: 2-3 mm, 0.6 deg). Medians ignore the frames with a mismatched point,
   // which the non-robust methods cannot handle (that is what the comparison shows); RANSAC must
-  // handle them, so its bound is on the worst frame (measured: 14 mm, 1.8 deg).
+  // handle them, so its bound is on the worst frame (measured: 12 mm, 1.4 deg; over 40 regenerated
+  // sequences, vsp-make-gravity-sequence --seed 1-40, 11.7 mm, 1.85 deg).
   const std::string noise = "measured median 2-3 mm / 0.6 deg from the image and IMU noise";
   return {
       {"P3P", "translation", "median", 10.0, noise},
@@ -154,8 +158,8 @@ std::vector<vpAccuracyBound> gravityBounds()
       {"P3P+refinePose", "rotation", "median", 1.2, noise},
       {"LEAST_SQUARES", "translation", "median", 10.0, noise},
       {"LEAST_SQUARES", "rotation", "median", 1.2, noise},
-      {"RANSAC", "translation", "max", 30.0, "worst frame: mismatched points must be rejected (measured 14 mm)"},
-      {"RANSAC", "rotation", "max", 3.0, "worst frame: mismatched points must be rejected (measured 1.8 deg)"},
+      {"RANSAC", "translation", "max", 30.0, "worst frame: mismatched points must be rejected (measured 12 mm)"},
+      {"RANSAC", "rotation", "max", 3.0, "worst frame: mismatched points must be rejected (measured 1.4 deg)"},
   };
 }
 
