@@ -12,7 +12,7 @@
   vsp-laser-altimeter --camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt
                       (--images DIR | --list images.txt) --output results.csv
                       [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]
-                      [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
+                      [--max-altitude-dilution K] [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
                       [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]
                       [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]
                       [--truth groundtruth.csv] [--max-altitude-error MM]
@@ -61,6 +61,7 @@ struct Options
   std::string camera, cameraName = "Camera", laser, imagesDir, listFile, output, overlays, truth;
   std::string methodName = "GP3", detectorName = "ridge", instructions = "best";
   double threshold = 2.0;
+  double maxAltitudeDilution = 5.0;
   unsigned int seed = 0;
   // Detector settings (defaults of vpLaserConicDetector).
   double minContrast = 10.0, noiseFactor = 5.0, minSegment = 50.0, track = 0.0, maxAltitudeError = 0.0;
@@ -82,17 +83,18 @@ vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
 //! Declares the options of the program; \e options receives their values.
 vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
 {
-  vpCommandLine cli(
-      "--camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt\n"
-      "          (--images DIR | --list images.txt) --output results.csv\n"
-      "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
-      "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
-      "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
-      "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
-      "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
-      "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
-      "           [--covariance-inflation K]]",
-      "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
+  vpCommandLine cli("--camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt\n"
+                    "          (--images DIR | --list images.txt) --output results.csv\n"
+                    "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
+                    "          [--max-altitude-dilution K] [--detector ridge|hsv] [--min-contrast GREY] "
+                    "[--noise-factor K] [--max-stripe-width PX]\n"
+                    "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
+                    "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
+                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error "
+                    "MM]\n"
+                    "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
+                    "           [--covariance-inflation K]]",
+                    "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
   cli.addString("--camera-name", options.cameraName, "NAME", "camera name in that file (default Camera)");
@@ -112,6 +114,10 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
   cli.addDouble("--threshold", options.threshold, "PX", "RANSAC inlier threshold in pixels (default 2)",
                 vpCommandLine::POSITIVE);
   cli.addUnsigned("--seed", options.seed, "N", "RANSAC seed (default 0)");
+  cli.addDouble("--max-altitude-dilution", options.maxAltitudeDilution, "K",
+                "refuse (weak_trace) a trace that fixes the altitude over K times less than the whole ring would "
+                "(vpLaserConicPose::setMaxAltitudeDilution(); default 5, 0 disables)",
+                vpCommandLine::NON_NEGATIVE);
   cli.addChoice("--detector", options.detectorName, {"ridge", "hsv"}, "METHOD",
                 "trace detector: ridge of R - max(G, B) with a threshold from the image's noise (default), or the "
                 "historical fixed HSV thresholds");
@@ -337,7 +343,8 @@ FrameResult processImage(const std::string &image, const Options &options, const
         conic = estimator.getImageConic();
       } else {
         const bool mismatch = estimator.getStatus() == vpLaserConicPose::STATUS_CALIBRATION_MISMATCH;
-        result.status = mismatch ? "calibration_mismatch" : "no_plane";
+        const bool weak = estimator.getStatus() == vpLaserConicPose::STATUS_WEAK_TRACE;
+        result.status = mismatch ? "calibration_mismatch" : weak ? "weak_trace" : "no_plane";
         result.mistake = estimator.getSuspectedMistake();
         std::cerr << image << ": no plane (" << estimator.getFailureReason() << ")" << std::endl;
       }
@@ -465,6 +472,7 @@ int run(int argc, char **argv)
     estimator.setCameraParameters(cam);
     estimator.setLaser(openingAngle, cMl);
     estimator.setRansacThreshold(options.threshold);
+    estimator.setMaxAltitudeDilution(options.maxAltitudeDilution);
     estimator.setRansacSeed(options.seed);
   } catch (const vpException &e) {
     std::cerr << argv[0] << ": " << options.camera << " / " << options.laser << ": " << e.getStringMessage()

@@ -334,6 +334,62 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
   return 2.0 * M_PI * double(kBins - gap) / kBins;
 }
 
+namespace
+{
+/*!
+  Points evenly spread in azimuth around the whole trace of \e plane (normalized image coordinates): the lines
+  of the cone cut by the plane in front of the camera.
+*/
+PointList wholeTrace(const Eigen::Vector4d &plane, const LaserCone &cone, size_t count)
+{
+  PointList trace;
+  trace.reserve(count);
+  const double s = std::sin(cone.halfAngle), c = std::cos(cone.halfAngle);
+  for (size_t k = 0; k < count; ++k) {
+    const double phi = 2.0 * M_PI * static_cast<double>(k) / static_cast<double>(count);
+    const Eigen::Vector3d ray = cone.cRl * Eigen::Vector3d(s * std::cos(phi), s * std::sin(phi), c);
+    const double along = plane.head<3>().dot(ray);
+    if (along == 0.0)
+      continue;
+    const Eigen::Vector3d X = cone.apex - ((plane.head<3>().dot(cone.apex) + plane(3)) / along) * ray;
+    if (X.z() > 0.0) // one line of the cone a step in azimuth: either nappe, as the image conic holds both
+      trace.emplace_back(X.x() / X.z(), X.y() / X.z());
+  }
+  return trace;
+}
+
+//! Variance of the altitude of \e plane fitted to \e trace by the constrained fit, at unit residual scale.
+double altitudeVariance(const PointList &trace, const LaserCone &cone, double focal, const Eigen::Vector4d &plane)
+{
+  return constrainedCovariance(trace, cone, focal, plane, static_cast<double>(trace.size()))(0, 0);
+}
+
+/*!
+  How many times the altitude's standard deviation from \e trace exceeds that from as many points spread over
+  the whole trace of the same plane, at the same noise: the trace's geometry alone (a short arc, a piece of
+  curve), whatever the noise and the number of points. At most kDilutionPoints points of each are used (the
+  ratio does not depend on their number).
+*/
+double altitudeDilution(const PointList &trace, const LaserCone &cone, double focal, const Result &res)
+{
+  constexpr size_t kDilutionPoints = 48;
+  const size_t n = trace.size(), step = (n + kDilutionPoints - 1) / kDilutionPoints;
+  PointList sample;
+  sample.reserve(n / step + 1);
+  for (size_t i = 0; i < n; i += step)
+    sample.push_back(trace[i]);
+  const PointList whole = wholeTrace(res.plane, cone, sample.size());
+  // Most of the plane's trace behind the camera: no ring to compare with (the plane's own checks refuse it).
+  if (whole.size() < sample.size() / 2)
+    return 0.0;
+  const double actual = altitudeVariance(sample, cone, focal, res.plane),
+               ideal = altitudeVariance(whole, cone, focal, res.plane);
+  if (!(ideal > 0.0) || !std::isfinite(ideal))
+    return 0.0; // no reference
+  return std::sqrt(actual / ideal * static_cast<double>(sample.size()) / static_cast<double>(whole.size()));
+}
+} // namespace
+
 Outcome fit(const PointList &points, const std::vector<int> &inliers, const LaserCone &cone,
             const Eigen::Vector4d &startPlane, const Settings &s, Result &res)
 {
@@ -393,6 +449,11 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   res.plane = useConstrained ? constrainedPlane : freePlane;
   res.conic = useConstrained ? constrainedConic : freeConic;
 
+  if (s.maxAltitudeDilution > 0.0) {
+    res.altitudeDilution = altitudeDilution(trace, cone, s.focal, res);
+    if (!(res.altitudeDilution <= s.maxAltitudeDilution))
+      return Outcome::WEAK_TRACE;
+  }
   if (s.covariance) {
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     if (useConstrained) {

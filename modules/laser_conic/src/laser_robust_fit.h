@@ -40,24 +40,27 @@ struct Settings
   double minCoverage = 0.0; //!< smallest accepted arc coverage of the trace (rad, 0 disables the test)
   bool adaptive = true;     //!< false: keep the RANSAC inliers and a plain least-squares final fit
   bool covariance = false;  //!< compute the covariances
+  //! Largest dilution of the altitude (see altitudeDilution in the .cpp; 0 disables the test)
+  double maxAltitudeDilution = 0.0;
   FinalFit finalFit = FinalFit::FREE;
 };
 
 //! Outcome of fit().
-enum class Outcome { OK, SHORT_ARC, NOT_AN_ELLIPSE, NO_PLANE };
+enum class Outcome { OK, SHORT_ARC, NOT_AN_ELLIPSE, NO_PLANE, WEAK_TRACE };
 
 //! Result of fit().
 struct Result
 {
   Eigen::Vector4d plane = Eigen::Vector4d::Zero();
-  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();      //!< image conic of the final plane or free fit
-  std::vector<int> inliers;                             //!< the points of the trace
-  double sigma = 0.0;                                   //!< residual scale (pixels, MAD) of the free fit on the trace
-  double rmsConstrained = 0.0;                          //!< RMS residual (pixels) of the constrained fit on the trace
-  double rmsFree = 0.0;                                 //!< RMS residual (pixels) of the free fit on the trace
-  double coverage = 0.0;                                //!< angular coverage of the trace around the ellipse (rad)
-  bool constrainedChosen = false;                       //!< the final plane is the constrained fit
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero(); //!< of (altitude, roll, pitch)
+  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero(); //!< image conic of the final plane or free fit
+  std::vector<int> inliers;                        //!< the points of the trace
+  double sigma = 0.0;                              //!< residual scale (pixels, MAD) of the free fit on the trace
+  double rmsConstrained = 0.0;                     //!< RMS residual (pixels) of the constrained fit on the trace
+  double rmsFree = 0.0;                            //!< RMS residual (pixels) of the free fit on the trace
+  double coverage = 0.0;                           //!< angular coverage of the trace around the ellipse (rad)
+  double altitudeDilution = 0.0;  //!< of the final fit, when the test ran (see Settings::maxAltitudeDilution)
+  bool constrainedChosen = false; //!< the final plane is the constrained fit
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();      //!< of (altitude, roll, pitch)
   Eigen::Matrix4d planeCovariance = Eigen::Matrix4d::Zero(); //!< of (a, b, c, d)
 };
 

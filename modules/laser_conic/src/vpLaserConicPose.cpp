@@ -108,9 +108,10 @@ vpLaserConicPose::vpLaserConicPose()
   : m_cam(), m_hasCam(false), m_hasLaser(false), m_openingAngle(0.0), m_cMl(), m_threshold(2.0), m_maxTrials(1000),
     m_probability(0.99), m_seed(0), m_localOptimisation(true), m_altitude(0.0), m_roll(0.0), m_pitch(0.0), m_inliers(),
     m_trials(0), m_conic(3, 3, 0.0), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
-    m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_finalFit(FINAL_FIT_DEFAULT), m_computeCovariance(false),
-    m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0), m_sigma(0.0), m_coverage(0.0),
-    m_constrainedChosen(false), m_points(), m_calibrationCheck(true), m_mistake(MISTAKE_UNKNOWN)
+    m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_maxAltitudeDilution(5.0), m_finalFit(FINAL_FIT_DEFAULT),
+    m_computeCovariance(false), m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0),
+    m_sigma(0.0), m_coverage(0.0), m_constrainedChosen(false), m_points(), m_calibrationCheck(true),
+    m_mistake(MISTAKE_UNKNOWN)
 {
 }
 
@@ -157,6 +158,9 @@ std::string vpLaserConicPose::getStatusMessage(vpLaserConicStatus status)
     return "the calibration does not explain the trace: the plane it constrains misses the points far beyond their "
            "noise (usual causes: the half opening angle given for the full one, lMc given for cMl, u and v swapped, "
            "intrinsics of another camera or resolution)";
+  case STATUS_WEAK_TRACE:
+    return "the trace found fixes the plane far less than the whole ring would: a short arc whose conic follows "
+           "the noise, or a piece of a curve of the scene taken for the trace";
   }
   return "unknown status";
 }
@@ -362,6 +366,7 @@ vsp::laser_robust_fit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicM
   settings.adaptive = m_scaleAdaptive && method != PLANE_PAIR;
   settings.minCoverage = method == PLANE_PAIR ? 0.0 : m_minCoverage;
   settings.covariance = m_computeCovariance;
+  settings.maxAltitudeDilution = m_maxAltitudeDilution;
   vpLaserConicFinalFit fit = m_finalFit;
   if (fit == FINAL_FIT_DEFAULT)
     fit = (method == PP3 || method == GP3) ? FINAL_FIT_SELECT : FINAL_FIT_FREE;
@@ -517,6 +522,13 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     std::ostringstream msg;
     msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
     return failOrMismatch(STATUS_SHORT_ARC, msg.str(), points, method);
+  }
+  case vsp::laser_robust_fit::Outcome::WEAK_TRACE: {
+    std::ostringstream msg;
+    msg << " (" << result.inliers.size() << " points, read over " << vpMath::deg(result.coverage)
+        << " deg: the altitude " << result.altitudeDilution << " times as uncertain as from the whole ring, "
+        << m_maxAltitudeDilution << " allowed; setMaxAltitudeDilution())";
+    return failOrMismatch(STATUS_WEAK_TRACE, msg.str(), points, method);
   }
   case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE:
     return fail(STATUS_NOT_AN_ELLIPSE);

@@ -20,6 +20,13 @@ void vpLaserConicPose::setArcCoverageThreshold(double radians)
   m_minCoverage = radians;
 }
 
+void vpLaserConicPose::setMaxAltitudeDilution(double factor)
+{
+  require(std::isfinite(factor) && !(factor < 0.0),
+          "vpLaserConicPose: the largest altitude dilution must be finite and >= 0");
+  m_maxAltitudeDilution = factor;
+}
+
 void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
 {
   requireUsableCamera(cam, "vpLaserConicPose");

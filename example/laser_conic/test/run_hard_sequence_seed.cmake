@@ -1,0 +1,26 @@
+# ViSP sensor-aided pose estimation. Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+#
+# Renders the hard sequence with another seed than the shipped one (make-laser-sequence --hard --seed SEED, JPEG
+# quality 60, harder than the shipped 80) into WORK and estimates it with vsp-laser-altimeter (GP3) against its
+# ground truth: no frame may give a plane over MAX_ERROR mm off (vsp-laser-altimeter --max-altitude-error), and
+# the output must say FOUND/57 images with a plane. Seed 1 holds a faint ring whose first pass keeps a short arc of
+# its top and a colourful floor whose ring is missed for a curve of the tiles: both gave planes 1-1.75 m off with
+# status ok before vpLaserConicPose refused traces that fix the altitude over 5 times less than the whole ring.
+#   cmake -DMAKE=<make-laser-sequence> -DALTIMETER=<vsp-laser-altimeter> -DSEED=1 -DMAX_ERROR=40 -DFOUND=51
+#         -DWORK=<folder> -P run_hard_sequence_seed.cmake
+file(REMOVE_RECURSE "${WORK}")
+execute_process(COMMAND "${MAKE}" --hard --seed "${SEED}" --output "${WORK}" RESULT_VARIABLE status OUTPUT_QUIET
+                ERROR_VARIABLE errors)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "make-laser-sequence --hard --seed ${SEED} failed (${status}): ${errors}")
+endif()
+execute_process(COMMAND "${ALTIMETER}" --camera "${WORK}/camera.xml" --laser "${WORK}/laser.txt" --images "${WORK}/images"
+                        --output "${WORK}/gp3.csv" --truth "${WORK}/groundtruth.csv" --max-altitude-error "${MAX_ERROR}"
+                RESULT_VARIABLE status OUTPUT_VARIABLE output ERROR_VARIABLE errors)
+message("${output}")
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "vsp-laser-altimeter on the hard sequence of seed ${SEED} failed (${status}): ${errors}")
+endif()
+if(NOT output MATCHES "GP3: ${FOUND}/57 images with a plane")
+  message(FATAL_ERROR "expected GP3 planes on ${FOUND} of the 57 images")
+endif()
