@@ -162,9 +162,9 @@ int render(const Options &options)
 int run(int argc, char **argv)
 {
   Options options;
-  vpCommandLine cli("--output DIR [--seed N] [--laser-light additive|reflectance] | --output DIR --check laser.yaml "
-                    "[--max-apex-mm MM] "
-                    "[--max-axis-deg DEG] [--max-angle-deg DEG]",
+  vpCommandLine cli("--output DIR [--seed N] [--laser-light additive|reflectance]\n"
+                    "       | --output DIR --check laser.yaml [--max-apex-mm MM] [--max-axis-deg DEG] [--max-angle-deg "
+                    "DEG]",
                     "Renders chessboard views of a camera/laser rig for vsp-laser-calibrate, or checks a calibration "
                     "against the rendering's laser.");
   cli.addString("--output", options.output, "DIR", "folder of camera.xml, laser_true.yaml and images/");

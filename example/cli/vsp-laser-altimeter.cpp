@@ -12,7 +12,8 @@
   vsp-laser-altimeter --camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt
                       (--images DIR | --list images.txt) --output results.csv
                       [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]
-                      [--max-altitude-dilution K] [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
+                      [--max-altitude-dilution K]
+                      [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
                       [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]
                       [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]
                       [--truth groundtruth.csv] [--max-altitude-error MM]
@@ -83,18 +84,18 @@ vpLaserConicPose::vpLaserConicMethod methodId(const std::string &name)
 //! Declares the options of the program; \e options receives their values.
 vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
 {
-  vpCommandLine cli("--camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt\n"
-                    "          (--images DIR | --list images.txt) --output results.csv\n"
-                    "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
-                    "          [--max-altitude-dilution K] [--detector ridge|hsv] [--min-contrast GREY] "
-                    "[--noise-factor K] [--max-stripe-width PX]\n"
-                    "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
-                    "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
-                    "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error "
-                    "MM]\n"
-                    "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
-                    "           [--covariance-inflation K]]",
-                    "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
+  vpCommandLine cli(
+      "--camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt\n"
+      "          (--images DIR | --list images.txt) --output results.csv\n"
+      "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
+      "          [--max-altitude-dilution K]\n"
+      "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
+      "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
+      "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
+      "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
+      "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
+      "           [--covariance-inflation K]]",
+      "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
   cli.addString("--camera-name", options.cameraName, "NAME", "camera name in that file (default Camera)");

@@ -8,9 +8,10 @@
   monitor (vpLaserConicDriftMonitor) raises "calibration drift suspected", the laser is self-calibrated
   (vpLaserConicSelfCalibration) on the next 60 frames with the previous calibration's apex held,
   handed to the estimator, and the errors come back down. Every alarm is followed so: a false alarm of the
-  monitor before the knock recalibrates the laser as it is, and the knock is still caught after it. Writes two PNG plots (altitude errors, drift
-  statistic) and a CSV of the frames; --write-sequence also writes the inputs of
-  vsp-laser-calibrate --from-sequence (camera, previous calibration, points of the frames after the knock).
+  monitor before the knock recalibrates the laser as it is, and the knock is still caught after it. Writes
+  two PNG plots (altitude errors, drift statistic) and a CSV of the frames; --write-sequence also writes the
+  inputs of vsp-laser-calibrate --from-sequence (camera, previous calibration, points of the frames after the
+  knock).
 
   \verbatim
   laser-drift-demo [--output DIR] [--frames N] [--knock-frame K] [--knock-deg D] [--seed N] [--write-sequence DIR]

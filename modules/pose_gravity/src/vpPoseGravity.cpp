@@ -338,18 +338,21 @@ bool vpPoseGravity::finishClosedForm(vpPoseGravityMethod method, vpHomogeneousMa
     const bool distinctVectors = exchangeChangesTheProblem(gCam, gObj, m_gCamStdDev, m_gObjStdDev);
     const bool vertical = m_status == STATUS_NO_SOLUTION && onOneVerticalLine(X, gObj);
     for (const auto &alternative : alternatives) {
+      const bool exchange = alternative.mistake == GRAVITY_MISTAKE_SWAPPED;
+      // The exchange is not even solved when the points lie on one vertical line (no solution with the
+      // given vectors, but a pose with any other) or the vectors are equal within their noise (an upright
+      // camera facing an upright target: three points then fit either by chance).
+      if (exchange && (vertical || !distinctVectors))
+        continue;
       const vpPoseGravityStatus status = solveClosedForm(method == P3P, m_pairRule, alternative.gCam, alternative.gObj,
                                                          x, X, m_consistencyThreshold, reversed, reversedError);
       // The exchange must also fit within twice the noise (a wrong IMU rotation leaves some tilt that
       // the exchanged vectors may absorb a little better) or, for P3P, leave a quarter of the error at
-      // most (its third point amplifies the noise: a right exchange left 6.2 sigma against 33), and the
-      // points must not lie on one vertical line (no solution with the given vectors, but a pose with
-      // any other). Least squares keeps the bound alone: the relative rule called 7 of 300 wrong IMU
-      // rotations an exchange (1 with the bound).
-      // Nor are vectors equal within their noise called exchanged (an upright camera facing an upright target):
-      // three points then fit either by chance.
+      // most (its third point amplifies the noise: a right exchange left 6.2 sigma against 33). Least
+      // squares keeps the bound alone: the relative rule called 7 of 300 wrong IMU rotations an exchange
+      // (1 with the bound).
       const bool withinNoise = reversedError <= 2.0 * noise || (method == P3P && 4.0 * reversedError <= error);
-      if (alternative.mistake == GRAVITY_MISTAKE_SWAPPED && (!withinNoise || vertical || !distinctVectors))
+      if (exchange && !withinNoise)
         continue;
       if (status == STATUS_OK && (!fitted || 2.0 * reversedError < error) && reversedError < bestError) {
         bestError = reversedError;
