@@ -6,13 +6,33 @@
 # the output must say FOUND/57 images with a plane. Seed 1 holds a faint ring whose first pass keeps a short arc of
 # its top and a colourful floor whose ring is missed for a curve of the tiles: both gave planes 1-1.75 m off with
 # status ok before vpLaserConicPose refused traces that fix the altitude over 5 times less than the whole ring.
-#   cmake -DMAKE=<make-laser-sequence> -DALTIMETER=<vsp-laser-altimeter> -DSEED=1 -DMAX_ERROR=40 -DFOUND=51
-#         -DWORK=<folder> -P run_hard_sequence_seed.cmake
+# With FRAMES (a list of frame numbers) and MIN_COVERAGE, the default detector must also find at least that share
+# of the ring at 3 sigma on each of those frames (conditions.csv, detector_coverage_3sigma).
+#   cmake -DMAKE=<make-laser-sequence> -DALTIMETER=<vsp-laser-altimeter> -DSEED=1 -DMAX_ERROR=40 -DFOUND=53
+#         [-DFRAMES="33;56" -DMIN_COVERAGE=0.95] -DWORK=<folder> -P run_hard_sequence_seed.cmake
 file(REMOVE_RECURSE "${WORK}")
 execute_process(COMMAND "${MAKE}" --hard --seed "${SEED}" --output "${WORK}" RESULT_VARIABLE status OUTPUT_QUIET
                 ERROR_VARIABLE errors)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "make-laser-sequence --hard --seed ${SEED} failed (${status}): ${errors}")
+endif()
+if(DEFINED FRAMES)
+  file(STRINGS "${WORK}/conditions.csv" rows)
+  foreach(frame IN LISTS FRAMES)
+    set(coverage "")
+    foreach(row IN LISTS rows)
+      string(REPLACE "," ";" fields "${row}")
+      list(GET fields 0 number)
+      if(number STREQUAL "${frame}")
+        list(GET fields 2 condition)
+        list(GET fields 6 coverage)
+      endif()
+    endforeach()
+    message("frame ${frame} (${condition}): ${coverage} of the ring at 3 sigma found")
+    if(coverage STREQUAL "" OR coverage STREQUAL "nan" OR coverage LESS MIN_COVERAGE)
+      message(FATAL_ERROR "frame ${frame}: the detector found ${coverage} of the ring at 3 sigma, under ${MIN_COVERAGE}")
+    endif()
+  endforeach()
 endif()
 execute_process(COMMAND "${ALTIMETER}" --camera "${WORK}/camera.xml" --laser "${WORK}/laser.txt" --images "${WORK}/images"
                         --output "${WORK}/gp3.csv" --truth "${WORK}/groundtruth.csv" --max-altitude-error "${MAX_ERROR}"

@@ -268,6 +268,36 @@ const int kRowsEllipseTrials = 40;
 const int kFullEllipseTrials = 200;
 // Stripe width assumed before any detection has measured one (the rendered and photographed stripes).
 const int kDefaultStripeWidth = 3;
+// The retry when the whole search located no ring (see locateFromShortChains()): chains this many times
+// shorter than the minimum segment length. Through JPEG 60 a ring on a colourful floor is broken at nearly
+// every patch into pieces of 16-45 px (the chroma at half resolution and coarsely quantised takes its red
+// dominance under the threshold there), as a dim ring's near side is where its contrast hovers about the
+// threshold; no chain reached 50 px on 19 of the 33 frames of `make-laser-sequence --hard --seed 1-12` (JPEG
+// 60) where the default detector found under 95 % of the ring.
+const double kShortChainDivisor = 3.0;
+// RANSAC samples of the ellipse through the short chains: the ring is 20-55 % of their points on those
+// colourful floors (clutter of the patches' red edges the rest); 200 samples picked an ellipse through clutter
+// and an arc of the ring on 3 of 8 such frames, 2000 found the ring on each (the retry runs on failed frames
+// only).
+const int kShortChainEllipseTrials = 2000;
+// Where the first search made no ellipse, the retry's ellipse is also taken when it holds this share of the
+// short chains' points and the guided pass finds kMinShortChainCoverage of its samples: a faint ring alone in
+// a dark scene, whose far side the compressed image no longer holds (the pass covers 0.64-0.72 of such an
+// ellipse). Anywhere else it must locate the ring as the rows do (kMinLocatedCoverage): on the frames with red
+// distractors, ellipses along a red cable and an arc of the ring covered 0.53-0.65.
+const double kMinShortChainShare = 0.9;
+// See kMinShortChainShare.
+const double kMinShortChainCoverage = 0.5;
+
+//! The points of \e points at the indices \e indices, in their order.
+std::vector<vpImagePoint> pointsAt(const std::vector<vpImagePoint> &points, const std::vector<int> &indices)
+{
+  std::vector<vpImagePoint> picked;
+  picked.reserve(indices.size());
+  for (int k : indices)
+    picked.push_back(points[static_cast<size_t>(k)]);
+  return picked;
+}
 
 Eigen::Matrix3d toEigen(const vpMatrix &C)
 {
@@ -300,8 +330,10 @@ vsp::laser_detector::RidgeSettings vpLaserConicDetector::ridgeSettings() const
           getInstructionSetUsed()};
 }
 
-std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion)
+std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion,
+                                                                  double &coverage)
 {
+  coverage = 0.0;
   vsp::laser_detector::RidgeReport report;
   vsp::laser_detector::RidgeWorkspace &work = m_work.get();
   const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
@@ -319,24 +351,74 @@ std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<
   if (!m_guided ||
       !vsp::laser_detector::fitTraceEllipse(points, W, H, kMinGuidedPoints, kFullEllipseTrials, C, inliers))
     return points;
-  std::vector<vpImagePoint> anchors;
-  anchors.reserve(inliers.size());
-  for (int k : inliers)
-    anchors.push_back(points[static_cast<size_t>(k)]);
+  std::vector<vpImagePoint> anchors = pointsAt(points, inliers);
   const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin, m_guidedStep);
   vsp::laser_detector::GuidedReport guidedReport;
   const size_t before = points.size();
   vsp::laser_detector::guidedPass(I, guided, C, anchors, inRegion ? &work.searchRegion : nullptr, points, work,
                                   guidedReport);
   m_guidedCount = static_cast<unsigned int>(points.size() - before);
+  coverage = guidedReport.coverage;
   // Over the whole image, a ring found along most of its ellipse: the first pass's points off it (a red
   // cable, a floor's red edges, clutter) are not returned, as when the sample of rows located it.
-  if (!inRegion && guidedReport.coverage >= kMinLocatedCoverage) {
+  if (!inRegion && coverage >= kMinLocatedCoverage) {
     vsp::laser_detector::keepInlierCrossings(before, inliers, work);
     anchors.insert(anchors.end(), points.begin() + static_cast<std::ptrdiff_t>(before), points.end());
     points.swap(anchors);
   }
   return points;
+}
+
+bool vpLaserConicDetector::locateFromShortChains(const vpImage<vpRGBa> &I, double firstCoverage,
+                                                 std::vector<vpImagePoint> &points)
+{
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
+  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
+  vsp::laser_detector::RidgeSettings settings = ridgeSettings();
+  settings.minSegment /= kShortChainDivisor;
+  vsp::laser_detector::RidgeReport report;
+  const std::vector<vpImagePoint> sample =
+      vsp::laser_detector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
+  Eigen::Matrix3d C;
+  std::vector<int> inliers;
+  if (!vsp::laser_detector::fitTraceEllipse(sample, W, H, kMinGuidedPoints, kShortChainEllipseTrials, C, inliers))
+    return false;
+  const std::vector<vpImagePoint> anchors = pointsAt(sample, inliers);
+  vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin, m_guidedStep);
+  guided.stripeWidth = vsp::laser_detector::observedStripeWidth(work, m_stripeWidth);
+  vsp::laser_detector::GuidedReport guidedReport;
+  work.guided.clear();
+  points = anchors;
+  vsp::laser_detector::guidedPass(I, guided, C, anchors, nullptr, points, work, guidedReport);
+  const bool aloneOnItsEllipse = firstCoverage <= 0.0 &&
+                                 static_cast<double>(inliers.size()) >= kMinShortChainShare * sample.size() &&
+                                 guidedReport.coverage >= kMinShortChainCoverage;
+  if (guidedReport.coverage < kMinLocatedCoverage && !aloneOnItsEllipse)
+    return false;
+  vsp::laser_detector::keepInlierCrossings(sample.size(), inliers, work);
+  m_stripeWidth = guided.stripeWidth;
+  m_guidedCount = static_cast<unsigned int>(points.size() - anchors.size());
+  return true;
+}
+
+bool vpLaserConicDetector::retryWithShortChains(const vpImage<vpRGBa> &I, double firstCoverage,
+                                                std::vector<vpImagePoint> &points)
+{
+  // The first search's state (the mask's runs, the crossings a tracking region or a copy starts from) is put
+  // back when the retry locates nothing either.
+  vsp::laser_detector::RidgeWorkspace &work = m_work.get();
+  const std::vector<vsp::laser_detector::Crossing> crossings(work.crossings), guided(work.guided);
+  const std::vector<unsigned char> keep(work.keep);
+  const std::vector<vpLaserConicDetectorRun> runs(m_runs);
+  const unsigned int guidedCount = m_guidedCount;
+  if (locateFromShortChains(I, firstCoverage, points))
+    return true;
+  work.crossings = crossings;
+  work.guided = guided;
+  work.keep = keep;
+  m_runs = runs;
+  m_guidedCount = guidedCount;
+  return false;
 }
 
 bool vpLaserConicDetector::locateFromRows(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points)
@@ -417,8 +499,10 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   }
   m_guidedCount = 0;
   m_work.get().guided.clear();
-  if (I.getSize() == 0)
-    return detectInTwoPasses(I, false);
+  if (I.getSize() == 0) {
+    double coverage = 0.0;
+    return detectInTwoPasses(I, false, coverage);
+  }
   std::vector<vpImagePoint> points;
   if (m_regionIsConic && trackConic(I, points))
     return points;
@@ -427,5 +511,12 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   if (!hasSearchRegion() && m_guided && locateFromRows(I, points))
     return points;
   m_work.get().guided.clear();
-  return detectInTwoPasses(I, hasSearchRegion());
+  double coverage = 0.0;
+  points = detectInTwoPasses(I, hasSearchRegion(), coverage);
+  // A ring whose pieces are all shorter than the minimum segment (through strong JPEG, on a colourful floor or
+  // where a dim stripe hovers about the threshold) is located from shorter chains.
+  std::vector<vpImagePoint> retried;
+  if (!hasSearchRegion() && m_guided && coverage < kMinLocatedCoverage && retryWithShortChains(I, coverage, retried))
+    return retried;
+  return points;
 }

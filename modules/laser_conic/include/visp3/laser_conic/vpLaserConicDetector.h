@@ -81,8 +81,15 @@ struct vpLaserConicDetectorRun
   than 80 % of its profiles (an ellipse through clutter and a piece of the ring, or extrapolated from the
   bright arcs of a fading ring), the whole image is searched as follows and the guided pass follows that
   search's ellipse (sought with more RANSAC samples: such frames hold clutter); when the pass finds the ring
-  along 80 % of that ellipse, the search's points off it are not returned either. A frame of 1600 x 1200
-  pixels costs a third of one cv::cvtColor pass.
+  along 80 % of that ellipse, the search's points off it are not returned either. When that search locates
+  no ring either, it runs once more with chains a third of setMinSegmentLength() long (through strong JPEG
+  compression a ring on a colourful floor, or the near side of a faint one, breaks at every patch into
+  pieces of 16-45 px): the ellipse through them (2000 RANSAC samples: the ring is a fifth to a half of such
+  points) is taken when the guided pass finds the ring along 80 % of it, or, where the search made no
+  ellipse at all, when it holds 90 % of the short chains' points and the pass finds half of it (a faint ring
+  alone in a dark scene, whose far side the image no longer holds); otherwise the search's points are
+  returned as they were. A frame of 1600 x 1200 pixels costs a third of one cv::cvtColor pass; a frame
+  where no ring is located (no laser) costs the three searches, 2-10 times one.
 
   <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
   measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
@@ -412,8 +419,9 @@ private:
 
   //! Rasterises the search region for an image of \e H x \e W pixels into the workspace (once per region and size).
   void rasteriseRegion(int H, int W);
-  //! The first pass (over the search region of points, if any), then the guided pass if enabled.
-  std::vector<vpImagePoint> detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion);
+  //! The first pass (over the search region of points, if any), then the guided pass if enabled; \e coverage:
+  //! the share of the fitted ellipse's samples the guided pass covered (0 without an ellipse).
+  std::vector<vpImagePoint> detectInTwoPasses(const vpImage<vpRGBa> &I, bool inRegion, double &coverage);
   //! The settings of the guided pass with the band half-width \e margin (pixels), the others from this detector's.
   vsp::laser_detector::GuidedSettings guidedSettings(double margin, unsigned int step) const;
   //! The guided pass along the conic search region; false when it found too few points (track lost).
@@ -421,6 +429,12 @@ private:
   //! Over the whole image: the ring located by a sample of rows, then measured by the guided pass along it;
   //! false when the sample makes no ellipse or the pass finds too little of it (then the whole search runs).
   bool locateFromRows(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points);
+  //! Over the whole image, after a search that located no ring (its guided pass covered \e firstCoverage of its
+  //! ellipse): the ellipse through chains shorter than the minimum segment, measured by the guided pass; false
+  //! when it does not locate the ring.
+  bool locateFromShortChains(const vpImage<vpRGBa> &I, double firstCoverage, std::vector<vpImagePoint> &points);
+  //! locateFromShortChains(), the first search's crossings and runs put back when it fails.
+  bool retryWithShortChains(const vpImage<vpRGBa> &I, double firstCoverage, std::vector<vpImagePoint> &points);
   //! The settings of the first pass.
   vsp::laser_detector::RidgeSettings ridgeSettings() const;
 
