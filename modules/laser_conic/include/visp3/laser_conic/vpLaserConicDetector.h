@@ -79,17 +79,20 @@ struct vpLaserConicDetectorRun
   the guided pass's points (clutter and distractors the sample crossed are not). When the rows locate no
   ellipse (a small or partial trace, a hyperbola, a line), or the guided pass ends with a point on fewer
   than 80 % of its profiles (an ellipse through clutter and a piece of the ring, or extrapolated from the
-  bright arcs of a fading ring), the whole image is searched as follows and the guided pass follows that
+  bright arcs of a fading ring), or on fewer than 95 % when the ellipse holds under half the sample's
+  crossings (a red cable, the edges of a colourful floor: the pass finds stripe-like profiles along most
+  curves there), the whole image is searched as follows and the guided pass follows that
   search's ellipse (sought with more RANSAC samples: such frames hold clutter); when the pass finds the ring
-  along 80 % of that ellipse, the search's points off it are not returned either. When that search locates
-  no ring either, it runs once more with chains a third of setMinSegmentLength() long (through strong JPEG
-  compression a ring on a colourful floor, or the near side of a faint one, breaks at every patch into
-  pieces of 16-45 px): the ellipse through them (2000 RANSAC samples: the ring is a fifth to a half of such
-  points) is taken when the guided pass finds the ring along 80 % of it, or, where the search made no
-  ellipse at all, when it holds 90 % of the short chains' points and the pass finds half of it (a faint ring
-  alone in a dark scene, whose far side the image no longer holds); otherwise the search's points are
-  returned as they were. A frame of 1600 x 1200 pixels costs a third of one cv::cvtColor pass; a frame
-  where no ring is located (no laser) costs the three searches, 2-10 times one.
+  along 80 % of that ellipse, the search's points off it are not returned either. When it finds it along
+  less than 95 %, the search runs once more with chains a third of setMinSegmentLength() long (through
+  strong JPEG compression a ring on a colourful floor, or the near side of a faint one, breaks at every
+  patch into pieces of 16-45 px): the ellipse through them (2000 RANSAC samples: the ring is a fifth to a
+  half of such points) is taken when the guided pass finds the ring along 95 % of it and 10 % more of it
+  than along the first search's, or, where that search made no ellipse at all, when it holds 90 % of the
+  short chains' points and the pass finds half of it (a faint ring alone in a dark scene, whose far side
+  the image no longer holds); otherwise the first search's points are returned. A frame of 1600 x 1200
+  pixels costs a third of one cv::cvtColor pass; a frame where no ring is located (no laser) costs the
+  three searches, 2-10 times one.
 
   <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
   measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
@@ -429,9 +432,9 @@ private:
   //! Over the whole image: the ring located by a sample of rows, then measured by the guided pass along it;
   //! false when the sample makes no ellipse or the pass finds too little of it (then the whole search runs).
   bool locateFromRows(const vpImage<vpRGBa> &I, std::vector<vpImagePoint> &points);
-  //! Over the whole image, after a search that located no ring (its guided pass covered \e firstCoverage of its
-  //! ellipse): the ellipse through chains shorter than the minimum segment, measured by the guided pass; false
-  //! when it does not locate the ring.
+  //! Over the whole image, after a search whose location is not trusted (its guided pass covered \e firstCoverage
+  //! of its ellipse, 0 without one): the ellipse through chains shorter than the minimum segment, measured by
+  //! the guided pass; false when it does not locate the ring better.
   bool locateFromShortChains(const vpImage<vpRGBa> &I, double firstCoverage, std::vector<vpImagePoint> &points);
   //! locateFromShortChains(), the first search's crossings and runs put back when it fails.
   bool retryWithShortChains(const vpImage<vpRGBa> &I, double firstCoverage, std::vector<vpImagePoint> &points);
