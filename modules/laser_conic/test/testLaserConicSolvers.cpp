@@ -183,6 +183,9 @@ TEST(LaserConicSolvers, FitConicRejectsDegenerateSets)
   EXPECT_FALSE(fitConic(line, 6, c));
   EXPECT_FALSE(fitConic(line, 5, c));
   EXPECT_FALSE(fitConic(line, 4, c)); // too few
+  // Four collinear points and one off the line: a pencil of line pairs, no single conic.
+  Eigen::Vector2d fourOnALine[5] = {line[0], line[1], line[2], line[3], Eigen::Vector2d(0.7, 0.4)};
+  EXPECT_FALSE(fitConic(fourOnALine, 5, c));
   const Eigen::Vector2d same[5] = {Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(0.3, 0.2),
                                    Eigen::Vector2d(0.3, 0.2), Eigen::Vector2d(0.3, 0.2)};
   EXPECT_FALSE(fitConic(same, 5, c));

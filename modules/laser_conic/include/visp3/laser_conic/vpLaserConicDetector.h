@@ -92,7 +92,7 @@ struct vpLaserConicDetectorRun
   short chains' points and the pass finds half of it (a faint ring alone in a dark scene, whose far side
   the image no longer holds); otherwise the first search's points are returned. A frame of 1600 x 1200
   pixels costs a third of one cv::cvtColor pass; a frame where no ring is located (no laser) costs the
-  three searches, 2-10 times one.
+  three searches, 2-6 times one.
 
   <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
   measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
