@@ -18,6 +18,7 @@
 #include <visp3/laser_conic/vpLaserConicSelfCalibration.h>
 #include <visp3/laser_conic/vpLaserConicSimulator.h>
 
+#include "laser_sim_test_utils.h"
 #include "laser_test_utils.h"
 
 using laser_test::Scene;
@@ -856,7 +857,8 @@ TEST(LaserConicPose, StatusAndRansacAccessors)
 }
 
 // draw(): the overlay lands in the pixels: inliers green, outliers red, the conic yellow through the
-// trace points, for colour and gray images; written to laser-conic-overlay.png for a look.
+// trace points, for colour and gray images; written to $VSP_LASER_DUMP_DIR/laser-conic-overlay.png for a look
+// (nothing is written without it: the test may run from any folder, the source tree's too).
 TEST(LaserConicPose, DrawOverlay)
 {
   std::mt19937 rng(31);
@@ -902,7 +904,7 @@ TEST(LaserConicPose, DrawOverlay)
     }
   }
   EXPECT_EQ(outliers, 18);
-  vpImageIo::write(I, "laser-conic-overlay.png");
+  laser_sim_test::dumpIfRequested("laser-conic-overlay", I);
 
   vpImage<unsigned char> G(s.rig.height, s.rig.width, 0);
   vpLaserConicPose::draw(G, estimator, points, 1);
