@@ -280,8 +280,8 @@ const int kRowsEllipseTrials = 40;
 const int kFullEllipseTrials = 200;
 // Stripe width assumed before any detection has measured one (the rendered and photographed stripes).
 const int kDefaultStripeWidth = 3;
-// The retry when the whole search located no ring (see locateFromShortChains()): chains this many times
-// shorter than the minimum segment length. Through JPEG 60 a ring on a colourful floor is broken at nearly
+// The retry when the whole search's location is not trusted (see locateFromShortChains()): chains this many
+// times shorter than the minimum segment length. Through JPEG 60 a ring on a colourful floor is broken at nearly
 // every patch into pieces of 16-45 px (the chroma at half resolution and coarsely quantised takes its red
 // dominance under the threshold there), as a dim ring's near side is where its contrast hovers about the
 // threshold; no chain reached 50 px on 19 of the 33 frames of `make-laser-sequence --hard --seed 1-12` (JPEG
