@@ -12,6 +12,7 @@
 #include "detector/guided_pass.h"
 #include "detector/laser_detector.h"
 #include "detector/search_region.h"
+#include "detector/straight_runs.h"
 #include "laser_value_check.h"
 
 namespace
@@ -392,10 +393,16 @@ bool vpLaserConicDetector::locateFromShortChains(const vpImage<vpRGBa> &I, doubl
   vsp::laser_detector::RidgeReport report;
   const std::vector<vpImagePoint> sample =
       vsp::laser_detector::detectRidge(I, settings, nullptr, nullptr, work, m_runs, report);
+  // The ring's ellipse is sought among the points off long straight runs (a red cable, tape on the floor),
+  // which outnumber the arcs of a broken ring; the points on them are not returned.
+  const std::vector<int> candidates = vsp::laser_detector::offStraightRuns(sample);
   Eigen::Matrix3d C;
   std::vector<int> inliers;
-  if (!vsp::laser_detector::fitTraceEllipse(sample, W, H, kMinGuidedPoints, kShortChainEllipseTrials, C, inliers))
+  if (!vsp::laser_detector::fitTraceEllipse(pointsAt(sample, candidates), W, H, kMinGuidedPoints,
+                                            kShortChainEllipseTrials, C, inliers))
     return false;
+  for (int &k : inliers)
+    k = candidates[static_cast<size_t>(k)];
   const std::vector<vpImagePoint> anchors = pointsAt(sample, inliers);
   vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin, m_guidedStep);
   guided.stripeWidth = vsp::laser_detector::observedStripeWidth(work, m_stripeWidth);

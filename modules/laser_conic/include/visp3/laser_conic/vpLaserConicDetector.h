@@ -87,7 +87,8 @@ struct vpLaserConicDetectorRun
   less than 95 %, the search runs once more with chains a third of setMinSegmentLength() long (through
   strong JPEG compression a ring on a colourful floor, or the near side of a faint one, breaks at every
   patch into pieces of 16-45 px): the ellipse through them (2000 RANSAC samples: the ring is a fifth to a
-  half of such points) is taken when the guided pass finds the ring along 95 % of it and 10 % more of it
+  half of such points), sought without the points on straight runs of 150 px or more (a red cable, tape on
+  the floor: an arc of a ring that fits in the image never is one), is taken when the guided pass finds the ring along 95 % of it and 10 % more of it
   than along the first search's, or, where that search made no ellipse at all, when it holds 90 % of the
   short chains' points and the pass finds half of it (a faint ring alone in a dark scene, whose far side
   the image no longer holds); otherwise the first search's points are returned. A frame of 1600 x 1200

@@ -1,0 +1,141 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// Long straight runs among the ridge points. A ring of radius R pixels stays within a band 2t wide of a line
+// over a chord of 2 sqrt(4 R t) pixels at most: with t = 1.5 px, 64 px for R = 170 px (the rings of the hard
+// sequence), 155 px for R = 1000 px, a ring larger than the images the detector is built for. A run of
+// kMinRunLength pixels is then a red cable, a strip of tape or a straight edge of a red object's stripe-like
+// rim, which outnumbers a ring's first-pass points on frames where the ring is broken into arcs (the hard
+// sequence rendered with other seeds: an ellipse along a cable and two arcs of the ring held 726-792 points,
+// more than the ring's own, and its guided pass covered 0.53-0.64 of it).
+#include "straight_runs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace vsp::laser_detector
+{
+namespace
+{
+// Half width (pixels) of the band around a line whose points belong to it: the first pass's centres are within
+// a few tenths of a pixel of a straight stripe, and a cable imaged through a distorting lens bends by about a
+// pixel over a few hundred.
+const double kTolerance = 1.5;
+// Shortest run (pixels along the line) taken as a straight structure rather than an arc of the ring.
+const double kMinRunLength = 150.0;
+// Longest gap (pixels along the line) within a run: a cable crossing the ring, or occluded for a few pixels,
+// stays one run; two collinear arcs of a ring (its opposite sides never are) would need no such gap.
+const double kMaxGap = 10.0;
+// Points of a run per pixel of its length, at least (the first pass finds about one a pixel along a stripe):
+// a line through scattered clutter is no run.
+const double kMinDensity = 0.5;
+// Runs searched for, at most: a cable curved by the lens's distortion is taken in a few straight pieces.
+const int kMaxRuns = 6;
+// Pairs of points tried for each line (a cable of a quarter of the points is drawn with probability 0.9999).
+const int kLineTrials = 150;
+// Points the lines are scored on (a subsample: a few hundred locate a line as well as all of them).
+const size_t kScoredPoints = 400;
+
+struct Line
+{
+  double nu = 0.0, nv = 0.0, c = 0.0; // nu u + nv v + c = 0, (nu, nv) a unit normal
+  double distance(const vpImagePoint &p) const { return std::fabs(nu * p.get_u() + nv * p.get_v() + c); }
+  double along(const vpImagePoint &p) const { return nu * p.get_v() - nv * p.get_u(); }
+};
+
+bool lineThrough(const vpImagePoint &a, const vpImagePoint &b, Line &line)
+{
+  const double du = b.get_u() - a.get_u(), dv = b.get_v() - a.get_v(), length = std::hypot(du, dv);
+  if (!(length > 2.0 * kTolerance))
+    return false;
+  line.nu = -dv / length;
+  line.nv = du / length;
+  line.c = -(line.nu * a.get_u() + line.nv * a.get_v());
+  return true;
+}
+
+// A small linear congruential sequence: the pairs tried are the same on every run and every platform.
+struct PairSequence
+{
+  std::uint32_t state = 12345u;
+  size_t next(size_t n)
+  {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<size_t>(state >> 8) % n;
+  }
+};
+
+// The line through the most of \e scored (indices into points), or false when no pair spans one.
+bool bestLine(const std::vector<vpImagePoint> &points, const std::vector<int> &scored, Line &best)
+{
+  PairSequence pairs;
+  size_t top = 0;
+  for (int trial = 0; trial < kLineTrials; ++trial) {
+    Line line;
+    const size_t i = pairs.next(scored.size()), j = pairs.next(scored.size());
+    if (i == j || !lineThrough(points[static_cast<size_t>(scored[i])], points[static_cast<size_t>(scored[j])], line))
+      continue;
+    size_t count = 0;
+    for (int k : scored)
+      count += line.distance(points[static_cast<size_t>(k)]) <= kTolerance ? 1 : 0;
+    if (count > top) {
+      top = count;
+      best = line;
+    }
+  }
+  return top > 0;
+}
+
+// The longest stretch of the points of \e remaining within kTolerance of \e line whose gaps are at most
+// kMaxGap, marked in \e onRun when it is a run (long and dense enough); returns whether it was.
+bool markRun(const std::vector<vpImagePoint> &points, const std::vector<int> &remaining, const Line &line,
+             std::vector<unsigned char> &onRun)
+{
+  std::vector<std::pair<double, int> > near;
+  for (int k : remaining)
+    if (line.distance(points[static_cast<size_t>(k)]) <= kTolerance)
+      near.emplace_back(line.along(points[static_cast<size_t>(k)]), k);
+  std::sort(near.begin(), near.end());
+  size_t bestFirst = 0, bestLast = 0, first = 0;
+  for (size_t k = 1; k <= near.size(); ++k)
+    if (k == near.size() || near[k].first - near[k - 1].first > kMaxGap) {
+      if (near[k - 1].first - near[first].first > near[bestLast].first - near[bestFirst].first) {
+        bestFirst = first;
+        bestLast = k - 1;
+      }
+      first = k;
+    }
+  if (near.empty())
+    return false;
+  const double length = near[bestLast].first - near[bestFirst].first;
+  if (length < kMinRunLength || static_cast<double>(bestLast - bestFirst + 1) < kMinDensity * length)
+    return false;
+  for (size_t k = bestFirst; k <= bestLast; ++k)
+    onRun[static_cast<size_t>(near[k].second)] = 1;
+  return true;
+}
+} // namespace
+
+std::vector<int> offStraightRuns(const std::vector<vpImagePoint> &points)
+{
+  std::vector<unsigned char> onRun(points.size(), 0);
+  std::vector<int> remaining(points.size());
+  for (size_t k = 0; k < points.size(); ++k)
+    remaining[k] = static_cast<int>(k);
+  for (int run = 0; run < kMaxRuns && remaining.size() >= 2; ++run) {
+    std::vector<int> scored;
+    const size_t stride = std::max<size_t>(1, remaining.size() / kScoredPoints);
+    for (size_t k = 0; k < remaining.size(); k += stride)
+      scored.push_back(remaining[k]);
+    Line line;
+    if (!bestLine(points, scored, line) || !markRun(points, remaining, line, onRun))
+      break;
+    remaining.erase(std::remove_if(remaining.begin(), remaining.end(),
+                                   [&onRun](int k) { return onRun[static_cast<size_t>(k)] != 0; }),
+                    remaining.end());
+  }
+  return remaining;
+}
+} // namespace vsp::laser_detector
