@@ -25,8 +25,8 @@ namespace
 const double kTolerance = 1.5;
 // Shortest run (pixels along the line) taken as a straight structure rather than an arc of the ring.
 const double kMinRunLength = 150.0;
-// Longest gap (pixels along the line) within a run: a cable crossing the ring, or occluded for a few pixels,
-// stays one run; two collinear arcs of a ring (its opposite sides never are) would need no such gap.
+// Longest gap (pixels along the line) within a run: a cable crossing the ring, or hidden for a few pixels,
+// stays one run, while points of clutter that happen to line up far apart make none.
 const double kMaxGap = 10.0;
 // Points of a run per pixel of its length, at least (the first pass finds about one a pixel along a stripe):
 // a line through scattered clutter is no run.
