@@ -167,7 +167,7 @@ struct vpLaserConicDetectorRun
   which JPEG keeps at half resolution and quantises coarsely: at quality 60 the far side of a ring fading to
   twice the sensor noise is rounded away (the faint frame of `make-laser-sequence --hard --seed N`, seeds
   1-24: 88.7 % of the ring at 3 sigma on average, under 95 % on 18 seeds; at quality 80 99.2 %, every seed
-  98 % or more), and where a dim side is found its centres can be 0.5-0.8 px off along stretches that keep
+  97.9 % or more), and where a dim side is found its centres can be 0.5-0.8 px off along stretches that keep
   one phase to the colour's 16 px blocks (see vpLaserConicPose::setCovarianceInflation()). A red cable that
   runs along the ring for a few tens of pixels merges with it into one wider stripe, and the ring is not
   measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a ridge, and is
