@@ -13,7 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
+
+#include <visp3/robust/vpRansac.h>
 
 namespace vsp::laser_detector
 {
@@ -33,8 +34,11 @@ const double kMaxGap = 10.0;
 const double kMinDensity = 0.5;
 // Runs searched for, at most: a cable curved by the lens's distortion is taken in a few straight pieces.
 const int kMaxRuns = 6;
-// Pairs of points tried for each line (a cable of a quarter of the points is drawn with probability 0.9999).
+// Pairs of points tried for each line, at most (a cable of a quarter of the points is drawn with probability
+// 0.9999), and the confidence at which the trials stop earlier (vpRansacLoop()'s adaptive count: a cable of
+// half the points needs about 30 pairs).
 const int kLineTrials = 150;
+const double kLineConfidence = 0.9999;
 // Points the lines are scored on (a subsample: a few hundred locate a line as well as all of them).
 const size_t kScoredPoints = 400;
 
@@ -56,36 +60,35 @@ bool lineThrough(const vpImagePoint &a, const vpImagePoint &b, Line &line)
   return true;
 }
 
-// A small linear congruential sequence: the pairs tried are the same on every run and every platform.
-struct PairSequence
+// The lines through two of the scored points, for vpRansacLoop(): the residual is the distance to the line.
+struct LineEstimator
 {
-  std::uint32_t state = 12345u;
-  size_t next(size_t n)
+  using Model = Line;
+  static constexpr int kSampleSize = 2;
+  static constexpr int kMaxModels = 1;
+  const std::vector<vpImagePoint> &points;
+  const std::vector<int> &scored; //!< the data: indices into points
+  int size() const { return static_cast<int>(scored.size()); }
+  const vpImagePoint &at(int i) const { return points[static_cast<size_t>(scored[static_cast<size_t>(i)])]; }
+  int solveMinimal(const int *sample, Model *models) const
   {
-    state = state * 1664525u + 1013904223u;
-    return static_cast<size_t>(state >> 8) % n;
+    return lineThrough(at(sample[0]), at(sample[1]), models[0]) ? 1 : 0;
   }
+  double residual(const Model &m, int i) const { return m.distance(at(i)); }
+  bool refine(const std::vector<int> &, Model &) const { return false; } // no local optimisation
 };
 
 // The line through the most of \e scored (indices into points), or false when no pair spans one.
 bool bestLine(const std::vector<vpImagePoint> &points, const std::vector<int> &scored, Line &best)
 {
-  PairSequence pairs;
-  size_t top = 0;
-  for (int trial = 0; trial < kLineTrials; ++trial) {
-    Line line;
-    const size_t i = pairs.next(scored.size()), j = pairs.next(scored.size());
-    if (i == j || !lineThrough(points[static_cast<size_t>(scored[i])], points[static_cast<size_t>(scored[j])], line))
-      continue;
-    size_t count = 0;
-    for (int k : scored)
-      count += line.distance(points[static_cast<size_t>(k)]) <= kTolerance ? 1 : 0;
-    if (count > top) {
-      top = count;
-      best = line;
-    }
-  }
-  return top > 0;
+  vpRansacOptions options;
+  options.threshold = kTolerance;
+  options.probability = kLineConfidence;
+  options.maxTrials = kLineTrials;
+  options.seed = 1; // the same points give the same runs
+  options.localOptimisation = false;
+  vpRansacReport report;
+  return vpRansacLoop(LineEstimator{points, scored}, options, best, report);
 }
 
 // The longest stretch of the points of \e remaining within kTolerance of \e line whose gaps are at most

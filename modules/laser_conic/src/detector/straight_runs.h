@@ -18,8 +18,8 @@ namespace vsp::laser_detector
 {
 /*!
   The indices of \e points (in their order) that do not lie on a long straight run: up to a few runs are
-  found one after the other, each the points within 1.5 px of the line through the most points (RANSAC with
-  a fixed sequence of pairs: the same points give the same runs) along a stretch of that line at least
+  found one after the other, each the points within 1.5 px of the line through the most points (vpRansacLoop()
+  with a fixed seed: the same points give the same runs) along a stretch of that line at least
   150 px long without long gaps (the tolerances and why: straight_runs.cpp). Every index when there is no
   such run.
 */
