@@ -88,10 +88,11 @@ struct vpLaserConicDetectorRun
   strong JPEG compression a ring on a colourful floor, or the near side of a faint one, breaks at every
   patch into pieces of 16-45 px): the ellipse through them (2000 RANSAC samples: the ring is a fifth to a
   half of such points), sought without the points on straight runs of 150 px or more (a red cable, tape on
-  the floor: an arc of a ring that fits in the image never is one), is taken when the guided pass finds the ring along 95 % of it and 10 % more of it
-  than along the first search's, or, where that search made no ellipse at all, when it holds 90 % of the
-  short chains' points and the pass finds half of it (a faint ring alone in a dark scene, whose far side
-  the image no longer holds); otherwise the first search's points are returned. A frame of 1600 x 1200
+  the floor: an arc of a ring that fits in the image never is one), is taken when the guided pass finds the
+  ring along 95 % of it and 10 % more of it than along the first search's, or, where that search made no
+  ellipse at all, when it holds 90 % of the short chains' points and the pass finds half of it (a faint ring
+  alone in a dark scene, whose far side the image no longer holds); otherwise the first search's points are
+  returned. A frame of 1600 x 1200
   pixels costs a third of one cv::cvtColor pass; a frame where no ring is located (no laser) costs the
   three searches, 2-6 times one.
 
@@ -167,11 +168,11 @@ struct vpLaserConicDetectorRun
   which JPEG keeps at half resolution and quantises coarsely: at quality 60 the far side of a ring fading to
   twice the sensor noise is rounded away (the faint frame of `make-laser-sequence --hard --seed N`, seeds
   1-24: 88.7 % of the ring at 3 sigma on average, under 95 % on 18 seeds; at quality 80 99.2 %, every seed
-  97.9 % or more), and where a dim side is found its centres can be 0.5-0.8 px off along stretches that keep
-  one phase to the colour's 16 px blocks (see vpLaserConicPose::setCovarianceInflation()). A red cable that
-  runs along the ring for a few tens of pixels merges with it into one wider stripe, and the ring is not
-  measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a ridge, and is
-  found there in pieces.
+  97.9 % or more), and where a dim side is found its centres can be a fraction of a pixel off along
+  stretches that keep one phase to the colour's 16 px blocks (see vpLaserConicPose::setCovarianceInflation()).
+  A red cable that runs along the ring for a few tens of pixels merges with it into one wider stripe, and the
+  ring is not measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a
+  ridge, and is found there in pieces.
 
   <b>HSV method (DETECTION_HSV, the historical detector).</b> The image is converted to HSV with OpenCV
   and a pixel belongs to the trace when its hue is in the red band (setHueRange()) and its saturation and

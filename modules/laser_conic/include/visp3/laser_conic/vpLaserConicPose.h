@@ -227,14 +227,13 @@ public:
     instead of 3 (median 72-86 instead of 2.37); recommendedDetectorInflation(), 32, brings it to 2.7-3.3
     (median 2.3-2.7). A frame
     whose ring the detector's sample of rows cannot locate goes through its full search, whose centres are
-    mostly not regularised: its covariance is then about 4 times too large (conservative). On the hard
-    sequence rendered with seeds 1-24 (`make-laser-sequence --hard --seed N`, GP3 with the rendering laser
-    pose, 32): median NEES 3.4 over its frames at JPEG quality 80, 3.9 at 60, but on its rings that fade
-    along their length 4.5 at 80 and 10.3 at 60 (76 of 192 frames more than 3 standard deviations off in
-    altitude, roll or pitch): through strong JPEG the dim side's centres are off by 0.5-0.8 px along
-    stretches of the ring that keep one phase to the 16 px blocks of the compressed colour, an error
-    hundreds of points share and the residuals do not show. Keep 1 for independent point noise (e.g. points
-    from another front-end).
+    mostly not regularised: its covariance is then about 4 times too large (conservative). It is too small,
+    on the other hand, for rings that fade along their length through strong JPEG compression (the hard
+    sequence rendered with other seeds, `make-laser-sequence --hard --seed N`, at its default quality 60):
+    there the dim side's centres are off by a fraction of a pixel along whole stretches of the ring that keep
+    one phase to the 16 px blocks of the compressed colour, an error hundreds of points share and the
+    residuals do not show (seed 4, frame 51: the whole ring found, the plane 65 mm off, `vsp-laser-altimeter
+    --truth`). Keep 1 for independent point noise (e.g. points from another front-end).
     \exception vpLaserConicException::badValueError unless finite and > 0.
   */
   void setCovarianceInflation(double varianceScale);
