@@ -20,6 +20,8 @@
 
 namespace vsp::laser_detector
 {
+class FoundCells;
+
 //! One sample of the predicted conic: a profile along row (alongRow) or column `line` around `pos`.
 struct GuidedSample
 {
@@ -177,6 +179,74 @@ void prefetchProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, int halfWi
 */
 ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
                              const ProfileWindow &window, ProfileBuffers &buffers);
+//! What a sample of the guided pass's walk holds: no point (MISSED), a point it measured (FOUND), or a point
+//! already known near it (KNOWN: the first pass's, an earlier walk's).
+enum SampleState { MISSED, FOUND, KNOWN };
+
+//! The pieces of curve along the samples (in their order): runs of found samples, broken by more than
+//! RidgeTuning::guidedMaxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
+//! kept when it touches a known point (a sample near a point already found) or has RidgeTuning::guidedMinRun
+//! points; \e keep marks the found samples of the kept pieces.
+void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
+                          std::vector<unsigned char> &keep);
+
+//! The window within RidgeTuning::guidedMaxJump (across the curve) of sample s's predicted crossing, moved by
+//! \e offset across the curve (as ProfileResult::offset); the stripe's peak must lie inside it
+//! (ProfileWindow::peakWithin).
+ProfileWindow predictionWindow(const GuidedSample &s, double offset = 0.0);
+
+//! \e window read on the brightness (ProfileWindow::brightness).
+ProfileWindow onBrightness(ProfileWindow window);
+
+//! The profile of sample s within \e window (its red score, or with ProfileWindow::brightness its brightness):
+//! three lines averaged then, where they find nothing, nine (as a faint stripe's); \e accept(result) decides
+//! which found point counts as found, before the nine lines are tried.
+template <class Accept>
+ProfileResult threeThenNineLines(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
+                                 ProfileWindow window, ProfileBuffers &buffers, Accept accept)
+{
+  ProfileResult r;
+  for (int lines : {RidgeTuning::guidedLines, RidgeTuning::guidedFaintLines}) {
+    window.lines = lines;
+    r = measureProfile(I, s, settings, window, buffers);
+    r.found = r.found && accept(r);
+    if (r.found)
+      break;
+  }
+  return r;
+}
+
+//! Takes a point found within RidgeTuning::guidedMaxJump of \e offset (across the curve, as ProfileResult::offset)
+//! whose response reaches \e strength times its threshold (the threshold itself at 0).
+struct NearOffset
+{
+  double offset, strength;
+  bool operator()(const ProfileResult &r) const
+  {
+    return std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump && r.response >= strength * r.threshold;
+  }
+};
+
+//! A sample whose red profile found nothing where the prediction crosses a colour edge, measured on its
+//! brightness within \e window (predictionWindow(); see RidgeTuning::guidedColourEdge), three lines averaged
+//! then, where they find nothing, nine; kept when the response of the profile that found it reaches
+//! RidgeTuning::guidedBrightnessStrength times its threshold (nine lines are not tried after three that found
+//! a weaker one: that took noise on the faint rings, second-pass RMS 0.30 px on one seed).
+ProfileResult brightnessAtPrediction(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
+                                     const ProfileWindow &window, ProfileBuffers &buffers);
+
+//! The element of rank size / 2 of \e values (0 when empty), as std::nth_element would place it.
+double median(std::vector<double> &values);
+
+/*!
+  The gaps of the final conic C that no point covers (the points: \e anchors, the first pass's, and \e guided,
+  the pass's own, marked in \e found), measured once the walks along the refitted conics are done: the short
+  ones again within a pixel of the ring (measureAlongTheFinalCurve()), then the long ones followed on the
+  brightness from their dim ends (walkIntoLongGaps()). The points kept are appended to \e guided.
+*/
+void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                               const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
+                               std::vector<Crossing> &guided);
 } // namespace vsp::laser_detector
 
 #endif

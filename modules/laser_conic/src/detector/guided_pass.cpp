@@ -4,8 +4,7 @@
  */
 // The conic-guided pass of the ridge detector: walks the predicted conic, measures a profile where no point
 // is known yet, keeps the pieces of curve that continue it, refits and walks again until no point is added;
-// then refits the final conic on the points near it, drops those off it and measures the samples of its short
-// gaps that no point covers within a pixel of it.
+// then refits the final conic on the points near it and drops those off it (its gaps: guided_gaps.cpp).
 #include "guided_detail.h"
 #include "guided_found_cells.h"
 
@@ -17,28 +16,6 @@
 
 namespace vsp::laser_detector
 {
-namespace
-{
-// Whether (u, v) lies in the spans of \e limit (everywhere when null).
-bool inLimit(const RegionSpans *limit, int H, double u, double v)
-{
-  if (limit == nullptr)
-    return true;
-  const int i = static_cast<int>(std::lround(v)), j = static_cast<int>(std::lround(u));
-  if (i < 0 || i >= H)
-    return false;
-  for (const Span *s = limit->begin(i); s != limit->end(i); ++s)
-    if (j >= s->first && j <= s->second)
-      return true;
-  return false;
-}
-
-enum SampleState { MISSED, FOUND, KNOWN };
-
-// The pieces of curve along the samples (in their order): runs of found samples, broken by more than
-// RidgeTuning::guidedMaxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
-// kept when it touches a known point (a sample near a point already found) or has RidgeTuning::guidedMinRun
-// points; \e keep marks the found samples of the kept pieces.
 void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
                           std::vector<unsigned char> &keep)
 {
@@ -82,6 +59,54 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   close();
 }
 
+ProfileWindow predictionWindow(const GuidedSample &s, double offset)
+{
+  ProfileWindow window;
+  window.centre = offset / s.toNormal;
+  window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
+  window.peakWithin = true;
+  return window;
+}
+
+ProfileWindow onBrightness(ProfileWindow window)
+{
+  window.brightness = true;
+  return window;
+}
+
+ProfileResult brightnessAtPrediction(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
+                                     const ProfileWindow &window, ProfileBuffers &buffers)
+{
+  ProfileResult r =
+      threeThenNineLines(I, s, settings, onBrightness(window), buffers, [](const ProfileResult &) { return true; });
+  r.found = r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold;
+  return r;
+}
+
+double median(std::vector<double> &values)
+{
+  if (values.empty())
+    return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+namespace
+{
+// Whether (u, v) lies in the spans of \e limit (everywhere when null).
+bool inLimit(const RegionSpans *limit, int H, double u, double v)
+{
+  if (limit == nullptr)
+    return true;
+  const int i = static_cast<int>(std::lround(v)), j = static_cast<int>(std::lround(u));
+  if (i < 0 || i >= H)
+    return false;
+  for (const Span *s = limit->begin(i); s != limit->end(i); ++s)
+    if (j >= s->first && j <= s->second)
+      return true;
+  return false;
+}
+
 // The window of a follow: RidgeTuning::guidedFollowMargin around the offset of the neighbouring sample's point,
 // its threshold from \e lineNoise (the noise of one image line); the sample's line alone along a strong stripe,
 // RidgeTuning::guidedLines otherwise.
@@ -96,54 +121,6 @@ ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNois
   return follow;
 }
 
-// The window within RidgeTuning::guidedMaxJump (across the curve) of sample s's predicted crossing, moved by
-// \e offset across the curve (as ProfileResult::offset); the stripe's peak must lie inside it
-// (ProfileWindow::peakWithin).
-ProfileWindow predictionWindow(const GuidedSample &s, double offset = 0.0)
-{
-  ProfileWindow window;
-  window.centre = offset / s.toNormal;
-  window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
-  window.peakWithin = true;
-  return window;
-}
-
-// The profile of sample s within \e window (its red score, or with ProfileWindow::brightness its brightness):
-// three lines averaged then, where they find nothing, nine (as a faint stripe's); \e accept(result) decides
-// which found point counts as found, before the nine lines are tried.
-template <class Accept>
-ProfileResult threeThenNineLines(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
-                                 ProfileWindow window, ProfileBuffers &buffers, Accept accept)
-{
-  ProfileResult r;
-  for (int lines : {RidgeTuning::guidedLines, RidgeTuning::guidedFaintLines}) {
-    window.lines = lines;
-    r = measureProfile(I, s, settings, window, buffers);
-    r.found = r.found && accept(r);
-    if (r.found)
-      break;
-  }
-  return r;
-}
-
-// Takes a point found within RidgeTuning::guidedMaxJump of \e offset (across the curve, as ProfileResult::offset)
-// whose response reaches \e strength times its threshold (the threshold itself at 0).
-struct NearOffset
-{
-  double offset, strength;
-  bool operator()(const ProfileResult &r) const
-  {
-    return std::fabs(r.offset - offset) <= RidgeTuning::guidedMaxJump && r.response >= strength * r.threshold;
-  }
-};
-
-// \e window read on the brightness (ProfileWindow::brightness).
-ProfileWindow onBrightness(ProfileWindow window)
-{
-  window.brightness = true;
-  return window;
-}
-
 // A follow whose red score found nothing, measured on the brightness (ProfileWindow::brightness) within the
 // follow's window around \e offset, three lines averaged then, where they find nothing, nine (as the red
 // profile of a faint stripe): its point is kept only within RidgeTuning::guidedMaxJump of that offset, so
@@ -155,20 +132,6 @@ ProfileResult followOnBrightness(const vpImage<vpRGBa> &I, const GuidedSample &s
 {
   return threeThenNineLines(I, s, settings, onBrightness(followWindow(s, offset, -1.0, false, fittedHere)), buffers,
                             NearOffset{offset, 0.0});
-}
-
-// A sample whose red profile found nothing where the prediction crosses a colour edge, measured on its
-// brightness within \e window (predictionWindow(); see RidgeTuning::guidedColourEdge), three lines averaged
-// then, where they find nothing, nine; kept when the response of the profile that found it reaches
-// RidgeTuning::guidedBrightnessStrength times its threshold (nine lines are not tried after three that found
-// a weaker one: that took noise on the faint rings, second-pass RMS 0.30 px on one seed).
-ProfileResult brightnessAtPrediction(const vpImage<vpRGBa> &I, const GuidedSample &s, const GuidedSettings &settings,
-                                     const ProfileWindow &window, ProfileBuffers &buffers)
-{
-  ProfileResult r =
-      threeThenNineLines(I, s, settings, onBrightness(window), buffers, [](const ProfileResult &) { return true; });
-  r.found = r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold;
-  return r;
 }
 
 // The walk follows a stripe forwards only: where it is lost for a few samples (a dim stretch on a dark joint,
@@ -350,96 +313,6 @@ void keepOnTheFinalCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossi
   crossings.resize(kept);
 }
 
-// The offsets across the final conic (as ProfileResult::offset) of the points that cover its samples
-// (\e found: the first pass's and the kept ones; \e covered set there), and in the gaps between them the
-// offsets interpolated from the covered samples on either side (the median of the RidgeTuning::guidedGapEnds
-// nearest on each, along the closed curve): a ring imaged through a distorting lens is not an ellipse, and
-// the ellipse lies up to 3-3.5 px beside it (data/laser_hard). NaN in a gap whose ends lie more than
-// RidgeTuning::guidedGapLength apart: across it the ends say nothing of where the ring lies, which may have
-// left the ellipse (its part on a box beside the floor, an object over it). Empty when no sample is covered.
-std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const FoundCells &found,
-                                std::vector<unsigned char> &covered)
-{
-  const size_t n = samples.size();
-  std::vector<double> offsets(n, std::numeric_limits<double>::quiet_NaN());
-  covered.assign(n, 0);
-  std::vector<size_t> coveredAt;
-  for (size_t i = 0; i < n; ++i)
-    if (found.covers(samples[i], offsets[i])) {
-      covered[i] = 1;
-      coveredAt.push_back(i);
-    }
-  if (coveredAt.empty())
-    return std::vector<double>();
-  const size_t m = coveredAt.size(), ends = std::min<size_t>(RidgeTuning::guidedGapEnds, m);
-  std::vector<double> side;
-  // The median offset of the \e ends covered samples from coveredAt[k] on, backwards or forwards.
-  const auto sideOffset = [&](size_t k, bool backwards) {
-    side.clear();
-    for (size_t j = 0; j < ends; ++j)
-      side.push_back(offsets[coveredAt[backwards ? (k + m - j) % m : (k + j) % m]]);
-    std::nth_element(side.begin(), side.begin() + side.size() / 2, side.end());
-    return side[side.size() / 2];
-  };
-  for (size_t k = 0; k < m; ++k) { // the gap after coveredAt[k]
-    const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], gap = (to + n - from) % n;
-    if (gap <= 1 || vpImagePoint::distance(samplePoint(samples[from], samples[from].pos),
-                                           samplePoint(samples[to], samples[to].pos)) > RidgeTuning::guidedGapLength)
-      continue; // 0: a single covered sample, the gap goes round
-    const double before = sideOffset(k, true), after = sideOffset((k + 1) % m, false);
-    for (size_t j = 1; j < gap; ++j)
-      offsets[(from + j) % n] = before + (after - before) * static_cast<double>(j) / gap;
-  }
-  return offsets;
-}
-
-// The samples of the final conic C (refitOnItsInliers()) that no point covers (\e found: the first pass's and
-// the kept ones), in gaps of at most RidgeTuning::guidedGapLength, are measured once more within
-// RidgeTuning::guidedMaxJump of where the ring lies across C (ringOffsets(): C itself on an undistorted image,
-// to a few tenths of a pixel): where the walk lost the stripe (a dim stretch whose profiles over the whole
-// margin found a stronger neighbour, a joint's edge beside it) or followed a neighbouring structure (a red
-// cable's flank, a joint's edge: the points it took there dropped as off the final curve). On the red score
-// (the stripe the walk left), then on the brightness (brightnessAtPrediction(), whose bump the stripe keeps
-// beside a cable), each at its own strength (see RidgeTuning::guidedRemeasureStrength). The points found are
-// kept as the walk's are, in pieces that continue a covered sample or are long enough
-// (keepContinuingPieces()): a few isolated responses within a pixel of C are not the stripe (on an object
-// that hid the ring in data/laser_hard frame 36, before the gaps were limited). Appends them to \e kept.
-void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
-                               const FoundCells &found, ProfileBuffers &buffers, std::vector<Crossing> &kept)
-{
-  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
-  std::vector<GuidedSample> samples;
-  std::vector<unsigned char> covered;
-  if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
-    return;
-  const std::vector<double> offsets = ringOffsets(samples, found, covered);
-  std::vector<SampleState> state(offsets.size());
-  std::vector<ProfileResult> results(offsets.size());
-  for (size_t i = 0; i < offsets.size(); ++i) {
-    state[i] = covered[i] ? KNOWN : MISSED;
-    if (covered[i] || std::isnan(offsets[i]))
-      continue;
-    const GuidedSample &s = samples[i];
-    const double at = offsets[i];
-    ProfileResult r = threeThenNineLines(I, s, settings, predictionWindow(s, at), buffers,
-                                         NearOffset{at, RidgeTuning::guidedRemeasureRedStrength});
-    if (!r.found) {
-      r = brightnessAtPrediction(I, s, settings, predictionWindow(s, at), buffers);
-      r.found = r.found && NearOffset{at, RidgeTuning::guidedRemeasureStrength}(r);
-    }
-    if (r.found) {
-      state[i] = FOUND;
-      results[i] = r;
-      results[i].offset -= at;
-    }
-  }
-  std::vector<unsigned char> keep;
-  keepContinuingPieces(state, results, keep);
-  for (size_t i = 0; i < keep.size(); ++i)
-    if (keep[i])
-      kept.push_back(results[i].crossing);
-}
-
 // Appends the points of the kept samples to \e fitPoints and their crossings to \e guided, and marks them in
 // \e found when \e lookedUp; returns how many. The points found are looked up by the next walk only, and there is
 // none when no sample was missed (the measurement along the final curve marks them again): a tracked frame's
@@ -459,13 +332,6 @@ int addKeptPoints(const std::vector<unsigned char> &keep, const std::vector<Prof
   return added;
 }
 
-double median(std::vector<double> &values)
-{
-  if (values.empty())
-    return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
 } // namespace
 
 void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &prediction,
@@ -522,14 +388,8 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   if (fittedHere && !work.guided.empty())
     refitOnItsInliers(fitPoints, C);
   keepOnTheFinalCurve(C, work.guided);
-  if (fittedHere) {
-    found.clear();
-    for (const vpImagePoint &p : anchors)
-      found.mark(p);
-    for (const Crossing &c : work.guided)
-      found.mark(c.point);
-    measureAlongTheFinalCurve(I, settings, C, found, buffers, work.guided);
-  }
+  if (fittedHere)
+    measureTheFinalCurvesGaps(I, settings, C, anchors, found, buffers, work.guided);
   smoothAlongCurve(C, work.guided);
   // The regularisation moves a point along the curve's normal: beside the image's border it can move it out
   // of the image (found by the detector's fuzz target: -0.58 px), where no pixel measured it.

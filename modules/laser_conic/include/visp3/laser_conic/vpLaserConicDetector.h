@@ -147,7 +147,11 @@ struct vpLaserConicDetectorRun
   1 px of where the points on either side put the ring (the ellipse itself on an undistorted image), on the red
   score (three lines then nine, kept at 4 times the noise), then on the brightness (6 times), its points
   kept in pieces as the walk's are (not in tracking, whose prediction is the previous frame's and whose
-  points are dropped at the ellipse refitted on them all). Last, the centres of this pass are regularised
+  points are dropped at the ellipse refitted on them all). A longer gap is followed from each of its ends
+  where the stripe has faded (under 4 times its threshold on the red score: a bright stripe that stops was
+  hidden, not faded) on the brightness, nine lines within 1 px of the last point's offset, each point kept
+  at 4 times the noise, until 4 profiles in a row find none: through strong JPEG a faint ring's dim side
+  keeps its brightness but hardly its colour (not in tracking either). Last, the centres of this pass are regularised
   along the curve: each one's offset to the final
   ellipse is replaced by a straight-line fit of the offsets within 80 px of arc on either side (offsets more than
   1 px from a first fit left out), since one profile's centre is noisy (sensor noise, JPEG's 8 x 8 blocks)
@@ -166,9 +170,9 @@ struct vpLaserConicDetectorRun
 
   <em>Limits, measured on rendered frames against their ground truth.</em> The red dominance is all colour,
   which JPEG keeps at half resolution and quantises coarsely: at quality 60 the far side of a ring fading to
-  twice the sensor noise is rounded away (the faint frame of `make-laser-sequence --hard --seed N`, seeds
-  1-24: 88.7 % of the ring at 3 sigma on average, under 95 % on 18 seeds; at quality 80 99.2 %, every seed
-  97.9 % or more), and where a dim side is found its centres can be a fraction of a pixel off along
+  twice the sensor noise is rounded away, and its brightness alone locates it in part (the faint frame of
+  `make-laser-sequence --hard --seed N`, seeds 1-24: 89.8 % of the ring at 3 sigma on average, under 95 % on
+  16 seeds; at quality 80 99.2 %, every seed 97.9 % or more), and where a dim side is found its centres can be a fraction of a pixel off along
   stretches that keep one phase to the colour's 16 px blocks (see vpLaserConicPose::setCovarianceInflation()).
   A red cable that runs along the ring for a few tens of pixels merges with it into one wider stripe, and the
   ring is not measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a

@@ -1,0 +1,207 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// The gaps of the guided pass's final conic that no point covers: the short ones measured again within a
+// pixel of where the ring lies, the long ones followed from their dim ends on the brightness.
+#include "guided_detail.h"
+#include "guided_found_cells.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vsp::laser_detector
+{
+namespace
+{
+// The offsets across the final conic (as ProfileResult::offset) of the points that cover its samples
+// (\e found: the first pass's and the kept ones; \e covered set there), and in the gaps between them the
+// offsets interpolated from the covered samples on either side (the median of the RidgeTuning::guidedGapEnds
+// nearest on each, along the closed curve): a ring imaged through a distorting lens is not an ellipse, and
+// the ellipse lies up to 3-3.5 px beside it (data/laser_hard). NaN in a gap whose ends lie more than
+// RidgeTuning::guidedGapLength apart: across it the ends say nothing of where the ring lies, which may have
+// left the ellipse (its part on a box beside the floor, an object over it). Empty when no sample is covered.
+std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const FoundCells &found,
+                                std::vector<unsigned char> &covered)
+{
+  const size_t n = samples.size();
+  std::vector<double> offsets(n, std::numeric_limits<double>::quiet_NaN());
+  covered.assign(n, 0);
+  std::vector<size_t> coveredAt;
+  for (size_t i = 0; i < n; ++i)
+    if (found.covers(samples[i], offsets[i])) {
+      covered[i] = 1;
+      coveredAt.push_back(i);
+    }
+  if (coveredAt.empty())
+    return std::vector<double>();
+  const size_t m = coveredAt.size(), ends = std::min<size_t>(RidgeTuning::guidedGapEnds, m);
+  std::vector<double> side;
+  // The median offset of the \e ends covered samples from coveredAt[k] on, backwards or forwards.
+  const auto sideOffset = [&](size_t k, bool backwards) {
+    side.clear();
+    for (size_t j = 0; j < ends; ++j)
+      side.push_back(offsets[coveredAt[backwards ? (k + m - j) % m : (k + j) % m]]);
+    std::nth_element(side.begin(), side.begin() + side.size() / 2, side.end());
+    return side[side.size() / 2];
+  };
+  for (size_t k = 0; k < m; ++k) { // the gap after coveredAt[k]
+    const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], gap = (to + n - from) % n;
+    if (gap <= 1 || vpImagePoint::distance(samplePoint(samples[from], samples[from].pos),
+                                           samplePoint(samples[to], samples[to].pos)) > RidgeTuning::guidedGapLength)
+      continue; // 0: a single covered sample, the gap goes round
+    const double before = sideOffset(k, true), after = sideOffset((k + 1) % m, false);
+    for (size_t j = 1; j < gap; ++j)
+      offsets[(from + j) % n] = before + (after - before) * static_cast<double>(j) / gap;
+  }
+  return offsets;
+}
+
+// The samples of the final conic C (refitOnItsInliers()) that no point covers (\e found: the first pass's and
+// the kept ones), in gaps of at most RidgeTuning::guidedGapLength, are measured once more within
+// RidgeTuning::guidedMaxJump of where the ring lies across C (ringOffsets(): C itself on an undistorted image,
+// to a few tenths of a pixel): where the walk lost the stripe (a dim stretch whose profiles over the whole
+// margin found a stronger neighbour, a joint's edge beside it) or followed a neighbouring structure (a red
+// cable's flank, a joint's edge: the points it took there dropped as off the final curve). On the red score
+// (the stripe the walk left), then on the brightness (brightnessAtPrediction(), whose bump the stripe keeps
+// beside a cable), each at its own strength (see RidgeTuning::guidedRemeasureStrength). The points found are
+// kept as the walk's are, in pieces that continue a covered sample or are long enough
+// (keepContinuingPieces()): a few isolated responses within a pixel of C are not the stripe (on an object
+// that hid the ring in data/laser_hard frame 36, before the gaps were limited). Appends them to \e kept.
+void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                               const FoundCells &found, ProfileBuffers &buffers, std::vector<Crossing> &kept)
+{
+  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
+  std::vector<GuidedSample> samples;
+  std::vector<unsigned char> covered;
+  if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
+    return;
+  const std::vector<double> offsets = ringOffsets(samples, found, covered);
+  std::vector<SampleState> state(offsets.size());
+  std::vector<ProfileResult> results(offsets.size());
+  for (size_t i = 0; i < offsets.size(); ++i) {
+    state[i] = covered[i] ? KNOWN : MISSED;
+    if (covered[i] || std::isnan(offsets[i]))
+      continue;
+    const GuidedSample &s = samples[i];
+    const double at = offsets[i];
+    ProfileResult r = threeThenNineLines(I, s, settings, predictionWindow(s, at), buffers,
+                                         NearOffset{at, RidgeTuning::guidedRemeasureRedStrength});
+    if (!r.found) {
+      r = brightnessAtPrediction(I, s, settings, predictionWindow(s, at), buffers);
+      r.found = r.found && NearOffset{at, RidgeTuning::guidedRemeasureStrength}(r);
+    }
+    if (r.found) {
+      state[i] = FOUND;
+      results[i] = r;
+      results[i].offset -= at;
+    }
+  }
+  std::vector<unsigned char> keep;
+  keepContinuingPieces(state, results, keep);
+  for (size_t i = 0; i < keep.size(); ++i)
+    if (keep[i])
+      kept.push_back(results[i].crossing);
+}
+
+// The final conic C's samples in its long gaps (their covered ends more than RidgeTuning::guidedGapLength
+// apart, where ringOffsets() gives no offset) followed from each covered end on the brightness: a fading ring
+// through strong JPEG keeps little of its red dominance, the colour stored at half resolution and rounded
+// away, but its brightness in full (data/laser_hard's faint frame rendered with seeds 1-24 at quality 60:
+// read across the true centre line over 9 lines, the brightness places the stripe within 1.5 px at 97.5 %
+// of its 3 sigma samples, the red dominance at 71 %). The walk starts at the median offset of the end's
+// RidgeTuning::guidedGapEnds covered samples and holds the offset of its last point, as the ring leaves the
+// ellipse (by up to 11 px through the hard sequence's wide lens): each sample's profile of
+// RidgeTuning::guidedFaintLines lines within RidgeTuning::guidedMaxJump of that offset, its point kept at
+// RidgeTuning::guidedBrightnessStrength times the threshold (4 sigma; at 6 the faint frames kept half the
+// gain), until RidgeTuning::guidedMaxMisses samples in a row have none. An end whose stripe is strong on the
+// red score (RidgeTuning::guidedStrongStripe times its threshold) is not followed: a bright stripe that stops
+// was hidden (an object over the ring, the floor's edge), not faded, and the walk took the object's edge
+// (data/laser_hard seed 19 frame 13 at quality 80: attitude 0.23 -> 0.93 degree). Appends the points of the
+// pieces kept as the walk's (keepContinuingPieces()) to \e kept.
+void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                      const FoundCells &found, ProfileBuffers &buffers, std::vector<Crossing> &kept)
+{
+  std::vector<GuidedSample> samples;
+  std::vector<unsigned char> covered;
+  if (!sampleConic(C, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()), settings.margin, settings.step,
+                   samples))
+    return;
+  const std::vector<double> offsets = ringOffsets(samples, found, covered);
+  const size_t n = offsets.size();
+  if (n < 3)
+    return;
+  std::vector<SampleState> state(n, MISSED);
+  std::vector<ProfileResult> results(n);
+  std::vector<unsigned char> walked(n, 0);
+  for (size_t i = 0; i < n; ++i)
+    state[i] = covered[i] ? KNOWN : MISSED;
+  // Consecutive samples farther apart: the conic left the image between them.
+  const double maxStep = 3.0 * std::max(1, settings.step);
+  std::vector<double> end;
+  const auto walk = [&](size_t from, size_t direction) { // direction: 1 or n - 1 (backwards)
+    end.clear();
+    for (size_t k = from; end.size() < static_cast<size_t>(RidgeTuning::guidedGapEnds) && covered[k];
+         k = (k + n - direction) % n)
+      end.push_back(offsets[k]);
+    const double start = median(end);
+    const ProfileResult last =
+        measureProfile(I, samples[from], settings, predictionWindow(samples[from], start), buffers);
+    if (last.found && last.response >= RidgeTuning::guidedStrongStripe * last.threshold)
+      return;
+    double at = start;
+    int misses = 0;
+    for (size_t k = (from + direction) % n, prev = from; !covered[k] && !walked[k]; prev = k, k = (k + direction) % n) {
+      if (vpImagePoint::distance(samplePoint(samples[prev], samples[prev].pos),
+                                 samplePoint(samples[k], samples[k].pos)) > maxStep)
+        break;
+      walked[k] = 1;
+      const GuidedSample &s = samples[k];
+      ProfileWindow window = onBrightness(predictionWindow(s, at));
+      window.lines = RidgeTuning::guidedFaintLines;
+      ProfileResult r = measureProfile(I, s, settings, window, buffers);
+      if (r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold) {
+        at = r.offset;
+        state[k] = FOUND;
+        results[k] = r;
+        results[k].offset -= start; // from the covered end's, as keepContinuingPieces() reads it
+        misses = 0;
+      } else if (++misses > RidgeTuning::guidedMaxMisses)
+        break;
+    }
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (!covered[i])
+      continue;
+    if (!covered[(i + 1) % n] && std::isnan(offsets[(i + 1) % n]))
+      walk(i, 1);
+    if (!covered[(i + n - 1) % n] && std::isnan(offsets[(i + n - 1) % n]))
+      walk(i, n - 1);
+  }
+  std::vector<unsigned char> keep;
+  keepContinuingPieces(state, results, keep);
+  for (size_t i = 0; i < n; ++i)
+    if (keep[i])
+      kept.push_back(results[i].crossing);
+}
+} // namespace
+
+void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                               const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
+                               std::vector<Crossing> &guided)
+{
+  // The samples the points cover: the first pass's and the pass's own, those measured at the final conic too.
+  const auto markPoints = [&]() {
+    found.clear();
+    for (const vpImagePoint &p : anchors)
+      found.mark(p);
+    for (const Crossing &c : guided)
+      found.mark(c.point);
+  };
+  markPoints();
+  measureAlongTheFinalCurve(I, settings, C, found, buffers, guided);
+  markPoints();
+  walkIntoLongGaps(I, settings, C, found, buffers, guided);
+}
+} // namespace vsp::laser_detector
