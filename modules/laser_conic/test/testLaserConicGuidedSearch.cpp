@@ -417,6 +417,26 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
   EXPECT_GE(means.coverage3, 0.915);
 }
 
+TEST(LaserConicGuidedSearch, AFaintRingIsNotLocatedOnAFlatEllipseThroughAShortArc)
+{
+  // The faint ring through the wide lens and JPEG 60: the compression breaks its near side into pieces shorter
+  // than the minimum segment but for 25 degrees of arc at its top, nearly straight, to which the first search
+  // fitted an ellipse with semi-axes of 70 and 0.8 px; running along that arc on both of its long sides, it
+  // was covered at 0.97 by the arc's own points and trusted, so the retry with shorter chains, which locates
+  // the ring, did not run: 9.5-15.3 % of the ring at 3 sigma on seeds 60, 61, 62 and 65 (161-379 points).
+  // An ellipse flatter than RidgeTuning::traceMinAxisRatio no longer locates a trace: 88.7-93.3 % now
+  // (precision >= 0.991).
+  Settings s = fadingRing(40.0, 4.0);
+  s.jpegQuality = 60;
+  overSeeds(
+      "faint_wide_jpeg60", s, {60u, 61u, 62u, 65u},
+      [](unsigned int, const GuidedQuality &q) {
+        EXPECT_GE(q.coverage3, 0.85);
+        EXPECT_GE(q.precision, 0.98);
+      },
+      Ridges::skip, wideCamera());
+}
+
 TEST(LaserConicGuidedSearch, TheDimSideThroughJpegHoldsItsLineToAFewTenths)
 {
   // What the faint rings above hold where the stripe is 2-3 times the noise, whatever the detector: the red

@@ -44,6 +44,16 @@ struct ConicCoefficients
     v = (b * d - a * e) / det;
     return std::isfinite(u) && std::isfinite(v);
   }
+  // Minor over major axis of the ellipse: the square root of the ratio of the eigenvalues of its quadratic part
+  // (0 when they differ in sign: not an ellipse).
+  double axisRatio() const
+  {
+    const double mean = 0.5 * (a + c), half = std::hypot(0.5 * (a - c), b);
+    const double small = mean - half, large = mean + half;
+    return small * large > 0.0
+               ? std::sqrt(std::min(std::fabs(small), std::fabs(large)) / std::max(std::fabs(small), std::fabs(large)))
+               : 0.0;
+  }
   // The multiples of \e step in [0, n) between which the ellipse's lines lie: rows (v) when !alongU, else
   // columns (u), one step beyond each end (rounding); [0, n) when the extent cannot be computed. A row v
   // crosses the ellipse where (b v + d)^2 - a (c v^2 + 2 e v + f) >= 0, a quadratic in v with a negative
@@ -286,6 +296,8 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   const double pi = 3.14159265358979323846, diagonal = std::hypot(W, H);
   if (!k.centre(uc, vc) || std::hypot(uc - 0.5 * W, vc - 0.5 * H) > 4.0 * diagonal)
     return false; // a huge ellipse: a few straight pieces, not a ring
+  if (k.axisRatio() < RidgeTuning::traceMinAxisRatio)
+    return false; // a short, nearly straight arc: the ellipse hugs it on both of its long sides
   // The arc of about 300 of the inliers, evenly spread along their list (an arc tangent each: all of them cost
   // as much as the rest of the fit).
   sample.clear();

@@ -49,7 +49,8 @@ struct GuidedReport
   else RANSAC over five-point conics (seeded, \e ransacTrials samples, Sampson distance within 2 px);
   refitted on its inliers (returned in \e inliers). False when fewer than
   \e minInliers points agree, their arc around the ellipse is under 60 degrees or the conic is no plausible
-  image of the ring (not an ellipse, or far larger than the image).
+  image of the ring (not an ellipse, far larger than the image, or flatter than
+  RidgeTuning::traceMinAxisRatio).
 */
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, int ransacTrials,
                      Eigen::Matrix3d &C, std::vector<int> &inliers);

@@ -108,7 +108,8 @@ struct vpLaserConicDetectorRun
   parts of a ring whose brightness falls along it (distance to the laser, incidence angle, dark or black
   floor patches). After it (or after the sample of rows above), an ellipse is fitted robustly to the points
   kept (RANSAC on five-point conics, 2 px), provided at least 30 of them agree over an arc of 60 degrees or
-  more, and the image is searched
+  more and its minor axis is at least a tenth of its major (flatter, it lies along both sides of a short,
+  nearly straight arc), and the image is searched
   along that predicted curve: on every setGuidedStep()-th row (where the curve is closer to vertical) and
   column (elsewhere) it crosses, where no point lies on it yet, a profile of the red dominance across the
   curve within setGuidedMargin() pixels of it, averaged over three neighbouring lines shifted along the
