@@ -89,9 +89,10 @@ struct vpLaserConicDetectorRun
   patch into pieces of 16-45 px): the ellipse through them (2000 RANSAC samples: the ring is a fifth to a
   half of such points), sought without the points on straight runs of 150 px or more (a red cable, tape on
   the floor: an arc of a ring that fits in the image never is one), is taken when the guided pass finds the
-  ring along 95 % of it and 10 % more of it than along the first search's, or, where that search made no
-  ellipse at all, when it holds 90 % of the short chains' points and the pass finds half of it (a faint ring
-  alone in a dark scene, whose far side the image no longer holds); otherwise the first search's points are
+  ring along 95 % of it and 10 % more of it than along the first search's, or when it holds 90 % of the short
+  chains' points and the pass finds half of it and 10 % more than along the first search's ellipse (a faint
+  ring alone in a dark scene, whose far side the image no longer holds, and of whose near side the first
+  search kept one arc); otherwise the first search's points are
   returned. A frame of 1600 x 1200
   pixels costs a third of one cv::cvtColor pass; a frame where no ring is located (no laser) costs the
   three searches, 2-6 times one.
