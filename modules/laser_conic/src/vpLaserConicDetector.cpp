@@ -15,8 +15,6 @@
 #include "detector/straight_runs.h"
 #include "laser_value_check.h"
 
-#include <visp3/laser_conic/vpLaserConicSolvers.h>
-
 namespace
 {
 //! The settings' check: every message begins with the class's name.
@@ -316,16 +314,13 @@ const double kMinShortChainCoverage = 0.5;
 // short chains' points, covered at 0.71).
 const double kMinSupportRatio = 2.0;
 
-//! How many of \e points lie within 2 px (Sampson distance) of the ellipse the whole search located (0 when none).
+//! How many of \e points lie on the ellipse the whole search located (0 when it located none).
 size_t pointsOnSearchEllipse(const std::vector<vpImagePoint> &points, const vsp::laser_detector::RidgeWorkspace &work)
 {
   if (work.searchEllipse.size() != 9)
     return 0;
-  const Eigen::Map<const Eigen::Matrix3d> C(work.searchEllipse.data());
-  size_t on = 0;
-  for (const vpImagePoint &p : points)
-    on += vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(p.get_u(), p.get_v())) <= 2.0 ? 1 : 0;
-  return on;
+  return vsp::laser_detector::pointsOnTraceEllipse(Eigen::Map<const Eigen::Matrix3d>(work.searchEllipse.data()),
+                                                   points);
 }
 
 //! The points of \e points at the indices \e indices, in their order.
@@ -391,7 +386,7 @@ std::vector<vpImagePoint> vpLaserConicDetector::detectInTwoPasses(const vpImage<
   if (!m_guided ||
       !vsp::laser_detector::fitTraceEllipse(points, W, H, kMinGuidedPoints, kFullEllipseTrials, C, inliers))
     return points;
-  work.searchEllipse.assign(C.data(), C.data() + 9); // column-major storage of a symmetric matrix
+  work.searchEllipse.assign(C.data(), C.data() + 9);
   std::vector<vpImagePoint> anchors = pointsAt(points, inliers);
   const vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin, m_guidedStep);
   vsp::laser_detector::GuidedReport guidedReport;

@@ -240,6 +240,16 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, b
     });
 }
 
+size_t pointsOnTraceEllipse(const Eigen::Matrix3d &C, const std::vector<vpImagePoint> &points)
+{
+  size_t on = 0;
+  for (const vpImagePoint &p : points)
+    on += vpLaserSolvers::sampsonDistance(C, Eigen::Vector2d(p.get_u(), p.get_v())) <= RidgeTuning::traceInlierDistance
+              ? 1
+              : 0;
+  return on;
+}
+
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, int ransacTrials,
                      Eigen::Matrix3d &C, std::vector<int> &inliers)
 {
@@ -258,7 +268,7 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   sample.assign(picked.begin(), picked.end());
   // Most frames hold the trace alone: the least-squares ellipse of the subsample then fits nearly all of it,
   // and RANSAC (a singular value decomposition per sample) is needed only when it does not.
-  const double threshold = 2.0; // pixels: the first pass's centres are within a few tenths of the trace
+  const double threshold = RidgeTuning::traceInlierDistance;
   std::vector<int> everyone(sample.size());
   for (size_t k = 0; k < sample.size(); ++k)
     everyone[k] = static_cast<int>(k);

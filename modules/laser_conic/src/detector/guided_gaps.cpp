@@ -43,8 +43,7 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
     side.clear();
     for (size_t j = 0; j < ends; ++j)
       side.push_back(offsets[coveredAt[backwards ? (k + m - j) % m : (k + j) % m]]);
-    std::nth_element(side.begin(), side.begin() + side.size() / 2, side.end());
-    return side[side.size() / 2];
+    return median(side);
   };
   for (size_t k = 0; k < m; ++k) { // the gap after coveredAt[k]
     const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], gap = (to + n - from) % n;
@@ -58,25 +57,33 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
   return offsets;
 }
 
-// The samples of the final conic C (refitOnItsInliers()) that no point covers (\e found: the first pass's and
-// the kept ones), in gaps of at most RidgeTuning::guidedGapLength, are measured once more within
-// RidgeTuning::guidedMaxJump of where the ring lies across C (ringOffsets(): C itself on an undistorted image,
-// to a few tenths of a pixel): where the walk lost the stripe (a dim stretch whose profiles over the whole
-// margin found a stronger neighbour, a joint's edge beside it) or followed a neighbouring structure (a red
-// cable's flank, a joint's edge: the points it took there dropped as off the final curve). On the red score
-// (the stripe the walk left), then on the brightness (brightnessAtPrediction(), whose bump the stripe keeps
-// beside a cable), each at its own strength (see RidgeTuning::guidedRemeasureStrength). The points found are
-// kept as the walk's are, in pieces that continue a covered sample or are long enough
-// (keepContinuingPieces()): a few isolated responses within a pixel of C are not the stripe (on an object
-// that hid the ring in data/laser_hard frame 36, before the gaps were limited). Appends them to \e kept.
-void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
-                               const FoundCells &found, ProfileBuffers &buffers, std::vector<Crossing> &kept)
+// Appends to \e kept the crossings of the found samples in the pieces keepContinuingPieces() keeps.
+void appendKeptPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
+                      std::vector<Crossing> &kept)
 {
-  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
-  std::vector<GuidedSample> samples;
+  std::vector<unsigned char> keep;
+  keepContinuingPieces(state, results, keep);
+  for (size_t i = 0; i < keep.size(); ++i)
+    if (keep[i])
+      kept.push_back(results[i].crossing);
+}
+
+// The samples of the final conic (refitOnItsInliers()) that no point covers (\e found: the first pass's and
+// the kept ones), in gaps of at most RidgeTuning::guidedGapLength, are measured once more within
+// RidgeTuning::guidedMaxJump of where the ring lies across the conic (ringOffsets(): the conic itself on an
+// undistorted image, to a few tenths of a pixel): where the walk lost the stripe (a dim stretch whose profiles
+// over the whole margin found a stronger neighbour, a joint's edge beside it) or followed a neighbouring
+// structure (a red cable's flank, a joint's edge: the points it took there dropped as off the final curve). On
+// the red score (the stripe the walk left), then on the brightness (brightnessAtPrediction(), whose bump the
+// stripe keeps beside a cable), each at its own strength (see RidgeTuning::guidedRemeasureStrength). The points
+// found are kept as the walk's are, in pieces that continue a covered sample or are long enough
+// (keepContinuingPieces()): a few isolated responses within a pixel of the conic are not the stripe (on an
+// object that hid the ring in data/laser_hard frame 36, before the gaps were limited). Appends them to \e kept.
+void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
+                               const std::vector<GuidedSample> &samples, const FoundCells &found,
+                               ProfileBuffers &buffers, std::vector<Crossing> &kept)
+{
   std::vector<unsigned char> covered;
-  if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
-    return;
   const std::vector<double> offsets = ringOffsets(samples, found, covered);
   std::vector<SampleState> state(offsets.size());
   std::vector<ProfileResult> results(offsets.size());
@@ -98,14 +105,10 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
       results[i].offset -= at;
     }
   }
-  std::vector<unsigned char> keep;
-  keepContinuingPieces(state, results, keep);
-  for (size_t i = 0; i < keep.size(); ++i)
-    if (keep[i])
-      kept.push_back(results[i].crossing);
+  appendKeptPieces(state, results, kept);
 }
 
-// The final conic C's samples in its long gaps (their covered ends more than RidgeTuning::guidedGapLength
+// The final conic's samples in its long gaps (their covered ends more than RidgeTuning::guidedGapLength
 // apart, where ringOffsets() gives no offset) followed from each covered end on the brightness: a fading ring
 // through strong JPEG keeps little of its red dominance, the colour stored at half resolution and rounded
 // away, but its brightness in full (data/laser_hard's faint frame rendered with seeds 1-24 at quality 60:
@@ -120,19 +123,16 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
 // was hidden (an object over the ring, the floor's edge), not faded, and the walk took the object's edge
 // (data/laser_hard seed 19 frame 13 at quality 80: attitude 0.23 -> 0.93 degree). Appends the points of the
 // pieces kept as the walk's (keepContinuingPieces()) to \e kept.
-void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
-                      const FoundCells &found, ProfileBuffers &buffers, std::vector<Crossing> &kept)
+void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
+                      const std::vector<GuidedSample> &samples, const FoundCells &found, ProfileBuffers &buffers,
+                      std::vector<Crossing> &kept)
 {
-  std::vector<GuidedSample> samples;
   std::vector<unsigned char> covered;
-  if (!sampleConic(C, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()), settings.margin, settings.step,
-                   samples))
-    return;
   const std::vector<double> offsets = ringOffsets(samples, found, covered);
   const size_t n = offsets.size();
   if (n < 3)
     return;
-  std::vector<SampleState> state(n, MISSED);
+  std::vector<SampleState> state(n);
   std::vector<ProfileResult> results(n);
   std::vector<unsigned char> walked(n, 0);
   for (size_t i = 0; i < n; ++i)
@@ -179,11 +179,7 @@ void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, 
     if (!covered[(i + n - 1) % n] && std::isnan(offsets[(i + n - 1) % n]))
       walk(i, n - 1);
   }
-  std::vector<unsigned char> keep;
-  keepContinuingPieces(state, results, keep);
-  for (size_t i = 0; i < n; ++i)
-    if (keep[i])
-      kept.push_back(results[i].crossing);
+  appendKeptPieces(state, results, kept);
 }
 } // namespace
 
@@ -199,9 +195,13 @@ void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &s
     for (const Crossing &c : guided)
       found.mark(c.point);
   };
+  std::vector<GuidedSample> samples;
+  if (!sampleConic(C, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()), settings.margin, settings.step,
+                   samples))
+    return;
   markPoints();
-  measureAlongTheFinalCurve(I, settings, C, found, buffers, guided);
+  measureAlongTheFinalCurve(I, settings, samples, found, buffers, guided);
   markPoints();
-  walkIntoLongGaps(I, settings, C, found, buffers, guided);
+  walkIntoLongGaps(I, settings, samples, found, buffers, guided);
 }
 } // namespace vsp::laser_detector

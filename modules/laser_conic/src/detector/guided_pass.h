@@ -55,6 +55,10 @@ struct GuidedReport
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, int ransacTrials,
                      Eigen::Matrix3d &C, std::vector<int> &inliers);
 
+//! How many of \e points lie on the ellipse C as fitTraceEllipse() counts its inliers (Sampson distance within
+//! RidgeTuning::traceInlierDistance).
+size_t pointsOnTraceEllipse(const Eigen::Matrix3d &C, const std::vector<vpImagePoint> &points);
+
 /*!
   The guided pass. \e prediction: the conic to search along (pixel coordinates); \e anchors: the points
   already found that lie on it (the first pass's inliers; they count as found and are not measured again).

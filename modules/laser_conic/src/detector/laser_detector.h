@@ -112,8 +112,8 @@ struct RidgeWorkspace
   RegionSpans fineRegion;                      //!< coarse to fine: those cells rasterised
   std::vector<unsigned char> coarseScore, coarseFlags, coarseZeros; //!< coarse to fine: the coarse columns
   std::vector<Crossing> guided; //!< the crossings the guided pass added (see guided_pass.h)
-  //! The ellipse the whole search located, row-major 3 x 3 (empty when it located none): the retry with short
-  //! chains weighs its own against it (see vpLaserConicDetector's locateFromShortChains()).
+  //! The ellipse the whole search located, its symmetric 3 x 3 matrix (empty when it located none): the retry
+  //! with short chains weighs its own against it (see vpLaserConicDetector's locateFromShortChains()).
   std::vector<double> searchEllipse;
   std::vector<int> guidedCells, guidedNext; //!< guided pass: per cell its last point found, and the previous one's
   std::vector<vpImagePoint> guidedFound;    //!< guided pass: the points found (both passes), in cell lists

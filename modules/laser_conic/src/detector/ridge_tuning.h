@@ -106,6 +106,9 @@ struct RidgeTuning
   //! filter rejected 60-61 frames and diverged; at 30, 40 or 50 px it rejected 1 (as before the step). Mosaic
   //! floor, seeds 73-102, ring at 3 sigma: 97.45 % without a limit, 97.37 % at 40 px, 97.33 % at 30 px.
   static constexpr double guidedGapLength = 30.0;
+  //! Largest Sampson distance (pixels) of a point on the ellipse that locates a trace (fitTraceEllipse()): the
+  //! first pass's centres are within a few tenths of a pixel of the trace.
+  static constexpr double traceInlierDistance = 2.0;
   //! Smallest minor-to-major axis ratio of the ellipse that locates a trace (fitTraceEllipse()). An ellipse fitted
   //! to a short arc that is nearly straight can be flat enough to run along the arc on both of its long sides
   //! (semi-axes 70 and 0.8 px through 25 degrees of a faint ring's near side, which JPEG 60 had broken into

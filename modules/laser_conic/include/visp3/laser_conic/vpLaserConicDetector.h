@@ -92,10 +92,9 @@ struct vpLaserConicDetectorRun
   ring along 95 % of it and 10 % more of it than along the first search's, or when it holds 90 % of the short
   chains' points and the pass finds half of it, and either 10 % more than along the first search's ellipse or
   twice as many of those points lie on it as on the first search's (a faint ring alone in a dark scene, whose
-  far side the image no longer holds, and of whose near side the first search kept one arc); otherwise the first search's points are
-  returned. A frame of 1600 x 1200
-  pixels costs a third of one cv::cvtColor pass; a frame where no ring is located (no laser) costs the
-  three searches, 2-6 times one.
+  far side the image no longer holds, and of whose near side the first search kept one arc); otherwise the
+  first search's points are returned. A frame of 1600 x 1200 pixels costs a third of one cv::cvtColor pass; a
+  frame where no ring is located (no laser) costs the three searches, 2-6 times one.
 
   <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
   measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
