@@ -111,18 +111,18 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
 // The final conic's samples in its long gaps (their covered ends more than RidgeTuning::guidedGapLength
 // apart, where ringOffsets() gives no offset) followed from each covered end on the brightness: a fading ring
 // through strong JPEG keeps little of its red dominance, the colour stored at half resolution and rounded
-// away, but its brightness in full (data/laser_hard's faint frame rendered with seeds 1-24 at quality 60:
-// read across the true centre line over 9 lines, the brightness places the stripe within 1.5 px at 97.5 %
-// of its 3 sigma samples, the red dominance at 71 %). The walk starts at the median offset of the end's
+// away, but its brightness at full resolution (testLaserConicGuidedSearch's faint ring through JPEG 60: 89.29
+// -> 92.10 % of the ring at 3 sigma on average). The walk starts at the median offset of the end's
 // RidgeTuning::guidedGapEnds covered samples and holds the offset of its last point, as the ring leaves the
-// ellipse (by up to 11 px through the hard sequence's wide lens): each sample's profile of
+// ellipse (by several pixels through a wide distorted lens): each sample's profile of
 // RidgeTuning::guidedFaintLines lines within RidgeTuning::guidedMaxJump of that offset, its point kept at
 // RidgeTuning::guidedBrightnessStrength times the threshold (4 sigma; at 6 the faint frames kept half the
 // gain), until RidgeTuning::guidedMaxMisses samples in a row have none. An end whose stripe is strong on the
 // red score (RidgeTuning::guidedStrongStripe times its threshold) is not followed: a bright stripe that stops
 // was hidden (an object over the ring, the floor's edge), not faded, and the walk took the object's edge
-// (data/laser_hard seed 19 frame 13 at quality 80: attitude 0.23 -> 0.93 degree). Appends the points of the
-// pieces kept as the walk's (keepContinuingPieces()) to \e kept.
+// (`make-laser-sequence --hard --seed 19 --quality 80`, frame 13, through `vsp-laser-altimeter --truth`:
+// attitude 0.23 -> 0.93 degree). Appends the points of the pieces kept as the walk's (keepContinuingPieces())
+// to \e kept.
 void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
                       const std::vector<GuidedSample> &samples, const FoundCells &found, ProfileBuffers &buffers,
                       std::vector<Crossing> &kept)
