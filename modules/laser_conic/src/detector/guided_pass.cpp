@@ -332,6 +332,13 @@ int addKeptPoints(const std::vector<unsigned char> &keep, const std::vector<Prof
   return added;
 }
 
+// Whether the walk along a refitted conic shows it wandering through clutter: it took points along much of the
+// moved curve, measured again, for little more coverage (see RidgeTuning::guidedWanderShare).
+bool wandersThroughClutter(int iteration, int added, size_t samples, double coverageGain)
+{
+  return iteration > 0 && added > RidgeTuning::guidedWanderShare * static_cast<double>(samples) &&
+         coverageGain < RidgeTuning::guidedWanderGain;
+}
 } // namespace
 
 void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &prediction,
@@ -358,6 +365,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   // one arc of a fading ring (data/laser_hard tracked: pitch errors of 1.1-1.4 deg on frames 50 and 53 when
   // refits counted as fitted here, against 0.04-0.07).
   const bool fittedHere = !anchors.empty();
+  double previousCoverage = 0.0;
   for (int iteration = 0; iteration < RidgeTuning::guidedMaxIterations; ++iteration) {
     if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
       break;
@@ -373,7 +381,9 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     if (iteration == 0)
       report.predictionSamples = static_cast<int>(searched);
     const int added = addKeptPoints(keep, results, missed > 0, fitPoints, work.guided, found);
-    // The walk stops when the coverage stops growing, when no sample was missed (another walk along the
+    const bool wanders = wandersThroughClutter(iteration, added, samples.size(), report.coverage - previousCoverage);
+    previousCoverage = report.coverage;
+    // The walk stops when the conic wanders, when no sample was missed (another walk along the
     // refitted conic would measure nothing) or when there is no better prediction. The conic is refitted
     // even then, as the points' (sorted) fit whatever the order the first pass returned them in: it is the
     // final conic the pass's points are checked against and regularised along. A pass without points of
@@ -381,7 +391,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     if (added == 0 && work.guided.empty())
       break;
     const bool refitted = refit(fitPoints, !anchors.empty(), C);
-    if (added == 0 || missed == 0 || !refitted)
+    if (added == 0 || missed == 0 || !refitted || wanders)
       break;
   }
   // Not in tracking, whose walks fit the pass's own points only (and whose time is short).

@@ -119,6 +119,18 @@ struct RidgeTuning
   static constexpr double traceMinAxisRatio = 0.1;
   //! Refits at most: the coverage stops growing after two or three on every case seen.
   static constexpr int guidedMaxIterations = 4;
+  /*!
+    A walk along a refitted conic that takes points at more than guidedWanderShare of its samples while the
+    coverage grows by less than guidedWanderGain is the last: the refits move the conic through clutter
+    (the edges and patches of a colourful floor where the laser is off, or away from the ring), and each walk
+    measures the moved curve again, finding stripe-like profiles along a third of it. On the shipped hard
+    sequence such walks took 0.34-0.45 of their samples for a gain of -0.02 to 0.05 (frames 11, 41 and 47,
+    1.1 ms each, none of their ellipses kept), a ring's later walks at most 0.14 (0.37 once, for a gain of 0.26:
+    a conic refitted from an arc of a faint ring onto the whole of it).
+  */
+  static constexpr double guidedWanderShare = 0.3;
+  //! See guidedWanderShare.
+  static constexpr double guidedWanderGain = 0.1;
   //! Side (2^guidedCellShift pixels) of the cells that record where points were found (a sample near one is not
   //! measured again).
   static constexpr int guidedCellShift = 2;

@@ -140,7 +140,8 @@ struct vpLaserConicDetectorRun
   Only pieces of curve that continue it are kept: runs of found profiles whose
   offset to the prediction changes smoothly, touching a point already known or at least 8 profiles long.
   The ellipse is refitted on all the points and the walk repeated until no point is added (at most 4
-  times). Over the whole image the final ellipse is then refitted on the points within 2.5 px of it, twice
+  times), or until a walk takes points along a third of the curve without covering a tenth more of it
+  (refits moving the ellipse through clutter: each walk measures the moved curve again). Over the whole image the final ellipse is then refitted on the points within 2.5 px of it, twice
   (the fit of all the points was pulled by the pieces a walk took beside the ring), and the points more
   than 2.5 px from it are dropped (a walk that slid onto a red cable's flank or a joint's edge beside the
   stripe). Every profile of the final ellipse that no point covers, in a gap of at most 30 px between points
