@@ -453,14 +453,15 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
       } catch (const vpException &) {
       }
     }
-    auto whole = [&](vpLaserConicDetector &d, int i) {
+    auto wholeOf = [&](vpLaserConicDetector &d, const vpImage<vpRGBa> &I) {
       vpPlane plane;
       try {
-        estimator.computePlane(d.detect(images[i]), vpLaserConicPose::GP3, plane);
-      } catch (const vpException &) {
+        estimator.computePlane(d.detect(I), vpLaserConicPose::GP3, plane);
+      } catch (const vpException &) { // no ring: too few points
       }
       vspBench::consume(plane.getD());
     };
+    auto whole = [&](vpLaserConicDetector &d, int i) { wholeOf(d, images[i]); };
     const double wholeNs = vspBench::medianNsPerCall([&](int i) { whole(detector, i); }, nImages, 9, 0.5);
     std::vector<vpLaserConicDetector> roi(images.size());
     for (int i = 0; i < nImages; ++i)
@@ -505,6 +506,18 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
           vspBench::consume(plane.getD());
         },
         nImages, 9, 0.5);
+    // The same floor with the laser off (between pulses, out of range) and small red patches on it, as the hard
+    // sequence's frames without the laser: no ring is located, and every search runs (the sample of rows, the
+    // whole image, its retry with short chains).
+    vpLaserConicSimulator::vpRenderSettings laserOff = floor.second;
+    laserOff.laserOn = false;
+    laserOff.clutter = 120;
+    laserOff.clutterRadius = 2.5;
+    std::vector<vpImage<vpRGBa> > offImages;
+    std::vector<Eigen::Vector4d> offTruths;
+    renderFrames(rig, seed + 7, nImages, laserOff, offImages, offTruths);
+    vpLaserConicDetector offDetector;
+    const double offNs = vspBench::medianNsPerCall([&](int i) { wholeOf(offDetector, offImages[i]); }, nImages, 9, 0.5);
     const std::string problem = "1600x1200, " + floor.first;
     frame.rows.push_back(row(problem, "OpenCV cvtColor BGR->HSV", cvtNs, cvtNs, false, -1.0));
     frame.rows.push_back(row(problem, "ours vpLaserConicDetector::detect", detectNs, cvtNs, true, -1.0));
@@ -515,6 +528,7 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
         row(problem, "ours detect (previous conic, 20 px, every 3rd line) + GP-3", trackSparseNs, cvtNs, true, -1.0));
     frame.rows.push_back(row(problem, "ours detect alone (previous conic, 20 px)", trackDetectNs, cvtNs, true, -1.0));
     frame.rows.push_back(row(problem, "ours GP-3 alone (previous conic's points)", trackGp3Ns, cvtNs, true, -1.0));
+    frame.rows.push_back(row(problem, "ours detect + GP-3, laser off (120 red patches)", offNs, cvtNs, true, -1.0));
     // The targets: ours against cvtColor over the same frames in interleaved rounds (the tables' medians are
     // taken seconds apart, and their ratio moved by a third from run to run on a shared machine).
     const auto allFrames = [nImages](auto &&call) {
@@ -533,6 +547,8 @@ void runLaserFrameBenchmarks(std::vector<BenchTable> &tables, BenchTargets &targ
     targets.wholeFrame = worstOf(targets.wholeFrame, againstCvtColor([&](int i) { whole(detector, i); }, wholeNs));
     targets.trackingFrame =
         worstOf(targets.trackingFrame, againstCvtColor([&](int i) { whole(predicted(tracked[i], i), i); }, trackNs));
+    targets.laserOffFrame =
+        worstOf(targets.laserOffFrame, againstCvtColor([&](int i) { wholeOf(offDetector, offImages[i]); }, offNs));
   }
   tables.push_back(frame);
 #else

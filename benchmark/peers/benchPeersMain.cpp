@@ -89,6 +89,19 @@ void printVerdict(std::ostream &os, const char *target, const vspBench::RatioRou
   printVerdict(os, target, ratio.median, required, false, spread.str().c_str());
 }
 
+// A ratio of interleaved rounds that no target judges, printed for what it tells (its median and quartiles).
+void printMeasure(std::ostream &os, const char *what, const vspBench::RatioRounds &ratio)
+{
+  if (ratio.median < 0.0) {
+    os << "| " << what << " | not measured | - |\n";
+    return;
+  }
+  std::ostringstream value; // the stream's own format, whatever os holds
+  value << std::setprecision(3) << ratio.median << "x (quartiles " << ratio.lowQuartile << "-" << ratio.highQuartile
+        << ", " << ratio.rounds << " rounds)";
+  os << "| " << what << " | " << value.str() << " | no target |\n";
+}
+
 void printTargets(std::ostream &os, const BenchTargets &t)
 {
   os << "\n### Targets\n\n| Target | Measured | Verdict |\n|---|---:|---|\n";
@@ -103,6 +116,8 @@ void printTargets(std::ostream &os, const BenchTargets &t)
   printVerdict(os, "whole frame (detection + GP-3, worst floor) <= 0.5x one cvtColor BGR->HSV", t.wholeFrame, 0.5);
   printVerdict(os, "tracking (previous conic, 20 px, + GP-3, worst floor) <= 0.1x one cvtColor BGR->HSV",
                t.trackingFrame, 0.1);
+  printMeasure(os, "frame without the laser (every search runs, 120 red patches, + GP-3, worst floor), to one cvtColor",
+               t.laserOffFrame);
   printVerdict(os, "filter: one IMU propagation <= 1 us", t.filterPropagate > 0 ? t.filterPropagate * 1e-3 : -1.0, 1.0,
                false, " us");
   printVerdict(os, "filter: one frame update (30 ms late) <= 10 us", t.filterUpdate > 0 ? t.filterUpdate * 1e-3 : -1.0,

@@ -51,6 +51,8 @@ struct BenchTargets
   //! detection + GP-3 / one cvtColor BGR->HSV on the same frames, interleaved rounds, worst floor
   vspBench::RatioRounds wholeFrame;
   vspBench::RatioRounds trackingFrame; //!< the same for tracking (previous conic) + GP-3
+  //! the same for a frame without the laser (every search runs; no target, the worst case of a frame)
+  vspBench::RatioRounds laserOffFrame;
   double filterPropagate = -1.0, filterUpdate = -1.0,
          filterAllocationsPerSample = -1.0; //!< vpLaserConicFilter (ns, ns, count)
   double selfCalibration20 = -1.0;          //!< laser self-calibration on 20 frames of 1000 points, ns

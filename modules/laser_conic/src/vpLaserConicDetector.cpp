@@ -323,6 +323,23 @@ size_t pointsOnSearchEllipse(const std::vector<vpImagePoint> &points, const vsp:
                                                    points);
 }
 
+/*!
+  The coverage of its guided pass from which the retry with short chains takes its ellipse (see
+  kMinShortChainShare): \e inliers of its \e samplePoints on the ellipse, \e onSearchEllipse of them on the whole
+  search's, whose pass covered \e firstCoverage of it. A lone ellipse (kMinShortChainShare of the points) needs
+  kMinShortChainCoverage, and kMinCoverageGain more than the first search's unless it holds kMinSupportRatio
+  times its support; any other kTrustedCoverage and kMinCoverageGain more than the first search's.
+*/
+double retryCoverageTaken(double firstCoverage, size_t inliers, size_t samplePoints, size_t onSearchEllipse)
+{
+  const double gained = firstCoverage + kMinCoverageGain;
+  if (static_cast<double>(inliers) < kMinShortChainShare * static_cast<double>(samplePoints))
+    return std::max(kTrustedCoverage, gained);
+  if (static_cast<double>(inliers) >= kMinSupportRatio * static_cast<double>(onSearchEllipse))
+    return kMinShortChainCoverage;
+  return std::max(kMinShortChainCoverage, gained);
+}
+
 //! The points of \e points at the indices \e indices, in their order.
 std::vector<vpImagePoint> pointsAt(const std::vector<vpImagePoint> &points, const std::vector<int> &indices)
 {
@@ -428,17 +445,13 @@ bool vpLaserConicDetector::locateFromShortChains(const vpImage<vpRGBa> &I, doubl
   const std::vector<vpImagePoint> anchors = pointsAt(sample, inliers);
   vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin, m_guidedStep);
   guided.stripeWidth = vsp::laser_detector::observedStripeWidth(work, m_stripeWidth);
+  guided.usefulCoverage =
+      retryCoverageTaken(firstCoverage, inliers.size(), sample.size(), pointsOnSearchEllipse(sample, work));
   vsp::laser_detector::GuidedReport guidedReport;
   work.guided.clear();
   points = anchors;
   vsp::laser_detector::guidedPass(I, guided, C, anchors, nullptr, points, work, guidedReport);
-  const bool aloneOnItsEllipse =
-      (guidedReport.coverage >= firstCoverage + kMinCoverageGain ||
-       static_cast<double>(inliers.size()) >= kMinSupportRatio * pointsOnSearchEllipse(sample, work)) &&
-      static_cast<double>(inliers.size()) >= kMinShortChainShare * sample.size() &&
-      guidedReport.coverage >= kMinShortChainCoverage;
-  const bool coversMore = guidedReport.coverage >= std::max(kTrustedCoverage, firstCoverage + kMinCoverageGain);
-  if (!coversMore && !aloneOnItsEllipse)
+  if (guidedReport.coverage < guided.usefulCoverage)
     return false;
   vsp::laser_detector::keepInlierCrossings(sample.size(), inliers, work);
   m_stripeWidth = guided.stripeWidth;
@@ -485,14 +498,15 @@ bool vpLaserConicDetector::locateFromRows(const vpImage<vpRGBa> &I, std::vector<
   points = anchors;
   vsp::laser_detector::GuidedSettings guided = guidedSettings(m_guidedMargin, m_guidedStep);
   guided.stripeWidth = stripeWidth;
-  vsp::laser_detector::GuidedReport guidedReport;
-  vsp::laser_detector::guidedPass(I, guided, C, anchors, nullptr, points, work, guidedReport);
   // An ellipse through a few arcs of a faint ring, or through clutter and a piece of the ring, is extrapolated
   // far from the rest of it: the pass then finds little along it, and the whole search decides. So it does
   // when the ellipse is a minority of the sample and not found nearly all round (a red cable, the edges of a
   // colourful floor: the pass finds stripe-like profiles along most curves there).
-  if (guidedReport.coverage < kMinLocatedCoverage ||
-      (static_cast<double>(inliers.size()) < kMinRowsShare * sample.size() && guidedReport.coverage < kTrustedCoverage))
+  guided.usefulCoverage = static_cast<double>(inliers.size()) >= kMinRowsShare * sample.size() ? kMinLocatedCoverage
+                                                                                               : kTrustedCoverage;
+  vsp::laser_detector::GuidedReport guidedReport;
+  vsp::laser_detector::guidedPass(I, guided, C, anchors, nullptr, points, work, guidedReport);
+  if (guidedReport.coverage < guided.usefulCoverage)
     return false;
   m_threshold = report.threshold;
   m_noise = report.noise;

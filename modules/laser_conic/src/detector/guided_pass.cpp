@@ -387,13 +387,16 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     // refitted conic would measure nothing) or when there is no better prediction. The conic is refitted
     // even then, as the points' (sorted) fit whatever the order the first pass returned them in: it is the
     // final conic the pass's points are checked against and regularised along. A pass without points of
-    // its own needs no final conic.
-    if (added == 0 && work.guided.empty())
+    // its own needs no final conic, nor does one its caller will not use (RidgeTuning::guidedMaxCoverageGrowth).
+    if ((added == 0 && work.guided.empty()) ||
+        report.coverage + RidgeTuning::guidedMaxCoverageGrowth < settings.usefulCoverage)
       break;
     const bool refitted = refit(fitPoints, !anchors.empty(), C);
     if (added == 0 || missed == 0 || !refitted || wanders)
       break;
   }
+  if (report.coverage < settings.usefulCoverage)
+    return; // a location its caller will not take (on a frame without the laser: a tenth of its time)
   // Not in tracking, whose walks fit the pass's own points only (and whose time is short).
   if (fittedHere && !work.guided.empty())
     refitOnItsInliers(fitPoints, C);

@@ -28,6 +28,12 @@ struct GuidedSettings
   int maxWidth;    //!< widest stripe (pixels, half-maximum run along the profile)
   int saturation;  //!< saturated red level
   int stripeWidth; //!< width of the matched filter (pixels): the stripe's observed half-maximum width
+  /*!
+    Coverage (GuidedReport::coverage) under which the caller will not use the pass's points (a location it
+    would not take): the pass then ends with its walks, without the final conic's refit, gaps and
+    regularisation, and appends no point.
+  */
+  double usefulCoverage = 0.0;
 };
 
 //! What the guided pass measured.
