@@ -16,7 +16,7 @@
                       [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
                       [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]
                       [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]
-                      [--truth groundtruth.csv] [--max-altitude-error MM]
+                      [--truth groundtruth.csv] [--max-altitude-error MM] [--max-nees K]
   \endverbatim
   The camera file may hold the perspective model with distortion (kud, kdu): it is then used (the
   detected pixels are converted with vpPixelMeterConversion, the overlays drawn through the model).
@@ -24,7 +24,7 @@
   image was processed (frames without a plane, and unreadable images, say why in their status), 1 on a
   usage, file or format error, an image whose size is not the camera file's, a failed write (nothing is
   left half written: the CSV is written to a temporary file renamed when complete), or when
-  --max-altitude-error is exceeded or cannot be checked (no frame with a plane). Status calibration_mismatch: the laser/camera calibration cannot
+  --max-altitude-error or --max-nees is exceeded or cannot be checked (no frame with a plane). Status calibration_mismatch: the laser/camera calibration cannot
   explain the trace (vpLaserConicPose::STATUS_CALIBRATION_MISMATCH); when most frames get it, one line on
   stderr names the suspected mistake.
 */
@@ -46,6 +46,7 @@
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
 #include "vpCommandLine.h"
+#include "vpCovarianceCheck.h"
 #include "vpCsvTools.h"
 #include "vpImageFileCheck.h"
 #include "vpLaserFlightFusion.h"
@@ -65,7 +66,7 @@ struct Options
   double maxAltitudeDilution = 5.0;
   unsigned int seed = 0;
   // Detector settings (defaults of vpLaserConicDetector).
-  double minContrast = 10.0, noiseFactor = 5.0, minSegment = 50.0, track = 0.0, maxAltitudeError = 0.0;
+  double minContrast = 10.0, noiseFactor = 5.0, minSegment = 50.0, track = 0.0, maxAltitudeError = 0.0, maxNees = 0.0;
   unsigned int maxStripeWidth = 12, saturationLevel = 250, samplingStep = 1;
   bool guided = true;
   double guidedMargin = 12.0, guidedFactor = 3.5;
@@ -93,6 +94,7 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
       "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
       "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
       "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
+      "          [--max-nees K]\n"
       "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
       "           [--covariance-inflation K]]",
       "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
@@ -160,6 +162,10 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
   cli.addDouble("--max-altitude-error", options.maxAltitudeError, "MM",
                 "with --truth: exit status 1 when an altitude error exceeds MM millimetres, or when no frame has a "
                 "plane to compare (default 0: no check)",
+                vpCommandLine::NON_NEGATIVE);
+  cli.addDouble("--max-nees", options.maxNees, "K",
+                "with --truth: exit status 1 when the median NEES of the per-frame covariance of (altitude, roll, "
+                "pitch) exceeds K (2.37 if honest), or when no frame has one (default 0: no check)",
                 vpCommandLine::NON_NEGATIVE);
   fusion.addOptions(cli); // IMU-rate output, vpLaserFlightFusion.h
   cli.require({"--camera", "--laser", "--output"});
@@ -490,8 +496,10 @@ int run(int argc, char **argv)
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
-  if (fusion.enabled())
+  // With a ground truth, the per-frame covariance a filter would fuse is checked against it (its NEES).
+  if (fusion.enabled() || !truth.empty())
     fusion.configure(estimator);
+  vpCovarianceCheck covarianceCheck;
   out << "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status\n";
   unsigned int found = 0, compared = 0;
   double worstAltitude = 0.0, worstRoll = 0.0, worstPitch = 0.0;
@@ -521,6 +529,11 @@ int run(int argc, char **argv)
         worstAltitude = std::max(worstAltitude, std::fabs(r.altitude - t.altitude));
         worstRoll = std::max(worstRoll, std::fabs(r.roll - t.roll));
         worstPitch = std::max(worstPitch, std::fabs(r.pitch - t.pitch));
+        vpColVector e(3);
+        e[0] = r.altitude - t.altitude;
+        e[1] = r.roll - t.roll;
+        e[2] = r.pitch - t.pitch;
+        covarianceCheck.add(e, estimator.getCovarianceMatrix());
       }
     r.inlierPoints.clear();
     results.push_back(r);
@@ -542,15 +555,29 @@ int run(int argc, char **argv)
   if (!truth.empty() && compared == 0) {
     // Nothing compared is not an error of 0 mm: a bound given cannot pass on it.
     std::cout << "against " << options.truth << ": no frame with a plane and a ground truth" << std::endl;
-    if (options.maxAltitudeError > 0.0) {
-      std::cerr << argv[0] << ": --max-altitude-error " << options.maxAltitudeError
-                << " mm cannot be checked: no frame with a plane to compare" << std::endl;
+    if (options.maxAltitudeError > 0.0 || options.maxNees > 0.0) {
+      std::ostringstream bound;
+      if (options.maxAltitudeError > 0.0)
+        bound << "--max-altitude-error " << options.maxAltitudeError << " mm";
+      else
+        bound << "--max-nees " << options.maxNees;
+      std::cerr << argv[0] << ": " << bound.str() << " cannot be checked: no frame with a plane to compare"
+                << std::endl;
       return EXIT_FAILURE;
     }
   } else if (!truth.empty()) {
     std::cout << "against " << options.truth << ": " << compared
               << " frames with a plane and a ground truth, worst errors " << 1000.0 * worstAltitude << " mm altitude, "
               << vpMath::deg(worstRoll) << " deg roll, " << vpMath::deg(worstPitch) << " deg pitch" << std::endl;
+    std::cout << covarianceCheck.summary(estimator.getCovarianceInflation()) << std::endl;
+    if (options.maxNees > 0.0 && !(covarianceCheck.median() <= options.maxNees)) {
+      std::cerr << argv[0] << ": median NEES " << covarianceCheck.median() << " > --max-nees " << options.maxNees
+                << ": the errors are larger than the per-frame covariance says; it holds the trace's noise only (a "
+                   "laser calibration's error adds to the errors, and a variance scale too small for the "
+                   "detector and the compression)"
+                << std::endl;
+      return EXIT_FAILURE;
+    }
     if (options.maxAltitudeError > 0.0 && 1000.0 * worstAltitude > options.maxAltitudeError) {
       std::cerr << argv[0] << ": altitude error " << 1000.0 * worstAltitude << " mm > --max-altitude-error "
                 << options.maxAltitudeError << " mm" << std::endl;

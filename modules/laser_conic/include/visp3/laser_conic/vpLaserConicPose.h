@@ -233,7 +233,9 @@ public:
     there the dim side's centres are off by a fraction of a pixel along whole stretches of the ring that keep
     one phase to the 16 px blocks of the compressed colour, an error hundreds of points share and the
     residuals do not show (seed 4, frame 51: the whole ring found, the plane 65 mm off, `vsp-laser-altimeter
-    --truth`). Keep 1 for independent point noise (e.g. points from another front-end).
+    --truth`). `vsp-laser-altimeter --truth` prints the median NEES of a sequence with a ground truth (and
+    `--max-nees` bounds it): the covariance holds the trace's noise, not a calibration's error. Keep 1 for
+    independent point noise (e.g. points from another front-end).
     \exception vpLaserConicException::badValueError unless finite and > 0.
   */
   void setCovarianceInflation(double varianceScale);
