@@ -68,8 +68,7 @@ std::string vpCovarianceCheck::summary(double inflation) const
 {
   std::ostringstream os;
   os << "covariance of (altitude, roll, pitch) at variance scale " << inflation << ": NEES median " << median()
-     << " over " << count() << " frames (2.37 if honest), " << 100.0 * shareOver95()
-     << " % over 7.81 (5 % if honest)";
+     << " over " << count() << " frames (2.37 if honest), " << 100.0 * shareOver95() << " % over 7.81 (5 % if honest)";
   if (m_notUsable > 0)
     os << ", " << m_notUsable << " frames without a usable covariance";
   return os.str();
