@@ -22,10 +22,11 @@ if [ -z "$CLANG_FORMAT" ]; then
   exit 1
 fi
 
-# The tracked sources when this is a git checkout (build folders are never looked at), else every source.
+# The tracked sources when this is a git checkout, and the new ones not yet added (a file created before its
+# first commit was left out; build folders, ignored, are never looked at); else every source.
 dirs=(modules example tutorial benchmark test)
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-  mapfile -t files < <(git ls-files -- "${dirs[@]}" | grep -E '\.(h|hpp|cpp|cc)$')
+  mapfile -t files < <(git ls-files --cached --others --exclude-standard -- "${dirs[@]}" | grep -E '\.(h|hpp|cpp|cc)$')
 else
   mapfile -t files < <(find "${dirs[@]}" -type f \( -name '*.h' -o -name '*.hpp' -o -name '*.cpp' -o -name '*.cc' \) | sort)
 fi
