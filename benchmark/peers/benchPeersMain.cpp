@@ -20,6 +20,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <string>
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
@@ -67,39 +68,44 @@ void printMarkdown(std::ostream &os, const std::vector<BenchTable> &tables)
 
 namespace
 {
+// One row of the targets table: what was measured, its value (3 digits, then \e unit) and \e verdict.
+void printRow(std::ostream &os, const char *what, double measured, const std::string &unit, const char *verdict)
+{
+  if (measured < 0.0) {
+    os << "| " << what << " | not measured | - |\n";
+    return;
+  }
+  std::ostringstream value; // the stream's own format, whatever os holds
+  value << std::setprecision(3) << measured << unit;
+  os << "| " << what << " | " << value.str() << " | " << verdict << " |\n";
+}
+
 void printVerdict(std::ostream &os, const char *target, double measured, double required, bool higherIsBetter,
                   const char *unit)
 {
-  if (measured < 0.0) {
-    os << "| " << target << " | not measured | - |\n";
-    return;
-  }
   const bool met = higherIsBetter ? measured >= required : measured <= required;
-  std::ostringstream value;
-  value << std::setprecision(3) << measured << unit;
-  os << "| " << target << " | " << value.str() << " | " << (met ? "met" : "**not met**") << " |\n";
+  printRow(os, target, measured, unit, met ? "met" : "**not met**");
+}
+
+// What follows the median of a ratio of interleaved rounds: its quartiles and its number of rounds.
+std::string roundsSpread(const vspBench::RatioRounds &ratio)
+{
+  std::ostringstream spread;
+  spread << std::setprecision(3) << "x (quartiles " << ratio.lowQuartile << "-" << ratio.highQuartile << ", "
+         << ratio.rounds << " rounds)";
+  return spread.str();
 }
 
 // A ratio of interleaved rounds: its median judged, its quartiles printed beside it.
 void printVerdict(std::ostream &os, const char *target, const vspBench::RatioRounds &ratio, double required)
 {
-  std::ostringstream spread;
-  spread << std::setprecision(3) << "x (quartiles " << ratio.lowQuartile << "-" << ratio.highQuartile << ", "
-         << ratio.rounds << " rounds)";
-  printVerdict(os, target, ratio.median, required, false, spread.str().c_str());
+  printVerdict(os, target, ratio.median, required, false, roundsSpread(ratio).c_str());
 }
 
 // A ratio of interleaved rounds that no target judges, printed for what it tells (its median and quartiles).
 void printMeasure(std::ostream &os, const char *what, const vspBench::RatioRounds &ratio)
 {
-  if (ratio.median < 0.0) {
-    os << "| " << what << " | not measured | - |\n";
-    return;
-  }
-  std::ostringstream value; // the stream's own format, whatever os holds
-  value << std::setprecision(3) << ratio.median << "x (quartiles " << ratio.lowQuartile << "-" << ratio.highQuartile
-        << ", " << ratio.rounds << " rounds)";
-  os << "| " << what << " | " << value.str() << " | no target |\n";
+  printRow(os, what, ratio.median, roundsSpread(ratio), "no target");
 }
 
 void printTargets(std::ostream &os, const BenchTargets &t)
