@@ -2,9 +2,10 @@
 #include "vpCovarianceCheck.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <sstream>
+
+#include <Eigen/Cholesky>
 
 namespace
 {
@@ -18,33 +19,21 @@ void vpCovarianceCheck::add(const vpColVector &error, const vpMatrix &covariance
     ++m_notUsable;
     return;
   }
-  // Scaled to unit diagonal before the solve: altitude (m^2) and angles (rad^2) differ by orders of magnitude,
-  // and a determinant of 1e-28 is refused by vpMatrix's inverse.
-  double scale[3];
+  Eigen::Vector3d e;
+  Eigen::Matrix3d P;
   for (unsigned int i = 0; i < 3; ++i) {
-    const double d = covariance[i][i];
-    if (!(d > 0.0) || !std::isfinite(d) || !std::isfinite(error[i])) {
-      ++m_notUsable;
-      return;
-    }
-    scale[i] = 1.0 / std::sqrt(d);
-  }
-  vpMatrix P(3, 3);
-  vpColVector e(3);
-  for (unsigned int i = 0; i < 3; ++i) {
-    e[i] = error[i] * scale[i];
+    e(i) = error[i];
     for (unsigned int j = 0; j < 3; ++j)
-      P[i][j] = covariance[i][j] * scale[i] * scale[j];
+      P(i, j) = covariance[i][j];
   }
-  if (!(P.det() > 1e-12)) { // not positive definite (a correlation of one)
+  // A Cholesky factor exists only for a positive definite matrix, whatever its units (m^2 beside rad^2): no
+  // determinant threshold to choose.
+  const Eigen::LLT<Eigen::Matrix3d> cholesky(P);
+  if (!e.allFinite() || !P.allFinite() || cholesky.info() != Eigen::Success) {
     ++m_notUsable;
     return;
   }
-  const double nees = e.t() * P.inverseByLU() * e;
-  if (std::isfinite(nees))
-    m_nees.push_back(nees);
-  else
-    ++m_notUsable;
+  m_nees.push_back(e.dot(cholesky.solve(e)));
 }
 
 double vpCovarianceCheck::median() const
