@@ -449,6 +449,12 @@ int run(int argc, char **argv)
   vpHomogeneousMatrix cMl;
   std::vector<std::string> images;
   ImageSize size;
+  // A bound on the errors against a ground truth without one would check nothing: refused, not ignored.
+  if (options.truth.empty() && (options.maxAltitudeError > 0.0 || options.maxNees > 0.0)) {
+    std::cerr << argv[0] << ": " << (options.maxNees > 0.0 ? "--max-nees" : "--max-altitude-error")
+              << " needs --truth (the ground truth the errors are measured against)" << std::endl;
+    return EXIT_FAILURE;
+  }
   if (!readInputs(options, cam, size, openingAngle, cMl, images, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
