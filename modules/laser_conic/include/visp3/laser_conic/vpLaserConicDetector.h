@@ -95,8 +95,7 @@ struct vpLaserConicDetectorRun
   far side the image no longer holds, and of whose near side the first search kept one arc); otherwise the
   first search's points are returned. A frame of 1600 x 1200 pixels costs a third of one cv::cvtColor pass; a
   frame where no ring is located (the laser off) costs the three searches: 0.9 times one on plain floors with
-  red patches, 2.1 times on a colourful floor with them (bench-peers --only laser-frame); through JPEG the
-  shipped hard sequence's frames without the laser (960 x 720) cost 2.6-10 ms, 5-20 times one.
+  red patches, 2.1 times on a colourful floor with them (bench-peers --only laser-frame).
 
   <em>Coarse to fine.</em> Over the whole image the candidates of every 8th row and column only are
   measured first (every 8 x setSamplingStep()-th line; fewer when setMinSegmentLength() is below 32
