@@ -15,6 +15,12 @@ namespace vsp::laser_detector
 {
 namespace
 {
+// Pixels between the predicted crossings of samples a and b.
+double samplesApart(const std::vector<GuidedSample> &samples, size_t a, size_t b)
+{
+  return vpImagePoint::distance(samplePoint(samples[a], samples[a].pos), samplePoint(samples[b], samples[b].pos));
+}
+
 // The offsets across the final conic (as ProfileResult::offset) of the points that cover its samples
 // (\e found: the first pass's and the kept ones; \e covered set there), and in the gaps between them the
 // offsets interpolated from the covered samples on either side (the median of the RidgeTuning::guidedGapEnds
@@ -47,14 +53,23 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
   };
   for (size_t k = 0; k < m; ++k) { // the gap after coveredAt[k]
     const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], gap = (to + n - from) % n;
-    if (gap <= 1 || vpImagePoint::distance(samplePoint(samples[from], samples[from].pos),
-                                           samplePoint(samples[to], samples[to].pos)) > RidgeTuning::guidedGapLength)
+    if (gap <= 1 || samplesApart(samples, from, to) > RidgeTuning::guidedGapLength)
       continue; // 0: a single covered sample, the gap goes round
     const double before = sideOffset(k, true), after = sideOffset((k + 1) % m, false);
     for (size_t j = 1; j < gap; ++j)
       offsets[(from + j) % n] = before + (after - before) * static_cast<double>(j) / gap;
   }
   return offsets;
+}
+
+// Whether the walk into a long gap (walkIntoLongGaps()) keeps the point of profile r, measured after \e misses
+// samples in a row without one: at RidgeTuning::guidedBrightnessStrength times its threshold (4 sigma; at 6 the
+// faint frames kept half the gain), and past a run of misses longer than RidgeTuning::guidedMaxMisses at
+// RidgeTuning::guidedBridgeLevel grey levels a line too.
+bool walkKeeps(const ProfileResult &r, int misses)
+{
+  return r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold &&
+         (misses <= RidgeTuning::guidedMaxMisses || r.response >= RidgeTuning::guidedBridgeLevel * r.lines);
 }
 
 // Appends to \e kept the crossings of the found samples in the pieces keepContinuingPieces() keeps.
@@ -112,17 +127,17 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
 // apart, where ringOffsets() gives no offset) followed from each covered end on the brightness: a fading ring
 // through strong JPEG keeps little of its red dominance, the colour stored at half resolution and rounded
 // away, but its brightness at full resolution (testLaserConicGuidedSearch's faint ring through JPEG 60: 89.29
-// -> 92.10 % of the ring at 3 sigma on average). The walk starts at the median offset of the end's
-// RidgeTuning::guidedGapEnds covered samples and holds the offset of its last point, as the ring leaves the
-// ellipse (by several pixels through a wide distorted lens): each sample's profile of
-// RidgeTuning::guidedFaintLines lines within RidgeTuning::guidedMaxJump of that offset, its point kept at
-// RidgeTuning::guidedBrightnessStrength times the threshold (4 sigma; at 6 the faint frames kept half the
-// gain), until RidgeTuning::guidedMaxMisses samples in a row have none. An end whose stripe is strong on the
-// red score (RidgeTuning::guidedStrongStripe times its threshold) is not followed: a bright stripe that stops
-// was hidden (an object over the ring, the floor's edge), not faded, and the walk took the object's edge
-// (`make-laser-sequence --hard --seed 19 --quality 80`, frame 13, through `vsp-laser-altimeter --truth`:
-// attitude 0.23 -> 0.93 degree). Appends the points of the pieces kept as the walk's (keepContinuingPieces())
-// to \e kept.
+// -> 92.10 % of the ring at 3 sigma on average, 93.80 % with RidgeTuning::guidedWalkGap). The walk starts at
+// the median offset of the end's RidgeTuning::guidedGapEnds covered samples and holds the offset of its last
+// point, as the ring leaves the ellipse (by several pixels through a wide distorted lens): each sample's
+// profile of RidgeTuning::guidedFaintLines lines within RidgeTuning::guidedMaxJump of that offset, its point
+// kept as walkKeeps() says, until RidgeTuning::guidedMaxMisses samples in a row have none or, once it has found
+// the stripe past its end, until it has gone RidgeTuning::guidedWalkGap pixels past its last point. An end
+// whose stripe is strong on the red score (RidgeTuning::guidedStrongStripe times its threshold) is not
+// followed: a bright stripe that stops was hidden (an object over the ring, the floor's edge), not faded, and
+// the walk took the object's edge (`make-laser-sequence --hard --seed 19 --quality 80`, frame 13, through
+// `vsp-laser-altimeter --truth`: attitude 0.23 -> 0.93 degree). A walk from the other end of the gap stops at
+// this one's points. Appends the points of the pieces kept as the walk's (keepContinuingPieces()) to \e kept.
 void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
                       const std::vector<GuidedSample> &samples, const FoundCells &found, ProfileBuffers &buffers,
                       std::vector<Crossing> &kept)
@@ -151,23 +166,25 @@ void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
     if (last.found && last.response >= RidgeTuning::guidedStrongStripe * last.threshold)
       return;
     double at = start;
+    size_t lastFound = from;
     int misses = 0;
     for (size_t k = (from + direction) % n, prev = from; !covered[k] && !walked[k]; prev = k, k = (k + direction) % n) {
-      if (vpImagePoint::distance(samplePoint(samples[prev], samples[prev].pos),
-                                 samplePoint(samples[k], samples[k].pos)) > maxStep)
+      if (samplesApart(samples, prev, k) > maxStep)
         break;
-      walked[k] = 1;
       const GuidedSample &s = samples[k];
       ProfileWindow window = onBrightness(predictionWindow(s, at));
       window.lines = RidgeTuning::guidedFaintLines;
       ProfileResult r = measureProfile(I, s, settings, window, buffers);
-      if (r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold) {
+      if (walkKeeps(r, misses)) {
         at = r.offset;
+        walked[k] = 1; // the walk from the gap's other end stops here (its misses past it are free to that walk)
         state[k] = FOUND;
         results[k] = r;
         results[k].offset -= start; // from the covered end's, as keepContinuingPieces() reads it
+        lastFound = k;
         misses = 0;
-      } else if (++misses > RidgeTuning::guidedMaxMisses)
+      } else if (++misses > RidgeTuning::guidedMaxMisses &&
+                 (lastFound == from || samplesApart(samples, lastFound, k) > RidgeTuning::guidedWalkGap))
         break;
     }
   };

@@ -106,6 +106,23 @@ struct RidgeTuning
   //! filter rejected 60-61 frames and diverged; at 30, 40 or 50 px it rejected 1 (as before the step). Mosaic
   //! floor, seeds 73-102, ring at 3 sigma: 97.45 % without a limit, 97.37 % at 40 px, 97.33 % at 30 px.
   static constexpr double guidedGapLength = 30.0;
+  //! Farthest (pixels) the walk into a long gap on the brightness (walkIntoLongGaps()), once it has found the
+  //! stripe past its covered end, goes past its last point without finding another. Near 3 sigma through strong
+  //! JPEG a profile of nine lines finds the stripe at one sample in a few, in runs of misses longer than
+  //! guidedMaxMisses, where the walk stopped before: the faint ring through JPEG 60 (testLaserConicGuidedSearch,
+  //! seeds 72, 60, 65) 92.10 -> 93.80 % of the ring at 3 sigma on average. A walk that has found nothing past
+  //! its end still stops at guidedMaxMisses: beside a dark box over a ring the ends are too dim for
+  //! guidedStrongStripe, and a longer first reach took the JPEG blocks of the box's flat face near the ellipse
+  //! (`make-laser-sequence --hard --seed 10`, frame 36: altitude 1.1 -> 6.8 mm). At 30 px (with that first reach
+  //! too) walks through the wide lens took points 1.5 px off the ring.
+  static constexpr double guidedWalkGap = 20.0;
+  //! Smallest response (grey levels of R + G + B a line) of a point the walk into a long gap finds after more
+  //! than guidedMaxMisses samples in a row without one (walkKeeps()). The brightness's threshold comes from the
+  //! noise along the profile, which on a flat dark face (a box over the ring) is so low that JPEG's blocks pass
+  //! it: past such a run a walk took them as the stripe (`make-laser-sequence --hard --seed 33`, frame 13:
+  //! altitude 16.3 -> 20.7 mm, 29 of the frame's points outliers of GP-3). At 6 the faint rings kept a third
+  //! of the gain.
+  static constexpr double guidedBridgeLevel = 4.0;
   //! Largest Sampson distance (pixels) of a point on the ellipse that locates a trace (fitTraceEllipse()): the
   //! first pass's centres are within a few tenths of a pixel of the trace.
   static constexpr double traceInlierDistance = 2.0;
