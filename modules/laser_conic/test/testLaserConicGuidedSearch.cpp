@@ -384,12 +384,12 @@ TEST(LaserConicGuidedSearch, FaintRingThroughAWideDistortedLens)
 {
   // The faint ring above through the wide lens with barrel distortion (wideCamera()): the image of the trace is
   // not a conic, and the guided pass's prediction and its regularisation along the fitted ellipse follow it only
-  // to within its distortion. Measured on the same seven seeds: 96.8-99.8 % of the ring at 3 sigma (mean
-  // 98.74 %), precision >= 0.997, second-pass RMS 0.15-0.35 px (mean 0.228; 96.5-99.6 %, mean 98.57 %,
-  // precision 1, 0.14-0.36 px, mean 0.214, before walkIntoLongGaps(); 0.991-1 and 0.15-0.33 px, mean 0.246,
-  // before ProfileWindow::peakWithin). The bounds on coverage and precision hold on every seed; its
-  // 0.3 px does not on seed 61 (0.351 px): the far side's centres at 2-3 sigma are moved by JPEG (rendered
-  // without it: 0.030 px, precision 1). The per-seed RMS bound is the measured worst with a margin, the means'
+  // to within its distortion. Measured on the same seven seeds: 97.2-99.8 % of the ring at 3 sigma (mean
+  // 98.75 %), precision >= 0.997, second-pass RMS 0.15-0.33 px (mean 0.228; seed 61 0.351 px before
+  // RidgeTuning::guidedEdgeBump; 96.5-99.6 %, mean 98.57 %, precision 1, 0.14-0.36 px, mean 0.214, before
+  // walkIntoLongGaps(); 0.991-1 and 0.15-0.33 px, mean 0.246, before ProfileWindow::peakWithin). The issue's
+  // bounds on coverage and precision hold on every seed; its 0.3 px does not on seed 61 (0.329 px): the far
+  // side's centres at 2-3 sigma are moved by JPEG (rendered without it: 0.030 px, precision 1). The per-seed RMS bound is the measured worst with a margin, the means'
   // the measured ones with a margin. Twenty more seeds: DISABLED_SeedsNeverTunedOn.
   std::vector<unsigned int> seeds = kFaintSeeds;
   seeds.resize(static_cast<size_t>(laser_test::trials(7, 2))); // two under the sanitizers
@@ -405,8 +405,8 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
   // The faint ring above through JPEG at quality 60 (the default of make-laser-sequence --hard): the colour,
   // stored at half resolution, keeps too little of the dim side's red dominance, and the walks along the
   // ellipse of the bright arcs leave a long gap there; the final conic's gaps are then followed on the
-  // brightness from their dim ends (walkIntoLongGaps()). Measured on seeds 72, 60 and 65: 91.74, 96.11 and
-  // 93.56 % of the ring at 3 sigma (mean 93.80 %); 91.20, 93.41 and 91.68 % (mean 92.10 %) when the walk
+  // brightness from their dim ends (walkIntoLongGaps()). Measured on seeds 72, 60 and 65: 91.97, 96.06 and
+  // 93.56 % of the ring at 3 sigma (mean 93.86 %); 91.20, 93.41 and 91.68 % (mean 92.10 %) when the walk
   // stopped at four misses in a row (RidgeTuning::guidedWalkGap), 88.20, 89.86 and 89.80 % (mean 89.29 %)
   // without that walk; precision 0.981-0.987 each time; second-pass RMS 0.35-0.40 px (0.34-0.44 px before;
   // JPEG 60's colour blocks move the centres, as at 90 on a smaller scale:
@@ -420,36 +420,39 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
   EXPECT_GE(means.coverage3, 0.935);
 }
 
-TEST(LaserConicGuidedSearch, AWalkIntoTheDimSideDoesNotFollowADarkBoxOverIt)
+TEST(LaserConicGuidedSearch, ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge)
 {
   // The faint ring through JPEG 60 with a dark box over its dimmest stretch, the box's top edge 3 px above the
-  // ring there (the ring runs hidden beside the edge, as in the hard sequence's occluded frames). The walk into
-  // the final ellipse's long gaps on the brightness, let go farther than four samples without a point before it
-  // had found one (RidgeTuning::guidedWalkGap), took the JPEG ringing of the box's edge: seed 72, 54 points more
-  // than 2 px inside the box, precision 0.949; now 1 point, 0.977. What is left is the guided pass's own (1
-  // point before that walk changed): on seeds 60, 65 and 61 27, 30 and 57 points 2.7-4 px off the ring along
-  // the edge, precision 0.967, 0.963 and 0.954 either way, under the 0.98 (the box's face is a region of
-  // red dominance 3 over the floor's 0, and JPEG's chroma rings at its edge).
-  Settings s = fadingRing(40.0, 4.0);
-  s.jpegQuality = 60;
-  const unsigned int seed = 72;
-  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), seed);
-  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
-  const auto dimmest = std::min_element(truth.begin(), truth.end(),
-                                        [](const auto &a, const auto &b) { return a.peakOverNoise < b.peakOverNoise; });
-  const vpImagePoint p = dimmest->point;
-  const double top = p.get_v() - 3.0, bottom = p.get_v() + 80.0, left = p.get_u() - 60.0, right = p.get_u() + 60.0;
-  s.occluders.push_back(
-      {vpImagePoint(top, left), vpImagePoint(top, right), vpImagePoint(bottom, right), vpImagePoint(bottom, left)});
-  vpLaserConicDetector detector;
-  std::vector<vpImagePoint> points;
-  const GuidedQuality q = runGuided("box_over_the_dim_side", tiltedGround(), s, seed, detector, &points);
-  const auto inside = std::count_if(points.begin(), points.end(), [&](const vpImagePoint &x) {
-    return x.get_u() > left + 2.0 && x.get_u() < right - 2.0 && x.get_v() > top + 2.0 && x.get_v() < bottom - 2.0;
-  });
-  std::cout << "points more than 2 px inside the box: " << inside << std::endl;
-  EXPECT_LE(inside, 5);
-  EXPECT_GE(q.precision, 0.97);
+  // ring there (the ring runs hidden beside the edge, as in the hard sequence's occluded frames). Points more
+  // than 2 px inside the box are off the ring. Measured: seeds 72, 60, 65, 61: 1, 0, 0, 0 points, precision
+  // 0.977, 0.982, 0.987, 0.987. Before: the walk into the final ellipse's long gaps on the brightness, let go
+  // farther than four samples without a point before it had found one (RidgeTuning::guidedWalkGap), took the
+  // JPEG ringing of the box's edge on seed 72 (54 points, precision 0.949), and the brightness measured at the
+  // prediction where it crosses a colour edge took it on the other three (27, 30, 57 points 2.7-4 px off the
+  // ring, precision 0.954-0.967) until its bump had to stand half the edge's step (RidgeTuning::guidedEdgeBump).
+  for (unsigned int seed : {72u, 60u, 65u, 61u}) {
+    Settings s = fadingRing(40.0, 4.0);
+    s.jpegQuality = 60;
+    vpLaserConicSimulator sim = makeSimulator(tiltedGround(), seed);
+    const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
+    const auto dimmest = std::min_element(truth.begin(), truth.end(), [](const auto &a, const auto &b) {
+      return a.peakOverNoise < b.peakOverNoise;
+    });
+    const vpImagePoint p = dimmest->point;
+    const double top = p.get_v() - 3.0, bottom = p.get_v() + 80.0, left = p.get_u() - 60.0, right = p.get_u() + 60.0;
+    s.occluders.push_back(
+        {vpImagePoint(top, left), vpImagePoint(top, right), vpImagePoint(bottom, right), vpImagePoint(bottom, left)});
+    vpLaserConicDetector detector;
+    std::vector<vpImagePoint> points;
+    const GuidedQuality q =
+        runGuided("box_over_the_dim_side_" + std::to_string(seed), tiltedGround(), s, seed, detector, &points);
+    const auto inside = std::count_if(points.begin(), points.end(), [&](const vpImagePoint &x) {
+      return x.get_u() > left + 2.0 && x.get_u() < right - 2.0 && x.get_v() > top + 2.0 && x.get_v() < bottom - 2.0;
+    });
+    std::cout << "points more than 2 px inside the box: " << inside << std::endl;
+    EXPECT_LE(inside, 5) << "seed " << seed;
+    EXPECT_GE(q.precision, 0.975) << "seed " << seed;
+  }
 }
 
 TEST(LaserConicGuidedSearch, AFaintRingIsNotLocatedOnAFlatEllipseThroughAShortArc)
@@ -478,7 +481,7 @@ TEST(LaserConicGuidedSearch, TheDimSideThroughJpegHoldsItsLineToAFewTenths)
   // dominance read across the *true* centre line (an alignment no detector has), averaged over 80 px of arc
   // and located by a matched filter. Measured on the ten faint cases (seeds 60, 61, 63, 65, 117, plain and
   // through the wide lens): 0.25-0.62 px RMS through JPEG 90, 0.07-0.15 px uncompressed; over 160 px of arc
-  // 0.21-0.45 px. Here seed 61 through the wide lens, where the second pass is 0.36 px RMS
+  // 0.21-0.45 px. Here seed 61 through the wide lens, where the second pass is 0.33 px RMS
   // (FaintRingThroughAWideDistortedLens), and seed 63: 0.48 and 0.45 px through JPEG 90, 0.11 px each
   // uncompressed. vpLaserConicDetector::setGuidedThresholdFactor() quotes these figures.
   const struct

@@ -79,7 +79,8 @@ ProfileResult brightnessAtPrediction(const vpImage<vpRGBa> &I, const GuidedSampl
 {
   ProfileResult r =
       threeThenNineLines(I, s, settings, onBrightness(window), buffers, [](const ProfileResult &) { return true; });
-  r.found = r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold;
+  r.found = r.found && r.response >= RidgeTuning::guidedBrightnessStrength * r.threshold &&
+            r.response >= RidgeTuning::guidedEdgeBump * r.stepAtStripe;
   return r;
 }
 

@@ -510,6 +510,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                       vertex ? nullptr : &centre))
     return notFound(result, filter, s, start);
   const double along = start + centre;
+  result.stepAtStripe = filter.backgroundStep(best);
   result.found = true;
   result.offset = (along - s.pos) * s.toNormal;
   result.crossing.alongRow = s.alongRow;
