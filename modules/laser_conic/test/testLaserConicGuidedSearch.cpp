@@ -389,8 +389,9 @@ TEST(LaserConicGuidedSearch, FaintRingThroughAWideDistortedLens)
   // RidgeTuning::guidedEdgeBump; 96.5-99.6 %, mean 98.57 %, precision 1, 0.14-0.36 px, mean 0.214, before
   // walkIntoLongGaps(); 0.991-1 and 0.15-0.33 px, mean 0.246, before ProfileWindow::peakWithin). The issue's
   // bounds on coverage and precision hold on every seed; its 0.3 px does not on seed 61 (0.329 px): the far
-  // side's centres at 2-3 sigma are moved by JPEG (rendered without it: 0.030 px, precision 1). The per-seed RMS bound is the measured worst with a margin, the means'
-  // the measured ones with a margin. Twenty more seeds: DISABLED_SeedsNeverTunedOn.
+  // side's centres at 2-3 sigma are moved by JPEG (rendered without it: 0.030 px, precision 1). The per-seed
+  // RMS bound is the measured worst with a margin, the means' the measured ones with a margin. Twenty more
+  // seeds: DISABLED_SeedsNeverTunedOn.
   std::vector<unsigned int> seeds = kFaintSeeds;
   seeds.resize(static_cast<size_t>(laser_test::trials(7, 2))); // two under the sanitizers
   const SeedMeans means = overSeeds(
