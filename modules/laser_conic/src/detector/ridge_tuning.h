@@ -240,7 +240,7 @@ struct RidgeTuning
   //! A point measured on the brightness at the prediction (brightnessAtPrediction()) stands at least this share
   //! of the step of the brightness across it (ProfileResult::stepAtStripe) above its background: JPEG rings at a
   //! strong edge, with a bump of a fraction of the step. A dark box over the dim side of the faint ring through
-  //! JPEG 60 (testLaserConicGuidedSearch's AWalkIntoTheDimSideDoesNotFollowADarkBoxOverIt, its edge 3 px from
+  //! JPEG 60 (testLaserConicGuidedSearch's ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge, its edge 3 px from
   //! the ring) gave 27, 30 and 57 points along its edge on seeds 60, 65 and 61, 2.7-4 px off the ring
   //! (precision 0.954-0.967), none with it (0.982-0.987), their rings at 3 sigma within 0.4 %. On the test cases
   //! without a box: the mosaic's mean 97.73 -> 97.69 % (seeds 73-82), faint ring through the wide lens seed 61's
