@@ -74,8 +74,9 @@ struct ProfileResult
   //! levels of the summed lines; negative when its boxes leave the profile, or when the stripe was found): a
   //! colour edge along the curve
   double edgeAtPrediction = -1.0;
-  //! |left - right| of the matched filter's two background means at the stripe found (grey levels of the summed
-  //! lines; negative when its boxes leave the profile): the step of an edge the stripe runs along
+  //! |left - right| of the matched filter's two background means at the stripe found on the brightness
+  //! (ProfileWindow::brightness; grey levels of the summed lines; negative on the red score, or when its boxes
+  //! leave the profile): the step of an edge the stripe runs along
   double stepAtStripe = -1.0;
   int lines = 0;           //!< image lines summed
   bool brightness = false; //!< measured on the brightness (ProfileWindow::brightness): its noise is not the red's

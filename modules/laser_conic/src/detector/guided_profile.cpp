@@ -510,7 +510,8 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
                       vertex ? nullptr : &centre))
     return notFound(result, filter, s, start);
   const double along = start + centre;
-  result.stepAtStripe = filter.backgroundStep(best);
+  if (window.brightness) // read by brightnessAtPrediction() only: a tracked frame's profiles do not compute it
+    result.stepAtStripe = filter.backgroundStep(best);
   result.found = true;
   result.offset = (along - s.pos) * s.toNormal;
   result.crossing.alongRow = s.alongRow;
