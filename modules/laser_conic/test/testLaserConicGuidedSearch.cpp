@@ -360,9 +360,10 @@ TEST(LaserConicGuidedSearch, FadingRingOnADarkFloorIsFoundAllRound)
 TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
 {
   // 40 near, 4 far (2 sigma), seven noise seeds. Of the part of the ring at 3 sigma or more, measured 98.9-99.93 %
-  // found (mean 99.54 %), precision 1, second-pass RMS 0.17-0.28 px (mean 0.202; 0.196 before the walk into
-  // long gaps on the brightness, walkIntoLongGaps(), 0.201 before that walk bridged its misses,
-  // RidgeTuning::guidedWalkGap). Before a point measured at the
+  // found (mean 99.54 %), precision 1, second-pass RMS 0.15-0.26 px (mean 0.191; 0.17-0.28 px, mean 0.202,
+  // before the short pieces standing alone on the far side were dropped, RidgeTuning::guidedIsolatedRun; 0.196
+  // before the walk into long gaps on the brightness, walkIntoLongGaps(), 0.201 before that walk bridged its
+  // misses, RidgeTuning::guidedWalkGap). Before a point measured at the
   // prediction had to be a peak of the response inside its window (ProfileWindow::peakWithin): 0.17-0.31 px, mean
   // 0.209, seed 60 over the 0.3 px with far-side points placed on the flank of the stripe at the window's
   // end. Every seed is held to the bounds, the means to the measured ones with a margin. What is
@@ -377,7 +378,7 @@ TEST(LaserConicGuidedSearch, FaintRingDownToTwiceTheNoise)
   const SeedMeans means = overSeeds("faint", fadingRing(40.0, 4.0), kFaintSeeds,
                                     [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); });
   EXPECT_GE(means.coverage3, 0.99);
-  EXPECT_LE(means.rmsGuided, 0.22);
+  EXPECT_LE(means.rmsGuided, 0.21);
 }
 
 TEST(LaserConicGuidedSearch, FaintRingThroughAWideDistortedLens)
@@ -385,20 +386,21 @@ TEST(LaserConicGuidedSearch, FaintRingThroughAWideDistortedLens)
   // The faint ring above through the wide lens with barrel distortion (wideCamera()): the image of the trace is
   // not a conic, and the guided pass's prediction and its regularisation along the fitted ellipse follow it only
   // to within its distortion. Measured on the same seven seeds: 97.2-99.8 % of the ring at 3 sigma (mean
-  // 98.75 %), precision >= 0.997, second-pass RMS 0.15-0.33 px (mean 0.228; seed 61 0.351 px before
+  // 98.75 %), precision >= 0.997, second-pass RMS 0.12-0.26 px (mean 0.206): the bounds hold on every
+  // seed. Seed 61 was at 0.329 px until the short pieces that stand alone were dropped
+  // (RidgeTuning::guidedIsolatedRun): 40 % of its squared error came from 19 points where the stripe is at
+  // 1.6-1.8 sigma, most of them a piece of 12 points 1.4 px beside the ring with nothing found within 30 px
+  // of it (rendered without JPEG: 0.030 px, precision 1). Before: seed 61 0.351 px before
   // RidgeTuning::guidedEdgeBump; 96.5-99.6 %, mean 98.57 %, precision 1, 0.14-0.36 px, mean 0.214, before
-  // walkIntoLongGaps(); 0.991-1 and 0.15-0.33 px, mean 0.246, before ProfileWindow::peakWithin). The issue's
-  // bounds on coverage and precision hold on every seed; its 0.3 px does not on seed 61 (0.329 px): the far
-  // side's centres at 2-3 sigma are moved by JPEG (rendered without it: 0.030 px, precision 1). The per-seed
-  // RMS bound is the measured worst with a margin, the means' the measured ones with a margin. Twenty more
-  // seeds: DISABLED_SeedsNeverTunedOn.
+  // walkIntoLongGaps(); 0.991-1 and 0.15-0.33 px, mean 0.246, before ProfileWindow::peakWithin. The means'
+  // bounds are the measured ones with a margin. Twenty more seeds: DISABLED_SeedsNeverTunedOn.
   std::vector<unsigned int> seeds = kFaintSeeds;
   seeds.resize(static_cast<size_t>(laser_test::trials(7, 2))); // two under the sanitizers
   const SeedMeans means = overSeeds(
       "faint_wide", fadingRing(40.0, 4.0), seeds,
-      [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.38); }, Ridges::skip, wideCamera());
+      [](unsigned int, const GuidedQuality &q) { expectGuided(q, 0.95, 0.3); }, Ridges::skip, wideCamera());
   EXPECT_GE(means.coverage3, 0.98);
-  EXPECT_LE(means.rmsGuided, 0.25);
+  EXPECT_LE(means.rmsGuided, 0.23);
 }
 
 TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSideOnItsBrightness)
@@ -425,8 +427,9 @@ TEST(LaserConicGuidedSearch, ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge)
 {
   // The faint ring through JPEG 60 with a dark box over its dimmest stretch, the box's top edge 3 px above the
   // ring there (the ring runs hidden beside the edge, as in the hard sequence's occluded frames). Points more
-  // than 2 px inside the box are off the ring. Measured: seeds 72, 60, 65, 61: 1, 0, 0, 0 points, precision
-  // 0.977, 0.982, 0.987, 0.987. Before: the walk into the final ellipse's long gaps on the brightness, let go
+  // than 2 px inside the box are off the ring. Measured: seeds 72, 60, 65, 61: no point, precision 0.986,
+  // 0.982, 0.987, 0.987 (seed 72: 1 point and 0.977 until the short pieces that stand alone were dropped,
+  // RidgeTuning::guidedIsolatedRun: 15 points 1.5-2 px off the ring where it is at 1.6 sigma). Before: the walk into the final ellipse's long gaps on the brightness, let go
   // farther than four samples without a point before it had found one (RidgeTuning::guidedWalkGap), took the
   // JPEG ringing of the box's edge on seed 72 (54 points, precision 0.949), and the brightness measured at the
   // prediction where it crosses a colour edge took it on the other three (27, 30, 57 points 2.7-4 px off the
@@ -451,8 +454,8 @@ TEST(LaserConicGuidedSearch, ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge)
       return x.get_u() > left + 2.0 && x.get_u() < right - 2.0 && x.get_v() > top + 2.0 && x.get_v() < bottom - 2.0;
     });
     std::cout << "points more than 2 px inside the box: " << inside << std::endl;
-    EXPECT_LE(inside, 5) << "seed " << seed;
-    EXPECT_GE(q.precision, 0.975) << "seed " << seed;
+    EXPECT_LE(inside, 2) << "seed " << seed;
+    EXPECT_GE(q.precision, 0.98) << "seed " << seed;
   }
 }
 
@@ -463,8 +466,9 @@ TEST(LaserConicGuidedSearch, AFaintRingIsNotLocatedOnAFlatEllipseThroughAShortAr
   // fitted an ellipse with semi-axes of 70 and 0.8 px; running along that arc on both of its long sides, it
   // was covered at 0.97 by the arc's own points and trusted, so the retry with shorter chains, which locates
   // the ring, did not run: 9.5-15.3 % of the ring at 3 sigma on seeds 60, 61, 62 and 65 (161-379 points).
-  // An ellipse flatter than RidgeTuning::traceMinAxisRatio no longer locates a trace: 88.7-95.2 % now
-  // (precision >= 0.992).
+  // An ellipse flatter than RidgeTuning::traceMinAxisRatio no longer locates a trace: 87.7-95.2 % now
+  // (precision >= 0.992; seed 62 at 88.7 % before the short pieces that stand alone were dropped,
+  // RidgeTuning::guidedIsolatedRun).
   Settings s = fadingRing(40.0, 4.0);
   s.jpegQuality = 60;
   overSeeds(
@@ -678,7 +682,11 @@ TEST(LaserConicGuidedSearch, PiecesOfCurveEndOnTheRing)
 // (walkIntoLongGaps()): through the wide lens 99.18 %, every seed >= 97.61 %, precision >= 0.988, RMS mean
 // 0.222 px, at most 0.353 px (seed 117), two seeds above 0.3 px; faint ring 99.47 %, every seed >= 98.59 %,
 // precision >= 0.986, RMS mean 0.197 px, at most 0.310 px (seed 117), one seed above 0.3 px; mosaic 97.58 %,
-// every seed >= 95.97 %, precision >= 0.9954, RMS mean 0.149 px, at most 0.238 px.
+// every seed >= 95.97 %, precision >= 0.9954, RMS mean 0.149 px, at most 0.238 px. Since the short pieces that
+// stand alone are dropped (RidgeTuning::guidedIsolatedRun): through the wide lens 99.19 %, every seed >=
+// 97.61 %, precision >= 0.992, RMS mean 0.206 px, at most 0.344 px (seed 117), one seed above 0.3 px; faint
+// ring 99.46 %, every seed >= 98.59 %, precision >= 0.986, RMS mean 0.183 px, at most 0.287 px; mosaic as
+// before.
 TEST(LaserConicGuidedSearch, DISABLED_SeedsNeverTunedOn)
 {
   const SeedMeans mosaic = overSeeds(

@@ -149,14 +149,10 @@ private:
   size_t m_size = 0;                //!< doubles m_sums holds
 };
 
-// The points in their order along the curve, as positions of a sequence (with, on a closed ring, the points
-// within RidgeTuning::guidedSmoothRadius of the seam repeated beyond it): \e sequence the point of each
-// position, \e arc its arc length (the chords between consecutive points, so a gap is long), \e first the
-// position of the first point.
-void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence, std::vector<double> &arc,
-                 size_t &first)
+// The indices of \e points (anything with an angle around the conic's centre) in their order along the curve.
+template <class Points> void orderAlongCurve(const Points &points, std::vector<int> &order)
 {
-  std::vector<int> order(points.size());
+  order.resize(points.size());
   for (size_t k = 0; k < order.size(); ++k)
     order[k] = static_cast<int>(k);
   // The points often come in that order already (one walk along the curve), or as a rotation of it (a walk
@@ -170,6 +166,17 @@ void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence,
     else
       std::sort(order.begin(), order.end(), byAngle);
   }
+}
+
+// The points in their order along the curve, as positions of a sequence (with, on a closed ring, the points
+// within RidgeTuning::guidedSmoothRadius of the seam repeated beyond it): \e sequence the point of each
+// position, \e arc its arc length (the chords between consecutive points, so a gap is long), \e first the
+// position of the first point.
+void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence, std::vector<double> &arc,
+                 size_t &first)
+{
+  std::vector<int> order;
+  orderAlongCurve(points, order);
   const size_t n = order.size();
   std::vector<double> along(n, 0.0);
   auto chord = [&](int p, int q) {
@@ -317,12 +324,12 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
   return sectorCoverage(sample, uc, vc) >= pi / 3.0;
 }
 
-void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
+std::vector<int> smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)
 {
   const ConicCoefficients k(C);
   double uc = 0.0, vc = 0.0;
   if (crossings.size() < static_cast<size_t>(RidgeTuning::guidedSmoothMinPoints) || !k.centre(uc, vc))
-    return;
+    return std::vector<int>();
   std::vector<OnConic> points;
   points.reserve(crossings.size());
   for (const Crossing &x : crossings) {
@@ -330,7 +337,7 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
     const double fu = k.a * u + k.b * v + k.d, fv = k.b * u + k.c * v + k.e, norm = std::sqrt(fu * fu + fv * fv);
     const double F = k.a * u * u + 2.0 * k.b * u * v + k.c * v * v + 2.0 * k.d * u + 2.0 * k.e * v + k.f;
     if (!(norm > 0.0))
-      return;
+      return std::vector<int>();
     points.push_back(OnConic{u, v, fu / norm, fv / norm, F / (2.0 * norm), curveOrder(u - uc, v - vc)});
   }
   std::vector<int> sequence;
@@ -360,6 +367,8 @@ void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings
     const double shift = std::isfinite(fitted[i]) ? fitted[i] - c.offset : 0.0;
     crossings[static_cast<size_t>(sequence[first + i])].point = vpImagePoint(c.v + shift * c.nv, c.u + shift * c.nu);
   }
+  return std::vector<int>(sequence.begin() + static_cast<std::ptrdiff_t>(first),
+                          sequence.begin() + static_cast<std::ptrdiff_t>(first + points.size()));
 }
 
 namespace

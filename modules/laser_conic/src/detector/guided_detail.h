@@ -122,9 +122,19 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, b
 /*!
   Regularises the centres of \e crossings (the second pass's points) along the conic C: each point is moved
   along the normal of C so that its offset to C is that of a straight line fitted to the offsets of the points
-  within RidgeTuning::guidedSmoothRadius pixels (see RidgeTuning::guidedSmoothRadius).
+  within RidgeTuning::guidedSmoothRadius pixels (see RidgeTuning::guidedSmoothRadius). Returns the indices of
+  the crossings in their order along the curve (empty when they are too few to be regularised).
 */
-void smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings);
+std::vector<int> smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings);
+
+/*!
+  Drops the pieces of \e crossings (the second pass's points, in \e order along the curve as
+  smoothAlongCurve() gives it) that stand alone: fewer than RidgeTuning::guidedIsolatedRun points, no other of
+  the pass's points or of \e anchors (the first pass's) within RidgeTuning::guidedGapLength of their ends (see
+  RidgeTuning::guidedIsolatedRun).
+*/
+void dropIsolatedPieces(const std::vector<int> &order, const std::vector<vpImagePoint> &anchors,
+                        std::vector<Crossing> &crossings);
 
 //! The element of rank size / 2 of \e values (>= 0, not empty), as std::nth_element would place it.
 int middleValue(std::vector<int> &values);

@@ -404,7 +404,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   keepOnTheFinalCurve(C, work.guided);
   if (fittedHere)
     measureTheFinalCurvesGaps(I, settings, C, anchors, found, buffers, work.guided);
-  smoothAlongCurve(C, work.guided);
+  dropIsolatedPieces(smoothAlongCurve(C, work.guided), anchors, work.guided);
   // The regularisation moves a point along the curve's normal: beside the image's border it can move it out
   // of the image (found by the detector's fuzz target: -0.58 px), where no pixel measured it.
   const double right = W - 0.5, bottom = H - 0.5;
