@@ -60,6 +60,31 @@ bool occluded(const std::vector<std::vector<vpImagePoint> > &occluders, double u
   return false;
 }
 
+// Throws \e message when a sample's \e field (a measurement that starts as NaN) was not measured.
+void requireMeasured(const std::vector<vpLaserConicSimulator::vpTraceTruth> &truth,
+                     double vpLaserConicSimulator::vpTraceTruth::*field, const char *message)
+{
+  for (const vpLaserConicSimulator::vpTraceTruth &t : truth)
+    if (std::isnan(t.*field))
+      throw vpLaserConicException(vpLaserConicException::badValueError, message);
+}
+
+// Brightness R + G + B of I at p, bilinear between the four pixels around it (the border pixels repeated).
+double bilinearBrightness(const vpImage<vpRGBa> &I, const vpImagePoint &p)
+{
+  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
+  const double u = std::min(std::max(p.get_u(), 0.0), W - 1.0), v = std::min(std::max(p.get_v(), 0.0), H - 1.0);
+  const int j = std::max(0, std::min(static_cast<int>(u), W - 2)),
+            i = std::max(0, std::min(static_cast<int>(v), H - 2));
+  const double a = u - j, b = v - i;
+  const auto at = [&I, W, H](int x, int y) {
+    const vpRGBa &q = I[static_cast<unsigned int>(std::min(y, H - 1))][static_cast<unsigned int>(std::min(x, W - 1))];
+    return static_cast<double>(q.R) + q.G + q.B;
+  };
+  return (1 - a) * (1 - b) * at(j, i) + a * (1 - b) * at(j + 1, i) + (1 - a) * b * at(j, i + 1) +
+         a * b * at(j + 1, i + 1);
+}
+
 // True when the settings shape the stripe's brightness along the ring.
 inline bool hasFalloff(const vpLaserConicSimulator::vpRenderSettings &s)
 {
@@ -314,14 +339,64 @@ double vpLaserConicSimulator::stripeCoverage(const std::vector<vpTraceTruth> &tr
 double vpLaserConicSimulator::ridgeCoverage(const std::vector<vpTraceTruth> &truth,
                                             const std::vector<vpImagePoint> &points, double minOverNoise, double radius)
 {
-  for (const vpTraceTruth &t : truth)
-    if (std::isnan(t.prominenceOverNoise))
-      throw vpLaserConicException(vpLaserConicException::badValueError,
-                                  "ridgeCoverage(): the prominence of the truth was not measured "
-                                  "(call measureProminence() with the settings of traceTruth())");
+  requireMeasured(truth, &vpTraceTruth::prominenceOverNoise,
+                  "ridgeCoverage(): the prominence of the truth was not measured "
+                  "(call measureProminence() with the settings of traceTruth())");
   return coverageOf(truth, points, radius, [minOverNoise](const vpTraceTruth &t) {
     return t.peakOverNoise >= minOverNoise && t.prominenceOverNoise >= minOverNoise;
   });
+}
+
+void vpLaserConicSimulator::measureCompression(std::vector<vpTraceTruth> &truth, const vpRenderSettings &settings) const
+{
+  checkCamera();
+  checkSettings(settings);
+  if (settings.jpegQuality <= 0) {
+    for (vpTraceTruth &t : truth)
+      t.keptOverNoise = t.peakOverNoise;
+    return;
+  }
+  // The stripe's brightness at each sample: the image with the laser less the one without, compressed or not,
+  // each drawn by a copy of this simulator (the same noise, the same floor).
+  const auto added = [this, &truth](const vpRenderSettings &with) {
+    vpRenderSettings without = with;
+    without.laserOn = false;
+    vpImage<vpRGBa> on, off;
+    vpLaserConicSimulator(*this).render(on, with);
+    vpLaserConicSimulator(*this).render(off, without);
+    std::vector<double> stripe(truth.size(), 0.0);
+    for (size_t k = 0; k < truth.size(); ++k)
+      stripe[k] = bilinearBrightness(on, truth[k].point) - bilinearBrightness(off, truth[k].point);
+    return stripe;
+  };
+  vpRenderSettings raw = settings;
+  raw.jpegQuality = 0;
+  const std::vector<double> kept = added(settings), drawn = added(raw);
+  const double reach = 4.5; // pixels along the ring on each side: a nine-line profile's stretch
+  const size_t n = truth.size();
+  for (size_t k = 0; k < n; ++k) {
+    double sumKept = kept[k], sumDrawn = drawn[k];
+    for (int direction : {-1, 1})
+      for (size_t step = 1; step < n; ++step) {
+        const size_t m = (k + n + static_cast<size_t>(direction) * step) % n; // wraps round the ring
+        if (vpImagePoint::distance(truth[m].point, truth[k].point) > reach)
+          break;
+        sumKept += kept[m];
+        sumDrawn += drawn[m];
+      }
+    const double share = sumDrawn > 0.0 ? std::min(1.0, std::max(0.0, sumKept / sumDrawn)) : 0.0;
+    truth[k].keptOverNoise = truth[k].peakOverNoise * share;
+  }
+}
+
+double vpLaserConicSimulator::keptCoverage(const std::vector<vpTraceTruth> &truth,
+                                           const std::vector<vpImagePoint> &points, double minOverNoise, double radius)
+{
+  requireMeasured(truth, &vpTraceTruth::keptOverNoise,
+                  "keptCoverage(): what the compression keeps of the stripe was not measured "
+                  "(call measureCompression() with the settings of traceTruth())");
+  return coverageOf(truth, points, radius,
+                    [minOverNoise](const vpTraceTruth &t) { return t.keptOverNoise >= minOverNoise; });
 }
 
 bool vpLaserConicSimulator::curveNormal(double gamma, double n[2]) const

@@ -86,19 +86,25 @@ struct GuidedQuality
   //! coverage3 over the ring seen as a ridge of the image (vpLaserConicSimulator::ridgeCoverage()); NaN unless
   //! runGuided() was asked for it (a second render of the frame)
   double ridge3 = std::numeric_limits<double>::quiet_NaN();
+  //! coverage3 over the ring that the JPEG compression kept at 3 sigma (vpLaserConicSimulator::keptCoverage());
+  //! NaN unless runGuided() was asked for it (four more renders of the frame)
+  double kept3 = std::numeric_limits<double>::quiet_NaN();
   size_t points = 0, guided = 0;
 };
 
 //! Whether runGuided() measures GuidedQuality::ridge3.
 enum class Ridges { skip, measure };
+//! Whether runGuided() measures GuidedQuality::kept3.
+enum class Kept { skip, measure };
 
 //! Renders the case (seeded) through the camera \e cam, detects, measures against the ground truth.
 GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg, const Settings &s, unsigned int seed,
                         vpLaserConicDetector &detector, std::vector<vpImagePoint> *detected = nullptr,
-                        Ridges ridges = Ridges::skip, const vpCameraParameters &cam = camera())
+                        Ridges ridges = Ridges::skip, const vpCameraParameters &cam = camera(), Kept kept = Kept::skip)
 {
   vpLaserConicSimulator sim = makeSimulator(cMg, seed);
   sim.setCamera(cam, kWidth, kHeight);
+  const vpLaserConicSimulator beforeRendering = sim; // the random draws of the render below, for Kept::measure
   vpImage<vpRGBa> I;
   sim.render(I, s);
   dumpIfRequested("guided_" + name, I);
@@ -112,6 +118,10 @@ GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg,
   if (ridges == Ridges::measure) {
     sim.measureProminence(truth, s);
     q.ridge3 = vpLaserConicSimulator::ridgeCoverage(truth, points, 3.0, 1.5);
+  }
+  if (kept == Kept::measure) {
+    beforeRendering.measureCompression(truth, s);
+    q.kept3 = vpLaserConicSimulator::keptCoverage(truth, points, 3.0, 1.5);
   }
   q.points = points.size();
   q.guided = detector.getGuidedPointCount();
@@ -136,6 +146,8 @@ GuidedQuality runGuided(const std::string &name, const vpHomogeneousMatrix &cMg,
             << 100 * q.guidedOff << " % off)";
   if (ridges == Ridges::measure)
     std::cout << ", seen as a ridge: " << 100 * q.ridge3 << " %";
+  if (kept == Kept::measure)
+    std::cout << ", of what JPEG kept at 3 sigma: " << 100 * q.kept3 << " %";
   std::cout << std::endl;
   return q;
 }
@@ -165,6 +177,7 @@ struct SeedMeans
 {
   double coverage3 = 0.0, rmsGuided = 0.0;
   double ridge3 = 0.0; //!< NaN unless the ridges were measured
+  double kept3 = 0.0;  //!< NaN unless what JPEG kept was measured
 };
 
 /*!
@@ -173,17 +186,18 @@ struct SeedMeans
 */
 template <class Check>
 SeedMeans overSeeds(const std::string &name, const Settings &s, const std::vector<unsigned int> &seeds, Check check,
-                    Ridges ridges = Ridges::skip, const vpCameraParameters &cam = camera())
+                    Ridges ridges = Ridges::skip, const vpCameraParameters &cam = camera(), Kept kept = Kept::skip)
 {
   SeedMeans means;
   for (unsigned int seed : seeds) {
     vpLaserConicDetector detector;
     const GuidedQuality q =
-        runGuided(name + "_" + std::to_string(seed), tiltedGround(), s, seed, detector, nullptr, ridges, cam);
+        runGuided(name + "_" + std::to_string(seed), tiltedGround(), s, seed, detector, nullptr, ridges, cam, kept);
     check(seed, q);
     means.coverage3 += q.coverage3 / seeds.size();
     means.rmsGuided += q.rmsGuided / seeds.size();
     means.ridge3 += q.ridge3 / seeds.size();
+    means.kept3 += q.kept3 / seeds.size();
   }
   return means;
 }
@@ -413,14 +427,21 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
   // stopped at four misses in a row (RidgeTuning::guidedWalkGap), 88.20, 89.86 and 89.80 % (mean 89.29 %)
   // without that walk; precision 0.981-0.987 each time; second-pass RMS 0.35-0.40 px (0.34-0.44 px before;
   // JPEG 60's colour blocks move the centres, as at 90 on a smaller scale:
-  // TheDimSideThroughJpegHoldsItsLineToAFewTenths).
+  // TheDimSideThroughJpegHoldsItsLineToAFewTenths). Part of what is missed is not in the image: over the ring
+  // where what the compression kept of the stripe's brightness is still 3 sigma
+  // (vpLaserConicSimulator::keptCoverage()), 93.99, 97.51 and 97.39 % is found (mean 96.30 %).
   Settings s = fadingRing(40.0, 4.0);
   s.jpegQuality = 60;
-  const SeedMeans means = overSeeds("faint_jpeg60", s, {72u, 60u, 65u}, [](unsigned int, const GuidedQuality &q) {
-    EXPECT_GE(q.coverage3, 0.90);
-    EXPECT_GE(q.precision, 0.98);
-  });
+  const SeedMeans means = overSeeds(
+      "faint_jpeg60", s, {72u, 60u, 65u},
+      [](unsigned int, const GuidedQuality &q) {
+        EXPECT_GE(q.coverage3, 0.90);
+        EXPECT_GE(q.precision, 0.98);
+        EXPECT_GE(q.kept3, 0.93);
+      },
+      Ridges::skip, camera(), Kept::measure);
   EXPECT_GE(means.coverage3, 0.935);
+  EXPECT_GE(means.kept3, 0.96);
 }
 
 TEST(LaserConicGuidedSearch, ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge)

@@ -222,6 +222,12 @@ public:
     double prominence = std::numeric_limits<double>::quiet_NaN();
     //! prominence over the sensor noise standard deviation (+inf without noise when positive); NaN until measured.
     double prominenceOverNoise = std::numeric_limits<double>::quiet_NaN();
+    /*!
+      peakOverNoise times the share of the stripe's brightness that the settings' JPEG compression keeps there
+      (measureCompression()): what the compressed image still holds of the stripe, in the same units. Equal to
+      peakOverNoise without JPEG; NaN until measured.
+    */
+    double keptOverNoise = std::numeric_limits<double>::quiet_NaN();
   };
 
   //! Simulator with no camera, a 34 degree laser at the camera centre, ground 1 m in front, seed 0.
@@ -342,6 +348,26 @@ public:
   */
   static double ridgeCoverage(const std::vector<vpTraceTruth> &truth, const std::vector<vpImagePoint> &points,
                               double minOverNoise = 3.0, double radius = 1.5);
+  /*!
+    Fills vpTraceTruth::keptOverNoise of \e truth, the traceTruth() of this simulator with the same \e settings,
+    for the image that the next render() with \e settings draws (call it before that render(), or on a copy of
+    the simulator made before it): renders that scene four times on copies of this simulator, so with the same
+    random draws, with and without the laser, with and without the JPEG compression; at each sample, the
+    brightness R + G + B that the laser adds at the centre line, summed over the samples within 4.5 px along
+    the ring (the stretch a profile of nine lines averages), compressed over uncompressed, clamped to [0, 1],
+    scales peakOverNoise. Brightness, not red dominance: JPEG stores the colour at half resolution and a faint
+    stripe's colour is the first thing it drops, while a detector can still follow its brightness.
+    \exception vpLaserConicException as traceTruth().
+  */
+  void measureCompression(std::vector<vpTraceTruth> &truth, const vpRenderSettings &settings) const;
+  /*!
+    stripeCoverage() over the samples where what the compressed image keeps of the stripe is at least
+    \e minOverNoise times the sensor noise (keptOverNoise): the part of the ring that JPEG did not erase.
+    \exception vpLaserConicException::badValueError when a sample's keptOverNoise was not measured
+    (measureCompression()).
+  */
+  static double keptCoverage(const std::vector<vpTraceTruth> &truth, const std::vector<vpImagePoint> &points,
+                             double minOverNoise = 3.0, double radius = 1.5);
 
   /*!
     Renders a colour image of the camera's view with the default vpRenderSettings but for the stripe
