@@ -156,13 +156,17 @@ struct vpLaserConicDetectorRun
   points are dropped at the ellipse refitted on them all). A longer gap is followed from each of its ends
   where the stripe has faded (under 4 times its threshold on the red score: a bright stripe that stops was
   hidden, not faded) on the brightness, nine lines within 1 px of the last point's offset, each point kept
-  at 4 times the noise, until 4 profiles in a row find none: through strong JPEG a faint ring's dim side
-  keeps its brightness but hardly its colour (not in tracking either). Last, the centres of this pass are regularised
+  at 4 times the noise, until 4 profiles in a row find none or, once it has found the stripe past its end,
+  until it is 20 px past its last point (a point after more than 4 misses in a row must stand 4 grey levels
+  of R + G + B a line above its background): through strong JPEG a faint ring's dim side keeps its
+  brightness but hardly its colour (not in tracking either). Last, the centres of this pass are regularised
   along the curve: each one's offset to the final
   ellipse is replaced by a straight-line fit of the offsets within 80 px of arc on either side (offsets more than
   1 px from a first fit left out), since one profile's centre is noisy (sensor noise, JPEG's 8 x 8 blocks)
-  but the centre line is smooth. The points of this pass follow those of the first pass in the list
-  returned (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
+  but the centre line is smooth; then a piece of this pass's points shorter than 16 points with no other
+  point within 30 px of its ends is dropped (on a far side under 2 times the noise, a walk's lone guess over
+  a stretch it otherwise lost, and nothing around it to correct it). The points of this pass follow those of
+  the first pass in the list returned (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
   and have a stripe's profile.
 
   A search region (setSearchRegion()) restricts the search to a band around the predicted curve:
