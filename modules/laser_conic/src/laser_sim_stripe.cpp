@@ -376,9 +376,9 @@ void vpLaserConicSimulator::measureCompression(std::vector<vpTraceTruth> &truth,
   const size_t n = truth.size();
   for (size_t k = 0; k < n; ++k) {
     double sumKept = kept[k], sumDrawn = drawn[k];
-    for (int direction : {-1, 1})
+    for (const bool forwards : {false, true})
       for (size_t step = 1; step < n; ++step) {
-        const size_t m = (k + n + static_cast<size_t>(direction) * step) % n; // wraps round the ring
+        const size_t m = forwards ? (k + step) % n : (k + n - step) % n; // round the ring
         if (vpImagePoint::distance(truth[m].point, truth[k].point) > reach)
           break;
         sumKept += kept[m];

@@ -149,10 +149,14 @@ private:
   size_t m_size = 0;                //!< doubles m_sums holds
 };
 
-// The indices of \e points (anything with an angle around the conic's centre) in their order along the curve.
-template <class Points> void orderAlongCurve(const Points &points, std::vector<int> &order)
+// The points in their order along the curve, as positions of a sequence (with, on a closed ring, the points
+// within RidgeTuning::guidedSmoothRadius of the seam repeated beyond it): \e sequence the point of each
+// position, \e arc its arc length (the chords between consecutive points, so a gap is long), \e first the
+// position of the first point.
+void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence, std::vector<double> &arc,
+                 size_t &first)
 {
-  order.resize(points.size());
+  std::vector<int> order(points.size());
   for (size_t k = 0; k < order.size(); ++k)
     order[k] = static_cast<int>(k);
   // The points often come in that order already (one walk along the curve), or as a rotation of it (a walk
@@ -166,17 +170,6 @@ template <class Points> void orderAlongCurve(const Points &points, std::vector<i
     else
       std::sort(order.begin(), order.end(), byAngle);
   }
-}
-
-// The points in their order along the curve, as positions of a sequence (with, on a closed ring, the points
-// within RidgeTuning::guidedSmoothRadius of the seam repeated beyond it): \e sequence the point of each
-// position, \e arc its arc length (the chords between consecutive points, so a gap is long), \e first the
-// position of the first point.
-void arcSequence(const std::vector<OnConic> &points, std::vector<int> &sequence, std::vector<double> &arc,
-                 size_t &first)
-{
-  std::vector<int> order;
-  orderAlongCurve(points, order);
   const size_t n = order.size();
   std::vector<double> along(n, 0.0);
   auto chord = [&](int p, int q) {
