@@ -458,8 +458,12 @@ TEST(LaserConicSimulatorStripe, CompressionKeepsABrightStripeAndLosesPartOfAFain
   Settings s;
   vpLaserConicSimulator sim = evenFloor(5, s);
   std::vector<Truth> truth = sim.traceTruth(3000, s);
-  EXPECT_THROW(vpLaserConicSimulator::keptCoverage(truth, {}), vpLaserConicException); // not measured yet
-  sim.measureCompression(truth, s);                                                    // no JPEG: all of it kept
+  EXPECT_THROW(vpLaserConicSimulator::keptCoverage(truth, {}), vpLaserConicException);       // not measured yet
+  EXPECT_THROW(vpLaserConicSimulator().measureCompression(truth, s), vpLaserConicException); // no camera
+  Settings negative = s;
+  negative.noise = -1.0;
+  EXPECT_THROW(sim.measureCompression(truth, negative), vpLaserConicException);
+  sim.measureCompression(truth, s); // no JPEG: all of it kept
   for (const Truth &t : truth)
     EXPECT_EQ(t.keptOverNoise, t.peakOverNoise);
   for (int quality : {95, 60, 30}) {
