@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <random>
 #include <set>
@@ -233,4 +234,95 @@ TEST(RobustRansacLoop, ReportedInliersAreTheConsensusOfTheBestModel)
     EXPECT_NEAR(best.a, 0.5, 2e-3);
     EXPECT_NEAR(best.b, -2.0, 5e-3);
   }
+}
+
+TEST(RobustRansacSampler, DrawsSingleIndicesInRange)
+{
+  vpRansacSampler a(3, 11), b(3, 11);
+  for (int t = 0; t < 1000; ++t) {
+    const int k = a.index(7);
+    ASSERT_GE(k, 0);
+    ASSERT_LT(k, 7);
+    ASSERT_EQ(k, b.index(7)); // the same seed, the same draws
+  }
+  EXPECT_THROW(a.index(0), vpException);
+  EXPECT_THROW(a.index(-2), vpException);
+}
+
+namespace
+{
+// LineEstimator over data that come in groups, drawing both points of a sample from the group of a point drawn
+// at random (vpRansacLoop()'s optional drawSample()); counts its draws.
+struct GroupedLineEstimator : LineEstimator
+{
+  std::vector<int> group;                 //!< group of each datum
+  std::vector<std::vector<int> > members; //!< the data of each group
+  mutable int draws = 0;
+  void drawSample(vpRansacSampler &sampler, int *s) const
+  {
+    ++draws;
+    s[0] = sampler.index(size());
+    const std::vector<int> &same = members[static_cast<size_t>(group[static_cast<size_t>(s[0])])];
+    do
+      s[1] = same[static_cast<size_t>(sampler.index(static_cast<int>(same.size())))];
+    while (s[1] == s[0]);
+  }
+};
+
+// 20 points of y = 0.5 x - 2 (group 0), then 64 groups of 10 points each on a line of its own (x spread over
+// [-10, 10], noise 0.01): the line is 3 % of the data, any two points drawn at random lie on it once in 1100
+// samples.
+GroupedLineEstimator makeGroupedLines(unsigned int seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-10, 10), slope(-3, 3);
+  std::normal_distribution<double> noise(0, 0.01);
+  GroupedLineEstimator est;
+  for (int g = 0; g <= 64; ++g) {
+    const double a = g == 0 ? 0.5 : slope(rng), b = g == 0 ? -2.0 : u(rng);
+    est.members.emplace_back();
+    for (int i = 0; i < (g == 0 ? 20 : 10); ++i) {
+      const double xi = u(rng);
+      est.members.back().push_back(est.size());
+      est.group.push_back(g);
+      est.x.push_back(xi);
+      est.y.push_back(a * xi + b + noise(rng));
+    }
+  }
+  return est;
+}
+
+// The line through two of its points (no local optimisation): the slope within 0.01 (noise 0.01 over points
+// a few units apart), its 20 points inliers (a few of the other lines' points may cross it).
+bool onTheLine(const LineEstimator::Model &m, const vpRansacReport &report)
+{
+  return std::abs(m.a - 0.5) < 0.01 && std::abs(m.b + 2.0) < 0.05 && report.inlierCount >= 20;
+}
+} // namespace
+
+TEST(RobustRansacLoop, AnEstimatorThatDrawsItsOwnSamplesIsUsed)
+{
+  // 100 samples each: two points of one group lie on the line once in 33 draws (the first point on it), two
+  // points drawn one by one once in 1100 (a 9 % chance per run to find it).
+  int grouped = 0, uniform = 0;
+  for (unsigned int seed = 1; seed <= 20; ++seed) {
+    const GroupedLineEstimator est = makeGroupedLines(seed);
+    vpRansacOptions opt;
+    opt.threshold = 0.05;
+    opt.seed = seed;
+    opt.maxTrials = 100;
+    opt.localOptimisation = false;
+    LineEstimator::Model best;
+    vpRansacReport report;
+    ASSERT_TRUE(vpRansacLoop(est, opt, best, report));
+    EXPECT_EQ(est.draws, report.trials); // every sample came from drawSample()
+    grouped += onTheLine(best, report) ? 1 : 0;
+    const LineEstimator &plain = est; // the same data without drawSample(): samples drawn one by one
+    ASSERT_TRUE(vpRansacLoop(plain, opt, best, report));
+    uniform += onTheLine(best, report) ? 1 : 0;
+  }
+  EXPECT_GE(grouped, 19); // 1 - 0.97^100: each run finds it with probability 0.95
+  EXPECT_LE(uniform, 6);  // 20 runs at 9 %: 1.8 expected
+  std::cout << "line found by grouped samples in " << grouped << " of 20 runs, by uniform samples in " << uniform
+            << std::endl;
 }

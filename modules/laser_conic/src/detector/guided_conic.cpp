@@ -17,6 +17,7 @@
 #include <visp3/robust/vpRansac.h>
 
 #include "../laser_estimators.h"
+#include "chain_estimator.h"
 #include "search_region.h"
 
 namespace vsp::laser_detector
@@ -222,22 +223,52 @@ void fitWindows(const WindowFits &fits, const std::vector<double> &arc, size_t f
 }
 } // namespace
 
+namespace
+{
+// The stride of positionSubsample() for about \e target of \e count points.
+unsigned int subsampleStride(size_t count, size_t target)
+{
+  return static_cast<unsigned int>(std::max<size_t>(1, count / target));
+}
+
+// Whether positionSubsample() picks \e p at \e stride: a hash of its pixel.
+bool pickedByPosition(const vpImagePoint &p, unsigned int stride)
+{
+  const unsigned int iu = static_cast<unsigned int>(std::max(0.0, p.get_u())),
+                     iv = static_cast<unsigned int>(std::max(0.0, p.get_v()));
+  // Every point when the stride is 1 (a tracked frame's 700), without the modulo's division.
+  return stride == 1 || ((iu * 73856093u) ^ (iv * 19349663u)) % stride == 0;
+}
+} // namespace
+
 void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, bool byPosition,
                        std::vector<Eigen::Vector2d> &sample)
 {
   sample.clear();
-  const unsigned int stride = static_cast<unsigned int>(std::max<size_t>(1, points.size() / target));
-  for (const vpImagePoint &p : points) {
-    const unsigned int iu = static_cast<unsigned int>(std::max(0.0, p.get_u())),
-                       iv = static_cast<unsigned int>(std::max(0.0, p.get_v()));
-    // Every point when the stride is 1 (a tracked frame's 700), without the modulo's division.
-    if (stride == 1 || ((iu * 73856093u) ^ (iv * 19349663u)) % stride == 0)
+  const unsigned int stride = subsampleStride(points.size(), target);
+  for (const vpImagePoint &p : points)
+    if (pickedByPosition(p, stride))
       sample.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
-  }
   if (byPosition)
     std::sort(sample.begin(), sample.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
       return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
     });
+}
+
+std::vector<int> positionSubsampleIndices(const std::vector<vpImagePoint> &points, size_t target)
+{
+  std::vector<int> picked;
+  const unsigned int stride = subsampleStride(points.size(), target);
+  for (size_t k = 0; k < points.size(); ++k)
+    if (pickedByPosition(points[k], stride))
+      picked.push_back(static_cast<int>(k));
+  // By row then column, then by index: points at the same place keep their order.
+  std::sort(picked.begin(), picked.end(), [&points](int a, int b) {
+    const vpImagePoint &p = points[static_cast<size_t>(a)], &q = points[static_cast<size_t>(b)];
+    return p.get_v() < q.get_v() ||
+           (p.get_v() == q.get_v() && (p.get_u() < q.get_u() || (p.get_u() == q.get_u() && a < b)));
+  });
+  return picked;
 }
 
 size_t pointsOnTraceEllipse(const Eigen::Matrix3d &C, const std::vector<vpImagePoint> &points)
@@ -250,49 +281,63 @@ size_t pointsOnTraceEllipse(const Eigen::Matrix3d &C, const std::vector<vpImageP
   return on;
 }
 
+namespace
+{
+// The ellipse that locates the trace among \e points (\e all: the same as vectors), before the refit on all of
+// them: fitted to a subsample (a few hundred points locate the trace as well as all of them), chosen by
+// position and sorted (the same points in any order give the same ellipse: the first pass's order depends on
+// how it searched). Most frames hold the trace alone: the least-squares ellipse of the subsample then fits
+// nearly all of it, and RANSAC (a singular value decomposition per sample) is needed only when it does not;
+// its samples are drawn chain by chain when \e chainOf gives the chain of each point (ChainPp5Estimator).
+bool locateEllipse(const std::vector<vpImagePoint> &points, const vsp::laser_estimators::PointList &all,
+                   int ransacTrials, const std::vector<int> *chainOf, Eigen::Matrix3d &C)
+{
+  const std::vector<int> picked = positionSubsampleIndices(points, 300);
+  vsp::laser_estimators::PointList sample;
+  std::vector<int> chains, everyone(picked.size());
+  for (size_t k = 0; k < picked.size(); ++k) {
+    sample.push_back(all[static_cast<size_t>(picked[k])]);
+    if (chainOf != nullptr)
+      chains.push_back((*chainOf)[static_cast<size_t>(picked[k])]);
+    everyone[k] = static_cast<int>(k);
+  }
+  const double threshold = RidgeTuning::traceInlierDistance;
+  if (fitImageEllipse(sample, everyone, C)) {
+    size_t close = 0;
+    for (const Eigen::Vector2d &p : sample)
+      close += vpLaserSolvers::sampsonDistance(C, p) <= threshold ? 1 : 0;
+    if (close >= sample.size() * 9 / 10)
+      return true;
+  }
+  vpRansacOptions options;
+  options.threshold = threshold;
+  options.seed = 1;
+  // No local optimisation, and as few samples as the caller can afford: five-point conics cost a singular
+  // value decomposition each; a frame whose points make no ellipse (no trace, or a hyperbola's arc) must
+  // not cost more.
+  options.maxTrials = ransacTrials;
+  options.localOptimisation = false;
+  vpRansacReport ransac;
+  if (chainOf != nullptr)
+    return vpRansacLoop(ChainPp5Estimator(sample, chains), options, C, ransac);
+  return vpRansacLoop(vsp::laser_estimators::Pp5Estimator(sample), options, C, ransac);
+}
+} // namespace
+
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, int ransacTrials,
-                     Eigen::Matrix3d &C, std::vector<int> &inliers)
+                     Eigen::Matrix3d &C, std::vector<int> &inliers, const std::vector<int> *chainOf)
 {
   inliers.clear();
   if (static_cast<int>(points.size()) < std::max(5, minInliers))
     return false;
-  // RANSAC on a subsample (a few hundred points locate the trace as well as all of them), the inliers and
-  // the refit on every point. The subsample is chosen by position and sorted: the same points in any order
-  // give the same ellipse (the first pass's order depends on how it searched).
-  vsp::laser_estimators::PointList all, sample;
+  vsp::laser_estimators::PointList all;
   all.reserve(points.size());
   for (const vpImagePoint &p : points)
     all.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
-  std::vector<Eigen::Vector2d> picked;
-  positionSubsample(points, 300, true, picked);
-  sample.assign(picked.begin(), picked.end());
-  // Most frames hold the trace alone: the least-squares ellipse of the subsample then fits nearly all of it,
-  // and RANSAC (a singular value decomposition per sample) is needed only when it does not.
+  if (!locateEllipse(points, all, ransacTrials,
+                     chainOf != nullptr && chainOf->size() == points.size() ? chainOf : nullptr, C))
+    return false;
   const double threshold = RidgeTuning::traceInlierDistance;
-  std::vector<int> everyone(sample.size());
-  for (size_t k = 0; k < sample.size(); ++k)
-    everyone[k] = static_cast<int>(k);
-  bool fitted = fitImageEllipse(sample, everyone, C);
-  if (fitted) {
-    size_t close = 0;
-    for (const Eigen::Vector2d &p : sample)
-      close += vpLaserSolvers::sampsonDistance(C, p) <= threshold ? 1 : 0;
-    fitted = close >= sample.size() * 9 / 10;
-  }
-  if (!fitted) {
-    const vsp::laser_estimators::Pp5Estimator estimator(sample);
-    vpRansacOptions options;
-    options.threshold = threshold;
-    options.seed = 1;
-    // No local optimisation, and as few samples as the caller can afford: five-point conics cost a singular
-    // value decomposition each; a frame whose points make no ellipse (no trace, or a hyperbola's arc) must
-    // not cost more.
-    options.maxTrials = ransacTrials;
-    options.localOptimisation = false;
-    vpRansacReport ransac;
-    if (!vpRansacLoop(estimator, options, C, ransac))
-      return false;
-  }
   for (int round = 0; round < 2; ++round) { // inliers of all points, refit, once more
     inliers.clear();
     for (int k = 0; k < static_cast<int>(all.size()); ++k)
@@ -310,11 +355,11 @@ bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int 
     return false; // a short, nearly straight arc: the ellipse hugs it on both of its long sides
   // The arc of about 300 of the inliers, evenly spread along their list (an arc tangent each: all of them cost
   // as much as the rest of the fit).
-  sample.clear();
+  vsp::laser_estimators::PointList arc;
   const size_t stride = std::max<size_t>(1, inliers.size() / 300);
   for (size_t j = 0; j < inliers.size(); j += stride)
-    sample.push_back(all[static_cast<size_t>(inliers[j])]);
-  return sectorCoverage(sample, uc, vc) >= pi / 3.0;
+    arc.push_back(all[static_cast<size_t>(inliers[j])]);
+  return sectorCoverage(arc, uc, vc) >= pi / 3.0;
 }
 
 std::vector<int> smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing> &crossings)

@@ -119,6 +119,9 @@ private:
 void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, bool byPosition,
                        std::vector<Eigen::Vector2d> &sample);
 
+//! The indices of the points positionSubsample() picks, sorted as it sorts them by position (then by index).
+std::vector<int> positionSubsampleIndices(const std::vector<vpImagePoint> &points, size_t target);
+
 /*!
   Regularises the centres of \e crossings (the second pass's points) along the conic C: each point is moved
   along the normal of C so that its offset to C is that of a straight line fitted to the offsets of the points

@@ -56,10 +56,11 @@ struct GuidedReport
   refitted on its inliers (returned in \e inliers). False when fewer than
   \e minInliers points agree, their arc around the ellipse is under 60 degrees or the conic is no plausible
   image of the ring (not an ellipse, far larger than the image, or flatter than
-  RidgeTuning::traceMinAxisRatio).
+  RidgeTuning::traceMinAxisRatio). With \e chainOf (the chain of each point, see keptChains()), RANSAC draws
+  its samples chain by chain (ChainPp5Estimator).
 */
 bool fitTraceEllipse(const std::vector<vpImagePoint> &points, int W, int H, int minInliers, int ransacTrials,
-                     Eigen::Matrix3d &C, std::vector<int> &inliers);
+                     Eigen::Matrix3d &C, std::vector<int> &inliers, const std::vector<int> *chainOf = nullptr);
 
 //! How many of \e points lie on the ellipse C as fitTraceEllipse() counts its inliers (Sampson distance within
 //! RidgeTuning::traceInlierDistance).

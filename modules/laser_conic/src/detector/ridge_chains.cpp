@@ -129,8 +129,10 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
 {
   const int n = static_cast<int>(work.crossings.size());
   work.keep.assign(n, 1);
-  if (minLength <= 0.0 || n == 0)
+  if (minLength <= 0.0 || n == 0) {
+    work.order.clear(); // no chains (keptChains())
     return;
+  }
   // The buffers have the size of the crossings and of the image's width and height: nothing to reset
   // between frames, and little memory to bring to cache (a grid of cells over the image is touched at
   // random). Bands of 2^shift >= max(4, link) rows: the band of a crossing is the integer part of v shifted.
@@ -150,5 +152,20 @@ std::vector<vpImagePoint> keptPoints(const RidgeWorkspace &work)
     if (work.keep[k])
       points.push_back(work.crossings[k].point);
   return points;
+}
+
+std::vector<int> keptChains(const RidgeWorkspace &work)
+{
+  const size_t n = work.crossings.size();
+  if (work.order.size() != n || work.parent.size() != n || work.keep.size() != n)
+    return std::vector<int>();
+  std::vector<int> chainOf(n);
+  for (size_t pos = 0; pos < n; ++pos)
+    chainOf[static_cast<size_t>(work.order[pos])] = work.parent[pos];
+  std::vector<int> kept;
+  for (size_t k = 0; k < n; ++k)
+    if (work.keep[k])
+      kept.push_back(chainOf[k]);
+  return kept;
 }
 } // namespace vsp::laser_detector

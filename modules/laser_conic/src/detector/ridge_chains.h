@@ -28,6 +28,13 @@ void longChains(RidgeWorkspace &work, int W, int H, double link, double minLengt
 //! The points of the crossings work.keep marks, in their order.
 std::vector<vpImagePoint> keptPoints(const RidgeWorkspace &work);
 
+/*!
+  The chain of each crossing work.keep marks, in the order of keptPoints(): the root longChains() left in
+  work.parent (any integer, equal for the crossings of one chain). Empty when longChains() linked nothing
+  (a minimum length of 0).
+*/
+std::vector<int> keptChains(const RidgeWorkspace &work);
+
 //! The link radius (pixels) of chains whose lines are \e step pixels apart and linked within \e linkSteps of them.
 inline double linkRadius(double linkSteps, int step) { return linkSteps * step + RidgeTuning::linkSlack; }
 } // namespace vsp::laser_detector

@@ -117,6 +117,17 @@ public:
       }
     }
   }
+  /*!
+    One index drawn uniformly in [0, bound), from the same generator as draw(): for an estimator that draws
+    its own samples (see vpRansacLoop()).
+    \exception vpException::badValue when \e bound is not positive.
+  */
+  int index(int bound)
+  {
+    if (bound <= 0)
+      throw vpException(vpException::badValue, "vpRansacSampler::index: no index below %d", bound);
+    return std::uniform_int_distribution<int>(0, bound - 1)(m_rng);
+  }
 
 private:
   int m_n;
@@ -133,6 +144,17 @@ template <class E>
 struct HasScoreRange<E, std::void_t<decltype(std::declval<const E &>().scoreRange(
                             std::declval<const typename E::Model &>(), 0, 0, 0.0, std::declval<double &>(),
                             static_cast<int *>(nullptr)))> > : std::true_type
+{
+};
+
+//! Detects the optional `drawSample()` member of an estimator (see vpRansacLoop()).
+template <class E, class = void> struct HasDrawSample : std::false_type
+{
+};
+template <class E>
+struct HasDrawSample<E, std::void_t<decltype(std::declval<const E &>().drawSample(std::declval<vpRansacSampler &>(),
+                                                                                  static_cast<int *>(nullptr)))> >
+  : std::true_type
 {
 };
 
@@ -399,7 +421,12 @@ private:
     no square root); it must agree with residual() up to rounding at the threshold;
   - optionally `int countInliers(const Model &m, const int *indices, int count, double thr2) const`:
     the number of the listed data whose squared residual is below thr2 (the preemptive test), with
-    the same agreement with residual().
+    the same agreement with residual();
+  - optionally `void drawSample(vpRansacSampler &sampler, int *sample) const`: writes kSampleSize distinct
+    indices of its own choosing, drawn with sampler.index() (seeded, reproducible): minimal samples taken
+    from distinct groups of the data, say, where the inliers come in groups (GroupSAC, Ni, Jin and Dellaert,
+    ICCV 2009); sampler.draw(kSampleSize, ...) otherwise. The adaptive trial count stays that of uniform
+    sampling, which a sampler that favours inliers only makes more cautious.
 
   A datum is an inlier when residual < threshold. With options.pretestSize > 0, each hypothesis is
   first scored on a fixed random subset of the data and dropped when its inliers there make it
@@ -438,7 +465,10 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options, ty
   for (; trial < needed || trial < options.minTrials; ++trial) {
     if (trial >= options.maxTrials)
       break;
-    sampler.draw(s, sample.data());
+    if constexpr (vsp::detail::HasDrawSample<Estimator>::value)
+      estimator.drawSample(sampler, sample.data());
+    else
+      sampler.draw(s, sample.data());
     const int count = estimator.solveMinimal(sample.data(), hypotheses.data());
     for (int k = 0; k < count; ++k) {
       ++report.models;
