@@ -32,6 +32,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -455,19 +456,33 @@ void detectorQuality(vpLaserConicSimulator &sim, const vpLaserConicSimulator::vp
 }
 
 /*!
-  The default detector on the frame as shipped (the JPEG file): share of the ring's length where the stripe is
-  at least 3 times the sensor noise with a detected point within 1.5 px of the true centre line
-  (vpLaserConicSimulator::stripeCoverage()); NaN without laser.
+  The default detector on the frame as shipped (the JPEG \e file): in \e coverage the share of the ring's length
+  where the stripe is at least 3 times the sensor noise with a detected point within 1.5 px of the true centre
+  line (vpLaserConicSimulator::stripeCoverage()), and in \e kept the same share over the ring where what the
+  JPEG compression at \e quality kept of the stripe is still 3 times the noise
+  (vpLaserConicSimulator::keptCoverage()), measured on \e beforeRendering, a copy of the simulator made before
+  the frame was rendered (the simulator's codec gives the pixels vpImageIo::writeJPEG() writes: libjpeg at the
+  same quality). NaN without laser; \e kept NaN without the copy.
 */
-double coverageOnShippedFrame(vpLaserConicSimulator &sim, const vpLaserConicSimulator::vpRenderSettings &settings,
-                              const std::string &file)
+void coverageOnShippedFrame(vpLaserConicSimulator &sim, const vpLaserConicSimulator *beforeRendering,
+                            const vpLaserConicSimulator::vpRenderSettings &settings, int quality,
+                            const std::string &file, double &coverage, double &kept)
 {
+  coverage = kept = std::numeric_limits<double>::quiet_NaN();
   if (!settings.laserOn)
-    return std::numeric_limits<double>::quiet_NaN();
+    return;
   vpImage<vpRGBa> I;
   vpImageIo::read(I, file);
   vpLaserConicDetector detector;
-  return vpLaserConicSimulator::stripeCoverage(sim.traceTruth(20000, settings), detector.detect(I), 3.0, 1.5);
+  const std::vector<vpImagePoint> points = detector.detect(I);
+  coverage = vpLaserConicSimulator::stripeCoverage(sim.traceTruth(20000, settings), points, 3.0, 1.5);
+  if (beforeRendering == nullptr)
+    return;
+  vpLaserConicSimulator::vpRenderSettings compressed = settings;
+  compressed.jpegQuality = quality;
+  std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(20000, compressed);
+  beforeRendering->measureCompression(truth, compressed);
+  kept = vpLaserConicSimulator::keptCoverage(truth, points, 3.0, 1.5);
 }
 
 //! Distance between the apexes (m) and angle between the cone axes (rad) of two laser poses.
@@ -538,7 +553,7 @@ int run(Options &opt, const vpCommandLine &)
     if (opt.hard) {
       conditions.open(opt.output + "/conditions.csv");
       conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px,"
-                    "detector_coverage_3sigma\n";
+                    "detector_coverage_3sigma,detector_kept_coverage_3sigma\n";
     }
     std::mt19937 settingsRng(opt.seed + 7);
     vpLaserConicDetector detector;
@@ -555,6 +570,11 @@ int run(Options &opt, const vpCommandLine &)
       sim.setSeed(opt.seed + k);
       vpImage<vpRGBa> I;
       vpLaserConicSimulator::vpRenderSettings settings;
+      // The fading rings: what the compression keeps of their stripe is measured on the simulator as it was
+      // before the render (the same noise draws).
+      std::unique_ptr<vpLaserConicSimulator> beforeRendering;
+      if (opt.hard && frameCondition(k, opt.frames) >= FADING_RING)
+        beforeRendering.reset(new vpLaserConicSimulator(sim));
       if (opt.hard) {
         settings = hardFrameSettings(k, opt.frames, 2.5 * opt.sensorNoise, settingsRng, sim);
         settings.sceneSeed = static_cast<int>(opt.seed);
@@ -604,9 +624,11 @@ int run(Options &opt, const vpCommandLine &)
       vpImageIo::writeJPEG(I, opt.output + "/" + f.image, vpImageIo::IO_DEFAULT_BACKEND, opt.quality);
       frames.push_back(f);
       if (opt.hard) {
-        const double coverage = coverageOnShippedFrame(sim, settings, opt.output + "/" + f.image);
+        double coverage = 0.0, kept = 0.0;
+        coverageOnShippedFrame(sim, beforeRendering.get(), settings, opt.quality, opt.output + "/" + f.image, coverage,
+                               kept);
         conditions << k << "," << f.image << "," << conditionName(frameCondition(k, opt.frames)) << "," << qualityLine
-                   << "," << std::setprecision(4) << coverage << "\n";
+                   << "," << std::setprecision(4) << coverage << "," << kept << "\n";
         if (frameCondition(k, opt.frames) >= FADING_RING) {
           double nearPeak = 0.0, farPeak = 1e9;
           for (const vpLaserConicSimulator::vpTraceTruth &t : sim.traceTruth(2000, settings)) {
@@ -615,7 +637,8 @@ int run(Options &opt, const vpCommandLine &)
           }
           fadingCoverage << "\n  " << f.image << " (" << conditionName(frameCondition(k, opt.frames)) << ", stripe "
                          << std::setprecision(3) << nearPeak << " to " << farPeak
-                         << " grey levels of red dominance): " << 100.0 * coverage << " %";
+                         << " grey levels of red dominance): " << 100.0 * coverage
+                         << " %, of what JPEG kept at 3 sigma " << 100.0 * kept << " %";
         }
       }
       std::cout << f.image << ": altitude " << std::setprecision(4) << f.altitude << " m, roll " << vpMath::deg(f.roll)
