@@ -292,7 +292,7 @@ const double kShortChainDivisor = 3.0;
 // RANSAC samples of the ellipse through the short chains: the ring is 20-55 % of their points on those
 // colourful floors (clutter of the patches' red edges the rest); 200 samples picked an ellipse through clutter
 // and an arc of the ring on 3 of 8 such frames, 2000 found the ring on each (the retry runs only on frames
-// whose location is not trusted, see kTrustedCoverage). Its samples are drawn chain by chain
+// whose location is not trusted, see kTrustedCoverage). Half of its samples are drawn chain by chain
 // (ChainPp5Estimator): where the ring was 22 % of the points, in 11 of 68 chains (held-out seed 35 at JPEG 60,
 // frame 41), five points drawn one by one all lay on it once in 2000 samples, and the ellipse went through
 // two of its arcs and the clutter (5.1 % of the ring found, no plane; 98.6 % now).

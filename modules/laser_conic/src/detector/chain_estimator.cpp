@@ -60,7 +60,9 @@ int ChainPp5Estimator::drawPartner(vpRansacSampler &sampler, int point) const
 
 void ChainPp5Estimator::drawSample(vpRansacSampler &sampler, int *sample) const
 {
-  if (static_cast<int>(m_rank.size()) != size() || size() < kSampleSize) {
+  // Every other sample, on average, five points drawn one by one: a ring that is one or two long chains among
+  // the clutter's has no three chains to draw.
+  if (static_cast<int>(m_rank.size()) != size() || size() < kSampleSize || sampler.index(2) == 0) {
     sampler.draw(kSampleSize, sample);
     return;
   }

@@ -25,7 +25,8 @@ namespace vsp::laser_detector
   dozen pieces of 15-50 px among several times as many pieces of the patches' red edges: five points drawn
   one by one all lie on the ring once in a few thousand samples, and then often on one or two pieces, whose
   conic is any curve through them. Three chains drawn by their points all lie on the ring about once in a
-  hundred samples, spread round it.
+  hundred samples, spread round it. Half the samples are still drawn point by point: a ring that is one or two
+  long chains has no three chains to draw.
 */
 class ChainPp5Estimator : public vsp::laser_estimators::Pp5Estimator
 {
@@ -35,9 +36,9 @@ public:
   */
   ChainPp5Estimator(const vsp::laser_estimators::PointList &points, const std::vector<int> &chainOf);
   /*!
-    Five distinct indices: two of the chain of a point drawn at random, two of the chain of another drawn
-    outside it, one of a third chain; five drawn one by one where the chains do not allow it (fewer than three
-    chains, or a chain of one point).
+    Five distinct indices: with probability one half, two of the chain of a point drawn at random, two of the
+    chain of another drawn outside it, one of a third chain; otherwise, and where the chains do not allow it
+    (fewer than three chains, or a chain of one point), five drawn one by one.
   */
   void drawSample(vpRansacSampler &sampler, int *sample) const;
 

@@ -86,8 +86,8 @@ struct vpLaserConicDetectorRun
   along 80 % of that ellipse, the search's points off it are not returned either. When it finds it along
   less than 95 %, the search runs once more with chains a third of setMinSegmentLength() long (through
   strong JPEG compression a ring on a colourful floor, or the near side of a faint one, breaks at every
-  patch into pieces of 16-45 px): the ellipse through them (2000 RANSAC samples, each of two points of one
-  chain, two of another and one of a third: the ring is a fifth to a half of such points, in a few of many
+  patch into pieces of 16-45 px): the ellipse through them (2000 RANSAC samples, half of them two points of
+  one chain, two of another and one of a third: the ring is a fifth to a half of such points, in a few of many
   chains), sought without the points on straight runs of 150 px or more (a red cable, tape on
   the floor: an arc of a ring that fits in the image never is one), is taken when the guided pass finds the
   ring along 95 % of it and 10 % more of it than along the first search's, or when it holds 90 % of the short
