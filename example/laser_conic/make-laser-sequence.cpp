@@ -475,12 +475,13 @@ void coverageOnShippedFrame(vpLaserConicSimulator &sim, const vpLaserConicSimula
   vpImageIo::read(I, file);
   vpLaserConicDetector detector;
   const std::vector<vpImagePoint> points = detector.detect(I);
-  coverage = vpLaserConicSimulator::stripeCoverage(sim.traceTruth(20000, settings), points, 3.0, 1.5);
+  std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(20000, settings);
+  coverage = vpLaserConicSimulator::stripeCoverage(truth, points, 3.0, 1.5);
   if (beforeRendering == nullptr)
     return;
+  // The truth does not depend on the compression: the same samples serve.
   vpLaserConicSimulator::vpRenderSettings compressed = settings;
   compressed.jpegQuality = quality;
-  std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(20000, compressed);
   beforeRendering->measureCompression(truth, compressed);
   kept = vpLaserConicSimulator::keptCoverage(truth, points, 3.0, 1.5);
 }
@@ -574,7 +575,7 @@ int run(Options &opt, const vpCommandLine &)
       // before the render (the same noise draws).
       std::unique_ptr<vpLaserConicSimulator> beforeRendering;
       if (opt.hard && frameCondition(k, opt.frames) >= FADING_RING)
-        beforeRendering.reset(new vpLaserConicSimulator(sim));
+        beforeRendering = std::make_unique<vpLaserConicSimulator>(sim);
       if (opt.hard) {
         settings = hardFrameSettings(k, opt.frames, 2.5 * opt.sensorNoise, settingsRng, sim);
         settings.sceneSeed = static_cast<int>(opt.seed);

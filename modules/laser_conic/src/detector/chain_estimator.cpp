@@ -5,8 +5,9 @@
 // Five-point conics sampled chain by chain: see chain_estimator.h.
 #include "chain_estimator.h"
 
-#include <numeric>
 #include <unordered_map>
+
+#include "guided_detail.h"
 
 namespace vsp::laser_detector
 {
@@ -20,17 +21,10 @@ constexpr int kOutsideTries = 16;
 ChainPp5Estimator::ChainPp5Estimator(const vsp::laser_estimators::PointList &points, const std::vector<int> &chainOf)
   : Pp5Estimator(points), m_rank(chainOf.size())
 {
-  std::unordered_map<int, int> rankOf;
+  std::unordered_map<int, size_t> rankOf;
   for (size_t k = 0; k < chainOf.size(); ++k)
-    m_rank[k] = rankOf.emplace(chainOf[k], static_cast<int>(rankOf.size())).first->second;
-  m_start.assign(rankOf.size() + 1, 0);
-  for (int r : m_rank)
-    ++m_start[static_cast<size_t>(r) + 1];
-  std::partial_sum(m_start.begin(), m_start.end(), m_start.begin());
-  std::vector<int> next(m_start.begin(), m_start.end() - 1);
-  m_members.resize(m_rank.size());
-  for (size_t k = 0; k < m_rank.size(); ++k)
-    m_members[static_cast<size_t>(next[static_cast<size_t>(m_rank[k])]++)] = static_cast<int>(k);
+    m_rank[k] = rankOf.emplace(chainOf[k], rankOf.size()).first->second;
+  groupByKey(m_rank, rankOf.size(), m_start, m_members);
 }
 
 int ChainPp5Estimator::drawOutside(vpRansacSampler &sampler, const int *sample, int taken) const
@@ -48,14 +42,14 @@ int ChainPp5Estimator::drawOutside(vpRansacSampler &sampler, const int *sample, 
 
 int ChainPp5Estimator::drawPartner(vpRansacSampler &sampler, int point) const
 {
-  const int chain = m_rank[static_cast<size_t>(point)];
-  const int first = m_start[static_cast<size_t>(chain)], count = m_start[static_cast<size_t>(chain) + 1] - first;
+  const size_t chain = m_rank[static_cast<size_t>(point)];
+  const size_t first = m_start[chain], count = m_start[chain + 1] - first;
   if (count < 2)
     return -1;
   // One of the chain's other points, uniformly: the k-th member, skipping the point itself.
-  const int k = first + sampler.index(count - 1);
-  const int partner = m_members[static_cast<size_t>(k)];
-  return partner == point ? m_members[static_cast<size_t>(first + count - 1)] : partner;
+  const int partner =
+      static_cast<int>(m_members[first + static_cast<size_t>(sampler.index(static_cast<int>(count) - 1))]);
+  return partner == point ? static_cast<int>(m_members[first + count - 1]) : partner;
 }
 
 void ChainPp5Estimator::drawSample(vpRansacSampler &sampler, int *sample) const

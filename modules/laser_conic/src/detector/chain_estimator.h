@@ -48,9 +48,9 @@ private:
   //! Another point of the chain of \e point (-1 when that chain has no other).
   int drawPartner(vpRansacSampler &sampler, int point) const;
 
-  std::vector<int> m_rank;    //!< chain of each point, numbered from 0
-  std::vector<int> m_start;   //!< the members of chain c are m_members[m_start[c], m_start[c + 1])
-  std::vector<int> m_members; //!< the points, chain by chain
+  std::vector<size_t> m_rank;    //!< chain of each point, numbered from 0
+  std::vector<size_t> m_start;   //!< the members of chain c are m_members[m_start[c], m_start[c + 1])
+  std::vector<size_t> m_members; //!< the points, chain by chain
 };
 } // namespace vsp::laser_detector
 

@@ -245,14 +245,15 @@ void positionSubsample(const std::vector<vpImagePoint> &points, size_t target, b
                        std::vector<Eigen::Vector2d> &sample)
 {
   sample.clear();
+  if (byPosition) {
+    for (int k : positionSubsampleIndices(points, target))
+      sample.push_back(Eigen::Vector2d(points[static_cast<size_t>(k)].get_u(), points[static_cast<size_t>(k)].get_v()));
+    return;
+  }
   const unsigned int stride = subsampleStride(points.size(), target);
   for (const vpImagePoint &p : points)
     if (pickedByPosition(p, stride))
       sample.push_back(Eigen::Vector2d(p.get_u(), p.get_v()));
-  if (byPosition)
-    std::sort(sample.begin(), sample.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {
-      return a.y() < b.y() || (a.y() == b.y() && a.x() < b.x());
-    });
 }
 
 std::vector<int> positionSubsampleIndices(const std::vector<vpImagePoint> &points, size_t target)

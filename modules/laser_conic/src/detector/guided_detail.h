@@ -139,6 +139,24 @@ std::vector<int> smoothAlongCurve(const Eigen::Matrix3d &C, std::vector<Crossing
 void dropIsolatedPieces(const std::vector<int> &order, const std::vector<vpImagePoint> &anchors,
                         std::vector<Crossing> &crossings);
 
+/*!
+  Counting sort of the items 0 .. key.size() - 1 by their key (each in [0, buckets)): the items of bucket b are
+  members[start[b]] .. members[start[b + 1] - 1], in their order.
+*/
+inline void groupByKey(const std::vector<size_t> &key, size_t buckets, std::vector<size_t> &start,
+                       std::vector<size_t> &members)
+{
+  start.assign(buckets + 1, 0);
+  for (size_t k : key)
+    ++start[k + 1];
+  for (size_t b = 1; b < start.size(); ++b)
+    start[b] += start[b - 1];
+  std::vector<size_t> next(start.begin(), start.end() - 1);
+  members.resize(key.size());
+  for (size_t item = 0; item < key.size(); ++item)
+    members[next[key[item]]++] = item;
+}
+
 //! The element of rank size / 2 of \e values (>= 0, not empty), as std::nth_element would place it.
 int middleValue(std::vector<int> &values);
 

@@ -57,18 +57,10 @@ private:
     }
     m_columns = u1 - m_u0 + 1, m_rows = v1 - m_v0 + 1;
     std::vector<size_t> cellOfAnchor(m_anchors.size());
-    m_start.assign(static_cast<size_t>(m_columns * m_rows) + 1, 0);
-    for (size_t k = 0; k < m_anchors.size(); ++k) {
+    for (size_t k = 0; k < m_anchors.size(); ++k)
       cellOfAnchor[k] = static_cast<size_t>((cellOf(m_anchors[k].get_v()) - m_v0) * m_columns +
                                             (cellOf(m_anchors[k].get_u()) - m_u0));
-      ++m_start[cellOfAnchor[k] + 1];
-    }
-    for (size_t c = 1; c < m_start.size(); ++c)
-      m_start[c] += m_start[c - 1];
-    std::vector<size_t> next(m_start.begin(), m_start.end() - 1);
-    m_sorted.resize(m_anchors.size());
-    for (size_t k = 0; k < m_anchors.size(); ++k)
-      m_sorted[next[cellOfAnchor[k]]++] = k;
+    groupByKey(cellOfAnchor, static_cast<size_t>(m_columns * m_rows), m_start, m_sorted);
   }
   const std::vector<vpImagePoint> &m_anchors;
   double m_side;
