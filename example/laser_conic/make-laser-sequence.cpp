@@ -555,6 +555,10 @@ int run(Options &opt, const vpCommandLine &)
       conditions.open(opt.output + "/conditions.csv");
       conditions << "frame,image,condition,detected_points,detector_coverage,detector_rms_px,"
                     "detector_coverage_3sigma,detector_kept_coverage_3sigma\n";
+      if (!conditions) {
+        std::cerr << "Cannot write " << opt.output << "/conditions.csv" << std::endl;
+        return EXIT_FAILURE;
+      }
     }
     std::mt19937 settingsRng(opt.seed + 7);
     vpLaserConicDetector detector;
@@ -646,6 +650,13 @@ int run(Options &opt, const vpCommandLine &)
                 << " deg, pitch " << vpMath::deg(f.pitch) << " deg"
                 << (opt.hard ? std::string(", ") + conditionName(frameCondition(k, opt.frames)) : std::string())
                 << std::endl;
+    }
+    if (opt.hard) {
+      conditions.close();
+      if (!conditions) {
+        std::cerr << "Cannot write " << opt.output << "/conditions.csv (the disk full?)" << std::endl;
+        return EXIT_FAILURE;
+      }
     }
     if (!vpLaserRigIo::writeGroundTruth(opt.output + "/groundtruth.csv", frames, error)) {
       std::cerr << error << std::endl;
