@@ -326,3 +326,31 @@ TEST(RobustRansacLoop, AnEstimatorThatDrawsItsOwnSamplesIsUsed)
   std::cout << "line found by grouped samples in " << grouped << " of 20 runs, by uniform samples in " << uniform
             << std::endl;
 }
+
+namespace
+{
+// LineEstimator's data with a drawSample() that writes \e bad as its second index (-1: the first again).
+struct BadSampleEstimator : LineEstimator
+{
+  int bad = 0;
+  void drawSample(vpRansacSampler &sampler, int *s) const
+  {
+    s[0] = sampler.index(size());
+    s[1] = bad < 0 ? s[0] : bad;
+  }
+};
+} // namespace
+
+TEST(RobustRansacLoop, RefusesAnEstimatorsSampleOutsideItsDataOrRepeated)
+{
+  BadSampleEstimator est;
+  static_cast<LineEstimator &>(est) = makeLineData(50, 10, 3);
+  vpRansacOptions opt;
+  opt.threshold = 0.05;
+  LineEstimator::Model best;
+  vpRansacReport report;
+  est.bad = 50; // one past the data
+  EXPECT_THROW(vpRansacLoop(est, opt, best, report), vpException);
+  est.bad = -1; // the first index again
+  EXPECT_THROW(vpRansacLoop(est, opt, best, report), vpException);
+}

@@ -158,6 +158,22 @@ struct HasDrawSample<E, std::void_t<decltype(std::declval<const E &>().drawSampl
 {
 };
 
+/*!
+  Throws vpException::badValue unless sample[0, s) holds s distinct indices in [0, n): a minimal sample an
+  estimator drew itself (drawSample(), see vpRansacLoop()), checked before its solver reads the data.
+*/
+inline void requireSample(const int *sample, int s, int n)
+{
+  for (int i = 0; i < s; ++i) {
+    if (sample[i] < 0 || sample[i] >= n)
+      throw vpException(vpException::badValue, "vpRansacLoop: drawSample() gave index %d, outside [0, %d)", sample[i],
+                        n);
+    for (int j = 0; j < i; ++j)
+      if (sample[j] == sample[i])
+        throw vpException(vpException::badValue, "vpRansacLoop: drawSample() gave index %d twice", sample[i]);
+  }
+}
+
 //! Detects the optional `countInliers()` member of an estimator (see vpRansacLoop()).
 template <class E, class = void> struct HasCountInliers : std::false_type
 {
@@ -423,7 +439,8 @@ private:
     the number of the listed data whose squared residual is below thr2 (the preemptive test), with
     the same agreement with residual();
   - optionally `void drawSample(vpRansacSampler &sampler, int *sample) const`: writes kSampleSize distinct
-    indices of its own choosing, drawn with sampler.index() (seeded, reproducible): minimal samples taken
+    indices in [0, size()) of its own choosing (vpException::badValue otherwise), drawn with sampler.index()
+    (seeded, reproducible): minimal samples taken
     from distinct groups of the data, say, where the inliers come in groups (GroupSAC, Ni, Jin and Dellaert,
     ICCV 2009); sampler.draw(kSampleSize, ...) otherwise. The adaptive trial count stays that of uniform
     sampling, which a sampler that favours inliers only makes more cautious.
@@ -465,9 +482,10 @@ bool vpRansacLoop(const Estimator &estimator, const vpRansacOptions &options, ty
   for (; trial < needed || trial < options.minTrials; ++trial) {
     if (trial >= options.maxTrials)
       break;
-    if constexpr (vsp::detail::HasDrawSample<Estimator>::value)
+    if constexpr (vsp::detail::HasDrawSample<Estimator>::value) {
       estimator.drawSample(sampler, sample.data());
-    else
+      vsp::detail::requireSample(sample.data(), s, n);
+    } else
       sampler.draw(s, sample.data());
     const int count = estimator.solveMinimal(sample.data(), hypotheses.data());
     for (int k = 0; k < count; ++k) {
