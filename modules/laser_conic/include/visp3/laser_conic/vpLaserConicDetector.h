@@ -182,10 +182,16 @@ struct vpLaserConicDetectorRun
   <em>Limits, measured on rendered frames against their ground truth.</em> The red dominance is all colour,
   which JPEG keeps at half resolution and quantises coarsely: at quality 60 the far side of a ring fading to
   twice the sensor noise is rounded away, and its brightness alone locates it in part (the faint frame of
-  `make-laser-sequence --hard --seed N`, seeds 1-24: 93.0 % of the ring at 3 sigma on average, under 95 % on
-  15 seeds; at quality 80 99.2 %, every seed 97.9 % or more), and where a dim side is found its centres can
-  be a fraction of a pixel off along stretches that keep one phase to the colour's 16 px blocks (see
-  vpLaserConicPose::setCovarianceInflation()).
+  `make-laser-sequence --hard --seed N`, seeds 1-24: 93.3 % of the ring at 3 sigma on average, under 95 % on
+  14 seeds; at quality 80 99.2 %, every seed 97.9 % or more). There, where the stripe is 3-4 times the noise,
+  the decoded pixels keep no peak of colour across it (a flat 0-3 grey levels of red dominance over 15-20 px)
+  and its brightness survives as the low frequencies of the codec's 8 x 8 blocks, whose peak lies up to
+  2-3 px from the stripe, or splits in two (the same frame at quality 100: its points within 0.25 px of the
+  stripe on average over every 50 px of arc at 3 sigma or more): such centres, and the ellipse extrapolated
+  from the bright side, are a pixel or two off over tens of pixels. Where a dim side is found its centres
+  can be a fraction of a pixel off along stretches that keep one phase to the colour's 16 px blocks (see
+  vpLaserConicPose::setCovarianceInflation()). Record the ring at quality 80 or more when its far side
+  matters.
   A red cable that runs along the ring for a few tens of pixels merges with it into one wider stripe, and the
   ring is not measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a
   ridge, and is found there in pieces.
