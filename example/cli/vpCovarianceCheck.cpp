@@ -2,6 +2,7 @@
 #include "vpCovarianceCheck.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -34,6 +35,15 @@ void vpCovarianceCheck::add(const vpColVector &error, const vpMatrix &covariance
     return;
   }
   m_nees.push_back(e.dot(cholesky.solve(e)));
+  for (int k = 0; k < 3; ++k)
+    m_within3Sd[k] += std::abs(e(k)) <= 3.0 * std::sqrt(P(k, k)) ? 1 : 0;
+}
+
+double vpCovarianceCheck::shareWithin3Sd(unsigned int k) const
+{
+  if (m_nees.empty() || k > 2)
+    return std::numeric_limits<double>::quiet_NaN();
+  return static_cast<double>(m_within3Sd[k]) / static_cast<double>(m_nees.size());
 }
 
 double vpCovarianceCheck::median() const
@@ -57,7 +67,9 @@ std::string vpCovarianceCheck::summary(double inflation) const
 {
   std::ostringstream os;
   os << "covariance of (altitude, roll, pitch) at variance scale " << inflation << ": NEES median " << median()
-     << " over " << count() << " frames (2.37 if honest), " << 100.0 * shareOver95() << " % over 7.81 (5 % if honest)";
+     << " over " << count() << " frames (2.37 if honest), " << 100.0 * shareOver95() << " % over 7.81 (5 % if honest); "
+     << "errors within 3 standard deviations: altitude " << 100.0 * shareWithin3Sd(0) << " %, roll "
+     << 100.0 * shareWithin3Sd(1) << " %, pitch " << 100.0 * shareWithin3Sd(2) << " % (99.7 % if honest)";
   if (m_notUsable > 0)
     os << ", " << m_notUsable << " frames without a usable covariance";
   return os.str();

@@ -35,11 +35,21 @@ public:
   double median() const;
   //! Share of the frames whose NEES exceeds 7.81, the 95 % point of the chi-square law of 3 degrees of freedom.
   double shareOver95() const;
-  //! One line: the variance scale \e inflation of the covariance, the median NEES and the share over 7.81.
+  /*!
+    Share of the frames whose error in component \e k (0 altitude, 1 roll, 2 pitch) lies within 3 of its
+    standard deviations, the square roots of the covariance's diagonal (what vsp-laser-altimeter writes in its
+    sd_* columns): 99.7 % for honest standard deviations and Gaussian errors.
+  */
+  double shareWithin3Sd(unsigned int k) const;
+  /*!
+    One line: the variance scale \e inflation of the covariance, the median NEES, the share over 7.81 and the
+    shares within 3 standard deviations.
+  */
   std::string summary(double inflation) const;
 
 private:
   std::vector<double> m_nees;
+  size_t m_within3Sd[3] = {0, 0, 0}; //!< usable frames whose error k lies within 3 standard deviations
   size_t m_notUsable = 0;
 };
 

@@ -25,7 +25,8 @@ class vpCommandLine;
     lines `timestamp_ns` or `image,timestamp_ns`; '#' lines and a non-numeric header are skipped;
   - `--imu-rotation`: IMU-to-camera rotation (9 numbers, or a 4x4 matrix whose rotation is taken);
   - `--covariance-inflation`: variance scale of the per-frame covariance (default
-    vpLaserConicPose::recommendedDetectorInflation());
+    vpLaserConicPose::recommendedDetectorInflation()), which the filter fuses and vsp-laser-altimeter writes
+    as each frame's standard deviations, with or without `--imu`;
   - `--filtered`: output, one row per IMU sample:
     `timestamp_ns,altitude_m,vertical_speed_mps,roll_rad,pitch_rad,sd_altitude_m,sd_vertical_speed_mps,sd_roll_rad,sd_pitch_rad,status`
     (status: vpLaserConicFilter::vpFilterStatus in words; NaN values before the first frame).

@@ -17,10 +17,13 @@
                       [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]
                       [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]
                       [--truth groundtruth.csv] [--max-altitude-error MM] [--max-nees K]
+                      [--covariance-inflation K] [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv]
   \endverbatim
   The camera file may hold the perspective model with distortion (kud, kdu): it is then used (the
   detected pixels are converted with vpPixelMeterConversion, the overlays drawn through the model).
-  Output: CSV "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status". Exit status 0 when every
+  Output: CSV "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status,sd_altitude_m,sd_roll_rad,
+  sd_pitch_rad": the last three are the standard deviations of the estimate, from its covariance at the variance
+  scale --covariance-inflation (default vpLaserConicPose::recommendedDetectorInflation()). Exit status 0 when every
   image was processed (frames without a plane, and unreadable images, say why in their status), 1 on a
   usage, file or format error, an image whose size is not the camera file's, a failed write (nothing is
   left half written: the CSV is written to a temporary file renamed when complete), or when
@@ -35,6 +38,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -94,9 +98,8 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
       "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
       "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
       "          [--instructions best|avx2|sse2|scalar] [--truth groundtruth.csv] [--max-altitude-error MM]\n"
-      "          [--max-nees K]\n"
-      "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]\n"
-      "           [--covariance-inflation K]]",
+      "          [--max-nees K] [--covariance-inflation K]\n"
+      "          [--imu imu.csv --frame-times times.csv --filtered imu_rate.csv [--imu-rotation R.txt]]",
       "Altitude, roll and pitch of a camera with a circular laser, from the laser trace in each image.");
   cli.addString("--camera", options.camera, "FILE",
                 "intrinsics in vpXmlParserCamera format (the model with distortion when the file has it)");
@@ -109,7 +112,8 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
   cli.addString("--list", options.listFile, "FILE",
                 "text file with one image path per line (relative to the list's folder)");
   cli.addString("--output", options.output, "FILE",
-                "CSV 'frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status'; never an input");
+                "CSV 'frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status,sd_altitude_m,sd_roll_rad,"
+                "sd_pitch_rad'; never an input");
   cli.addChoice("--method", options.methodName, {"GP3", "PP3", "PP5", "PLANE_PAIR"}, "METHOD",
                 "estimator (default GP3)");
   cli.addString("--overlays", options.overlays, "DIR",
@@ -276,6 +280,9 @@ unsigned int minimumPoints(vpLaserConicPose::vpLaserConicMethod method)
 struct FrameResult
 {
   double altitude = 0.0, roll = 0.0, pitch = 0.0;
+  //! Standard deviations of altitude (m), roll and pitch (rad) from the estimate's covariance; NaN without one.
+  double altitudeSd = std::numeric_limits<double>::quiet_NaN(), rollSd = std::numeric_limits<double>::quiet_NaN(),
+         pitchSd = std::numeric_limits<double>::quiet_NaN();
   unsigned int inliers = 0;
   size_t points = 0;
   std::vector<vpImagePoint> inlierPoints; //!< for the search region of the next frame (--track)
@@ -310,6 +317,20 @@ vpLaserConicDetector makeDetector(const Options &options)
                              : options.instructions == "scalar" ? vpLaserConicDetector::INSTRUCTIONS_SCALAR
                                                                 : vpLaserConicDetector::INSTRUCTIONS_BEST);
   return detector;
+}
+
+/*!
+  The standard deviations of the estimate in \e result from its covariance (computed on every frame, see
+  main()): the square roots of its diagonal, left NaN where the covariance could not be computed (a plane pair
+  without a derivative there) or is not finite.
+*/
+void standardDeviations(const vpLaserConicPose &estimator, FrameResult &result)
+{
+  const vpMatrix covariance = estimator.getCovarianceMatrix();
+  double *const sd[3] = {&result.altitudeSd, &result.rollSd, &result.pitchSd};
+  for (unsigned int k = 0; k < 3; ++k)
+    if (std::isfinite(covariance[k][k]) && covariance[k][k] >= 0.0)
+      *sd[k] = std::sqrt(covariance[k][k]);
 }
 
 FrameResult processImage(const std::string &image, const Options &options, const vpCameraParameters &cam,
@@ -348,6 +369,7 @@ FrameResult processImage(const std::string &image, const Options &options, const
         for (unsigned int index : inliers)
           result.inlierPoints.push_back(points[index]);
         conic = estimator.getImageConic();
+        standardDeviations(estimator, result);
       } else {
         const bool mismatch = estimator.getStatus() == vpLaserConicPose::STATUS_CALIBRATION_MISMATCH;
         const bool weak = estimator.getStatus() == vpLaserConicPose::STATUS_WEAK_TRACE;
@@ -399,7 +421,10 @@ void writeRow(std::ostream &out, size_t frame, const std::string &image, const F
         << vpCsvTools::formatDouble(r.pitch);
   else
     out << "nan,nan,nan";
-  out << "," << r.inliers << "," << r.status << "\n";
+  out << "," << r.inliers << "," << r.status;
+  for (double sd : {r.altitudeSd, r.rollSd, r.pitchSd})
+    out << "," << (r.status == "ok" ? vpCsvTools::formatDouble(sd) : std::string("nan"));
+  out << "\n";
 }
 
 /*!
@@ -502,11 +527,11 @@ int run(int argc, char **argv)
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
-  // With a ground truth, the per-frame covariance a filter would fuse is checked against it (its NEES).
-  if (fusion.enabled() || !truth.empty())
-    fusion.configure(estimator);
+  // Every frame's covariance, at the variance scale of --covariance-inflation: its standard deviations are
+  // written with the estimate, a filter fuses it (--imu), and with a ground truth its NEES is checked.
+  fusion.configure(estimator);
   vpCovarianceCheck covarianceCheck;
-  out << "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status\n";
+  out << "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status,sd_altitude_m,sd_roll_rad,sd_pitch_rad\n";
   unsigned int found = 0, compared = 0;
   double worstAltitude = 0.0, worstRoll = 0.0, worstPitch = 0.0;
   std::vector<FrameResult> results;
