@@ -275,7 +275,8 @@ template <class T> VSP_LASER_INLINE T atan2Polynomial(const T &y, const T &x)
   return select(signFactor(y), -a, a);
 }
 
-//! The bin of the angle \e approximate (atan2Polynomial()), or of std::atan2 near a bin edge or for invalid input.
+//! The bin of the angle \e approximate (atan2Polynomial()), or of std::atan2 near a bin edge or for invalid input;
+//! -1 when u has no angle (a NaN coordinate), whose conversion to an int would be undefined.
 VSP_LASER_INLINE int binOf(double u0, double u1, double approximate, int bins)
 {
   const double perRadian = bins / (2.0 * M_PI);
@@ -285,7 +286,8 @@ VSP_LASER_INLINE int binOf(double u0, double u1, double approximate, int bins)
     if (t - f > margin && f + 1.0 - t > margin)
       return static_cast<int>(f);
   }
-  return static_cast<int>(std::floor((std::atan2(u1, u0) + M_PI) * perRadian));
+  const double angle = std::atan2(u1, u0);
+  return std::isnan(angle) ? -1 : static_cast<int>(std::floor((angle + M_PI) * perRadian));
 }
 } // namespace
 

@@ -104,7 +104,8 @@ void centroidAndSpread(const Eigen::Vector2d *points, int n, double &cx, double 
   (U upper triangular, U^T U the quadratic part of the ellipse, so u lies on a circle), the bin is
   floor((atan2(u1, u0) + pi) bins / (2 pi)), from a polynomial atan2 (within 2e-8 rad: the polynomial
   of atan on [0, 1] of Abramowitz and Stegun, 4.4.49) unless the angle is within 1e-6 rad of a bin
-  edge (then std::atan2, so that the bin is the one the exact angle gives).
+  edge (then std::atan2, so that the bin is the one the exact angle gives); -1 for a point whose u has a NaN
+  coordinate (a centre or a point that overflowed), which has no angle.
 */
 void ellipseBins(const Eigen::Vector2d *points, const int *indices, int n, const Eigen::Vector2d &centre,
                  const Eigen::Matrix2d &U, int bins, int *out);

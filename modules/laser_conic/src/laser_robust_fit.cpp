@@ -294,7 +294,9 @@ bool ellipseCentre(const Eigen::Matrix3d &c, Eigen::Vector2d &centre)
   if (!(std::fabs(A.determinant()) > 0.0))
     return false;
   centre = -A.inverse() * b;
-  return true;
+  // A determinant that is subnormal (an ellipse fitted to points of 1e78 px has coefficients near 1e-157)
+  // gives an infinite or NaN centre, around which no point has an angle.
+  return centre.allFinite();
 }
 
 double arcCoverage(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &conic)
@@ -317,7 +319,8 @@ double arcCoverage(const PointList &points, const std::vector<int> &indices, con
                                       bins.data());
   char occupied[kBins] = {};
   for (int bin : bins)
-    occupied[std::min(kBins - 1, std::max(0, bin))] = 1;
+    if (bin >= 0) // -1: a point without an angle (see ellipseBins())
+      occupied[std::min(kBins - 1, bin)] = 1;
   int first = -1, last = -1, gap = 0;
   for (int b = 0; b < kBins; ++b) {
     if (!occupied[b])

@@ -71,7 +71,8 @@ struct Result
 Outcome fit(const PointList &points, const std::vector<int> &inliers, const vpLaserSolvers::LaserCone &cone,
             const Eigen::Vector4d &startPlane, const Settings &settings, Result &result);
 
-//! Centre of the conic \e c (its symmetric part); false when it has none (a parabola or a degenerate conic).
+//! Centre of the conic \e c (its symmetric part); false when it has none (a parabola or a degenerate conic) or
+//! when it is not finite (a subnormal determinant).
 bool ellipseCentre(const Eigen::Matrix3d &c, Eigen::Vector2d &centre);
 
 //! Angular coverage (rad, in [0, 2 pi]) of the points around the centre of the ellipse \e c.
