@@ -19,6 +19,43 @@ using vsp::laser_value_check::requirePositive;
 
 namespace
 {
+//! Largest angular rate (rad/s) and specific force (m/s², about 1000 g) of a sample taken (IMU_OUT_OF_RANGE).
+constexpr double kMaxImuRate = 100.0;
+constexpr double kMaxImuForce = 1e4;
+//! Largest time (s, either sign) of a sample or a frame taken: a double still resolves 2 us there (seconds since
+//! 1970 are 1.7e9). A timestamp in nanoseconds given as seconds (1.7e18) resolves 256 s, and a frame time a unit
+//! in the last place after a sample's propagated the state over that span (found by fuzz-laser-filter: 3e94 s).
+constexpr double kMaxTime = 1e10;
+
+//! Largest noise density, initial standard deviation and gravity norm a setter takes: larger ones, squared and
+//! summed over a second of samples, leave a covariance that is not finite (found by fuzz-laser-filter: 1e300).
+constexpr double kMaxSetting = 1e3;
+//! Longest IMU gap propagated that setMaxImuGap() takes, s: beyond, nothing an IMU measured holds the state.
+constexpr double kMaxImuGap = 10.0;
+
+//! Largest and smallest standard deviation of a frame's altitude (m), roll or pitch (rad) taken (FRAME_BAD_INPUT
+//! beyond): a frame that says nothing, or claims more than any sensor, would leave a covariance whose entries
+//! span more than the 16 digits of a double, and the next update's would turn negative (found by
+//! fuzz-laser-filter: a roll variance of 2e49 then a frame of 1e-4).
+constexpr double kMaxFrameSd = 1e4;
+constexpr double kMinFrameSd = 1e-12;
+
+/*!
+  Whether a frame's (finite) covariance is one: its diagonal within the standard deviations above, symmetric
+  entry by entry to 1e-9 of the scale of its two variances (a norm of the whole matrix overflowed on an
+  off-diagonal entry of 1e224 and let it through), and positive definite.
+*/
+bool plausibleCovariance(const Eigen::Matrix3d &R)
+{
+  for (int i = 0; i < 3; ++i)
+    if (!(R(i, i) >= kMinFrameSd * kMinFrameSd && R(i, i) <= kMaxFrameSd * kMaxFrameSd))
+      return false;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < i; ++j)
+      if (!(std::fabs(R(i, j) - R(j, i)) <= 1e-9 * std::sqrt(R(i, i) * R(j, j))))
+        return false;
+  return R.llt().info() == Eigen::Success;
+}
 
 //! Quantile of the chi-square distribution with 3 degrees of freedom (CDF erf(sqrt(x/2)) - sqrt(2x/pi) e^(-x/2)).
 double chi2Quantile3(double p)
@@ -114,6 +151,11 @@ vpLaserConicFilter::vpImuStatus vpLaserConicFilter::Impl::addImu(double t, const
 {
   if (!std::isfinite(t) || !w.allFinite() || !f.allFinite())
     return IMU_NOT_FINITE;
+  // Beyond any IMU's range (MEMS gyros stop at 35-70 rad/s, accelerometers at 16-400 g): a corrupt sample,
+  // which the propagation would turn into a state that is not finite (found by fuzz-laser-filter: 2e217 rad/s).
+  if (!(w.lpNorm<Eigen::Infinity>() <= kMaxImuRate && f.lpNorm<Eigen::Infinity>() <= kMaxImuForce &&
+        std::fabs(t) <= kMaxTime))
+    return IMU_OUT_OF_RANGE;
   bool restart = false;
   if (count > 0) {
     if (!(t > last().t))
@@ -341,7 +383,8 @@ vpLaserConicFilter::~vpLaserConicFilter() = default;
 void vpLaserConicFilter::setImuNoise(double gyro, double gyroBiasWalk, double acc, double accBiasWalk)
 {
   for (double v : {gyro, gyroBiasWalk, acc, accBiasWalk})
-    requirePositive(v, "vpLaserConicFilter::setImuNoise: noise densities must be finite and > 0");
+    require(v > 0.0 && v <= kMaxSetting,
+            "vpLaserConicFilter::setImuNoise: noise densities must be > 0 and at most 1e3 (an IMU's are 1e-5 to 1)");
   m_impl->noise.gyro = gyro;
   m_impl->noise.gyroBiasWalk = gyroBiasWalk;
   m_impl->noise.acc = acc;
@@ -351,7 +394,8 @@ void vpLaserConicFilter::setImuNoise(double gyro, double gyroBiasWalk, double ac
 void vpLaserConicFilter::setInitialUncertainty(double verticalSpeed, double gyroBias, double accBias)
 {
   for (double v : {verticalSpeed, gyroBias, accBias})
-    requirePositive(v, "vpLaserConicFilter::setInitialUncertainty: standard deviations must be finite and > 0");
+    require(v > 0.0 && v <= kMaxSetting,
+            "vpLaserConicFilter::setInitialUncertainty: standard deviations must be > 0 and at most 1e3");
   m_impl->sigmaVz0 = verticalSpeed;
   m_impl->sigmaBg0 = gyroBias;
   m_impl->sigmaBa0 = accBias;
@@ -371,7 +415,8 @@ void vpLaserConicFilter::setImuToCameraRotation(const vpRotationMatrix &cRimu)
 
 void vpLaserConicFilter::setGravityNorm(double g)
 {
-  requirePositive(g, "vpLaserConicFilter::setGravityNorm: the gravity norm must be finite and > 0");
+  require(g >= 0.1 && g <= kMaxSetting,
+          "vpLaserConicFilter::setGravityNorm: the gravity norm must be in [0.1, 1e3] m/s^2");
   m_impl->gravity = g;
 }
 
@@ -387,7 +432,7 @@ void vpLaserConicFilter::setMaxLatency(double seconds, unsigned int samples)
 
 void vpLaserConicFilter::setMaxImuGap(double seconds)
 {
-  requirePositive(seconds, "vpLaserConicFilter::setMaxImuGap: the gap must be finite and > 0");
+  require(seconds > 0.0 && seconds <= kMaxImuGap, "vpLaserConicFilter::setMaxImuGap: the gap must be in (0, 10] s");
   m_impl->maxGap = seconds;
 }
 
@@ -450,12 +495,12 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::addFrame(double t, double 
   Impl &d = *m_impl;
   d.lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
   Eigen::Matrix3d R;
-  bool ok = covariance.getRows() == 3 && covariance.getCols() == 3 && std::isfinite(t) && std::isfinite(altitude) &&
-            std::isfinite(roll) && std::isfinite(pitch) && altitude > 0.0;
+  bool ok = covariance.getRows() == 3 && covariance.getCols() == 3 && std::fabs(t) <= kMaxTime &&
+            std::isfinite(altitude) && std::isfinite(roll) && std::isfinite(pitch) && altitude > 0.0;
   for (unsigned int i = 0; ok && i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j)
       R(i, j) = covariance[i][j];
-  ok = ok && R.allFinite() && (R - R.transpose()).norm() <= 1e-9 * R.norm() && R.llt().info() == Eigen::Success;
+  ok = ok && R.allFinite() && plausibleCovariance(R);
   d.lastFrameStatus = ok ? d.addFrame(t, Eigen::Vector3d(altitude, roll, pitch), R) : FRAME_BAD_INPUT;
   return d.lastFrameStatus;
 }

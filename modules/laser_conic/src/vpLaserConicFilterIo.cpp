@@ -111,7 +111,8 @@ std::string vpLaserConicFilter::getFrameStatusMessage(vpFrameStatus status)
   case FRAME_AHEAD_OF_IMU:
     return "frame after the last IMU sample: add the IMU samples up to its time first";
   case FRAME_BAD_INPUT:
-    return "bad frame: non-finite value, non-positive altitude or covariance not symmetric positive definite";
+    return "bad frame: non-finite value, time beyond 1e10 s, non-positive altitude, covariance not symmetric positive "
+           "definite or a standard deviation outside [1e-12, 1e4]";
   }
   return "unknown frame status";
 }
@@ -127,6 +128,9 @@ std::string vpLaserConicFilter::getImuStatusMessage(vpImuStatus status)
     return "gap in the IMU stream longer than the limit: the filter restarts";
   case IMU_NOT_FINITE:
     return "IMU sample with a non-finite value: ignored";
+  case IMU_OUT_OF_RANGE:
+    return "IMU sample beyond any IMU's range (over 100 rad/s or 10000 m/s^2), or a time beyond 1e10 s (nanoseconds "
+           "given as seconds?): ignored";
   }
   return "unknown IMU status";
 }

@@ -300,6 +300,49 @@ TEST(LaserConicFilter, BadInputHasAStatus)
   EXPECT_FALSE(vpLaserConicFilter::getFrameStatusMessage(vpLaserConicFilter::FRAME_TOO_OLD).empty());
 }
 
+// Finite values that no sensor gives, each found by the fuzz target fuzz-laser-filter to leave a state or a
+// covariance that is not finite (or a negative variance): a gyro rate of 2e217 rad/s, times in nanoseconds given
+// as seconds (a frame a unit in the last place after a sample propagated the state over 256 s and more), a
+// frame's variance of 2e49 followed by one of 1e-4 (the update's covariance turned negative), an off-diagonal
+// entry of 1e224 (the symmetry test's norm overflowed), and noise densities or gaps of 1e300. Each now has a
+// status or an exception, and the filter fed right afterwards stays finite.
+TEST(LaserConicFilter, ValuesNoSensorGivesHaveAStatus)
+{
+  vpLaserConicFilter filter;
+  const double w[3] = {0, 0, 0}, f[3] = {0, 0, -9.80665}, spinning[3] = {2e217, 0, 0}, crushing[3] = {0, 0, -1e5};
+  vpMatrix C(3, 3);
+  C.eye();
+  C *= 1e-4;
+  EXPECT_EQ(filter.addImu(0.0, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addImu(0.005, spinning, f), vpLaserConicFilter::IMU_OUT_OF_RANGE);
+  EXPECT_EQ(filter.addImu(0.005, w, crushing), vpLaserConicFilter::IMU_OUT_OF_RANGE);
+  EXPECT_EQ(filter.addImu(1.7e18, w, f), vpLaserConicFilter::IMU_OUT_OF_RANGE);
+  EXPECT_EQ(filter.addImu(0.005, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addFrame(1.7e18, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_BAD_INPUT);
+  vpMatrix saysNothing = C;
+  saysNothing[1][1] = 2e49;
+  EXPECT_EQ(filter.addFrame(0.005, 1.0, 0.0, 0.0, saysNothing), vpLaserConicFilter::FRAME_BAD_INPUT);
+  vpMatrix lopsided = C;
+  lopsided[0][1] = 1e224;
+  EXPECT_EQ(filter.addFrame(0.005, 1.0, 0.0, 0.0, lopsided), vpLaserConicFilter::FRAME_BAD_INPUT);
+  EXPECT_EQ(filter.addFrame(0.005, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_INITIALISED);
+  for (int k = 2; k < 20; ++k)
+    EXPECT_EQ(filter.addImu(0.005 * k, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addFrame(0.09, 1.0, 0.0, 0.0, C), vpLaserConicFilter::FRAME_ACCEPTED);
+  const vpColVector x = filter.getState();
+  const vpMatrix P = filter.getStateCovarianceMatrix();
+  for (unsigned int i = 0; i < x.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(x[i])) << "state " << i;
+    EXPECT_TRUE(std::isfinite(P[i][i]) && P[i][i] >= 0.0) << "variance " << i << ": " << P[i][i];
+  }
+  EXPECT_NEAR(filter.getAltitude(), 1.0, 1e-3);
+  EXPECT_THROW(filter.setImuNoise(1e300, 1e-5, 1e-3, 1e-3), vpLaserConicException);
+  EXPECT_THROW(filter.setInitialUncertainty(1e300, 0.01, 0.2), vpLaserConicException);
+  EXPECT_THROW(filter.setMaxImuGap(1e300), vpLaserConicException);
+  EXPECT_THROW(filter.setGravityNorm(1e300), vpLaserConicException);
+  EXPECT_FALSE(vpLaserConicFilter::getImuStatusMessage(vpLaserConicFilter::IMU_OUT_OF_RANGE).empty());
+}
+
 // A rotation refused by setImuToCameraRotation() leaves the one set before it: the filter fed afterwards gives
 // exactly what a filter that never saw the refused matrix gives (a tilted mounting, so that the rotation
 // matters to every output).

@@ -88,7 +88,8 @@ public:
     FRAME_TOO_OLD,      //!< older than setMaxLatency() or than the kept history
     FRAME_OUT_OF_ORDER, //!< older than a frame already used
     FRAME_AHEAD_OF_IMU, //!< after the last IMU sample: add the IMU samples first
-    FRAME_BAD_INPUT     //!< a non-finite value, or a covariance that is not symmetric positive definite
+    FRAME_BAD_INPUT     //!< a non-finite value, a time beyond 1e10 s, a covariance that is not symmetric positive
+                        //!< definite, or a standard deviation outside [1e-12, 1e4] (m or rad)
   } vpFrameStatus;
 
   //! Outcome of one addImu().
@@ -96,7 +97,9 @@ public:
     IMU_OK,             //!< the sample propagated the state
     IMU_NOT_INCREASING, //!< timestamp not after the previous one: sample ignored
     IMU_GAP,            //!< more than setMaxImuGap() since the previous sample: the filter restarts here
-    IMU_NOT_FINITE      //!< a non-finite value: sample ignored
+    IMU_NOT_FINITE,     //!< a non-finite value: sample ignored
+    IMU_OUT_OF_RANGE    //!< a rate over 100 rad/s or a specific force over 10000 m/s² (beyond any IMU), or a time
+                        //!< beyond 1e10 s (nanoseconds given as seconds?): sample ignored
   } vpImuStatus;
 
   //! The filter with the EuRoC ADIS16448 noise densities, a 0.1 s latency limit and a 99 % gate.
@@ -106,17 +109,17 @@ public:
     IMU noise densities: gyro white noise (rad/s/sqrt(Hz)), gyro bias random walk (rad/s²/sqrt(Hz)),
     accelerometer white noise (m/s²/sqrt(Hz)) and bias random walk (m/s³/sqrt(Hz)); default those of
     the ADIS16448 of the EuRoC dataset: 1.7e-4, 1.9e-5, 2.0e-3, 3.0e-3.
-    \exception vpLaserConicException::badValueError unless all are finite and positive.
+    \exception vpLaserConicException::badValueError unless all are in (0, 1e3].
   */
   void setImuNoise(double gyro, double gyroBiasWalk, double acc, double accBiasWalk);
   /*!
     Initial standard deviations: vertical speed (m/s, default 0.5), gyro bias (rad/s, default 0.01),
-    accelerometer bias (m/s², default 0.2). \exception vpLaserConicException::badValueError unless > 0.
+    accelerometer bias (m/s², default 0.2). \exception vpLaserConicException::badValueError unless in (0, 1e3].
   */
   void setInitialUncertainty(double verticalSpeed, double gyroBias, double accBias);
   //! IMU-to-camera rotation \f$ {}^c\mathbf{R}_{imu} \f$ (maps IMU vectors into the camera frame); default identity.
   void setImuToCameraRotation(const vpRotationMatrix &cRimu);
-  //! Gravity norm, m/s²; default 9.80665. \exception vpLaserConicException::badValueError unless > 0.
+  //! Gravity norm, m/s²; default 9.80665. \exception vpLaserConicException::badValueError unless in [0.1, 1e3].
   void setGravityNorm(double g);
   /*!
     Oldest frame accepted, in seconds before the last IMU sample (default 0.1), and the number of IMU
@@ -125,7 +128,10 @@ public:
     latency >= 0 and samples >= 2.
   */
   void setMaxLatency(double seconds, unsigned int samples = 64);
-  //! Longest IMU gap (s) propagated (default 0.05): a longer gap restarts the filter (IMU_GAP).
+  /*!
+    Longest IMU gap (s) propagated (default 0.05): a longer gap restarts the filter (IMU_GAP).
+    \exception vpLaserConicException::badValueError unless in (0, 10].
+  */
   void setMaxImuGap(double seconds);
   /*!
     Probability of the chi-square gate (3 degrees of freedom) on each frame's innovation, default
