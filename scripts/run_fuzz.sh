@@ -19,10 +19,11 @@ cmake -S . -B "$BUILD_DIR" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DCMAKE_BUILD_TYPE=Re
   -DBUILD_SHARED_LIBS=OFF -DBUILD_TESTING=OFF -DVSP_BUILD_EXAMPLES=OFF -DVSP_BUILD_TUTORIALS=OFF \
   -DVSP_BUILD_FUZZERS=ON -DCMAKE_CXX_FLAGS="$SAN_FLAGS" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
-cmake --build "$BUILD_DIR" -j"$JOBS" --target fuzz-pose-gravity fuzz-laser-conic fuzz-laser-detector fuzz-laser-filter
+cmake --build "$BUILD_DIR" -j"$JOBS" --target fuzz-pose-gravity fuzz-laser-conic fuzz-laser-detector fuzz-laser-filter \
+  fuzz-laser-selfcal
 
 status=0
-for target in pose-gravity laser-conic laser-detector laser-filter; do
+for target in pose-gravity laser-conic laser-detector laser-filter laser-selfcal; do
   corpus="$BUILD_DIR/corpus/$target"
   artifacts="$BUILD_DIR/artifacts/$target/"
   mkdir -p "$corpus" "$artifacts"
