@@ -100,6 +100,24 @@ inline bool isFiniteRigid(const vpHomogeneousMatrix &M)
   return true;
 }
 
+//! Applies the setting \e set; one refused with a vpException keeps its previous value, and the run goes on.
+template <typename Set> void tryApply(Set set)
+{
+  try {
+    set();
+  } catch (const vpException &) {
+    // Refused with a clear error: the setting keeps its previous value.
+  }
+}
+
+//! tryApply(\e set) when the input says so (one byte).
+template <typename Set> void maybeApply(FuzzedDataProvider &fdp, Set set)
+{
+  if (fdp.ConsumeBool()) {
+    tryApply(set);
+  }
+}
+
 //! Stops the run: libFuzzer reports the input that led here as a crash.
 [[noreturn]] inline void fail(const char *what)
 {

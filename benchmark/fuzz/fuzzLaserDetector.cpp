@@ -116,16 +116,10 @@ void setRegion(FuzzedDataProvider &fdp, vpLaserConicDetector &detector, unsigned
   detector.setSearchRegion(C, margin);
 }
 
-//! Fuzzed settings; each may be refused with a vpException (the detector then keeps its previous value).
+//! Fuzzed settings; each may be refused with a vpException (the detector then keeps its previous value: see
+//! vspFuzz::tryApply()).
 void configure(FuzzedDataProvider &fdp, vpLaserConicDetector &detector)
 {
-  auto attempt = [](auto set) {
-    try {
-      set();
-    } catch (const vpException &) {
-      // A refused setting: the detector must go on with the value it had.
-    }
-  };
   if (fdp.ConsumeIntegralInRange<int>(0, 7) == 0)
     detector.setMethod(vpLaserConicDetector::DETECTION_HSV);
   if (fdp.ConsumeBool())
@@ -133,28 +127,19 @@ void configure(FuzzedDataProvider &fdp, vpLaserConicDetector &detector)
   if (fdp.ConsumeBool())
     detector.setInstructionSet(
         static_cast<vpLaserConicDetector::vpInstructionSet>(fdp.ConsumeIntegralInRange<int>(0, 3)));
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setMinSegmentLength(fdp.ConsumeBool() ? 0.0 : vspFuzz::consumeDouble(fdp)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setMinContrast(vspFuzz::consumeDouble(fdp)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setNoiseFactor(vspFuzz::consumeDouble(fdp)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setMaxStripeWidth(fdp.ConsumeIntegralInRange<unsigned int>(0, 120)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setSaturationLevel(fdp.ConsumeIntegralInRange<unsigned int>(100, 260)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setSamplingStep(fdp.ConsumeIntegralInRange<unsigned int>(0, 12)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setGuidedMargin(vspFuzz::consumeDouble(fdp)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setGuidedStep(fdp.ConsumeIntegralInRange<unsigned int>(0, 12)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setTrackingStep(fdp.ConsumeIntegralInRange<unsigned int>(0, 12)); });
-  if (fdp.ConsumeBool())
-    attempt([&] { detector.setGuidedThresholdFactor(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp,
+                      [&] { detector.setMinSegmentLength(fdp.ConsumeBool() ? 0.0 : vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setMinContrast(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setNoiseFactor(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setMaxStripeWidth(fdp.ConsumeIntegralInRange<unsigned int>(0, 120)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setSaturationLevel(fdp.ConsumeIntegralInRange<unsigned int>(100, 260)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setSamplingStep(fdp.ConsumeIntegralInRange<unsigned int>(0, 12)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setGuidedMargin(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setGuidedStep(fdp.ConsumeIntegralInRange<unsigned int>(0, 12)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setTrackingStep(fdp.ConsumeIntegralInRange<unsigned int>(0, 12)); });
+  vspFuzz::maybeApply(fdp, [&] { detector.setGuidedThresholdFactor(vspFuzz::consumeDouble(fdp)); });
   if (fdp.ConsumeIntegralInRange<int>(0, 3) == 0)
-    attempt([&] { setRegion(fdp, detector, kMaxSide, kMaxSide); });
+    vspFuzz::tryApply([&] { setRegion(fdp, detector, kMaxSide, kMaxSide); });
 }
 
 //! The checks of one detection's output on image I.

@@ -16,35 +16,30 @@
 
 namespace
 {
-//! Applies fuzzed settings, each on its own: a refused one leaves the default.
+//! Applies fuzzed settings, each on its own (vspFuzz::maybeApply()): a refused one leaves the default.
 void configure(FuzzedDataProvider &fdp, vpLaserConicFilter &filter)
 {
-  const auto attempt = [&](auto set) {
-    if (!fdp.ConsumeBool())
-      return;
-    try {
-      set();
-    } catch (const vpException &) {
-      // Refused with a clear error: the setting keeps its default.
-    }
-  };
-  attempt([&] {
+  vspFuzz::maybeApply(fdp, [&] {
     filter.setImuNoise(vspFuzz::consumeDouble(fdp), vspFuzz::consumeDouble(fdp), vspFuzz::consumeDouble(fdp),
                        vspFuzz::consumeDouble(fdp));
   });
-  attempt([&] {
+  vspFuzz::maybeApply(fdp, [&] {
     filter.setInitialUncertainty(vspFuzz::consumeDouble(fdp), vspFuzz::consumeDouble(fdp), vspFuzz::consumeDouble(fdp));
   });
-  attempt([&] { filter.setImuToCameraRotation(vpRotationMatrix(vspFuzz::consumePose(fdp).getRotationMatrix())); });
-  attempt([&] { filter.setGravityNorm(vspFuzz::consumeDouble(fdp)); });
-  attempt([&] { filter.setMaxLatency(vspFuzz::consumeDouble(fdp), fdp.ConsumeIntegralInRange<unsigned int>(0, 300)); });
-  attempt([&] { filter.setMaxImuGap(vspFuzz::consumeDouble(fdp)); });
-  attempt([&] { filter.setGateProbability(vspFuzz::consumeDouble(fdp)); });
-  attempt([&] { filter.setStepFrames(fdp.ConsumeIntegralInRange<unsigned int>(0, 10)); });
-  attempt([&] { filter.setMinStepHeight(vspFuzz::consumeDouble(fdp)); });
-  attempt([&] { filter.setMaxRejections(fdp.ConsumeIntegralInRange<unsigned int>(0, 100)); });
-  attempt([&] { filter.setInitialisationFrames(fdp.ConsumeIntegralInRange<unsigned int>(0, 10)); });
-  attempt([&] { filter.setPredictionTimeout(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] {
+    filter.setImuToCameraRotation(vpRotationMatrix(vspFuzz::consumePose(fdp).getRotationMatrix()));
+  });
+  vspFuzz::maybeApply(fdp, [&] { filter.setGravityNorm(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] {
+    filter.setMaxLatency(vspFuzz::consumeDouble(fdp), fdp.ConsumeIntegralInRange<unsigned int>(0, 300));
+  });
+  vspFuzz::maybeApply(fdp, [&] { filter.setMaxImuGap(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { filter.setGateProbability(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { filter.setStepFrames(fdp.ConsumeIntegralInRange<unsigned int>(0, 10)); });
+  vspFuzz::maybeApply(fdp, [&] { filter.setMinStepHeight(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { filter.setMaxRejections(fdp.ConsumeIntegralInRange<unsigned int>(0, 100)); });
+  vspFuzz::maybeApply(fdp, [&] { filter.setInitialisationFrames(fdp.ConsumeIntegralInRange<unsigned int>(0, 10)); });
+  vspFuzz::maybeApply(fdp, [&] { filter.setPredictionTimeout(vspFuzz::consumeDouble(fdp)); });
 }
 
 //! The next time: usually a small step forward (an IMU at 100-1000 Hz, frames a few samples late), sometimes

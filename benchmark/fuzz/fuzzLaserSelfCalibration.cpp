@@ -17,27 +17,18 @@
 
 namespace
 {
-//! Applies fuzzed settings, each on its own: a refused one leaves the default.
+//! Applies fuzzed settings, each on its own (vspFuzz::maybeApply()): a refused one leaves the default.
 void configure(FuzzedDataProvider &fdp, vpLaserConicSelfCalibration &selfcal)
 {
-  const auto attempt = [&](auto set) {
-    if (!fdp.ConsumeBool())
-      return;
-    try {
-      set();
-    } catch (const vpException &) {
-      // Refused with a clear error: the setting keeps its default.
-    }
-  };
-  attempt([&] {
+  vspFuzz::maybeApply(fdp, [&] {
     const double px = vspFuzz::consumeDouble(fdp), py = vspFuzz::consumeDouble(fdp);
     selfcal.setCameraParameters(vpCameraParameters(px, py, vspFuzz::consumeDouble(fdp), vspFuzz::consumeDouble(fdp)));
   });
-  attempt([&] { selfcal.setLaser(vspFuzz::consumeDouble(fdp), vspFuzz::consumePose(fdp)); });
-  attempt([&] { selfcal.setApexDistance(vspFuzz::consumeDouble(fdp)); });
-  attempt([&] { selfcal.setMaxFrames(fdp.ConsumeIntegralInRange<unsigned int>(0, 50)); });
-  attempt([&] { selfcal.setMaxAngularStdDeviation(vspFuzz::consumeDouble(fdp)); });
-  attempt([&] { selfcal.setMaxRmsPixels(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { selfcal.setLaser(vspFuzz::consumeDouble(fdp), vspFuzz::consumePose(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { selfcal.setApexDistance(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { selfcal.setMaxFrames(fdp.ConsumeIntegralInRange<unsigned int>(0, 50)); });
+  vspFuzz::maybeApply(fdp, [&] { selfcal.setMaxAngularStdDeviation(vspFuzz::consumeDouble(fdp)); });
+  vspFuzz::maybeApply(fdp, [&] { selfcal.setMaxRmsPixels(vspFuzz::consumeDouble(fdp)); });
   selfcal.setApexHeld(fdp.ConsumeBool());
   selfcal.setOpeningAngleEstimation(fdp.ConsumeBool());
 }

@@ -422,8 +422,8 @@ void writeRow(std::ostream &out, size_t frame, const std::string &image, const F
   else
     out << "nan,nan,nan";
   out << "," << r.inliers << "," << r.status;
-  for (double sd : {r.altitudeSd, r.rollSd, r.pitchSd})
-    out << "," << (r.status == "ok" ? vpCsvTools::formatDouble(sd) : std::string("nan"));
+  for (double sd : {r.altitudeSd, r.rollSd, r.pitchSd}) // NaN ("nan") unless the frame has a plane
+    out << "," << vpCsvTools::formatDouble(sd);
   out << "\n";
 }
 
