@@ -429,7 +429,10 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
   // JPEG 60's colour blocks move the centres, as at 90 on a smaller scale:
   // TheDimSideThroughJpegHoldsItsLineToAFewTenths). Part of what is missed is not in the image: over the ring
   // where what the compression kept of the stripe's brightness is still 3 sigma
-  // (vpLaserConicSimulator::keptCoverage()), 93.99, 97.51 and 97.39 % is found (mean 96.30 %).
+  // (vpLaserConicSimulator::keptCoverage()), 93.99, 97.51 and 97.39 % is found (mean 96.30 %). With the final
+  // ellipse measured stretch by stretch where the ring fades (guided_stretches.cpp): 92.58, 97.03 and 94.83 %
+  // (mean 94.81 %), of what the compression kept 94.42, 97.83 and 97.97 % (mean 96.74 %); precision
+  // 0.980-0.987 (0.9777 on seed 65 while a stretch at 5 % of the ring's amplitude could fill a gap: 10 %).
   Settings s = fadingRing(40.0, 4.0);
   s.jpegQuality = 60;
   const SeedMeans means = overSeeds(
@@ -440,8 +443,8 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
         EXPECT_GE(q.kept3, 0.93);
       },
       Ridges::skip, camera(), Kept::measure);
-  EXPECT_GE(means.coverage3, 0.935);
-  EXPECT_GE(means.kept3, 0.96);
+  EXPECT_GE(means.coverage3, 0.945);
+  EXPECT_GE(means.kept3, 0.965);
 }
 
 TEST(LaserConicGuidedSearch, ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge)

@@ -277,11 +277,13 @@ double median(std::vector<double> &values);
   The gaps of the final conic C that no point covers (the points: \e anchors, the first pass's, and \e guided,
   the pass's own, marked in \e found), measured once the walks along the refitted conics are done: the short
   ones again within a pixel of the ring (measureAlongTheFinalCurve()), then the long ones followed on the
-  brightness from their dim ends (walkIntoLongGaps()). The points kept are appended to \e guided.
+  brightness from their dim ends (walkIntoLongGaps()). The points kept are appended to \e guided, the points of
+  C in the gaps a walk started into (the ring fades there; a stripe strong at a gap's end was hidden instead)
+  to \e faded.
 */
 void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
                                const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
-                               std::vector<Crossing> &guided);
+                               std::vector<Crossing> &guided, std::vector<vpImagePoint> &faded);
 } // namespace vsp::laser_detector
 
 #endif

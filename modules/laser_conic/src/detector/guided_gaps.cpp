@@ -138,9 +138,10 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
 // the walk took the object's edge (`make-laser-sequence --hard --seed 19 --quality 80`, frame 13, through
 // `vsp-laser-altimeter --truth`: attitude 0.23 -> 0.93 degree). A walk from the other end of the gap stops at
 // this one's points. Appends the points of the pieces kept as the walk's (keepContinuingPieces()) to \e kept.
+// The samples of each gap a walk started into (the ring fades there) are appended to \e faded.
 void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
                       const std::vector<GuidedSample> &samples, const FoundCells &found, ProfileBuffers &buffers,
-                      std::vector<Crossing> &kept)
+                      std::vector<Crossing> &kept, std::vector<vpImagePoint> &faded)
 {
   std::vector<unsigned char> covered;
   const std::vector<double> offsets = ringOffsets(samples, found, covered);
@@ -165,6 +166,8 @@ void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
         measureProfile(I, samples[from], settings, predictionWindow(samples[from], start), buffers);
     if (last.found && last.response >= RidgeTuning::guidedStrongStripe * last.threshold)
       return;
+    for (size_t k = (from + direction) % n; !covered[k] && k != from; k = (k + direction) % n)
+      faded.push_back(samplePoint(samples[k], samples[k].pos));
     double at = start;
     size_t lastFound = from;
     int misses = 0;
@@ -202,7 +205,7 @@ void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
 
 void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
                                const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
-                               std::vector<Crossing> &guided)
+                               std::vector<Crossing> &guided, std::vector<vpImagePoint> &faded)
 {
   // The samples the points cover: the first pass's and the pass's own, those measured at the final conic too.
   const auto markPoints = [&]() {
@@ -219,6 +222,6 @@ void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &s
   markPoints();
   measureAlongTheFinalCurve(I, settings, samples, found, buffers, guided);
   markPoints();
-  walkIntoLongGaps(I, settings, samples, found, buffers, guided);
+  walkIntoLongGaps(I, settings, samples, found, buffers, guided, faded);
 }
 } // namespace vsp::laser_detector

@@ -333,6 +333,37 @@ int addKeptPoints(const std::vector<unsigned char> &keep, const std::vector<Prof
   return added;
 }
 
+// Drops the crossings outside a W x H image. The regularisation moves a point along the curve's normal: beside the
+// image's border it can move it out of the image (found by the detector's fuzz target: -0.58 px), where no pixel
+// measured it.
+void dropOutsideTheImage(int W, int H, std::vector<Crossing> &guided)
+{
+  const double right = W - 0.5, bottom = H - 0.5;
+  guided.erase(std::remove_if(guided.begin(), guided.end(),
+                              [right, bottom](const Crossing &c) {
+                                const double u = c.point.get_u(), v = c.point.get_v();
+                                return !(u >= -0.5 && v >= -0.5 && u <= right && v <= bottom);
+                              }),
+               guided.end());
+}
+
+// The stretches of the final conic C of a ring that fades (\e faded: the points of C in the gaps it fades into)
+// measured as a whole (measureStretches()), then again along C refitted on all the points, as long as points are
+// added (RidgeTuning::stretchRounds rounds at most).
+void measureFadingStretches(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
+                            const std::vector<vpImagePoint> &anchors, const std::vector<vpImagePoint> &faded,
+                            Eigen::Matrix3d &C, std::vector<Crossing> &guided)
+{
+  for (int round = 0; round < RidgeTuning::stretchRounds; ++round) {
+    if (measureStretches(I, settings, C, anchors, faded, guided) == 0 || round + 1 == RidgeTuning::stretchRounds)
+      return;
+    std::vector<vpImagePoint> all = anchors;
+    for (const Crossing &c : guided)
+      all.push_back(c.point);
+    refitOnItsInliers(all, C);
+  }
+}
+
 // Whether the walk along a refitted conic shows it wandering through clutter: it took points along much of the
 // moved curve, measured again, for little more coverage (see RidgeTuning::guidedWanderShare).
 bool wandersThroughClutter(int iteration, int added, size_t samples, double coverageGain)
@@ -402,18 +433,13 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   if (fittedHere && !work.guided.empty())
     refitOnItsInliers(fitPoints, C);
   keepOnTheFinalCurve(C, work.guided);
+  std::vector<vpImagePoint> faded;
   if (fittedHere)
-    measureTheFinalCurvesGaps(I, settings, C, anchors, found, buffers, work.guided);
+    measureTheFinalCurvesGaps(I, settings, C, anchors, found, buffers, work.guided, faded);
   dropIsolatedPieces(smoothAlongCurve(C, work.guided), anchors, work.guided);
-  // The regularisation moves a point along the curve's normal: beside the image's border it can move it out
-  // of the image (found by the detector's fuzz target: -0.58 px), where no pixel measured it.
-  const double right = W - 0.5, bottom = H - 0.5;
-  work.guided.erase(std::remove_if(work.guided.begin(), work.guided.end(),
-                                   [right, bottom](const Crossing &c) {
-                                     const double u = c.point.get_u(), v = c.point.get_v();
-                                     return !(u >= -0.5 && v >= -0.5 && u <= right && v <= bottom);
-                                   }),
-                    work.guided.end());
+  if (!faded.empty())
+    measureFadingStretches(I, settings, anchors, faded, C, work.guided);
+  dropOutsideTheImage(W, H, work.guided);
   points.reserve(points.size() + work.guided.size());
   for (const Crossing &c : work.guided)
     points.push_back(c.point);

@@ -76,6 +76,16 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
                 const std::vector<vpImagePoint> &anchors, const RegionSpans *limit, std::vector<vpImagePoint> &points,
                 RidgeWorkspace &work, GuidedReport &report);
 
+/*!
+  The stretches of the final conic measured as a whole (guided_stretches.cpp): at every settings.step pixels of
+  arc, a stripe fitted to the mean brightness profile across the curve over RidgeTuning::stretchHalfLength
+  pixels on each side; where it is significant and the crossings there lie elsewhere (or there is none), they
+  are replaced by one point at its offset. Returns the points added.
+*/
+int measureStretches(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &conic,
+                     const std::vector<vpImagePoint> &anchors, const std::vector<vpImagePoint> &faded,
+                     std::vector<Crossing> &guided);
+
 //! Median half-maximum width (pixels) of the crossings work.keep marks; \e fallback when there is none.
 int observedStripeWidth(const RidgeWorkspace &work, int fallback);
 

@@ -284,6 +284,45 @@ struct RidgeTuning
   //! the sample's line alone: the stripe stands out of one line's noise by more than twice the threshold factor,
   //! and the regularisation along the curve averages the noisier centres.
   static constexpr double guidedStrongStripe = 4.0;
+  //! measureStretches(): pixels read across the curve on each side of it.
+  static constexpr int stretchReach = 10;
+  //! measureStretches(): pixels of arc on each side of a point averaged into its stretch's profile (48 px
+  //! stretches hold a faint ring's line through JPEG 60 to 0.84 px, see guided_stretches.cpp).
+  static constexpr int stretchHalfLength = 24;
+  //! measureStretches(): largest offset (pixels) from the final conic fitted; the dim side of a faint ring
+  //! through JPEG 60 lay 1.2-3.5 px outside the conic of the points (4.4 px outside the pass's final conic).
+  static constexpr double stretchMaxOffset = 5.0;
+  //! measureStretches(): a stripe's amplitude over its standard error (from the residuals of the fit, which
+  //! hold the profile's misfit as well as its noise: 8-11 along the bright side of the faint ring, 4-12 on its
+  //! dim side). At 8, 14 -> 6 of the 24 faint frames under 95 % (seeds 1-24, JPEG 60); at 6, 4.
+  static constexpr double stretchSignificance = 6.0;
+  //! measureStretches(): the points within this many pixels of their stretch's stripe stay where they are.
+  static constexpr double stretchAgreement = 1.0;
+  //! measureStretches(): the background's linear change over this many stripe sigmas on each side must stay
+  //! under half the stripe's amplitude (a colour edge is not a stripe).
+  static constexpr double stretchStepWidth = 3.0;
+  //! measureStretches(): a stretch's stripe under this share of the ring's (the upper quartile of its stretches)
+  //! is no stripe: the shading of an object over the ring fitted 1.3 grey levels at 40 standard errors.
+  static constexpr double stretchFaintShare = 0.1;
+  //! measureStretches(): the points of a stretch whose stripe is over this share of the ring's (the upper quartile
+  //! of its stretches) stay where they are: a bright stripe's profiles hold its line to a few tenths of a pixel,
+  //! where a 48 px stretch of the final conic can bend away from it by a pixel (an object's edge over the ring).
+  static constexpr double stretchDimShare = 0.35;
+  //! measureStretches(): a gap's stretch fills it when its stripe lies within stretchGapContinuity pixels, plus
+  //! stretchGapDrift per pixel of arc, of the offset of the last point before it (a fading ring's dim side
+  //! drifts from the conic of its points by 1.2-3.5 px over ~300 px of arc).
+  static constexpr double stretchGapContinuity = 1.0;
+  static constexpr double stretchGapDrift = 0.02;
+  //! measureStretches(): no stretch is measured along a conic whose perimeter is over this many times W + H.
+  static constexpr double stretchMaxPerimeter = 8.0;
+  //! measureStretches(): rounds, the final conic refitted on the points between them.
+  static constexpr int stretchRounds = 2;
+  //! oneStripe(): the two halves of a stretch agree on the stripe's offset within this many pixels and on
+  //! its amplitude within this factor (a stretch across the edge of an object over the ring does not: without
+  //! the test, GP-3's attitude over the occluded frames of seeds 1-24 went from 0.385 to 0.408 degree on
+  //! average, with it 0.378).
+  static constexpr double stretchHalvesAgreement = 1.5;
+  static constexpr double stretchHalvesRatio = 3.0;
 };
 } // namespace vsp::laser_detector
 

@@ -1,0 +1,447 @@
+/*
+ * ViSP sensor-aided pose estimation.
+ * Copyright (C) the VispSensorPose authors. GPL-2.0-or-later, see LICENSE.
+ */
+// The stretches of the final conic measured as a whole: the image's brightness R + G + B read across the curve
+// at every pixel of arc, averaged over RidgeTuning::stretchHalfLength pixels on each side of a point, and a
+// stripe (a Gaussian of the observed width over a linear background) fitted to that mean profile. Where a
+// faint ring went through strong JPEG compression, each profile of the guided pass holds its stripe only as
+// the low frequencies of the 8 x 8 luma blocks, whose peak lies up to 2-3 px off the line or splits; but the
+// line crosses the blocks at every phase along a stretch, and the mean of ~50 px of profiles holds it (the
+// faint frame 56 of `make-laser-sequence --hard --seed 19`: every 48 px stretch at 3 sigma or more within
+// 0.84 px, where the points were 1-3.5 px inside). The points whose stretch tells another offset are moved to it,
+// and the gaps of a fading ring filled: only on a ring that fades (a walk started into one of its long gaps,
+// guided_gaps.cpp), and points are added only in the gaps it fades into or in short gaps (an object over the
+// ring hides a long stretch of it between bright ends).
+#include "guided_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "guided_detail.h"
+#include "ridge_tuning.h"
+
+namespace vsp::laser_detector
+{
+namespace
+{
+//! An ellipse as centre + R diag(ra, rb) (cos t, sin t).
+struct EllipseFrame
+{
+  Eigen::Vector2d centre;
+  Eigen::Matrix2d axes; //!< unit axes, as columns
+  double ra = 0.0, rb = 0.0;
+  Eigen::Vector2d at(double t) const { return centre + axes * Eigen::Vector2d(ra * std::cos(t), rb * std::sin(t)); }
+  //! The outward unit normal at parameter t.
+  Eigen::Vector2d normal(double t) const
+  {
+    return (axes * Eigen::Vector2d(std::cos(t) / ra, std::sin(t) / rb)).normalized();
+  }
+  //! The parameter of the point of the ellipse in the direction of \e p from the centre.
+  double parameterOf(const Eigen::Vector2d &p) const
+  {
+    const Eigen::Vector2d q = axes.transpose() * (p - centre);
+    return std::atan2(q.y() / rb, q.x() / ra);
+  }
+};
+
+bool ellipseFrame(const Eigen::Matrix3d &C, EllipseFrame &e)
+{
+  const Eigen::Matrix3d S = 0.5 * (C + C.transpose());
+  const Eigen::Matrix2d A = S.topLeftCorner<2, 2>();
+  if (!(std::fabs(A.determinant()) > 0.0))
+    return false;
+  e.centre = -A.inverse() * S.topRightCorner<2, 1>();
+  const double level = -(e.centre.dot(S.topRightCorner<2, 1>()) + S(2, 2)); // (x - c)^T A (x - c) = level
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(A);
+  const Eigen::Vector2d l = eig.eigenvalues() / level;
+  if (!(l(0) > 0.0 && l(1) > 0.0) || !e.centre.allFinite())
+    return false;
+  e.axes = eig.eigenvectors();
+  e.ra = 1.0 / std::sqrt(l(0));
+  e.rb = 1.0 / std::sqrt(l(1));
+  return std::isfinite(e.ra) && std::isfinite(e.rb);
+}
+
+//! R + G + B at (u, v), bilinear between the pixel centres.
+double brightnessAt(const vpImage<vpRGBa> &I, double u, double v)
+{
+  const int u0 = static_cast<int>(std::floor(u)), v0 = static_cast<int>(std::floor(v));
+  const double fu = u - u0, fv = v - v0;
+  const auto b = [&I](int r, int c) {
+    const vpRGBa &p = I[r][c];
+    return static_cast<double>(p.R + p.G + p.B);
+  };
+  return (1.0 - fv) * ((1.0 - fu) * b(v0, u0) + fu * b(v0, u0 + 1)) +
+         fv * ((1.0 - fu) * b(v0 + 1, u0) + fu * b(v0 + 1, u0 + 1));
+}
+
+//! The curve at a pixel of arc: its point, outward normal and, when its profile lies inside the image, that
+//! profile (RidgeTuning::stretchReach pixels on each side).
+struct ArcPixel
+{
+  double t = 0.0; //!< parameter on the ellipse
+  Eigen::Vector2d point, normal;
+  bool inside = false;
+  double profile[2 * RidgeTuning::stretchReach + 1];
+};
+
+//! The ellipse at every pixel of arc (a full turn from parameter 0), each with its profile across the curve.
+std::vector<ArcPixel> profilesAlong(const vpImage<vpRGBa> &I, const EllipseFrame &e)
+{
+  std::vector<ArcPixel> arc;
+  const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
+  // An ellipse whose perimeter (Ramanujan's approximation) is many times the image's: no ring of this image (its
+  // arc, mostly outside, would be millions of pixels).
+  const double h = (e.ra - e.rb) * (e.ra - e.rb) / ((e.ra + e.rb) * (e.ra + e.rb));
+  const double perimeter = M_PI * (e.ra + e.rb) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
+  if (!(perimeter <= RidgeTuning::stretchMaxPerimeter * (W + H)))
+    return arc;
+  arc.reserve(static_cast<size_t>(perimeter) + 1);
+  const double reach = RidgeTuning::stretchReach + 1.0;
+  double t = 0.0;
+  while (t < 2.0 * M_PI) {
+    ArcPixel a;
+    a.t = t;
+    a.point = e.at(t);
+    a.normal = e.normal(t);
+    const Eigen::Vector2d lo = a.point - reach * a.normal, hi = a.point + reach * a.normal;
+    a.inside = std::min(lo.x(), hi.x()) >= 0.0 && std::min(lo.y(), hi.y()) >= 0.0 &&
+               std::max(lo.x(), hi.x()) < W - 1.0 && std::max(lo.y(), hi.y()) < H - 1.0;
+    for (int j = -RidgeTuning::stretchReach; a.inside && j <= RidgeTuning::stretchReach; ++j) {
+      const Eigen::Vector2d p = a.point + j * a.normal;
+      a.profile[j + RidgeTuning::stretchReach] = brightnessAt(I, p.x(), p.y());
+    }
+    arc.push_back(a);
+    const Eigen::Vector2d speed = e.axes * Eigen::Vector2d(-e.ra * std::sin(t), e.rb * std::cos(t));
+    t += 1.0 / std::max(1.0, speed.norm());
+  }
+  return arc;
+}
+
+//! A stripe fitted to a mean profile: its offset across the curve, its amplitude over the background and that
+//! amplitude's significance (amplitude / its standard error).
+struct RidgeFit
+{
+  double offset = 0.0, amplitude = 0.0, significance = 0.0;
+  bool found = false;
+};
+
+// Least squares of profile = a g(x - d) + b0 + b1 x for one offset d: false when the system is singular. The
+// residual sum of squares in \e rss.
+bool fitAtOffset(const double *profile, double sigma, double d, Eigen::Vector3d &p, double &rss, double &varA)
+{
+  constexpr int n = 2 * RidgeTuning::stretchReach + 1;
+  Eigen::Matrix<double, n, 3> X;
+  Eigen::Matrix<double, n, 1> y;
+  for (int j = 0; j < n; ++j) {
+    const double x = j - RidgeTuning::stretchReach, z = (x - d) / sigma;
+    X.row(j) << std::exp(-0.5 * z * z), 1.0, x;
+    y(j) = profile[j];
+  }
+  const Eigen::Matrix3d normal = X.transpose() * X;
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
+  if (ldlt.info() != Eigen::Success || !(std::fabs(normal.determinant()) > 1e-12))
+    return false;
+  p = ldlt.solve(X.transpose() * y);
+  rss = (y - X * p).squaredNorm();
+  varA = ldlt.solve(Eigen::Vector3d::UnitX())(0) * rss / (n - 3);
+  return std::isfinite(rss);
+}
+
+// The stripe of width \e width (half-maximum, pixels) best fitted to \e profile within
+// RidgeTuning::stretchMaxOffset of the curve: a grid of quarter pixels, then the vertex of the parabola through
+// the residuals around the best. A step in the background (a colour edge) is not a stripe: the background's
+// change across the stripe must stay under half its amplitude.
+RidgeFit fitStripe(const double *profile, double width)
+{
+  const double sigma = std::max(0.5, width / 2.3548);
+  RidgeFit best;
+  double bestRss = 0.0, prev = 0.0, bestPrev = 0.0, bestNext = 0.0;
+  bool bestIsLast = false;
+  const double step = 0.25;
+  for (double d = -RidgeTuning::stretchMaxOffset; d <= RidgeTuning::stretchMaxOffset + 1e-9; d += step) {
+    Eigen::Vector3d p;
+    double rss = 0.0, varA = 0.0;
+    if (!fitAtOffset(profile, sigma, d, p, rss, varA)) {
+      prev = 0.0;
+      continue;
+    }
+    if (bestIsLast)
+      bestNext = rss;
+    bestIsLast = false;
+    if (p(0) > 0.0 && (!best.found || rss < bestRss)) {
+      best = RidgeFit{d, p(0), p(0) / std::sqrt(std::max(varA, 1e-300)), true};
+      const double stepAcross = std::fabs(p(2)) * 2.0 * RidgeTuning::stretchStepWidth * sigma;
+      best.found = stepAcross <= 0.5 * p(0);
+      bestRss = rss;
+      bestPrev = prev;
+      bestIsLast = true;
+      bestNext = 0.0;
+    }
+    prev = rss;
+  }
+  const double curvature = bestPrev + bestNext - 2.0 * bestRss;
+  if (best.found && bestPrev > 0.0 && bestNext > 0.0 && curvature > 0.0)
+    best.offset += step * std::max(-0.5, std::min(0.5, 0.5 * (bestPrev - bestNext) / curvature));
+  return best;
+}
+
+//! Signed distance (pixels, outward positive, first order) of \e p from the conic C.
+double offsetFrom(const Eigen::Matrix3d &C, const Eigen::Vector2d &p)
+{
+  const Eigen::Vector3d x(p.x(), p.y(), 1.0), g = C * x;
+  const double norm = g.head<2>().norm();
+  return norm > 0.0 ? x.dot(g) / (2.0 * norm) : 0.0;
+}
+
+// The index of the pixel of \e arc (increasing parameters) nearest below the parameter of \e p.
+int arcIndexOf(const std::vector<ArcPixel> &arc, const EllipseFrame &e, const Eigen::Vector2d &p)
+{
+  double t = e.parameterOf(p);
+  if (t < 0.0)
+    t += 2.0 * M_PI;
+  const auto after = std::upper_bound(arc.begin(), arc.end(), t, [](double x, const ArcPixel &a) { return x < a.t; });
+  return std::max(0, static_cast<int>(after - arc.begin()) - 1);
+}
+
+//! Prefix sums, along the arc, of the profiles (one column per pixel across) and of the count inside the image.
+struct ArcSums
+{
+  static constexpr int width = 2 * RidgeTuning::stretchReach + 1;
+  std::vector<double> sum; //!< (n + 1) x width
+  std::vector<int> inside; //!< n + 1
+  int n = 0;
+  explicit ArcSums(const std::vector<ArcPixel> &arc) : n(static_cast<int>(arc.size()))
+  {
+    sum.assign((arc.size() + 1) * width, 0.0);
+    inside.assign(arc.size() + 1, 0);
+    for (int i = 0; i < n; ++i) {
+      const ArcPixel &a = arc[static_cast<size_t>(i)];
+      inside[i + 1] = inside[i] + (a.inside ? 1 : 0);
+      for (int j = 0; j < width; ++j)
+        sum[(i + 1) * width + j] = sum[i * width + j] + (a.inside ? a.profile[j] : 0.0);
+    }
+  }
+  // Adds the profiles of [first, last] (0 <= first <= last < n) to \e mean; returns how many are inside.
+  int add(int first, int last, double *mean) const
+  {
+    for (int j = 0; j < width; ++j)
+      mean[j] += sum[(last + 1) * width + j] - sum[first * width + j];
+    return inside[last + 1] - inside[first];
+  }
+  // The mean profile of the pixels of arc [centre - half, centre + half] (around the turn): false unless all of
+  // them are inside the image.
+  bool meanAround(int centre, int half, double *profile) const
+  {
+    return meanOver(centre - half, centre + half, profile);
+  }
+  // The same over [first, last] (first <= last, less than a turn apart, either possibly beyond [0, n)).
+  bool meanOver(int first, int last, double *profile) const
+  {
+    std::fill(profile, profile + width, 0.0);
+    const int length = last - first;
+    first = ((first % n) + n) % n;
+    last = first + length;
+    int count = 0;
+    if (last >= n)
+      count = add(first, n - 1, profile) + add(0, last - n, profile);
+    else
+      count = add(first, last, profile);
+    if (count != last - first + 1)
+      return false;
+    for (int j = 0; j < width; ++j)
+      profile[j] /= count;
+    return true;
+  }
+};
+
+// Whether the two halves of the stretch around \e centre hold the stripe \e fit found over it: each one's stripe
+// found within RidgeTuning::stretchHalvesAgreement pixels of it, at an amplitude within a factor
+// RidgeTuning::stretchHalvesRatio of the other's. A stretch across an object's edge over the ring (the stripe on
+// the floor on one side, on the object or nowhere on the other) is two things, not a stripe.
+bool oneStripe(const ArcSums &sums, int centre, int half, double width, const RidgeFit &fit)
+{
+  double profile[ArcSums::width];
+  RidgeFit halves[2];
+  for (int h = 0; h < 2; ++h) {
+    if (!sums.meanOver(h == 0 ? centre - half : centre, h == 0 ? centre : centre + half, profile))
+      return false;
+    halves[h] = fitStripe(profile, width);
+    if (!halves[h].found || std::fabs(halves[h].offset - fit.offset) > RidgeTuning::stretchHalvesAgreement)
+      return false;
+  }
+  const double ratio = halves[0].amplitude / halves[1].amplitude;
+  return ratio <= RidgeTuning::stretchHalvesRatio && ratio >= 1.0 / RidgeTuning::stretchHalvesRatio;
+}
+
+// A crossing at \e p, measured across a curve of normal \e normal (for the mask: the line that crosses it more
+// steeply).
+Crossing crossingAt(const Eigen::Vector2d &p, const Eigen::Vector2d &normal)
+{
+  Crossing x;
+  x.point = vpImagePoint(p.y(), p.x());
+  x.alongRow = std::fabs(normal.x()) >= std::fabs(normal.y());
+  x.line = static_cast<int>(std::lround(x.alongRow ? p.y() : p.x()));
+  x.first = x.last = static_cast<int>(std::lround(x.alongRow ? p.x() : p.y()));
+  return x;
+}
+
+//! The points along the pixels of arc: the crossings of the guided pass (indices from 0), then the first pass's
+//! anchors (from the crossings' count; never moved).
+struct ArcPoints
+{
+  const std::vector<Crossing> &guided;
+  const std::vector<vpImagePoint> &anchors;
+  std::vector<std::vector<int> > byIndex; //!< the points at each pixel of arc
+  ArcPoints(const std::vector<ArcPixel> &arc, const EllipseFrame &e, const std::vector<Crossing> &guided_,
+            const std::vector<vpImagePoint> &anchors_)
+    : guided(guided_), anchors(anchors_), byIndex(arc.size())
+  {
+    for (size_t i = 0; i < guided.size() + anchors.size(); ++i)
+      byIndex[static_cast<size_t>(arcIndexOf(arc, e, at(static_cast<int>(i))))].push_back(static_cast<int>(i));
+  }
+  Eigen::Vector2d at(int x) const
+  {
+    const vpImagePoint &p = static_cast<size_t>(x) < guided.size() ? guided[static_cast<size_t>(x)].point
+                                                                   : anchors[static_cast<size_t>(x) - guided.size()];
+    return Eigen::Vector2d(p.get_u(), p.get_v());
+  }
+  bool movable(int x) const { return static_cast<size_t>(x) < guided.size(); }
+  /*!
+    The median offset from the conic C of the points within \e reach pixels of arc of \e i (NaN without any);
+    their indices in \e here.
+  */
+  double near(const Eigen::Matrix3d &C, int i, int reach, std::vector<int> &here, std::vector<double> &offsets) const
+  {
+    const int n = static_cast<int>(byIndex.size());
+    offsets.clear();
+    here.clear();
+    for (int k = i - reach; k <= i + reach; ++k)
+      for (int x : byIndex[static_cast<size_t>((k + n) % n)]) {
+        here.push_back(x);
+        offsets.push_back(offsetFrom(C, at(x)));
+      }
+    return offsets.empty() ? std::numeric_limits<double>::quiet_NaN() : median(offsets);
+  }
+};
+
+//! The pixels of arc in a gap the ring fades into (the points of \e faded) and within two samples of one.
+std::vector<unsigned char> fadingPixels(const std::vector<ArcPixel> &arc, const EllipseFrame &e,
+                                        const std::vector<vpImagePoint> &faded, int step)
+{
+  const int n = static_cast<int>(arc.size());
+  std::vector<unsigned char> fading(arc.size(), 0);
+  for (const vpImagePoint &p : faded) {
+    const int at = arcIndexOf(arc, e, Eigen::Vector2d(p.get_u(), p.get_v()));
+    for (int k = at - 2 * step; k <= at + 2 * step; ++k)
+      fading[static_cast<size_t>((k + n) % n)] = 1;
+  }
+  return fading;
+}
+
+/*!
+  The stripe of the stretch around every \e step-th pixel of arc from \e start (fits[j] for pixel start + j step,
+  around the turn), found when significant and one stripe (oneStripe()); returns the upper quartile of their
+  amplitudes (the ring's), 0 when none is found.
+*/
+double fitStretches(const ArcSums &sums, int start, int step, double width, std::vector<RidgeFit> &fits)
+{
+  const int half = RidgeTuning::stretchHalfLength;
+  fits.assign(static_cast<size_t>((sums.n + step - 1) / step), RidgeFit());
+  std::vector<double> amplitudes;
+  double profile[ArcSums::width];
+  for (size_t j = 0; j < fits.size(); ++j) {
+    const int i = (start + static_cast<int>(j) * step) % sums.n;
+    if (!sums.meanAround(i, half, profile))
+      continue;
+    RidgeFit &fit = fits[j];
+    fit = fitStripe(profile, width);
+    fit.found = fit.found && fit.significance >= RidgeTuning::stretchSignificance &&
+                oneStripe(sums, i, half, width, fit);
+    if (fit.found)
+      amplitudes.push_back(fit.amplitude);
+  }
+  if (amplitudes.empty())
+    return 0.0;
+  const size_t quartile = amplitudes.size() * 3 / 4;
+  std::nth_element(amplitudes.begin(), amplitudes.begin() + static_cast<std::ptrdiff_t>(quartile), amplitudes.end());
+  return amplitudes[quartile];
+}
+} // namespace
+
+int measureStretches(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &conic,
+                     const std::vector<vpImagePoint> &anchors, const std::vector<vpImagePoint> &faded,
+                     std::vector<Crossing> &guided)
+{
+  EllipseFrame e;
+  if (guided.empty() || !ellipseFrame(conic, e))
+    return 0;
+  // Outward positive offsets: the conic's sign such that its centre is inside (negative).
+  const Eigen::Vector3d c(e.centre.x(), e.centre.y(), 1.0);
+  const Eigen::Matrix3d C = c.dot(conic * c) < 0.0 ? conic : Eigen::Matrix3d(-conic);
+  const std::vector<ArcPixel> arc = profilesAlong(I, e);
+  const int n = static_cast<int>(arc.size()), step = std::max(1, settings.step);
+  if (n < 4 * RidgeTuning::stretchHalfLength)
+    return 0;
+  const ArcPoints points(arc, e, guided, anchors);
+  const std::vector<unsigned char> fading = fadingPixels(arc, e, faded, step);
+  // Around the turn from a pixel of arc with points, each stretch's stripe in turn. A gap (no point within a
+  // sample) is filled where the ring fades (a walk started into it) or where it is short (points within
+  // RidgeTuning::guidedGapLength / 2 pixels of arc), and only where the stripe continues the last one taken
+  // (RidgeTuning::stretchGapContinuity; before the gap, the stretch's stripe where there are points): beside an
+  // object over the ring its shading fitted a stripe 4.5 px off, from the first stretch of the gap on.
+  int start = 0;
+  while (start < n && points.byIndex[static_cast<size_t>(start)].empty())
+    ++start;
+  std::vector<RidgeFit> fits;
+  const double bright = fitStretches(ArcSums(arc), start % n, step, settings.stripeWidth, fits);
+  const double faint = RidgeTuning::stretchFaintShare * bright, dim = RidgeTuning::stretchDimShare * bright;
+  std::vector<unsigned char> moved(guided.size(), 0);
+  std::vector<Crossing> added;
+  std::vector<int> here;
+  std::vector<double> offsets;
+  double lastOffset = std::numeric_limits<double>::quiet_NaN();
+  int lastAt = 0;
+  for (size_t j = 0; j < fits.size() && bright > 0.0; ++j) {
+    const int i = (start + static_cast<int>(j) * step) % n, at = static_cast<int>(j) * step;
+    const RidgeFit &fit = fits[j];
+    const double there = points.near(C, i, step, here, offsets);
+    const bool usable = fit.found && fit.amplitude >= faint;
+    if (!std::isnan(there)) {
+      // Points there: moved to the stretch's stripe when it is dim and elsewhere.
+      const bool move = usable && fit.amplitude <= dim && std::fabs(there - fit.offset) > RidgeTuning::stretchAgreement;
+      lastOffset = usable ? fit.offset : there;
+      lastAt = at;
+      if (!move)
+        continue;
+    } else {
+      const double tolerance = RidgeTuning::stretchGapContinuity + RidgeTuning::stretchGapDrift * (at - lastAt);
+      const bool fillable =
+          fading[static_cast<size_t>(i)] ||
+          !std::isnan(points.near(C, i, static_cast<int>(RidgeTuning::guidedGapLength / 2), here, offsets));
+      if (!usable || !fillable || std::isnan(lastOffset) || std::fabs(fit.offset - lastOffset) > tolerance)
+        continue;
+      here.clear();
+      lastOffset = fit.offset;
+      lastAt = at;
+    }
+    for (int x : here)
+      if (points.movable(x))
+        moved[static_cast<size_t>(x)] = 1;
+    const ArcPixel &a = arc[static_cast<size_t>(i)];
+    added.push_back(crossingAt(a.point + fit.offset * a.normal, a.normal));
+  }
+  size_t kept = 0;
+  for (size_t i = 0; i < guided.size(); ++i)
+    if (!moved[i])
+      guided[kept++] = guided[i];
+  guided.resize(kept);
+  guided.insert(guided.end(), added.begin(), added.end());
+  return static_cast<int>(added.size());
+}
+} // namespace vsp::laser_detector
