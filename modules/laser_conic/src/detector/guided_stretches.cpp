@@ -131,43 +131,62 @@ struct RidgeFit
   bool found = false;
 };
 
-// Least squares of profile = a g(x - d) + b0 + b1 x for one offset d: false when the system is singular. The
-// residual sum of squares in \e rss.
-bool fitAtOffset(const double *profile, double sigma, double d, Eigen::Vector3d &p, double &rss, double &varA)
+/*!
+  The least-squares design of a stripe of width \e width (half-maximum, pixels) over a linear background,
+  profile = a g(x - d) + b0 + b1 x, for every offset d of a grid of quarter pixels within
+  RidgeTuning::stretchMaxOffset of the curve: its samples across the curve and its factorised normal matrix,
+  the same for every stretch of a measurement (their exponentials were most of its time).
+*/
+struct StripeDesign
 {
-  constexpr int n = 2 * RidgeTuning::stretchReach + 1;
-  Eigen::Matrix<double, n, 3> X;
-  Eigen::Matrix<double, n, 1> y;
-  for (int j = 0; j < n; ++j) {
-    const double x = j - RidgeTuning::stretchReach, z = (x - d) / sigma;
-    X.row(j) << std::exp(-0.5 * z * z), 1.0, x;
-    y(j) = profile[j];
+  static constexpr int n = 2 * RidgeTuning::stretchReach + 1;
+  static constexpr double step = 0.25;
+  double sigma;
+  std::vector<double> offsets;
+  std::vector<Eigen::Matrix<double, n, 3> > X;
+  std::vector<Eigen::LDLT<Eigen::Matrix3d> > ldlt;
+  std::vector<unsigned char> usable; //!< the normal matrix is regular
+  explicit StripeDesign(double width) : sigma(std::max(0.5, width / 2.3548))
+  {
+    for (double d = -RidgeTuning::stretchMaxOffset; d <= RidgeTuning::stretchMaxOffset + 1e-9; d += step) {
+      Eigen::Matrix<double, n, 3> x;
+      for (int j = 0; j < n; ++j) {
+        const double u = j - RidgeTuning::stretchReach, z = (u - d) / sigma;
+        x.row(j) << std::exp(-0.5 * z * z), 1.0, u;
+      }
+      const Eigen::Matrix3d normal = x.transpose() * x;
+      offsets.push_back(d);
+      X.push_back(x);
+      ldlt.emplace_back(normal);
+      usable.push_back(ldlt.back().info() == Eigen::Success && std::fabs(normal.determinant()) > 1e-12 ? 1 : 0);
+    }
   }
-  const Eigen::Matrix3d normal = X.transpose() * X;
-  const Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
-  if (ldlt.info() != Eigen::Success || !(std::fabs(normal.determinant()) > 1e-12))
-    return false;
-  p = ldlt.solve(X.transpose() * y);
-  rss = (y - X * p).squaredNorm();
-  varA = ldlt.solve(Eigen::Vector3d::UnitX())(0) * rss / (n - 3);
-  return std::isfinite(rss);
-}
+  // The fit at offset k: false when its system is singular. Coefficients (a, b0, b1) in \e p, the residual sum
+  // of squares in \e rss, the variance of a in \e varA.
+  bool fit(const double *profile, size_t k, Eigen::Vector3d &p, double &rss, double &varA) const
+  {
+    if (!usable[k])
+      return false;
+    const Eigen::Map<const Eigen::Matrix<double, n, 1> > y(profile);
+    p = ldlt[k].solve(X[k].transpose() * y);
+    rss = (y - X[k] * p).squaredNorm();
+    varA = ldlt[k].solve(Eigen::Vector3d::UnitX())(0) * rss / (n - 3);
+    return std::isfinite(rss);
+  }
+};
 
-// The stripe of width \e width (half-maximum, pixels) best fitted to \e profile within
-// RidgeTuning::stretchMaxOffset of the curve: a grid of quarter pixels, then the vertex of the parabola through
-// the residuals around the best. A step in the background (a colour edge) is not a stripe: the background's
-// change across the stripe must stay under half its amplitude.
-RidgeFit fitStripe(const double *profile, double width)
+// The stripe of \e design best fitted to \e profile: the offset of the grid with the least residual, then the
+// vertex of the parabola through the residuals around it. A step in the background (a colour edge) is not a
+// stripe: the background's change across the stripe must stay under half its amplitude.
+RidgeFit fitStripe(const double *profile, const StripeDesign &design)
 {
-  const double sigma = std::max(0.5, width / 2.3548);
   RidgeFit best;
   double bestRss = 0.0, prev = 0.0, bestPrev = 0.0, bestNext = 0.0;
   bool bestIsLast = false;
-  const double step = 0.25;
-  for (double d = -RidgeTuning::stretchMaxOffset; d <= RidgeTuning::stretchMaxOffset + 1e-9; d += step) {
+  for (size_t k = 0; k < design.offsets.size(); ++k) {
     Eigen::Vector3d p;
     double rss = 0.0, varA = 0.0;
-    if (!fitAtOffset(profile, sigma, d, p, rss, varA)) {
+    if (!design.fit(profile, k, p, rss, varA)) {
       prev = 0.0;
       continue;
     }
@@ -175,8 +194,8 @@ RidgeFit fitStripe(const double *profile, double width)
       bestNext = rss;
     bestIsLast = false;
     if (p(0) > 0.0 && (!best.found || rss < bestRss)) {
-      best = RidgeFit{d, p(0), p(0) / std::sqrt(std::max(varA, 1e-300)), true};
-      const double stepAcross = std::fabs(p(2)) * 2.0 * RidgeTuning::stretchStepWidth * sigma;
+      best = RidgeFit{design.offsets[k], p(0), p(0) / std::sqrt(std::max(varA, 1e-300)), true};
+      const double stepAcross = std::fabs(p(2)) * 2.0 * RidgeTuning::stretchStepWidth * design.sigma;
       best.found = stepAcross <= 0.5 * p(0);
       bestRss = rss;
       bestPrev = prev;
@@ -187,7 +206,7 @@ RidgeFit fitStripe(const double *profile, double width)
   }
   const double curvature = bestPrev + bestNext - 2.0 * bestRss;
   if (best.found && bestPrev > 0.0 && bestNext > 0.0 && curvature > 0.0)
-    best.offset += step * std::max(-0.5, std::min(0.5, 0.5 * (bestPrev - bestNext) / curvature));
+    best.offset += StripeDesign::step * std::max(-0.5, std::min(0.5, 0.5 * (bestPrev - bestNext) / curvature));
   return best;
 }
 
@@ -264,14 +283,14 @@ struct ArcSums
 // found within RidgeTuning::stretchHalvesAgreement pixels of it, at an amplitude within a factor
 // RidgeTuning::stretchHalvesRatio of the other's. A stretch across an object's edge over the ring (the stripe on
 // the floor on one side, on the object or nowhere on the other) is two things, not a stripe.
-bool oneStripe(const ArcSums &sums, int centre, int half, double width, const RidgeFit &fit)
+bool oneStripe(const ArcSums &sums, int centre, int half, const StripeDesign &design, const RidgeFit &fit)
 {
   double profile[ArcSums::width];
   RidgeFit halves[2];
   for (int h = 0; h < 2; ++h) {
     if (!sums.meanOver(h == 0 ? centre - half : centre, h == 0 ? centre : centre + half, profile))
       return false;
-    halves[h] = fitStripe(profile, width);
+    halves[h] = fitStripe(profile, design);
     if (!halves[h].found || std::fabs(halves[h].offset - fit.offset) > RidgeTuning::stretchHalvesAgreement)
       return false;
   }
@@ -351,6 +370,7 @@ std::vector<unsigned char> fadingPixels(const std::vector<ArcPixel> &arc, const 
 */
 double fitStretches(const ArcSums &sums, int start, int step, double width, std::vector<RidgeFit> &fits)
 {
+  const StripeDesign design(width);
   const int half = RidgeTuning::stretchHalfLength;
   fits.assign(static_cast<size_t>((sums.n + step - 1) / step), RidgeFit());
   std::vector<double> amplitudes;
@@ -360,9 +380,9 @@ double fitStretches(const ArcSums &sums, int start, int step, double width, std:
     if (!sums.meanAround(i, half, profile))
       continue;
     RidgeFit &fit = fits[j];
-    fit = fitStripe(profile, width);
+    fit = fitStripe(profile, design);
     fit.found = fit.found && fit.significance >= RidgeTuning::stretchSignificance &&
-                oneStripe(sums, i, half, width, fit);
+                oneStripe(sums, i, half, design, fit);
     if (fit.found)
       amplitudes.push_back(fit.amplitude);
   }
