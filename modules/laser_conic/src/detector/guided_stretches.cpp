@@ -349,18 +349,26 @@ struct ArcPoints
   }
 };
 
-//! The pixels of arc in a gap the ring fades into (the points of \e faded) and within two samples of one.
-std::vector<unsigned char> fadingPixels(const std::vector<ArcPixel> &arc, const EllipseFrame &e,
-                                        const std::vector<vpImagePoint> &faded, int step)
+/*!
+  The pixels of arc where a stretch may fill a gap: those of the gaps the ring fades into (the points of \e faded)
+  and within two samples of one, and those of the short gaps (a point of \e points within
+  RidgeTuning::guidedGapLength / 2 pixels of arc).
+*/
+std::vector<unsigned char> fillablePixels(const std::vector<ArcPixel> &arc, const EllipseFrame &e,
+                                          const std::vector<vpImagePoint> &faded, const ArcPoints &points, int step)
 {
-  const int n = static_cast<int>(arc.size());
-  std::vector<unsigned char> fading(arc.size(), 0);
-  for (const vpImagePoint &p : faded) {
-    const int at = arcIndexOf(arc, e, Eigen::Vector2d(p.get_u(), p.get_v()));
-    for (int k = at - 2 * step; k <= at + 2 * step; ++k)
-      fading[static_cast<size_t>((k + n) % n)] = 1;
-  }
-  return fading;
+  const int n = static_cast<int>(arc.size()), shortGap = static_cast<int>(RidgeTuning::guidedGapLength / 2);
+  std::vector<unsigned char> fillable(arc.size(), 0);
+  const auto mark = [&](int at, int reach) {
+    for (int k = at - reach; k <= at + reach; ++k)
+      fillable[static_cast<size_t>((k + n) % n)] = 1;
+  };
+  for (const vpImagePoint &p : faded)
+    mark(arcIndexOf(arc, e, Eigen::Vector2d(p.get_u(), p.get_v())), 2 * step);
+  for (int i = 0; i < n; ++i)
+    if (!points.byIndex[static_cast<size_t>(i)].empty())
+      mark(i, shortGap);
+  return fillable;
 }
 
 /*!
@@ -409,7 +417,7 @@ int measureStretches(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
   if (n < 4 * RidgeTuning::stretchHalfLength)
     return 0;
   const ArcPoints points(arc, e, guided, anchors);
-  const std::vector<unsigned char> fading = fadingPixels(arc, e, faded, step);
+  const std::vector<unsigned char> fillable = fillablePixels(arc, e, faded, points, step);
   // Around the turn from a pixel of arc with points, each stretch's stripe in turn. A gap (no point within a
   // sample) is filled where the ring fades (a walk started into it) or where it is short (points within
   // RidgeTuning::guidedGapLength / 2 pixels of arc), and only where the stripe continues the last one taken
@@ -441,12 +449,9 @@ int measureStretches(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
         continue;
     } else {
       const double tolerance = RidgeTuning::stretchGapContinuity + RidgeTuning::stretchGapDrift * (at - lastAt);
-      const bool fillable =
-          fading[static_cast<size_t>(i)] ||
-          !std::isnan(points.near(C, i, static_cast<int>(RidgeTuning::guidedGapLength / 2), here, offsets));
-      if (!usable || !fillable || std::isnan(lastOffset) || std::fabs(fit.offset - lastOffset) > tolerance)
+      if (!usable || !fillable[static_cast<size_t>(i)] || std::isnan(lastOffset) ||
+          std::fabs(fit.offset - lastOffset) > tolerance)
         continue;
-      here.clear();
       lastOffset = fit.offset;
       lastAt = at;
     }
