@@ -6,12 +6,14 @@
   \file laser_geometry.h
   \brief Private inline kernels of the laser_conic module shared by the solvers and the RANSAC
   estimators: the 3x3 form of the laser cone, the unnormalised image conic of the trace on a plane
-  and the squared Sampson distance of a point to a conic stored as six coefficients.
+  the squared Sampson distance of a point to a conic stored as six coefficients and the signed one
+  to a 3x3 conic.
 */
 #ifndef VP_LASER_GEOMETRY_H
 #define VP_LASER_GEOMETRY_H
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -70,6 +72,16 @@ struct ConicCoefficients
     return (algebraic * algebraic) / (4.0 * (v0 * v0 + v1 * v1));
   }
 };
+
+//! Signed Sampson distance (x^T c x) / |grad| of \e p to the conic c (first order; the sign is the side of
+//! the conic), NaN where the conic has no gradient.
+inline double signedSampson(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
+{
+  const Eigen::Vector3d x(p(0), p(1), 1.0);
+  const Eigen::Vector3d g = c * x;
+  const double gn = g.head<2>().norm();
+  return gn > 0.0 ? x.dot(g) / (2.0 * gn) : std::numeric_limits<double>::quiet_NaN();
+}
 /*!
   Iteratively reweighted refinement of a plane (d > 0) on trace points: \e rounds rounds, each of
   Huber weights (vpRobustWeight(), k = 1.345 sigma) at the MAD scale sigma of the residuals of the

@@ -27,6 +27,7 @@ namespace vsp::laser_robust_fit
 namespace
 {
 using vpLaserSolvers::LaserCone;
+using vpLaserSolvers::detail::signedSampson;
 
 //! Rounds of trace collection and of reweighting at most.
 constexpr int kCollectRounds = 5;
@@ -40,15 +41,6 @@ constexpr int kIrlsIterations = 5;
 constexpr int kHealthIterations = 4;
 //! Significance of the F-test that rejects the constrained fit against the free one.
 constexpr double kSelectSignificance = 0.01;
-
-//! Signed Sampson distance (x^T c x) / |grad|, NaN where the conic has no gradient.
-double signedSampson(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
-{
-  const Eigen::Vector3d x(p(0), p(1), 1.0);
-  const Eigen::Vector3d g = c * x;
-  const double gn = g.head<2>().norm();
-  return gn > 0.0 ? x.dot(g) / (2.0 * gn) : std::numeric_limits<double>::quiet_NaN();
-}
 
 //! Residuals (pixels, signed Sampson distances) of the listed points to the conic.
 std::vector<double> residualsOf(const PointList &points, const std::vector<int> &indices, const Eigen::Matrix3d &c,

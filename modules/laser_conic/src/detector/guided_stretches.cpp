@@ -22,6 +22,7 @@
 
 #include <Eigen/Dense>
 
+#include "../laser_geometry.h"
 #include "guided_detail.h"
 #include "ridge_tuning.h"
 
@@ -210,14 +211,6 @@ RidgeFit fitStripe(const double *profile, const StripeDesign &design)
   return best;
 }
 
-//! Signed distance (pixels, outward positive, first order) of \e p from the conic C.
-double offsetFrom(const Eigen::Matrix3d &C, const Eigen::Vector2d &p)
-{
-  const Eigen::Vector3d x(p.x(), p.y(), 1.0), g = C * x;
-  const double norm = g.head<2>().norm();
-  return norm > 0.0 ? x.dot(g) / (2.0 * norm) : 0.0;
-}
-
 // The index of the pixel of \e arc (increasing parameters) nearest below the parameter of \e p.
 int arcIndexOf(const std::vector<ArcPixel> &arc, const EllipseFrame &e, const Eigen::Vector2d &p)
 {
@@ -343,7 +336,9 @@ struct ArcPoints
     for (int k = i - reach; k <= i + reach; ++k)
       for (int x : byIndex[static_cast<size_t>((k + n) % n)]) {
         here.push_back(x);
-        offsets.push_back(offsetFrom(C, at(x)));
+        // Signed Sampson distance, outward positive; 0 at the centre (no gradient), where no ring point lies.
+        const double offset = vpLaserSolvers::detail::signedSampson(C, at(x));
+        offsets.push_back(std::isfinite(offset) ? offset : 0.0);
       }
     return offsets.empty() ? std::numeric_limits<double>::quiet_NaN() : median(offsets);
   }
