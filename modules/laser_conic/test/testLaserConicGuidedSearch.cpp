@@ -433,6 +433,9 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
   // ellipse measured stretch by stretch where the ring fades (guided_stretches.cpp): 92.58, 97.03 and 94.83 %
   // (mean 94.81 %), of what the compression kept 94.42, 97.83 and 97.97 % (mean 96.74 %); precision
   // 0.980-0.987 (0.9777 on seed 65 while a stretch at 5 % of the ring's amplitude could fill a gap: 10 %).
+  // With a quadratic background under the stretches' stripe (a faint stretch's mean profile lies in a shallow
+  // trough): 93.31, 97.89 and 96.01 % (mean 95.74 %), of what the compression kept 94.73, 98.44 and 98.44 %
+  // (mean 97.20 %); precision 0.982-0.987.
   Settings s = fadingRing(40.0, 4.0);
   s.jpegQuality = 60;
   const SeedMeans means = overSeeds(
@@ -443,8 +446,8 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
         EXPECT_GE(q.kept3, 0.93);
       },
       Ridges::skip, camera(), Kept::measure);
-  EXPECT_GE(means.coverage3, 0.945);
-  EXPECT_GE(means.kept3, 0.965);
+  EXPECT_GE(means.coverage3, 0.950);
+  EXPECT_GE(means.kept3, 0.968);
 }
 
 TEST(LaserConicGuidedSearch, ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge)

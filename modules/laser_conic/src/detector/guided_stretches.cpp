@@ -4,7 +4,7 @@
  */
 // The stretches of the final conic measured as a whole: the image's brightness R + G + B read across the curve
 // at every pixel of arc, averaged over RidgeTuning::stretchHalfLength pixels on each side of a point, and a
-// stripe (a Gaussian of the observed width over a linear background) fitted to that mean profile. Where a
+// stripe (a Gaussian of the observed width over a quadratic background) fitted to that mean profile. Where a
 // faint ring went through strong JPEG compression, each profile of the guided pass holds its stripe only as
 // the low frequencies of the 8 x 8 luma blocks, whose peak lies up to 2-3 px off the line or splits; but the
 // line crosses the blocks at every phase along a stretch, and the mean of ~50 px of profiles holds it (the
@@ -133,8 +133,8 @@ struct RidgeFit
 };
 
 /*!
-  The least-squares design of a stripe of width \e width (half-maximum, pixels) over a linear background,
-  profile = a g(x - d) + b0 + b1 x, for every offset d of a grid of quarter pixels within
+  The least-squares design of a stripe of width \e width (half-maximum, pixels) over a quadratic background,
+  profile = a g(x - d) + b0 + b1 x + b2 x^2 / reach, for every offset d of a grid of quarter pixels within
   RidgeTuning::stretchMaxOffset of the curve: its samples across the curve and its factorised normal matrix,
   the same for every stretch of a measurement (their exponentials were most of its time).
 */
@@ -142,36 +142,41 @@ struct StripeDesign
 {
   static constexpr int n = 2 * RidgeTuning::stretchReach + 1;
   static constexpr double step = 0.25;
+  //! The stripe and a background of degree 2. A faint stretch's mean profile often lies in a shallow trough
+  //! 20 px wide (the floor's texture averaged along the stretch, JPEG's blocks): a straight background took the
+  //! trough's rims for its level and the stripe's amplitude for a third of its height (the faint frame of the
+  //! hard sequence, seed 19: 2.5 grey levels at 1.9 standard errors for a stripe 7 above its trough).
+  static constexpr int kTerms = 4;
   double sigma;
   std::vector<double> offsets;
-  std::vector<Eigen::Matrix<double, n, 3> > X;
-  std::vector<Eigen::LDLT<Eigen::Matrix3d> > ldlt;
+  std::vector<Eigen::Matrix<double, n, kTerms> > X;
+  std::vector<Eigen::LDLT<Eigen::Matrix<double, kTerms, kTerms> > > ldlt;
   std::vector<unsigned char> usable; //!< the normal matrix is regular
   explicit StripeDesign(double width) : sigma(std::max(0.5, width / 2.3548))
   {
     for (double d = -RidgeTuning::stretchMaxOffset; d <= RidgeTuning::stretchMaxOffset + 1e-9; d += step) {
-      Eigen::Matrix<double, n, 3> x;
+      Eigen::Matrix<double, n, kTerms> x;
       for (int j = 0; j < n; ++j) {
         const double u = j - RidgeTuning::stretchReach, z = (u - d) / sigma;
-        x.row(j) << std::exp(-0.5 * z * z), 1.0, u;
+        x.row(j) << std::exp(-0.5 * z * z), 1.0, u, u * u / RidgeTuning::stretchReach;
       }
-      const Eigen::Matrix3d normal = x.transpose() * x;
+      const Eigen::Matrix<double, kTerms, kTerms> normal = x.transpose() * x;
       offsets.push_back(d);
       X.push_back(x);
       ldlt.emplace_back(normal);
       usable.push_back(ldlt.back().info() == Eigen::Success && std::fabs(normal.determinant()) > 1e-12 ? 1 : 0);
     }
   }
-  // The fit at offset k: false when its system is singular. Coefficients (a, b0, b1) in \e p, the residual sum
+  // The fit at offset k: false when its system is singular. Coefficients (a, b0, b1, b2) in \e p, the residual sum
   // of squares in \e rss, the variance of a in \e varA.
-  bool fit(const double *profile, size_t k, Eigen::Vector3d &p, double &rss, double &varA) const
+  bool fit(const double *profile, size_t k, Eigen::Matrix<double, kTerms, 1> &p, double &rss, double &varA) const
   {
     if (!usable[k])
       return false;
     const Eigen::Map<const Eigen::Matrix<double, n, 1> > y(profile);
     p = ldlt[k].solve(X[k].transpose() * y);
     rss = (y - X[k] * p).squaredNorm();
-    varA = ldlt[k].solve(Eigen::Vector3d::UnitX())(0) * rss / (n - 3);
+    varA = ldlt[k].solve(Eigen::Matrix<double, kTerms, 1>::Unit(0))(0) * rss / (n - kTerms);
     return std::isfinite(rss);
   }
 };
@@ -185,7 +190,7 @@ RidgeFit fitStripe(const double *profile, const StripeDesign &design)
   double bestRss = 0.0, prev = 0.0, bestPrev = 0.0, bestNext = 0.0;
   bool bestIsLast = false;
   for (size_t k = 0; k < design.offsets.size(); ++k) {
-    Eigen::Vector3d p;
+    Eigen::Matrix<double, StripeDesign::kTerms, 1> p;
     double rss = 0.0, varA = 0.0;
     if (!design.fit(profile, k, p, rss, varA)) {
       prev = 0.0;

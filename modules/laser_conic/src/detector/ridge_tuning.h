@@ -298,8 +298,8 @@ struct RidgeTuning
   static constexpr double stretchSignificance = 6.0;
   //! measureStretches(): the points within this many pixels of their stretch's stripe stay where they are.
   static constexpr double stretchAgreement = 1.0;
-  //! measureStretches(): the background's linear change over this many stripe sigmas on each side must stay
-  //! under half the stripe's amplitude (a colour edge is not a stripe).
+  //! measureStretches(): the background's slope (its linear term) over this many stripe sigmas on each side
+  //! must stay under half the stripe's amplitude (a colour edge is not a stripe).
   static constexpr double stretchStepWidth = 3.0;
   //! measureStretches(): a stretch's stripe under this share of the ring's (the upper quartile of its stretches)
   //! is no stripe: the shading of an object over the ring fitted 1.3 grey levels at 40 standard errors.

@@ -169,7 +169,8 @@ struct vpLaserConicDetectorRun
   a stretch it otherwise lost, and nothing around it to correct it). On a ring that fades (a gap was followed
   from a faded end), the final ellipse is then measured stretch by stretch: the brightness R + G + B read
   across it at every pixel of arc, averaged over 24 px on each side of a point, and a stripe of the observed
-  width over a linear background fitted to that mean profile within 5 px of the ellipse (significant at 6
+  width over a quadratic background (the floor's texture averaged along a stretch leaves it a shallow trough)
+  fitted to that mean profile within 5 px of the ellipse (significant at 6
   standard errors, both halves of the stretch agreeing, over a tenth of the ring's own amplitude). Where such
   a dim stripe lies more than 1 px from the points there, they are moved to it; a gap is filled where the ring
   fades into it or where it is short (30 px), each stretch within 1 px (plus 0.02 px per pixel of arc) of the
