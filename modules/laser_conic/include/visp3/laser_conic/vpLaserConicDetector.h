@@ -196,14 +196,17 @@ struct vpLaserConicDetectorRun
   one profile lies up to 2-3 px from the stripe, or splits in two; the ellipse extrapolated from the bright side
   is then 1-4 px inside it. Averaged over 48 px of arc, the line crosses the blocks at every phase, and the
   stretches measure it within a pixel (the faint frame 56 of `make-laser-sequence --hard --seed 19`: every
-  48 px stretch at 3 sigma or more within 0.84 px of it). The faint frame of that sequence, seeds 1-24: 95.7 %
-  of the ring at 3 sigma on average, under 95 % on 7 seeds (93.3 % and 14 seeds before the stretches);
-  seeds 65-80, never tuned on, 97.2 %, 1 seed under 95 %. What is still lost is the darkest stretch, where no
+  48 px stretch at 3 sigma or more within 0.84 px of it). The faint frame of that sequence, seeds 1-24: 96.6 %
+  of the ring at 3 sigma on average, under 95 % on 5 seeds (93.3 % and 14 seeds before the stretches);
+  seeds 65-80, never tuned on, 97.4 %, 1 seed under 95 %. What is still lost is the darkest stretch, where no
   fit reaches its significance, and the stretches whose points were off and their stripe too dim to move them
-  (at quality 80 every seed found 97.9 % or more). Where a dim side is found its centres can be a fraction
-  of a pixel off along stretches that keep one phase to the colour's 16 px blocks (see
-  vpLaserConicPose::setCovarianceInflation()). Record the ring at quality 80 or more when its far side
-  matters.
+  (at quality 80 every seed found 98.1 % or more). The centres found on the colour through quality 60 are
+  biased by its 16 px blocks, not merely noisy: on the faint ring of testLaserConicGuidedSearch (stripe 6-15
+  times the noise), the second pass's errors over 15 degrees of arc have means of up to 0.6 px and standard
+  deviations of 0.05-0.25 px around them, and where the ring runs along the columns the error is a sawtooth
+  of period 16 px in its column (from +0.1 to -0.4 px), whence an RMS of 0.36-0.44 px where quality 90 gives
+  0.15-0.26 px. Such errors are correlated along the ring (see vpLaserConicPose::setCovarianceInflation()).
+  Record the ring at quality 80 or more when its far side matters.
   A red cable that runs along the ring for a few tens of pixels merges with it into one wider stripe, and the
   ring is not measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a
   ridge, and is found there in pieces.
