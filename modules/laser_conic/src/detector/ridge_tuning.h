@@ -308,6 +308,16 @@ struct RidgeTuning
   //! of its stretches) stay where they are: a bright stripe's profiles hold its line to a few tenths of a pixel,
   //! where a 48 px stretch of the final conic can bend away from it by a pixel (an object's edge over the ring).
   static constexpr double stretchDimShare = 0.35;
+  //! measureStretches(): a stretch's stripe fills a gap only where it stands stretchMinPixelSnr times the noise
+  //! of one pixel's brightness beside the ring (pixelNoiseBeside()), and moves points only at stretchMoveSnr
+  //! times (they were measured: the stretch must say more than they do). On the faint ring at JPEG 90
+  //! (testLaserConicGuidedSearch's never-tuned seed 104), stretches at 1.3-2.0 times that noise filled its far
+  //! side 1.0-1.3 px off the line and one at 3.0-3.6 times moved five points to 1.6-1.7 px off it: second-pass
+  //! RMS 0.334 px, 0.287 px at most over seeds 100-119 since. Through JPEG 60, whose blocks smooth the noise
+  //! beside the ring, the fills that find a faint ring's dim side stand at 2.5-5 times it and the moves at 9-27
+  //! times (the strong-JPEG test and the hard sequences, seeds 1-24 and 65-80, found the same share of the ring).
+  static constexpr double stretchMinPixelSnr = 2.2;
+  static constexpr double stretchMoveSnr = 4.4;
   //! measureStretches(): a gap's stretch fills it when its stripe lies within stretchGapContinuity pixels, plus
   //! stretchGapDrift per pixel of arc, of the offset of the last point before it (a fading ring's dim side
   //! drifts from the conic of its points by 1.2-3.5 px over ~300 px of arc).

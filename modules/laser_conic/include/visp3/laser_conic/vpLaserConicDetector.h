@@ -171,8 +171,9 @@ struct vpLaserConicDetectorRun
   across it at every pixel of arc, averaged over 24 px on each side of a point, and a stripe of the observed
   width over a quadratic background (the floor's texture averaged along a stretch leaves it a shallow trough)
   fitted to that mean profile within 5 px of the ellipse (significant at 6
-  standard errors, both halves of the stretch agreeing, over a tenth of the ring's own amplitude). Where such
-  a dim stripe lies more than 1 px from the points there, they are moved to it; a gap is filled where the ring
+  standard errors, both halves of the stretch agreeing, over a tenth of the ring's own amplitude and over 2.2
+  times the noise of one pixel's brightness beside the ring). Where such a dim stripe lies more than 1 px from
+  the points there and stands 4.4 times that noise, they are moved to it; a gap is filled where the ring
   fades into it or where it is short (30 px), each stretch within 1 px (plus 0.02 px per pixel of arc) of the
   stripe before it; then the ellipse is refitted and the stretches measured once more. A profile alone holds
   such a stripe's line no better than the codec's blocks (see the limits below); 48 px of it do. The points
