@@ -5,7 +5,7 @@
 /*!
   \file laser_geometry.h
   \brief Private inline kernels of the laser_conic module shared by the solvers and the RANSAC
-  estimators: the 3x3 form of the laser cone, the unnormalised image conic of the trace on a plane
+  estimators: the 3x3 form of the laser cone, the unnormalised image conic of the trace on a plane,
   the squared Sampson distance of a point to a conic stored as six coefficients and the signed one
   to a 3x3 conic.
 */

@@ -11,6 +11,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -282,7 +283,7 @@ std::vector<int> positionSubsampleIndices(const std::vector<vpImagePoint> &point
   {
     double v, u;
     int index;
-    bool operator<(const Key &o) const { return v < o.v || (v == o.v && (u < o.u || (u == o.u && index < o.index))); }
+    bool operator<(const Key &o) const { return std::tie(v, u, index) < std::tie(o.v, o.u, o.index); }
   };
   std::vector<Key> keys;
   const unsigned int stride = subsampleStride(points.size(), target);

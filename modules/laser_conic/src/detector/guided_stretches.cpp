@@ -18,9 +18,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
+
+#include <visp3/robust/vpRobustScale.h>
 
 #include "../laser_geometry.h"
 #include "guided_detail.h"
@@ -401,9 +404,9 @@ double fitStretches(const ArcSums &sums, int start, int step, double width, std:
   return amplitudes[quartile];
 }
 /*!
-  The noise of one pixel's brightness beside the ring: the robust spread (1.4826 MAD / sqrt 2) of the differences
+  The noise of one pixel's brightness beside the ring: the robust spread (vpRobustMadScale()) of the differences
   between pixels of arc two apart (bilinear samples one apart share pixels) at the profiles' two ends,
-  RidgeTuning::stretchReach pixels on either side of the curve. 0 with fewer than 20 of them.
+  RidgeTuning::stretchReach pixels on either side of the curve, over sqrt 2. 0 with fewer than 20 of them.
 */
 double pixelNoiseBeside(const std::vector<ArcPixel> &arc)
 {
@@ -413,12 +416,12 @@ double pixelNoiseBeside(const std::vector<ArcPixel> &arc)
     const ArcPixel &a = arc[i - 2], &b = arc[i];
     if (!a.inside || !b.inside)
       continue;
-    differences.push_back(std::fabs(a.profile[0] - b.profile[0]));
-    differences.push_back(std::fabs(a.profile[ArcSums::width - 1] - b.profile[ArcSums::width - 1]));
+    differences.push_back(a.profile[0] - b.profile[0]);
+    differences.push_back(a.profile[ArcSums::width - 1] - b.profile[ArcSums::width - 1]);
   }
   if (differences.size() < 20)
     return 0.0;
-  return 1.4826 * median(differences) / std::sqrt(2.0);
+  return vpRobustMadScale(std::move(differences)) / std::sqrt(2.0);
 }
 } // namespace
 
@@ -450,7 +453,8 @@ int measureStretches(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
   const double bright = fitStretches(ArcSums(arc), start % n, step, settings.stripeWidth, fits);
   const double faint = RidgeTuning::stretchFaintShare * bright, dim = RidgeTuning::stretchDimShare * bright;
   const double pixelNoise = pixelNoiseBeside(arc);
-  const double fills = RidgeTuning::stretchMinPixelSnr * pixelNoise, moves = RidgeTuning::stretchMoveSnr * pixelNoise;
+  const double fillLevel = RidgeTuning::stretchMinPixelSnr * pixelNoise,
+               moveLevel = RidgeTuning::stretchMoveSnr * pixelNoise;
   std::vector<unsigned char> moved(guided.size(), 0);
   std::vector<Crossing> added;
   std::vector<int> here;
@@ -461,11 +465,11 @@ int measureStretches(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
     const int i = (start + static_cast<int>(j) * step) % n, at = static_cast<int>(j) * step;
     const RidgeFit &fit = fits[j];
     const double there = points.near(C, i, step, here, offsets);
-    const bool usable = fit.found && fit.amplitude >= faint && fit.amplitude >= fills;
+    const bool usable = fit.found && fit.amplitude >= faint && fit.amplitude >= fillLevel;
     if (!std::isnan(there)) {
       // Points there: moved to the stretch's stripe when it is dim (but stands out of the pixels' noise) and
       // elsewhere.
-      const bool move = usable && fit.amplitude <= dim && fit.amplitude >= moves &&
+      const bool move = usable && fit.amplitude <= dim && fit.amplitude >= moveLevel &&
                         std::fabs(there - fit.offset) > RidgeTuning::stretchAgreement;
       lastOffset = usable ? fit.offset : there;
       lastAt = at;
