@@ -255,6 +255,158 @@ std::vector<unsigned int> seedRange(unsigned int first, unsigned int count)
   return seeds;
 }
 
+//! The centroid of the truth samples (inside the ring).
+vpImagePoint truthCentroid(const std::vector<vpLaserConicSimulator::vpTraceTruth> &truth)
+{
+  double cu = 0.0, cv = 0.0;
+  for (const auto &t : truth) {
+    cu += t.point.get_u() / truth.size();
+    cv += t.point.get_v() / truth.size();
+  }
+  return vpImagePoint(cv, cu);
+}
+
+/*!
+  The unit normal (nu, nv) of the centre line at truth sample k (0 < k < size - 1), pointing away from \e centre
+  (outwards); false where a neighbouring sample lies 5 px or more away (a gap of the trace).
+*/
+bool outwardNormal(const std::vector<vpLaserConicSimulator::vpTraceTruth> &truth, size_t k, const vpImagePoint &centre,
+                   double &nu, double &nv)
+{
+  const vpImagePoint &p = truth[k].point;
+  const double tu = truth[k + 1].point.get_u() - truth[k - 1].point.get_u(),
+               tv = truth[k + 1].point.get_v() - truth[k - 1].point.get_v(), length = std::hypot(tu, tv);
+  if (!(length > 0.0 && length < 5.0))
+    return false;
+  const double side = (p.get_u() - centre.get_u()) * tv - (p.get_v() - centre.get_v()) * tu < 0.0 ? -1.0 : 1.0;
+  nu = side * tv / length;
+  nv = -side * tu / length;
+  return true;
+}
+
+/*!
+  How the second pass's points of one frame (within 1.5 px of the centre line, each against its nearest truth
+  sample, where the stripe is at least 3 sigma) miss the line: the RMS by the stripe's strength there, the mean and spread of the signed error (outwards
+  positive) by 15 degrees of the ring, and where the ring runs along the image columns (normal within 25 degrees of
+  the u axis) the mean error in u by the truth's column modulo 16, the width of JPEG's colour blocks.
+*/
+struct ErrorBreakdown
+{
+  //! Upper bounds of the strength classes (peakOverNoise): [3, 6), [6, 10), [10, 20), [20, inf).
+  static constexpr double kStrength[4] = {6.0, 10.0, 20.0, std::numeric_limits<double>::infinity()};
+  double sum2[4] = {0.0, 0.0, 0.0, 0.0};
+  size_t count[4] = {0, 0, 0, 0};
+  double sectorSum[24] = {}, sectorSum2[24] = {};
+  size_t sectorCount[24] = {};
+  double phaseSum[16] = {};
+  size_t phaseCount[16] = {};
+
+  void add(const vpLaserConicSimulator::vpTraceTruth &t, double angle, double outward, double errorU, bool alongColumns)
+  {
+    if (!(t.peakOverNoise >= 3.0))
+      return;
+    const size_t c = static_cast<size_t>(std::upper_bound(kStrength, kStrength + 4, t.peakOverNoise) - kStrength);
+    sum2[std::min<size_t>(c, 3)] += outward * outward;
+    ++count[std::min<size_t>(c, 3)];
+    const size_t sector = std::min<size_t>(23, static_cast<size_t>((angle + M_PI) / (2.0 * M_PI) * 24.0));
+    sectorSum[sector] += outward;
+    sectorSum2[sector] += outward * outward;
+    ++sectorCount[sector];
+    if (alongColumns) {
+      const size_t phase = static_cast<size_t>(std::floor(std::fmod(t.point.get_u() + 0.5, 16.0)));
+      phaseSum[phase] += errorU;
+      ++phaseCount[phase];
+    }
+  }
+  //! RMS (px) of the strength class c; NaN when empty.
+  double rms(size_t c) const { return count[c] ? std::sqrt(sum2[c] / count[c]) : std::nan(""); }
+  //! Share of the squared error that the sectors' mean errors account for: a bias that follows the ring, not noise.
+  double biasShare() const
+  {
+    double bias = 0.0, total = 0.0;
+    for (size_t k = 0; k < 24; ++k)
+      if (sectorCount[k] > 0) {
+        bias += sectorSum[k] * sectorSum[k] / sectorCount[k];
+        total += sectorSum2[k];
+      }
+    return total > 0.0 ? bias / total : 0.0;
+  }
+  //! Largest spread (px, standard deviation) of the error about its mean within one sector of 10 points or more.
+  double largestSectorSpread() const
+  {
+    double largest = 0.0;
+    for (size_t k = 0; k < 24; ++k)
+      if (sectorCount[k] >= 10) {
+        const double mean = sectorSum[k] / sectorCount[k];
+        largest = std::max(largest, std::sqrt(std::max(0.0, sectorSum2[k] / sectorCount[k] - mean * mean)));
+      }
+    return largest;
+  }
+  //! Largest absolute mean error (px) of a sector of 10 points or more.
+  double largestSectorBias() const
+  {
+    double largest = 0.0;
+    for (size_t k = 0; k < 24; ++k)
+      if (sectorCount[k] >= 10)
+        largest = std::max(largest, std::fabs(sectorSum[k] / sectorCount[k]));
+    return largest;
+  }
+  //! Largest less smallest mean error in u (px) of the column phases with 8 points or more.
+  double sawtooth() const
+  {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (size_t k = 0; k < 16; ++k)
+      if (phaseCount[k] >= 8) {
+        lo = std::min(lo, phaseSum[k] / phaseCount[k]);
+        hi = std::max(hi, phaseSum[k] / phaseCount[k]);
+      }
+    return hi >= lo ? hi - lo : 0.0;
+  }
+  void print(const std::string &name) const
+  {
+    std::cout << name << ": RMS by the stripe's strength, 3-6 sigma " << rms(0) << " px (" << count[0]
+              << " points), 6-10 " << rms(1) << " (" << count[1] << "), 10-20 " << rms(2) << " (" << count[2]
+              << "), over 20 " << rms(3) << " (" << count[3] << "); bias share " << biasShare()
+              << ", largest mean error in 15 deg " << largestSectorBias() << " px, largest spread about it "
+              << largestSectorSpread() << " px; mean error in u by column mod 16:";
+    for (size_t k = 0; k < 16; ++k)
+      if (phaseCount[k] >= 8)
+        std::cout << " " << k << ":" << phaseSum[k] / phaseCount[k];
+    std::cout << " (sawtooth " << sawtooth() << " px)" << std::endl;
+  }
+};
+
+//! ErrorBreakdown of the faint ring (fadingRing(40, 4), tiltedGround()) of \e seed rendered with \e s.
+ErrorBreakdown secondPassErrors(const std::string &name, const Settings &s, unsigned int seed)
+{
+  vpLaserConicDetector detector;
+  std::vector<vpImagePoint> points;
+  runGuided(name, tiltedGround(), s, seed, detector, &points);
+  vpLaserConicSimulator sim = makeSimulator(tiltedGround(), seed);
+  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = sim.traceTruth(6000, s);
+  const TraceLine line(sim);
+  const vpImagePoint centre = truthCentroid(truth);
+  ErrorBreakdown breakdown;
+  for (size_t k = points.size() - detector.getGuidedPointCount(); k < points.size(); ++k) {
+    if (!(line.distance(points[k]) <= 1.5))
+      continue;
+    size_t nearest = 1;
+    for (size_t t = 1; t + 1 < truth.size(); ++t)
+      if (vpImagePoint::sqrDistance(truth[t].point, points[k]) <
+          vpImagePoint::sqrDistance(truth[nearest].point, points[k]))
+        nearest = t;
+    double nu = 0.0, nv = 0.0;
+    if (!outwardNormal(truth, nearest, centre, nu, nv))
+      continue;
+    const vpImagePoint &t = truth[nearest].point;
+    const double du = points[k].get_u() - t.get_u(), dv = points[k].get_v() - t.get_v();
+    const double angle = std::atan2(t.get_v() - centre.get_v(), t.get_u() - centre.get_u());
+    breakdown.add(truth[nearest], angle, du * nu + dv * nv, du, std::fabs(nu) >= std::cos(vpMath::rad(25.0)));
+  }
+  breakdown.print(name);
+  return breakdown;
+}
+
 // The reading of a faint stripe that knows where it is: the red dominance sampled across the true centre line,
 // averaged over a stretch of arc and located by a matched filter (see TheDimSideThroughJpegHoldsItsLineToAFewTenths).
 
@@ -271,11 +423,7 @@ std::vector<std::vector<double> > profilesAcross(const vpImage<vpRGBa> &I,
                                                  std::vector<double> &arc)
 {
   const size_t n = truth.size();
-  double cu = 0.0, cv = 0.0;
-  for (const auto &t : truth) {
-    cu += t.point.get_u() / n;
-    cv += t.point.get_v() / n;
-  }
+  const vpImagePoint centre = truthCentroid(truth);
   std::vector<std::vector<double> > profiles(n);
   arc.assign(n, 0.0);
   for (size_t k = 1; k < n; ++k)
@@ -283,12 +431,9 @@ std::vector<std::vector<double> > profilesAcross(const vpImage<vpRGBa> &I,
   const int half = kAcrossPerPixel * kAcrossHalf;
   for (size_t k = 1; k + 1 < n; ++k) {
     const vpImagePoint &p = truth[k].point;
-    const double tu = truth[k + 1].point.get_u() - truth[k - 1].point.get_u(),
-                 tv = truth[k + 1].point.get_v() - truth[k - 1].point.get_v(), length = std::hypot(tu, tv);
-    if (!(length > 0.0 && length < 5.0))
+    double nu = 0.0, nv = 0.0;
+    if (!outwardNormal(truth, k, centre, nu, nv))
       continue;
-    const double side = (p.get_u() - cu) * tv - (p.get_v() - cv) * tu < 0.0 ? -1.0 : 1.0;
-    const double nu = side * tv / length, nv = -side * tu / length;
     std::vector<double> values;
     for (int d = -half; d <= half; ++d)
       values.push_back(redDominanceAt(I, p.get_u() + d * nu / kAcrossPerPixel, p.get_v() + d * nv / kAcrossPerPixel));
@@ -462,6 +607,39 @@ TEST(LaserConicGuidedSearch, AFaintRingThroughStrongJpegIsFollowedIntoItsDimSide
       Ridges::skip, camera(), Kept::measure);
   EXPECT_GE(means.coverage3, 0.950);
   EXPECT_GE(means.kept3, 0.968);
+}
+
+TEST(LaserConicGuidedSearch, StrongJpegsErrorIsTheColourBlocksBiasNotNoise)
+{
+  // Why the second pass's RMS through JPEG 60 stays over the 0.3 px (0.36-0.44 px on the seeds above), as
+  // a measurement that reruns: the same frames rendered without compression are the control. Through JPEG 60 the
+  // error hardly depends on the stripe's strength (3-6, 6-10 and 10-20 sigma alike), most of it is a mean error
+  // that changes slowly along the ring, not noise about it, and where the ring runs along the columns the error
+  // in u follows the column modulo 16, the colour's blocks (4:2:0: 8 x 8 blocks of chroma at half resolution):
+  // R - max(G, B) is chroma alone, and its blocks pull the centres. Without compression none of this is there.
+  // The bounds hold the diagnosis (vpLaserConicDetector's documented limits): a change that removes the bias fails
+  // them, and the limits are then to be rewritten.
+  const std::vector<unsigned int> seeds = laser_test::trialsOf(std::vector<unsigned int>{72u, 60u, 65u}, 1);
+  for (unsigned int seed : seeds) {
+    Settings s = fadingRing(40.0, 4.0);
+    s.jpegQuality = 60;
+    const ErrorBreakdown jpeg = secondPassErrors("faint_jpeg60_" + std::to_string(seed), s, seed);
+    s.jpegQuality = 0;
+    const ErrorBreakdown raw = secondPassErrors("faint_raw_" + std::to_string(seed), s, seed);
+    // Noise would fall with the stripe's strength, as it does without compression (RMS at 10-20 sigma 0.29-0.46
+    // times that at 3-6 sigma); through JPEG 60 it does not (1.13-1.38 times).
+    EXPECT_GE(jpeg.rms(2), 0.8 * jpeg.rms(0)) << "seed " << seed;
+    EXPECT_LE(raw.rms(2), 0.6 * raw.rms(0)) << "seed " << seed;
+    EXPECT_LE(raw.rms(2), 0.05) << "seed " << seed;
+    // The mean error of 15 degrees of the ring: 0.62-0.73 px at its largest through JPEG 60, 0.03-0.10 px without;
+    // through JPEG 60, 79-84 % of the squared error.
+    EXPECT_GE(jpeg.largestSectorBias(), 0.45) << "seed " << seed;
+    EXPECT_LE(raw.largestSectorBias(), 0.15) << "seed " << seed;
+    EXPECT_GE(jpeg.biasShare(), 0.6) << "seed " << seed;
+    // The 16 px sawtooth: 0.42-0.58 px from its top to its bottom through JPEG 60, 0.03-0.04 px without.
+    EXPECT_GE(jpeg.sawtooth(), 0.3) << "seed " << seed;
+    EXPECT_LE(raw.sawtooth(), 0.1) << "seed " << seed;
+  }
 }
 
 TEST(LaserConicGuidedSearch, ADarkBoxOverTheDimSideAddsNoPointAlongItsEdge)

@@ -202,11 +202,13 @@ struct vpLaserConicDetectorRun
   seeds 65-80, never tuned on, 97.4 %, 1 seed under 95 %. What is still lost is the darkest stretch, where no
   fit reaches its significance, and the stretches whose points were off and their stripe too dim to move them
   (at quality 80 every seed found 98.1 % or more). The centres found on the colour through quality 60 are
-  biased by its 16 px blocks, not merely noisy: on the faint ring of testLaserConicGuidedSearch (stripe 6-15
-  times the noise), the second pass's errors over 15 degrees of arc have means of up to 0.6 px and spreads
-  of 0.05-0.25 px around them, and where the ring runs along the columns the error is a sawtooth of period
-  16 px in its column (from +0.1 to -0.4 px): there the line keeps its phase to the blocks, and the centres'
-  regularisation along the curve cannot average it away. Whence an RMS of 0.36-0.44 px where quality 90 gives
+  biased by its 16 px blocks, not merely noisy (the test StrongJpegsErrorIsTheColourBlocksBiasNotNoise of
+  testLaserConicGuidedSearch measures this on three faint rings, each against the same frame uncompressed):
+  the second pass's RMS is 0.29-0.46 px whatever the stripe's strength (3-6, 6-10 or 10-20 times the noise;
+  uncompressed 0.01-0.04 px, falling with the strength), the mean error over 15 degrees of arc reaches
+  0.62-0.73 px (uncompressed 0.03-0.10 px), and where the ring runs along the columns the mean error in u
+  against the column modulo 16 is a sawtooth 0.42-0.58 px deep (uncompressed 0.03-0.04 px): there the line
+  keeps its phase to the blocks, and the centres' regularisation along the curve cannot average it away. Whence an RMS of 0.36-0.44 px where quality 90 gives
   0.15-0.26 px. Such errors are correlated along the ring (see vpLaserConicPose::setCovarianceInflation()).
   Record the ring at quality 80 or more when its far side matters.
   A red cable that runs along the ring for a few tens of pixels merges with it into one wider stripe, and the
