@@ -91,6 +91,19 @@ public:
     return false;
   }
 
+  //! Whether \e p itself (the same centre, to 1e-9 px) is marked.
+  bool holds(const vpImagePoint &p) const
+  {
+    int a = 0, b = 0;
+    if (m_points.empty() || !cellOf(p.get_u(), p.get_v(), a, b))
+      return false;
+    for (int k = m_heads[static_cast<size_t>(b) * m_columns + a]; k >= 0; k = m_next[static_cast<size_t>(k)])
+      if (std::fabs(m_points[static_cast<size_t>(k)].get_u() - p.get_u()) <= 1e-9 &&
+          std::fabs(m_points[static_cast<size_t>(k)].get_v() - p.get_v()) <= 1e-9)
+        return true;
+    return false;
+  }
+
 private:
   bool cellOf(double u, double v, int &a, int &b) const
   {

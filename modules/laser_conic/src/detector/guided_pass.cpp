@@ -333,6 +333,24 @@ int addKeptPoints(const std::vector<unsigned char> &keep, const std::vector<Prof
   return added;
 }
 
+// Drops the crossings whose centre an earlier one of \e guided has already (\e found is cleared). A walk along a
+// refitted conic measures again a sample whose prediction moved along its line by more than
+// RidgeTuning::guidedKnownAlong (the dim side, where the refits move most) and finds the same centre; the walks and
+// the gaps keep it each time, and the refits count it so (weighting the arcs they moved most), but it is one
+// measurement: returned once, it does not count two to four times in an estimate from the points and its
+// covariance (seed 117 of the faint ring through the wide lens: 29 centres twice or more).
+void dropRepeatedCentres(FoundCells &found, std::vector<Crossing> &guided)
+{
+  found.clear();
+  size_t kept = 0;
+  for (const Crossing &c : guided)
+    if (!found.holds(c.point)) {
+      found.mark(c.point);
+      guided[kept++] = c;
+    }
+  guided.resize(kept);
+}
+
 // Drops the crossings outside a W x H image. The regularisation moves a point along the curve's normal: beside the
 // image's border it can move it out of the image (found by the detector's fuzz target: -0.58 px), where no pixel
 // measured it.
@@ -439,6 +457,8 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   dropIsolatedPieces(smoothAlongCurve(C, work.guided), anchors, work.guided);
   if (!faded.empty())
     measureFadingStretches(I, settings, anchors, faded, C, work.guided);
+  if (report.iterations > 1 || fittedHere) // a single walk measures each sample once, and only it runs in tracking
+    dropRepeatedCentres(found, work.guided);
   dropOutsideTheImage(W, H, work.guided);
   points.reserve(points.size() + work.guided.size());
   for (const Crossing &c : work.guided)

@@ -176,7 +176,9 @@ struct vpLaserConicDetectorRun
   the points there and stands 4.4 times that noise, they are moved to it; a gap is filled where the ring
   fades into it or where it is short (30 px), each stretch within 1 px (plus 0.02 px per pixel of arc) of the
   stripe before it; then the ellipse is refitted and the stretches measured once more. A profile alone holds
-  such a stripe's line no better than the codec's blocks (see the limits below); 48 px of it do. The points
+  such a stripe's line no better than the codec's blocks (see the limits below); 48 px of it do. A walk along
+  a refitted ellipse measures again a profile whose prediction moved along its line and finds the same centre:
+  each centre is returned once. The points
   of this pass follow those of the first pass in the list returned (getGuidedPointCount()). Distractors stay out: a point must lie within the margin of the predicted curve
   and have a stripe's profile.
 
@@ -208,8 +210,8 @@ struct vpLaserConicDetectorRun
   uncompressed 0.01-0.04 px, falling with the strength), the mean error over 15 degrees of arc reaches
   0.62-0.73 px (uncompressed 0.03-0.10 px), and where the ring runs along the columns the mean error in u
   against the column modulo 16 is a sawtooth 0.42-0.58 px deep (uncompressed 0.03-0.04 px): there the line
-  keeps its phase to the blocks, and the centres' regularisation along the curve cannot average it away. Whence an RMS of 0.36-0.44 px where quality 90 gives
-  0.15-0.26 px. Such errors are correlated along the ring (see vpLaserConicPose::setCovarianceInflation()).
+  keeps its phase to the blocks, and the centres' regularisation along the curve cannot average it away.
+  Whence an RMS of 0.35-0.43 px where quality 90 gives 0.15-0.24 px. Such errors are correlated along the ring (see vpLaserConicPose::setCovarianceInflation()).
   Record the ring at quality 80 or more when its far side matters.
   A red cable that runs along the ring for a few tens of pixels merges with it into one wider stripe, and the
   ring is not measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a
