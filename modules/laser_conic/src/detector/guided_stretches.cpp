@@ -132,6 +132,7 @@ std::vector<ArcPixel> profilesAlong(const vpImage<vpRGBa> &I, const EllipseFrame
 struct RidgeFit
 {
   double offset = 0.0, amplitude = 0.0, significance = 0.0;
+  double rss = 0.0; //!< residual sum of squares of the fit (grey levels squared)
   bool found = false;
 };
 
@@ -191,7 +192,7 @@ RidgeFit fitStripe(const double *profile, const StripeDesign &design)
 {
   RidgeFit best;
   double bestRss = 0.0, prev = 0.0, bestPrev = 0.0, bestNext = 0.0;
-  bool bestIsLast = false;
+  bool bestIsLast = false, any = false;
   for (size_t k = 0; k < design.offsets.size(); ++k) {
     Eigen::Matrix<double, StripeDesign::kTerms, 1> p;
     double rss = 0.0, varA = 0.0;
@@ -202,8 +203,9 @@ RidgeFit fitStripe(const double *profile, const StripeDesign &design)
     if (bestIsLast)
       bestNext = rss;
     bestIsLast = false;
-    if (p(0) > 0.0 && (!best.found || rss < bestRss)) {
-      best = RidgeFit{design.offsets[k], p(0), p(0) / std::sqrt(std::max(varA, 1e-300)), true};
+    if (p(0) > 0.0 && (!any || rss < bestRss)) {
+      any = true;
+      best = RidgeFit{design.offsets[k], p(0), p(0) / std::sqrt(std::max(varA, 1e-300)), rss, true};
       const double stepAcross = std::fabs(p(2)) * 2.0 * RidgeTuning::stretchStepWidth * design.sigma;
       best.found = stepAcross <= 0.5 * p(0);
       bestRss = rss;
@@ -216,6 +218,34 @@ RidgeFit fitStripe(const double *profile, const StripeDesign &design)
   const double curvature = bestPrev + bestNext - 2.0 * bestRss;
   if (best.found && bestPrev > 0.0 && bestNext > 0.0 && curvature > 0.0)
     best.offset += StripeDesign::step * std::max(-0.5, std::min(0.5, 0.5 * (bestPrev - bestNext) / curvature));
+  return best;
+}
+
+/*!
+  The designs of the stripe widths a stretch is fitted with: the observed width \e width (that of the colour
+  crossings, see GuidedSettings::stripeWidth) and every narrower one 2 px apart down to 3 px. The stretches read
+  the brightness, whose stripe keeps the luma's full resolution where JPEG halves the colour's: through quality
+  60 a faint ring's colour crossings measured 7 px, its brightness 3-4 px at half maximum, and the 7 px design
+  over a quadratic background fitted a trough beside the stripe rather than the stripe.
+*/
+std::vector<StripeDesign> stripeDesigns(double width)
+{
+  std::vector<StripeDesign> designs;
+  designs.emplace_back(width);
+  for (double w = width - 2.0; w >= 3.0 - 1e-9; w -= 2.0)
+    designs.emplace_back(w);
+  return designs;
+}
+
+// The best fit of fitStripe() over \e designs: the least residual of those that fit a stripe (a positive amplitude).
+RidgeFit fitStripe(const double *profile, const std::vector<StripeDesign> &designs)
+{
+  RidgeFit best;
+  for (const StripeDesign &design : designs) {
+    const RidgeFit fit = fitStripe(profile, design);
+    if (fit.amplitude > 0.0 && (best.amplitude <= 0.0 || fit.rss < best.rss))
+      best = fit;
+  }
   return best;
 }
 
@@ -284,14 +314,14 @@ struct ArcSums
 // found within RidgeTuning::stretchHalvesAgreement pixels of it, at an amplitude within a factor
 // RidgeTuning::stretchHalvesRatio of the other's. A stretch across an object's edge over the ring (the stripe on
 // the floor on one side, on the object or nowhere on the other) is two things, not a stripe.
-bool oneStripe(const ArcSums &sums, int centre, int half, const StripeDesign &design, const RidgeFit &fit)
+bool oneStripe(const ArcSums &sums, int centre, int half, const std::vector<StripeDesign> &designs, const RidgeFit &fit)
 {
   double profile[ArcSums::width];
   RidgeFit halves[2];
   for (int h = 0; h < 2; ++h) {
     if (!sums.meanOver(h == 0 ? centre - half : centre, h == 0 ? centre : centre + half, profile))
       return false;
-    halves[h] = fitStripe(profile, design);
+    halves[h] = fitStripe(profile, designs);
     if (!halves[h].found || std::fabs(halves[h].offset - fit.offset) > RidgeTuning::stretchHalvesAgreement)
       return false;
   }
@@ -381,7 +411,7 @@ std::vector<unsigned char> fillablePixels(const std::vector<ArcPixel> &arc, cons
 */
 double fitStretches(const ArcSums &sums, int start, int step, double width, std::vector<RidgeFit> &fits)
 {
-  const StripeDesign design(width);
+  const std::vector<StripeDesign> designs = stripeDesigns(width);
   const int half = RidgeTuning::stretchHalfLength;
   fits.assign(static_cast<size_t>((sums.n + step - 1) / step), RidgeFit());
   std::vector<double> amplitudes;
@@ -391,9 +421,9 @@ double fitStretches(const ArcSums &sums, int start, int step, double width, std:
     if (!sums.meanAround(i, half, profile))
       continue;
     RidgeFit &fit = fits[j];
-    fit = fitStripe(profile, design);
+    fit = fitStripe(profile, designs);
     fit.found = fit.found && fit.significance >= RidgeTuning::stretchSignificance &&
-                oneStripe(sums, i, half, design, fit);
+                oneStripe(sums, i, half, designs, fit);
     if (fit.found)
       amplitudes.push_back(fit.amplitude);
   }

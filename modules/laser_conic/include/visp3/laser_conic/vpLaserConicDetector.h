@@ -169,10 +169,11 @@ struct vpLaserConicDetectorRun
   a stretch it otherwise lost, and nothing around it to correct it). On a ring that fades (a gap was followed
   from a faded end), the final ellipse is then measured stretch by stretch: the brightness R + G + B read
   across it at every pixel of arc, averaged over 24 px on each side of a point, and a stripe of the observed
-  width over a quadratic background (the floor's texture averaged along a stretch leaves it a shallow trough)
-  fitted to that mean profile within 5 px of the ellipse (significant at 6
-  standard errors, both halves of the stretch agreeing, over a tenth of the ring's own amplitude and over 2.2
-  times the noise of one pixel's brightness beside the ring). Where such a dim stripe lies more than 1 px from
+  width, or of a narrower one down to 3 px, whichever fits best (the brightness keeps the luma's full
+  resolution where JPEG widens the colour the width is observed on), over a quadratic background (the floor's
+  texture averaged along a stretch leaves it a shallow trough) fitted to that mean profile within 5 px of the
+  ellipse (significant at 6 standard errors, both halves of the stretch agreeing, over a tenth of the ring's
+  own amplitude and over 2.2 times the noise of one pixel's brightness beside the ring). Where such a dim stripe lies more than 1 px from
   the points there and stands 4.4 times that noise, they are moved to it; a gap is filled where the ring
   fades into it or where it is short (30 px), each stretch within 1 px (plus 0.02 px per pixel of arc) of the
   stripe before it; then the ellipse is refitted and the stretches measured once more. A profile alone holds
@@ -199,19 +200,20 @@ struct vpLaserConicDetectorRun
   one profile lies up to 2-3 px from the stripe, or splits in two; the ellipse extrapolated from the bright side
   is then 1-4 px inside it. Averaged over 48 px of arc, the line crosses the blocks at every phase, and the
   stretches measure it within a pixel (the faint frame 56 of `make-laser-sequence --hard --seed 19`: every
-  48 px stretch at 3 sigma or more within 0.84 px of it). The faint frame of that sequence, seeds 1-24: 96.6 %
-  of the ring at 3 sigma on average, under 95 % on 5 seeds (93.3 % and 14 seeds before the stretches);
-  seeds 65-80, never tuned on, 97.4 %, 1 seed under 95 %. What is still lost is the darkest stretch, where no
+  48 px stretch at 3 sigma or more within 0.84 px of it). The faint frame of that sequence, seeds 1-24: 97.4 %
+  of the ring at 3 sigma on average, under 95 % on 3 seeds (93.3 % and 14 seeds before the stretches);
+  seeds 65-80, never tuned on, 98.2 %, 1 seed under 95 %. What is still lost is the darkest stretch, where no
   fit reaches its significance, and the stretches whose points were off and their stripe too dim to move them
   (at quality 80 every seed found 98.1 % or more). The centres found on the colour through quality 60 are
   biased by its 16 px blocks, not merely noisy (the test StrongJpegsErrorIsTheColourBlocksBiasNotNoise of
   testLaserConicGuidedSearch measures this on three faint rings, each against the same frame uncompressed):
-  the second pass's RMS is 0.29-0.46 px whatever the stripe's strength (3-6, 6-10 or 10-20 times the noise;
+  the second pass's RMS is 0.28-0.43 px whatever the stripe's strength (3-6, 6-10 or 10-20 times the noise;
   uncompressed 0.01-0.04 px, falling with the strength), the mean error over 15 degrees of arc reaches
-  0.62-0.73 px (uncompressed 0.03-0.10 px), and where the ring runs along the columns the mean error in u
-  against the column modulo 16 is a sawtooth 0.42-0.58 px deep (uncompressed 0.03-0.04 px): there the line
+  0.62-0.71 px (uncompressed 0.03-0.10 px), and where the ring runs along the columns the mean error in u
+  against the column modulo 16 is a sawtooth 0.40-0.58 px deep (uncompressed 0.03-0.04 px): there the line
   keeps its phase to the blocks, and the centres' regularisation along the curve cannot average it away.
-  Whence an RMS of 0.35-0.43 px where quality 90 gives 0.15-0.24 px. Such errors are correlated along the ring (see vpLaserConicPose::setCovarianceInflation()).
+  Whence an RMS of 0.35-0.42 px where quality 90 gives 0.15-0.24 px. Such errors are correlated along the ring
+  (see vpLaserConicPose::setCovarianceInflation()).
   Record the ring at quality 80 or more when its far side matters.
   A red cable that runs along the ring for a few tens of pixels merges with it into one wider stripe, and the
   ring is not measured there; a ring inside a dark joint beside a brighter tile is a step of the image, not a
