@@ -279,11 +279,11 @@ double median(std::vector<double> &values);
   ones again within a pixel of the ring (measureAlongTheFinalCurve()), then the long ones followed on the
   brightness from their dim ends (walkIntoLongGaps()). The points kept are appended to \e guided, the points of
   C in the gaps a walk started into (the ring fades there; a stripe strong at a gap's end was hidden instead)
-  to \e faded.
+  to \e faded. Returns how many of the centres appended were in \e guided already (a sample measured again).
 */
-void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
-                               const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
-                               std::vector<Crossing> &guided, std::vector<vpImagePoint> &faded);
+int measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                              const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
+                              std::vector<Crossing> &guided, std::vector<vpImagePoint> &faded);
 } // namespace vsp::laser_detector
 
 #endif

@@ -72,15 +72,20 @@ bool walkKeeps(const ProfileResult &r, int misses)
          (misses <= RidgeTuning::guidedMaxMisses || r.response >= RidgeTuning::guidedBridgeLevel * r.lines);
 }
 
-// Appends to \e kept the crossings of the found samples in the pieces keepContinuingPieces() keeps.
-void appendKeptPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
-                      std::vector<Crossing> &kept)
+// Appends to \e kept the crossings of the found samples in the pieces keepContinuingPieces() keeps; returns how
+// many of their centres \e found holds already (a sample measured again, see dropRepeatedCentres()).
+int appendKeptPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
+                     const FoundCells &found, std::vector<Crossing> &kept)
 {
   std::vector<unsigned char> keep;
   keepContinuingPieces(state, results, keep);
+  int repeated = 0;
   for (size_t i = 0; i < keep.size(); ++i)
-    if (keep[i])
+    if (keep[i]) {
       kept.push_back(results[i].crossing);
+      repeated += found.holds(results[i].crossing.point) ? 1 : 0;
+    }
+  return repeated;
 }
 
 // The samples of the final conic (refitOnItsInliers()) that no point covers (\e found: the first pass's and
@@ -93,10 +98,11 @@ void appendKeptPieces(const std::vector<SampleState> &state, const std::vector<P
 // stripe keeps beside a cable), each at its own strength (see RidgeTuning::guidedRemeasureStrength). The points
 // found are kept as the walk's are, in pieces that continue a covered sample or are long enough
 // (keepContinuingPieces()): a few isolated responses within a pixel of the conic are not the stripe (on an
-// object that hid the ring in data/laser_hard frame 36, before the gaps were limited). Appends them to \e kept.
-void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
-                               const std::vector<GuidedSample> &samples, const FoundCells &found,
-                               ProfileBuffers &buffers, std::vector<Crossing> &kept)
+// object that hid the ring in data/laser_hard frame 36, before the gaps were limited). Appends them to \e kept;
+// returns how many of their centres \e found holds already.
+int measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
+                              const std::vector<GuidedSample> &samples, const FoundCells &found,
+                              ProfileBuffers &buffers, std::vector<Crossing> &kept)
 {
   std::vector<unsigned char> covered;
   const std::vector<double> offsets = ringOffsets(samples, found, covered);
@@ -120,7 +126,7 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
       results[i].offset -= at;
     }
   }
-  appendKeptPieces(state, results, kept);
+  return appendKeptPieces(state, results, found, kept);
 }
 
 // The final conic's samples in its long gaps (their covered ends more than RidgeTuning::guidedGapLength
@@ -137,17 +143,18 @@ void measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &s
 // followed: a bright stripe that stops was hidden (an object over the ring, the floor's edge), not faded, and
 // the walk took the object's edge (`make-laser-sequence --hard --seed 19 --quality 80`, frame 13, through
 // `vsp-laser-altimeter --truth`: attitude 0.23 -> 0.93 degree). A walk from the other end of the gap stops at
-// this one's points. Appends the points of the pieces kept as the walk's (keepContinuingPieces()) to \e kept.
-// The samples of each gap a walk started into (the ring fades there) are appended to \e faded.
-void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
-                      const std::vector<GuidedSample> &samples, const FoundCells &found, ProfileBuffers &buffers,
-                      std::vector<Crossing> &kept, std::vector<vpImagePoint> &faded)
+// this one's points. Appends the points of the pieces kept as the walk's (keepContinuingPieces()) to \e kept, and
+// returns how many of their centres \e found holds already. The samples of each gap a walk started into (the ring
+// fades there) are appended to \e faded.
+int walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const std::vector<GuidedSample> &samples,
+                     const FoundCells &found, ProfileBuffers &buffers, std::vector<Crossing> &kept,
+                     std::vector<vpImagePoint> &faded)
 {
   std::vector<unsigned char> covered;
   const std::vector<double> offsets = ringOffsets(samples, found, covered);
   const size_t n = offsets.size();
   if (n < 3)
-    return;
+    return 0;
   std::vector<SampleState> state(n);
   std::vector<ProfileResult> results(n);
   std::vector<unsigned char> walked(n, 0);
@@ -199,13 +206,13 @@ void walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings,
     if (!covered[(i + n - 1) % n] && std::isnan(offsets[(i + n - 1) % n]))
       walk(i, n - 1);
   }
-  appendKeptPieces(state, results, kept);
+  return appendKeptPieces(state, results, found, kept);
 }
 } // namespace
 
-void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
-                               const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
-                               std::vector<Crossing> &guided, std::vector<vpImagePoint> &faded)
+int measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const Eigen::Matrix3d &C,
+                              const std::vector<vpImagePoint> &anchors, FoundCells &found, ProfileBuffers &buffers,
+                              std::vector<Crossing> &guided, std::vector<vpImagePoint> &faded)
 {
   // The samples the points cover: the first pass's and the pass's own, those measured at the final conic too.
   const auto markPoints = [&]() {
@@ -218,10 +225,10 @@ void measureTheFinalCurvesGaps(const vpImage<vpRGBa> &I, const GuidedSettings &s
   std::vector<GuidedSample> samples;
   if (!sampleConic(C, static_cast<int>(I.getWidth()), static_cast<int>(I.getHeight()), settings.margin, settings.step,
                    samples))
-    return;
+    return 0;
   markPoints();
-  measureAlongTheFinalCurve(I, settings, samples, found, buffers, guided);
+  const int repeated = measureAlongTheFinalCurve(I, settings, samples, found, buffers, guided);
   markPoints();
-  walkIntoLongGaps(I, settings, samples, found, buffers, guided, faded);
+  return repeated + walkIntoLongGaps(I, settings, samples, found, buffers, guided, faded);
 }
 } // namespace vsp::laser_detector

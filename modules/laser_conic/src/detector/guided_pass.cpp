@@ -333,6 +333,17 @@ int addKeptPoints(const std::vector<unsigned char> &keep, const std::vector<Prof
   return added;
 }
 
+// How many of the kept samples' centres \e found holds already: samples a walk measured again (see
+// dropRepeatedCentres()).
+int heldCentres(const std::vector<unsigned char> &keep, const std::vector<ProfileResult> &results,
+                const FoundCells &found)
+{
+  int held = 0;
+  for (size_t i = 0; i < keep.size(); ++i)
+    held += keep[i] && found.holds(results[i].crossing.point) ? 1 : 0;
+  return held;
+}
+
 // Drops the crossings whose centre an earlier one of \e guided has already (\e found is cleared). A walk along a
 // refitted conic measures again a sample whose prediction moved along its line by more than
 // RidgeTuning::guidedKnownAlong (the dim side, where the refits move most) and finds the same centre; the walks and
@@ -416,6 +427,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   // refits counted as fitted here, against 0.04-0.07).
   const bool fittedHere = !anchors.empty();
   double previousCoverage = 0.0;
+  int repeated = 0; // centres measured again (see dropRepeatedCentres())
   for (int iteration = 0; iteration < RidgeTuning::guidedMaxIterations; ++iteration) {
     if (!sampleConic(C, W, H, settings.margin, settings.step, samples))
       break;
@@ -430,6 +442,9 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     report.coverage = walkCoverage(samples, limit, H, state, keep, searched);
     if (iteration == 0)
       report.predictionSamples = static_cast<int>(searched);
+    // A later walk's repeats: its predecessor missed samples, so that its points are marked in found.
+    if (iteration > 0)
+      repeated += heldCentres(keep, results, found);
     const int added = addKeptPoints(keep, results, missed > 0, fitPoints, work.guided, found);
     const bool wanders = wandersThroughClutter(iteration, added, samples.size(), report.coverage - previousCoverage);
     previousCoverage = report.coverage;
@@ -453,11 +468,11 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
   keepOnTheFinalCurve(C, work.guided);
   std::vector<vpImagePoint> faded;
   if (fittedHere)
-    measureTheFinalCurvesGaps(I, settings, C, anchors, found, buffers, work.guided, faded);
+    repeated += measureTheFinalCurvesGaps(I, settings, C, anchors, found, buffers, work.guided, faded);
   dropIsolatedPieces(smoothAlongCurve(C, work.guided), anchors, work.guided);
   if (!faded.empty())
     measureFadingStretches(I, settings, anchors, faded, C, work.guided);
-  if (report.iterations > 1 || fittedHere) // a single walk measures each sample once, and only it runs in tracking
+  if (repeated > 0) // none on most frames, a single walk's (tracking) among them
     dropRepeatedCentres(found, work.guided);
   dropOutsideTheImage(W, H, work.guided);
   points.reserve(points.size() + work.guided.size());
