@@ -118,6 +118,17 @@ private:
   std::vector<vpImagePoint> &m_points;
 };
 
+//! How many of the centres of the samples \e keep marks (in \e results) \e found holds already: samples measured
+//! again, by a later walk or along the final conic (see dropRepeatedCentres() in guided_pass.cpp).
+inline int heldCentres(const std::vector<unsigned char> &keep, const std::vector<ProfileResult> &results,
+                       const FoundCells &found)
+{
+  int held = 0;
+  for (size_t i = 0; i < keep.size(); ++i)
+    held += keep[i] && found.holds(results[i].crossing.point) ? 1 : 0;
+  return held;
+}
+
 } // namespace vsp::laser_detector
 
 #endif

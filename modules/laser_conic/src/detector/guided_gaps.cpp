@@ -79,13 +79,10 @@ int appendKeptPieces(const std::vector<SampleState> &state, const std::vector<Pr
 {
   std::vector<unsigned char> keep;
   keepContinuingPieces(state, results, keep);
-  int repeated = 0;
   for (size_t i = 0; i < keep.size(); ++i)
-    if (keep[i]) {
+    if (keep[i])
       kept.push_back(results[i].crossing);
-      repeated += found.holds(results[i].crossing.point) ? 1 : 0;
-    }
-  return repeated;
+  return heldCentres(keep, results, found);
 }
 
 // The samples of the final conic (refitOnItsInliers()) that no point covers (\e found: the first pass's and

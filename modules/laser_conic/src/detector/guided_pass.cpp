@@ -333,17 +333,6 @@ int addKeptPoints(const std::vector<unsigned char> &keep, const std::vector<Prof
   return added;
 }
 
-// How many of the kept samples' centres \e found holds already: samples a walk measured again (see
-// dropRepeatedCentres()).
-int heldCentres(const std::vector<unsigned char> &keep, const std::vector<ProfileResult> &results,
-                const FoundCells &found)
-{
-  int held = 0;
-  for (size_t i = 0; i < keep.size(); ++i)
-    held += keep[i] && found.holds(results[i].crossing.point) ? 1 : 0;
-  return held;
-}
-
 // Drops the crossings whose centre an earlier one of \e guided has already (\e found is cleared). A walk along a
 // refitted conic measures again a sample whose prediction moved along its line by more than
 // RidgeTuning::guidedKnownAlong (the dim side, where the refits move most) and finds the same centre; the walks and

@@ -190,9 +190,9 @@ struct StripeDesign
 // stripe: the background's change across the stripe must stay under half its amplitude.
 RidgeFit fitStripe(const double *profile, const StripeDesign &design)
 {
-  RidgeFit best;
-  double bestRss = 0.0, prev = 0.0, bestPrev = 0.0, bestNext = 0.0;
-  bool bestIsLast = false, any = false;
+  RidgeFit best; // amplitude 0 until a stripe is fitted: only a positive amplitude is taken
+  double prev = 0.0, bestPrev = 0.0, bestNext = 0.0;
+  bool bestIsLast = false;
   for (size_t k = 0; k < design.offsets.size(); ++k) {
     Eigen::Matrix<double, StripeDesign::kTerms, 1> p;
     double rss = 0.0, varA = 0.0;
@@ -203,19 +203,17 @@ RidgeFit fitStripe(const double *profile, const StripeDesign &design)
     if (bestIsLast)
       bestNext = rss;
     bestIsLast = false;
-    if (p(0) > 0.0 && (!any || rss < bestRss)) {
-      any = true;
+    if (p(0) > 0.0 && (best.amplitude <= 0.0 || rss < best.rss)) {
       best = RidgeFit{design.offsets[k], p(0), p(0) / std::sqrt(std::max(varA, 1e-300)), rss, true};
       const double stepAcross = std::fabs(p(2)) * 2.0 * RidgeTuning::stretchStepWidth * design.sigma;
       best.found = stepAcross <= 0.5 * p(0);
-      bestRss = rss;
       bestPrev = prev;
       bestIsLast = true;
       bestNext = 0.0;
     }
     prev = rss;
   }
-  const double curvature = bestPrev + bestNext - 2.0 * bestRss;
+  const double curvature = bestPrev + bestNext - 2.0 * best.rss;
   if (best.found && bestPrev > 0.0 && bestNext > 0.0 && curvature > 0.0)
     best.offset += StripeDesign::step * std::max(-0.5, std::min(0.5, 0.5 * (bestPrev - bestNext) / curvature));
   return best;
