@@ -230,7 +230,7 @@ inline int solvePairPoses(const vpYawFrame &frame, const Eigen::Vector3d &xA, co
     Pose &pose = poses[count];
     frame.rotation(c, s, pose.R);
     pose.t = yaw.translation(c, s, xA, xB, pose.R * S);
-    count += static_cast<int>((yaw.qA(c, s) > 0.0) & (yaw.qB(c, s) > 0.0));
+    count += static_cast<int>(yaw.qA(c, s) > 0.0) & static_cast<int>(yaw.qB(c, s) > 0.0); // no branch
   }
   if (roots > 0)
     p2pCase = (count > 0) ? P2PCase::TwoSolutions : P2PCase::NoSolution;

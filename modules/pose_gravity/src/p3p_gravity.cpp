@@ -53,7 +53,8 @@ bool bestRoot(const detail::vpYawFrame &frame, const detail::vpPairYaw &yaw, con
   for (int m = 0; m < 2; ++m) {
     const double c = yaw.cs[m][0], s = yaw.cs[m][1];
     const Eigen::Vector3d P = c * Pc + s * Ps + P1;
-    valid[m] = (yaw.qA(c, s) > 0.0) & (yaw.qB(c, s) > 0.0) & (P.z() > 0.0);
+    valid[m] = (static_cast<int>(yaw.qA(c, s) > 0.0) & static_cast<int>(yaw.qB(c, s) > 0.0) &
+                static_cast<int>(P.z() > 0.0)) != 0; // no branch
     const double ex = P.x() - u * P.z(), ey = P.y() - v * P.z();
     num[m] = ex * ex + ey * ey;
     den[m] = P.z() * P.z();
