@@ -1393,7 +1393,7 @@ TEST(LaserConicGuidedSearch, ChessboardViewsWithReflectanceScaledLight)
       EXPECT_LE(guidedOff, guided / 25);
       worst = std::min(worst, kept);
     }
-  // Measured: 99.87-100 % of the trace on the board kept (the issue: >= 90 %), every view. Before the flank
+  // Measured: 99.77-100 % of the trace on the board kept (the issue: >= 90 %), every view. Before the flank
   // test of the second pass took one line's noise as its scale, 77-94 %: the white cores on the white squares
   // (pink flanks of 10-20 grey levels of red) were refused as white light.
   std::cout << "worst view: " << 100 * worst << " %" << std::endl;

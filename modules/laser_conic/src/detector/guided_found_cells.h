@@ -83,7 +83,7 @@ public:
                      dv = m_points[static_cast<size_t>(k)].get_v() - v;
         if (std::fabs(du * tu + dv * tv) <= RidgeTuning::guidedKnownAlong &&
             std::fabs(du * tv - dv * tu) <= RidgeTuning::guidedKnownAcross) {
-          offset = (s.alongRow ? du - s.slope * dv : dv - s.slope * du) * s.toNormal;
+          offset = acrossOf(s, s.alongRow ? du - s.slope * dv : dv - s.slope * du);
           return true;
         }
       }

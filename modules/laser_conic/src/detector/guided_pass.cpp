@@ -62,7 +62,7 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
 ProfileWindow predictionWindow(const GuidedSample &s, double offset)
 {
   ProfileWindow window;
-  window.centre = offset / s.toNormal;
+  window.centre = alongOf(s, offset);
   window.halfWidth = RidgeTuning::guidedMaxJump / s.toNormal;
   window.peakWithin = true;
   return window;
@@ -114,7 +114,7 @@ bool inLimit(const RegionSpans *limit, int H, double u, double v)
 ProfileWindow followWindow(const GuidedSample &s, double offset, double lineNoise, bool strong, bool fittedHere)
 {
   ProfileWindow follow;
-  follow.centre = offset / s.toNormal;
+  follow.centre = alongOf(s, offset);
   follow.halfWidth = RidgeTuning::guidedFollowMargin / s.toNormal;
   follow.lineNoise = lineNoise;
   follow.lines = strong ? 1 : RidgeTuning::guidedLines;

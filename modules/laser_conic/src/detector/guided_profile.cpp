@@ -513,7 +513,7 @@ ProfileResult measureProfile(const vpImage<vpRGBa> &I, const GuidedSample &s, co
   if (window.brightness) // read by brightnessAtPrediction() only: a tracked frame's profiles do not compute it
     result.stepAtStripe = filter.backgroundStep(best);
   result.found = true;
-  result.offset = (along - s.pos) * s.toNormal;
+  result.offset = acrossOf(s, along - s.pos);
   result.crossing.alongRow = s.alongRow;
   result.crossing.line = s.line;
   result.crossing.first = start + runFirst;

@@ -202,9 +202,12 @@ struct vpLaserConicDetectorRun
   stretches measure it within a pixel (the faint frame 56 of `make-laser-sequence --hard --seed 19`: every
   48 px stretch at 3 sigma or more within 0.84 px of it). The faint frame of that sequence, seeds 1-24: 97.4 %
   of the ring at 3 sigma on average, under 95 % on 3 seeds (93.3 % and 14 seeds before the stretches);
-  seeds 65-80, never tuned on, 98.2 %, 1 seed under 95 %. What is still lost is the darkest stretch, where no
-  fit reaches its significance, and the stretches whose points were off and their stripe too dim to move them
-  (at quality 80 every seed found 98.1 % or more). The centres found on the colour through quality 60 are
+  seeds 65-80, never tuned on, 98.2 %, none under 95 % (`scripts/faint_ring_seeds.sh`). What is still lost is
+  the darkest stretch, where no fit reaches its significance, and the stretches whose points were off and their
+  stripe too dim to move them: at 2-3 times the noise of what the compression kept, the profiles' points may lie
+  1.5-2 px inside the ring whatever ellipse they are measured along, and a stretch whose two halves disagree
+  may lie as far outside it (seed 71), so neither overrides the other (at quality 80 every seed found 98.1 % or
+  more). The centres found on the colour through quality 60 are
   biased by its 16 px blocks, not merely noisy (the test StrongJpegsErrorIsTheColourBlocksBiasNotNoise of
   testLaserConicGuidedSearch measures this on three faint rings, each against the same frame uncompressed):
   the second pass's RMS is 0.28-0.43 px whatever the stripe's strength (3-6, 6-10 or 10-20 times the noise;
