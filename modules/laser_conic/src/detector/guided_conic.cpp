@@ -488,9 +488,9 @@ void appendCrossings(const ConicCoefficients &k, const LineRoots &roots, int fir
       const double norm = std::sqrt(fu * fu + fv * fv);
       const double toNormal = along / norm;
       const double slope = -(AlongRow ? fv : fu) / (AlongRow ? fu : fv);
-      const double side = (AlongRow ? fu : fv) > 0.0 ? 1.0 : -1.0;
+      const signed char side = (AlongRow ? fu : fv) > 0.0 ? 1 : -1;
       arcs[root].push_back(
-          GuidedSample{AlongRow, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope, side});
+          GuidedSample{AlongRow, side, t, x, margin / toNormal, toNormal, curveOrder(u - uc, v - vc), slope});
     }
   }
 }

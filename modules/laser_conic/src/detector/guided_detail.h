@@ -26,20 +26,20 @@ class FoundCells;
 struct GuidedSample
 {
   bool alongRow;
+  /*!
+    +1 or -1: an offset along the line times toNormal times \e side is the offset across the curve, positive on
+    the same side of it all round (where the conic's value grows). Along the line alone, the sign of an offset
+    flips between a row's sample and the next column's where the curve's normal points up and right or down and
+    left, and the offsets that the walks, their pieces and the gaps carry from one sample to the next were read
+    on the wrong side there. (One byte beside alongRow: the samples are merged and copied by value, 48 bytes.)
+  */
+  signed char side;
   int line;
   double pos;        //!< predicted crossing along the line
   double halfWindow; //!< margin along the line (the margin across the curve / sine of the crossing angle)
   double toNormal;   //!< |offset across the curve| / |offset along the line| (> 0)
   double angle;      //!< around the conic's centre, as curveOrder(): the order along the curve
   double slope;      //!< d pos / d line of the predicted curve (the neighbouring lines' shift)
-  /*!
-    +1 or -1: an offset along the line times toNormal times \e side is the offset across the curve, positive on
-    the same side of it all round (where the conic's value grows). Along the line alone, the sign of an offset
-    flips between a row's sample and the next column's where the curve's normal points up and right or down and
-    left, and the offsets that the walks, their pieces and the gaps carry from one sample to the next were read
-    on the wrong side there.
-  */
-  double side;
 };
 
 //! The offset across the curve of the point \e along pixels along sample s's line from its predicted crossing.
