@@ -15,6 +15,14 @@ namespace vsp::laser_detector
 {
 namespace
 {
+// (i + step) modulo n, for i < n and step <= n: a comparison instead of the division of a modulo (the loops over
+// the final ellipse's samples ran one or two divisions per sample, a few percent of a whole frame).
+inline size_t around(size_t i, size_t step, size_t n)
+{
+  const size_t j = i + step;
+  return j >= n ? j - n : j;
+}
+
 // Pixels between the predicted crossings of samples a and b.
 double samplesApart(const std::vector<GuidedSample> &samples, size_t a, size_t b)
 {
@@ -48,16 +56,16 @@ std::vector<double> ringOffsets(const std::vector<GuidedSample> &samples, const 
   const auto sideOffset = [&](size_t k, bool backwards) {
     side.clear();
     for (size_t j = 0; j < ends; ++j)
-      side.push_back(offsets[coveredAt[backwards ? (k + m - j) % m : (k + j) % m]]);
+      side.push_back(offsets[coveredAt[backwards ? around(k, m - j, m) : around(k, j, m)]]);
     return median(side);
   };
   for (size_t k = 0; k < m; ++k) { // the gap after coveredAt[k]
-    const size_t from = coveredAt[k], to = coveredAt[(k + 1) % m], gap = (to + n - from) % n;
+    const size_t from = coveredAt[k], to = coveredAt[around(k, 1, m)], gap = around(to, n - from, n);
     if (gap <= 1 || samplesApart(samples, from, to) > RidgeTuning::guidedGapLength)
       continue; // 0: a single covered sample, the gap goes round
-    const double before = sideOffset(k, true), after = sideOffset((k + 1) % m, false);
+    const double before = sideOffset(k, true), after = sideOffset(around(k, 1, m), false);
     for (size_t j = 1; j < gap; ++j)
-      offsets[(from + j) % n] = before + (after - before) * static_cast<double>(j) / gap;
+      offsets[around(from, j, n)] = before + (after - before) * static_cast<double>(j) / gap;
   }
   return offsets;
 }
@@ -163,19 +171,20 @@ int walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
   const auto walk = [&](size_t from, size_t direction) { // direction: 1 or n - 1 (backwards)
     end.clear();
     for (size_t k = from; end.size() < static_cast<size_t>(RidgeTuning::guidedGapEnds) && covered[k];
-         k = (k + n - direction) % n)
+         k = around(k, n - direction, n))
       end.push_back(offsets[k]);
     const double start = median(end);
     const ProfileResult last =
         measureProfile(I, samples[from], settings, predictionWindow(samples[from], start), buffers);
     if (last.found && last.response >= RidgeTuning::guidedStrongStripe * last.threshold)
       return;
-    for (size_t k = (from + direction) % n; !covered[k] && k != from; k = (k + direction) % n)
+    for (size_t k = around(from, direction, n); !covered[k] && k != from; k = around(k, direction, n))
       faded.push_back(samplePoint(samples[k], samples[k].pos));
     double at = start;
     size_t lastFound = from;
     int misses = 0;
-    for (size_t k = (from + direction) % n, prev = from; !covered[k] && !walked[k]; prev = k, k = (k + direction) % n) {
+    for (size_t k = around(from, direction, n), prev = from; !covered[k] && !walked[k];
+         prev = k, k = around(k, direction, n)) {
       if (samplesApart(samples, prev, k) > maxStep)
         break;
       const GuidedSample &s = samples[k];
@@ -198,9 +207,9 @@ int walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
   for (size_t i = 0; i < n; ++i) {
     if (!covered[i])
       continue;
-    if (!covered[(i + 1) % n] && std::isnan(offsets[(i + 1) % n]))
+    if (!covered[around(i, 1, n)] && std::isnan(offsets[around(i, 1, n)]))
       walk(i, 1);
-    if (!covered[(i + n - 1) % n] && std::isnan(offsets[(i + n - 1) % n]))
+    if (!covered[around(i, n - 1, n)] && std::isnan(offsets[around(i, n - 1, n)]))
       walk(i, n - 1);
   }
   return appendKeptPieces(state, results, found, kept);
