@@ -1220,6 +1220,43 @@ TEST(LaserConicGuidedSearch, TracksWithThePreviousConic)
   EXPECT_LE(q.rmsGuided, all.rmsGuided + 0.05);                       // as accurate
 }
 
+TEST(LaserConicGuidedSearch, APieceThroughTheFirstSampleOfTheRingIsOnePiece)
+{
+  // The samples of a tracked ring go round it from its leftmost point (their order along the curve starts
+  // there), and a piece of curve shorter than RidgeTuning::guidedMinRun with no known point is dropped. Before
+  // the pieces were read round the ring, the stretch just below that point, at the end of the samples' list, was
+  // one piece and the stretch above it, at their start, another. Here a dark object hides the ring from 150 to
+  // 179 degrees (angles about the conic's centre in the image; the leftmost point at 180): the degree between the
+  // object and the leftmost point (7 points) was dropped, 0 % of it found, 99.67 % of the ring (measured); now
+  // it continues the rest of the ring: 100 % and 100 %.
+  const vpHomogeneousMatrix cMg = tiltedGround();
+  Settings s = fadingRing(150.0, 100.0);
+  const std::vector<vpLaserConicSimulator::vpTraceTruth> ring = makeSimulator(cMg).traceTruth(6000, s);
+  // The centre of the image conic, about which the samples are ordered.
+  const vpMatrix C = imageConicOf(cMg);
+  const double det = C[0][0] * C[1][1] - C[0][1] * C[0][1];
+  const vpImagePoint centre((C[0][1] * C[0][2] - C[0][0] * C[1][2]) / det,
+                            (C[0][1] * C[1][2] - C[1][1] * C[0][2]) / det);
+  double radius = 0.0;
+  for (const vpLaserConicSimulator::vpTraceTruth &t : ring)
+    radius += vpImagePoint::distance(t.point, centre) / ring.size();
+  const auto at = [&](double degrees, double r) {
+    return vpImagePoint(centre.get_i() + r * std::sin(vpMath::rad(degrees)),
+                        centre.get_j() + r * std::cos(vpMath::rad(degrees)));
+  };
+  s.occluders.push_back({centre, at(150.0, 2.0 * radius), at(164.5, 2.0 * radius), at(179.0, 2.0 * radius)});
+  vpLaserConicDetector tracker;
+  tracker.setSearchRegion(C, 20.0);
+  std::vector<vpImagePoint> points;
+  const GuidedQuality q = runGuided("through_the_first_sample", cMg, s, 79, tracker, &points);
+  const std::vector<vpLaserConicSimulator::vpTraceTruth> truth = makeSimulator(cMg, 79).traceTruth(6000, s);
+  // The degree between the object and the leftmost point.
+  const double between = coverageNear(truth, points, at(179.5, radius), vpMath::rad(0.5) * radius);
+  EXPECT_GE(between, 0.9);
+  EXPECT_EQ(q.guided, q.points); // tracked: every point from the guided pass
+  expectGuided(q, 0.95, 0.3);
+}
+
 TEST(LaserConicGuidedSearch, TrackingFollowsTheStripesWidth)
 {
   // Climbing, the stripe narrows in the image (the laser's line keeps its width on the ground). The tracker

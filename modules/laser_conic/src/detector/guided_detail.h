@@ -10,6 +10,7 @@
 #ifndef VP_LASER_GUIDED_DETAIL_H
 #define VP_LASER_GUIDED_DETAIL_H
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -235,9 +236,20 @@ enum SampleState { MISSED, FOUND, KNOWN };
 //! The pieces of curve along the samples (in their order): runs of found samples, broken by more than
 //! RidgeTuning::guidedMaxMisses missed samples in a row or by a jump of the offset to the prediction. A piece is
 //! kept when it touches a known point (a sample near a point already found) or has RidgeTuning::guidedMinRun
-//! points; \e keep marks the found samples of the kept pieces.
+//! points; \e keep marks the found samples of the kept pieces. \e closed: the samples go round the whole ring (the
+//! last one next to the first, closedRing()), whose pieces are read round it from a place where one ends, so
+//! that a piece through the first sample is not cut in two there.
 void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
-                          std::vector<unsigned char> &keep);
+                          std::vector<unsigned char> &keep, bool closed = false);
+
+//! Whether \e samples (sampleConic(), every \e step-th line) go round the whole ring: the last one within 3 steps
+//! of the first (the conic does not leave the image between them).
+inline bool closedRing(const std::vector<GuidedSample> &samples, int step)
+{
+  return samples.size() >= 3 &&
+         vpImagePoint::distance(samplePoint(samples.back(), samples.back().pos),
+                                samplePoint(samples.front(), samples.front().pos)) <= 3.0 * std::max(1, step);
+}
 
 //! The window within RidgeTuning::guidedMaxJump (across the curve) of sample s's predicted crossing, moved by
 //! \e offset across the curve (as ProfileResult::offset); the stripe's peak must lie inside it

@@ -83,10 +83,10 @@ bool walkKeeps(const ProfileResult &r, int misses)
 // Appends to \e kept the crossings of the found samples in the pieces keepContinuingPieces() keeps; returns how
 // many of their centres \e found holds already (a sample measured again, see dropRepeatedCentres()).
 int appendKeptPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
-                     const FoundCells &found, std::vector<Crossing> &kept)
+                     const FoundCells &found, bool closed, std::vector<Crossing> &kept)
 {
   std::vector<unsigned char> keep;
-  keepContinuingPieces(state, results, keep);
+  keepContinuingPieces(state, results, keep, closed);
   for (size_t i = 0; i < keep.size(); ++i)
     if (keep[i])
       kept.push_back(results[i].crossing);
@@ -131,7 +131,7 @@ int measureAlongTheFinalCurve(const vpImage<vpRGBa> &I, const GuidedSettings &se
       results[i].offset -= at;
     }
   }
-  return appendKeptPieces(state, results, found, kept);
+  return appendKeptPieces(state, results, found, closedRing(samples, settings.step), kept);
 }
 
 // The final conic's samples in its long gaps (their covered ends more than RidgeTuning::guidedGapLength
@@ -212,7 +212,7 @@ int walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
     if (!covered[around(i, n - 1, n)] && std::isnan(offsets[around(i, n - 1, n)]))
       walk(i, n - 1);
   }
-  return appendKeptPieces(state, results, found, kept);
+  return appendKeptPieces(state, results, found, closedRing(samples, settings.step), kept);
 }
 } // namespace
 

@@ -16,10 +16,33 @@
 
 namespace vsp::laser_detector
 {
+namespace
+{
+// Where the pieces of a closed ring's samples are read from: after its first run of more than
+// RidgeTuning::guidedMaxMisses missed samples (a piece ends there whatever the start), else at its first known
+// sample (a piece through it is kept whatever its length), else at 0.
+size_t ringStart(const std::vector<SampleState> &state)
+{
+  const size_t n = state.size();
+  int misses = 0;
+  for (size_t k = 0; k < 2 * n; ++k) {
+    if (state[k < n ? k : k - n] != MISSED)
+      misses = 0;
+    else if (++misses > RidgeTuning::guidedMaxMisses)
+      return k + 1 < n ? k + 1 : k + 1 < 2 * n ? k + 1 - n : 0;
+  }
+  for (size_t k = 0; k < n; ++k)
+    if (state[k] == KNOWN)
+      return k;
+  return 0;
+}
+} // namespace
+
 void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
-                          std::vector<unsigned char> &keep)
+                          std::vector<unsigned char> &keep, bool closed)
 {
   keep.assign(state.size(), 0);
+  const size_t n = state.size(), first = closed && n > 0 ? ringStart(state) : 0;
   std::vector<size_t> piece;
   bool anchored = false;
   int misses = 0;
@@ -33,24 +56,26 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
     piece.clear();
     anchored = false;
   };
-  for (size_t i = 0; i < state.size(); ++i) {
+  // Position p along the samples from \e first (round the ring when closed), sample i.
+  for (size_t p = 0; p < n; ++p) {
+    const size_t i = first + p < n ? first + p : first + p - n;
     if (state[i] == KNOWN) {
       anchored = true;
       afterKnown = true;
       misses = 0;
       lastOffset = 0.0;
-      lastIndex = i;
+      lastIndex = p;
     } else if (state[i] == FOUND) {
       // Next to a known point the offset is that point's, within the fit's inlier threshold of the curve.
       const double allowed =
-          (afterKnown ? 2.0 : RidgeTuning::guidedMaxJump) + RidgeTuning::guidedPerSampleJump * (i - lastIndex);
+          (afterKnown ? 2.0 : RidgeTuning::guidedMaxJump) + RidgeTuning::guidedPerSampleJump * (p - lastIndex);
       if ((anchored || !piece.empty()) && std::fabs(results[i].offset - lastOffset) > allowed)
         close();
       piece.push_back(i);
       afterKnown = false;
       misses = 0;
       lastOffset = results[i].offset;
-      lastIndex = i;
+      lastIndex = p;
     } else if (++misses > RidgeTuning::guidedMaxMisses) {
       close();
       afterKnown = false;
@@ -426,7 +451,7 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     results.assign(samples.size(), ProfileResult());
     const int missed =
         measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds, fittedHere);
-    keepContinuingPieces(state, results, keep);
+    keepContinuingPieces(state, results, keep, closedRing(samples, settings.step));
     size_t searched = 0;
     report.coverage = walkCoverage(samples, limit, H, state, keep, searched);
     if (iteration == 0)
