@@ -240,16 +240,34 @@ enum SampleState { MISSED, FOUND, KNOWN };
 //! last one next to the first, closedRing()), whose pieces are read round it from a place where one ends, so
 //! that a piece through the first sample is not cut in two there.
 void keepContinuingPieces(const std::vector<SampleState> &state, const std::vector<ProfileResult> &results,
-                          std::vector<unsigned char> &keep, bool closed = false);
+                          std::vector<unsigned char> &keep, bool closed);
 
-//! Whether \e samples (sampleConic(), every \e step-th line) go round the whole ring: the last one within 3 steps
-//! of the first (the conic does not leave the image between them).
+//! Pixels between the predicted crossings of samples a and b.
+inline double samplesApart(const std::vector<GuidedSample> &samples, size_t a, size_t b)
+{
+  return vpImagePoint::distance(samplePoint(samples[a], samples[a].pos), samplePoint(samples[b], samples[b].pos));
+}
+
+//! Whether samples a and b of sampleConic() (every \e step-th line), next to each other in its order, are more
+//! than 3 steps apart: the conic leaves the image between them.
+inline bool leavesTheImageBetween(const std::vector<GuidedSample> &samples, size_t a, size_t b, int step)
+{
+  return samplesApart(samples, a, b) > 3.0 * std::max(1, step);
+}
+
+//! Whether \e samples (sampleConic(), every \e step-th line) go round the whole ring: the conic does not leave the
+//! image between the last one and the first.
 inline bool closedRing(const std::vector<GuidedSample> &samples, int step)
 {
-  return samples.size() >= 3 &&
-         vpImagePoint::distance(samplePoint(samples.back(), samples.back().pos),
-                                samplePoint(samples.front(), samples.front().pos)) <= 3.0 * std::max(1, step);
+  return samples.size() >= 3 && !leavesTheImageBetween(samples, samples.size() - 1, 0, step);
 }
+
+/*!
+  \e j modulo \e n for j < 2n: a position at most one turn past the end of a closed ring's \e n samples or points,
+  by a comparison instead of the division of a modulo (the loops round the ring ran one or two divisions per
+  sample: a few percent of a whole frame, most of dropIsolatedPieces()).
+*/
+inline size_t onTheRing(size_t j, size_t n) { return j >= n ? j - n : j; }
 
 //! The window within RidgeTuning::guidedMaxJump (across the curve) of sample s's predicted crossing, moved by
 //! \e offset across the curve (as ProfileResult::offset); the stripe's peak must lie inside it

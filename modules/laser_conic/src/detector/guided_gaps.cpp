@@ -15,19 +15,8 @@ namespace vsp::laser_detector
 {
 namespace
 {
-// (i + step) modulo n, for i < n and step <= n: a comparison instead of the division of a modulo (the loops over
-// the final ellipse's samples ran one or two divisions per sample, a few percent of a whole frame).
-inline size_t around(size_t i, size_t step, size_t n)
-{
-  const size_t j = i + step;
-  return j >= n ? j - n : j;
-}
-
-// Pixels between the predicted crossings of samples a and b.
-double samplesApart(const std::vector<GuidedSample> &samples, size_t a, size_t b)
-{
-  return vpImagePoint::distance(samplePoint(samples[a], samples[a].pos), samplePoint(samples[b], samples[b].pos));
-}
+// (i + step) modulo n, for i < n and step <= n (onTheRing()).
+inline size_t around(size_t i, size_t step, size_t n) { return onTheRing(i + step, n); }
 
 // The offsets across the final conic (as ProfileResult::offset) of the points that cover its samples
 // (\e found: the first pass's and the kept ones; \e covered set there), and in the gaps between them the
@@ -165,8 +154,6 @@ int walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
   std::vector<unsigned char> walked(n, 0);
   for (size_t i = 0; i < n; ++i)
     state[i] = covered[i] ? KNOWN : MISSED;
-  // Consecutive samples farther apart: the conic left the image between them.
-  const double maxStep = 3.0 * std::max(1, settings.step);
   std::vector<double> end;
   const auto walk = [&](size_t from, size_t direction) { // direction: 1 or n - 1 (backwards)
     end.clear();
@@ -185,7 +172,7 @@ int walkIntoLongGaps(const vpImage<vpRGBa> &I, const GuidedSettings &settings, c
     int misses = 0;
     for (size_t k = around(from, direction, n), prev = from; !covered[k] && !walked[k];
          prev = k, k = around(k, direction, n)) {
-      if (samplesApart(samples, prev, k) > maxStep)
+      if (leavesTheImageBetween(samples, prev, k, settings.step))
         break;
       const GuidedSample &s = samples[k];
       ProfileWindow window = onBrightness(predictionWindow(s, at));

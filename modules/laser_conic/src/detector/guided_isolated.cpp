@@ -77,14 +77,9 @@ void dropIsolatedPieces(const std::vector<int> &order, const std::vector<vpImage
   if (n < 2 || n != crossings.size())
     return;
   const double apart = RidgeTuning::guidedGapLength, apart2 = apart * apart;
-  // Positions stay under two turns (a piece ends at the gap before \e start, one turn on): a subtraction
-  // rather than the division of a modulo per point read, which was most of this function's time on a tracked
-  // frame.
-  const auto wrap = [n](size_t position) {
-    return position < n ? position : position < 2 * n ? position - n : position % n;
-  };
+  // Positions stay under two turns (a piece ends at the gap before \e start, one turn on): onTheRing().
   const auto at = [&](size_t position) -> const vpImagePoint & {
-    return crossings[static_cast<size_t>(order[wrap(position)])].point;
+    return crossings[static_cast<size_t>(order[onTheRing(position, n)])].point;
   };
   const auto farApart = [apart2](const vpImagePoint &p, const vpImagePoint &q) {
     const double du = p.get_u() - q.get_u(), dv = p.get_v() - q.get_v();
@@ -107,7 +102,7 @@ void dropIsolatedPieces(const std::vector<int> &order, const std::vector<vpImage
     if (length < static_cast<size_t>(RidgeTuning::guidedIsolatedRun) && !cells.near(at(first)) &&
         !cells.near(at(last))) {
       for (size_t p = first; p <= last; ++p)
-        drop[static_cast<size_t>(order[wrap(p)])] = 1;
+        drop[static_cast<size_t>(order[onTheRing(p, n)])] = 1;
       any = true;
     }
     first += length;

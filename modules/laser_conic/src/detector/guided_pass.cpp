@@ -26,10 +26,10 @@ size_t ringStart(const std::vector<SampleState> &state)
   const size_t n = state.size();
   int misses = 0;
   for (size_t k = 0; k < 2 * n; ++k) {
-    if (state[k < n ? k : k - n] != MISSED)
+    if (state[onTheRing(k, n)] != MISSED)
       misses = 0;
     else if (++misses > RidgeTuning::guidedMaxMisses)
-      return k + 1 < n ? k + 1 : k + 1 < 2 * n ? k + 1 - n : 0;
+      return (k + 1) % n; // once per call
   }
   for (size_t k = 0; k < n; ++k)
     if (state[k] == KNOWN)
@@ -58,7 +58,7 @@ void keepContinuingPieces(const std::vector<SampleState> &state, const std::vect
   };
   // Position p along the samples from \e first (round the ring when closed), sample i.
   for (size_t p = 0; p < n; ++p) {
-    const size_t i = first + p < n ? first + p : first + p - n;
+    const size_t i = onTheRing(first + p, n);
     if (state[i] == KNOWN) {
       anchored = true;
       afterKnown = true;
