@@ -44,10 +44,14 @@ double validMargin(double value, const char *what)
   return value;
 }
 
-// \e value if it is > 0, else the error \e message.
-unsigned int positive(unsigned int value, const char *message)
+// \e value if it is a step the detector takes (> 0, at most vpLaserConicDetector::getMaxStep(): beyond, the line
+// indices and chain lengths it multiplies overflowed an int, and a detection hung or read outside the image),
+// else an error naming \e what and the bound.
+unsigned int validStep(unsigned int value, const char *what)
 {
-  check(value > 0, message);
+  const unsigned int largest = vpLaserConicDetector::getMaxStep();
+  if (!(value > 0 && value <= largest))
+    check(false, (std::string(what) + " must be positive and at most " + std::to_string(largest) + " lines").c_str());
   return value;
 }
 
@@ -135,12 +139,12 @@ void vpLaserConicDetector::setGuidedMargin(double pixels)
 
 void vpLaserConicDetector::setGuidedStep(unsigned int lines)
 {
-  m_guidedStep = positive(lines, "the guided search step must be positive");
+  m_guidedStep = validStep(lines, "the guided search step");
 }
 
 void vpLaserConicDetector::setTrackingStep(unsigned int lines)
 {
-  m_trackingStep = positive(lines, "the tracking step must be positive");
+  m_trackingStep = validStep(lines, "the tracking step");
 }
 
 void vpLaserConicDetector::setGuidedThresholdFactor(double factor)
@@ -148,10 +152,7 @@ void vpLaserConicDetector::setGuidedThresholdFactor(double factor)
   m_guidedFactor = positive(factor, "the guided search threshold factor must be positive and finite");
 }
 
-void vpLaserConicDetector::setSamplingStep(unsigned int step)
-{
-  m_step = positive(step, "the sampling step must be positive");
-}
+void vpLaserConicDetector::setSamplingStep(unsigned int step) { m_step = validStep(step, "the sampling step"); }
 
 vpLaserConicDetector::vpInstructionSet vpLaserConicDetector::getBestInstructionSet()
 {
@@ -559,6 +560,9 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
   m_height = I.getHeight();
   m_width = I.getWidth();
   m_maskDirty = m_method == DETECTION_RIDGE;
+  // No point of the guided pass yet (none at all by the HSV method).
+  m_guidedCount = 0;
+  m_work.get().guided.clear();
   if (m_method == DETECTION_HSV) {
     const vsp::laser_detector::HsvSettings settings = {m_maxHueLow,
                                                        m_minHueHigh,
@@ -568,8 +572,6 @@ std::vector<vpImagePoint> vpLaserConicDetector::detect(const vpImage<vpRGBa> &I)
                                                        static_cast<int>(m_step)};
     return vsp::laser_detector::detectHsv(I, settings, m_mask.image);
   }
-  m_guidedCount = 0;
-  m_work.get().guided.clear();
   if (I.getSize() == 0) {
     double coverage = 0.0;
     return detectInTwoPasses(I, false, coverage);

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <random>
 #include <string>
 
 #include <Eigen/Dense>
@@ -251,6 +252,25 @@ TEST(LaserConicDetector, EmptyImageGivesNoPoint)
   EXPECT_EQ(detector.getMask().getSize(), 0u);
 }
 
+TEST(LaserConicDetector, TheGuidedPointCountIsTheLastDetections)
+{
+  // getGuidedPointCount() counts the last points of the list the last detect() returned: a detection by the
+  // HSV method after one by the ridge method has none of the guided pass's (it kept the ridge's count, so that
+  // the end of the list minus the count lay before its beginning).
+  vpLaserConicSimulator sim = makeSimulator(groundPoses()[0], 7);
+  vpImage<vpRGBa> I;
+  sim.render(I, vpImage<vpRGBa>(), 3.0, 2.0);
+  vpLaserConicDetector detector;
+  const std::vector<vpImagePoint> ridge = detector.detect(I);
+  ASSERT_GT(detector.getGuidedPointCount(), 0u);
+  EXPECT_LE(detector.getGuidedPointCount(), ridge.size());
+  detector.setMethod(vpLaserConicDetector::DETECTION_HSV);
+  const std::vector<vpImagePoint> hsv =
+      detector.detect(vpImage<vpRGBa>(I.getHeight(), I.getWidth(), vpRGBa(90, 90, 90)));
+  EXPECT_TRUE(hsv.empty());
+  EXPECT_EQ(detector.getGuidedPointCount(), 0u);
+}
+
 TEST(LaserConicDetector, BadSettingsThrow)
 {
   vpLaserConicDetector detector;
@@ -265,6 +285,23 @@ TEST(LaserConicDetector, BadSettingsThrow)
   EXPECT_THROW(detector.setMinSaturationValue(80, -1), vpException);
   EXPECT_THROW(detector.setMaxStripeWidth(0), vpException);
   EXPECT_THROW(detector.setSamplingStep(0), vpException);
+  // A step beyond any image (a negative number converted to unsigned): the detection hung (2^29) or read
+  // outside the image (2^31) as line indices overflowed.
+  for (unsigned int step :
+       {vpLaserConicDetector::getMaxStep() + 1, 1u << 29, 1u << 31, static_cast<unsigned int>(-3)}) {
+    EXPECT_THROW(detector.setSamplingStep(step), vpLaserConicException) << step;
+    EXPECT_THROW(detector.setGuidedStep(step), vpLaserConicException) << step;
+    EXPECT_THROW(detector.setTrackingStep(step), vpLaserConicException) << step;
+  }
+  // The largest step is taken, and a detection with it ends (a 3 px red stripe down a 60 x 80 image).
+  vpImage<vpRGBa> I(60, 80, vpRGBa(20, 20, 20));
+  for (unsigned int i = 0; i < I.getHeight(); ++i)
+    for (unsigned int j = 39; j <= 41; ++j)
+      I[i][j] = vpRGBa(200, 20, 20);
+  detector.setSamplingStep(vpLaserConicDetector::getMaxStep());
+  detector.setGuidedStep(vpLaserConicDetector::getMaxStep());
+  detector.setMinSegmentLength(1e10);
+  EXPECT_LE(detector.detect(I).size(), I.getHeight());
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -630,6 +667,53 @@ TEST(LaserConicDetector, SearchRegionAroundThePredictedTrace)
   EXPECT_THROW(byConic.setSearchRegion(imaginary, 20.0), vpLaserConicException);
   EXPECT_THROW(byConic.setSearchRegion(faraway, 20.0), vpLaserConicException);
   EXPECT_FALSE(byConic.hasSearchRegion());
+}
+
+namespace
+{
+//! A 640 x 480 grey image (noise 2, seeded) with a red stripe (Gaussian, sigma 1.2 px, 120 grey levels) along the
+//! ellipse of centre (uc, vc) and semi-axes a (along u) and b; its conic in \e C.
+vpImage<vpRGBa> stripeAlongAnEllipse(double uc, double vc, double a, double b, vpMatrix &C)
+{
+  const double ea = 1.0 / (a * a), eb = 1.0 / (b * b);
+  Eigen::Matrix3d E;
+  E << ea, 0.0, -uc * ea, 0.0, eb, -vc * eb, -uc * ea, -vc * eb, uc * uc * ea + vc * vc * eb - 1.0;
+  C.resize(3, 3);
+  C[0][0] = ea;
+  C[1][1] = eb;
+  C[0][2] = C[2][0] = -uc * ea;
+  C[1][2] = C[2][1] = -vc * eb;
+  C[2][2] = uc * uc * ea + vc * vc * eb - 1.0;
+  vpImage<vpRGBa> I(480, 640);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  const auto grey = [](double x) { return static_cast<unsigned char>(std::max(0.0, std::min(255.0, std::round(x)))); };
+  for (unsigned int i = 0; i < I.getHeight(); ++i)
+    for (unsigned int j = 0; j < I.getWidth(); ++j) {
+      const double d = sampsonDistance(E, vpImagePoint(i, j));
+      const double stripe = 120.0 * std::exp(-d * d / (2.0 * 1.2 * 1.2));
+      I[i][j] = vpRGBa(grey(60.0 + stripe + noise(rng)), grey(60.0 + 0.1 * stripe + noise(rng)),
+                       grey(60.0 + 0.1 * stripe + noise(rng)), 255);
+    }
+  return I;
+}
+} // namespace
+
+TEST(LaserConicDetector, ARingMostlyOutOfTheImageIsTrackedWhateverTheMargin)
+{
+  // The track is kept when the guided pass's points cover 40 % of the predicted curve in the image. The curve's
+  // samples out of the image (up to the margin beyond its border) were counted too: a ring of which a third
+  // lies in the image, its part there found whole, was tracked with a margin of 20 px (61 points of 137
+  // samples) and lost with one of 40 (61 of 169), and the first pass searched the band instead.
+  vpMatrix C;
+  const vpImage<vpRGBa> I = stripeAlongAnEllipse(732.0, 240.0, 100.0, 200.0, C);
+  for (double margin : {20.0, 40.0, 60.0}) {
+    vpLaserConicDetector detector;
+    detector.setSearchRegion(C, margin);
+    const std::vector<vpImagePoint> points = detector.detect(I);
+    EXPECT_GT(points.size(), 50u) << "margin " << margin;
+    EXPECT_EQ(detector.getGuidedPointCount(), points.size()) << "margin " << margin << ": the track was lost";
+  }
 }
 
 TEST(LaserConicDetector, SearchRegionIgnoresThePreviousFrames)

@@ -273,12 +273,11 @@ int measureSamples(const vpImage<vpRGBa> &I, const GuidedSettings &settings, con
   return missed - followBackwards(I, settings, samples, fittedHere, buffers, state, results);
 }
 
-// Share of the samples (those in \e limit) that are known or whose point is kept; \e searched: how many.
+// Share of the samples (those in \e limit) that are known or whose point is kept.
 double walkCoverage(const std::vector<GuidedSample> &samples, const RegionSpans *limit, int H,
-                    const std::vector<SampleState> &state, const std::vector<unsigned char> &keep, size_t &searched)
+                    const std::vector<SampleState> &state, const std::vector<unsigned char> &keep)
 {
-  searched = 0;
-  size_t covered = 0;
+  size_t searched = 0, covered = 0;
   for (size_t i = 0; i < samples.size(); ++i) {
     const GuidedSample &s = samples[i];
     if (state[i] != KNOWN && !inLimit(limit, H, s.alongRow ? s.pos : s.line, s.alongRow ? s.line : s.pos))
@@ -287,6 +286,18 @@ double walkCoverage(const std::vector<GuidedSample> &samples, const RegionSpans 
     covered += state[i] == KNOWN || keep[i] ? 1 : 0;
   }
   return searched ? static_cast<double>(covered) / searched : 0.0;
+}
+
+// Samples (those in \e limit) whose predicted crossing lies in the W x H image: the predicted curve's length
+// there, in samples (sampleConic() also keeps those up to the margin beyond the image's border).
+int samplesInTheImage(const std::vector<GuidedSample> &samples, const RegionSpans *limit, int W, int H)
+{
+  int inside = 0;
+  for (const GuidedSample &s : samples) {
+    const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
+    inside += u >= -0.5 && v >= -0.5 && u <= W - 0.5 && v <= H - 0.5 && inLimit(limit, H, u, v) ? 1 : 0;
+  }
+  return inside;
 }
 
 // Least-squares ellipse through the points (a subsample of a few hundred). The subsample is chosen by
@@ -452,10 +463,9 @@ void guidedPass(const vpImage<vpRGBa> &I, const GuidedSettings &settings, const 
     const int missed =
         measureSamples(I, settings, samples, limit, found, buffers, state, results, noises, thresholds, fittedHere);
     keepContinuingPieces(state, results, keep, closedRing(samples, settings.step));
-    size_t searched = 0;
-    report.coverage = walkCoverage(samples, limit, H, state, keep, searched);
+    report.coverage = walkCoverage(samples, limit, H, state, keep);
     if (iteration == 0)
-      report.predictionSamples = static_cast<int>(searched);
+      report.predictionSamples = samplesInTheImage(samples, limit, W, H);
     // A later walk's repeats: its predecessor missed samples, so that its points are marked in found.
     if (iteration > 0)
       repeated += heldCentres(keep, results, found);

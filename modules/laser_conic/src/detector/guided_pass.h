@@ -46,7 +46,8 @@ struct GuidedReport
   bool ran = false;       //!< false when there was no usable prediction
   //! Share of the last walk's samples (in the search limit) that ended known or with a point kept
   double coverage = 0.0;
-  //! Samples the first walk, along the prediction itself, searched
+  //! Samples of the first walk, along the prediction itself, whose predicted crossing lies in the image (and in
+  //! the search limit): the prediction's length in the image
   int predictionSamples = 0;
 };
 

@@ -317,9 +317,15 @@ public:
   /*!
     Scans one row/column every \e step (1 = every line); default 1. The guided pass has its own step
     (setGuidedStep()): with the default 1 it measures the lines between.
-    \exception vpLaserConicException::badValueError on 0.
+    \exception vpLaserConicException::badValueError on 0 or above getMaxStep().
   */
   void setSamplingStep(unsigned int step);
+  /*!
+    The largest step setSamplingStep(), setGuidedStep() and setTrackingStep() take: 10000 lines. A step longer
+    than an image's side already reads one line of it; beyond this one a step is taken for a mistake (a value in
+    other units, a negative number converted to unsigned).
+  */
+  static unsigned int getMaxStep() { return 10000; }
   //! Sampling step of the scan lines.
   unsigned int getSamplingStep() const { return m_step; }
 
@@ -353,7 +359,10 @@ public:
     Each tracked frame's stripe width is the next one's matched filter's (the stripe narrows in the image as
     the vehicle climbs). The conic is one of the image searched: with a
     distorted camera, getImageConic() is that of the undistorted image, so the margin must cover the
-    distortion along the trace, or the points of the previous trace serve as the region instead.
+    distortion along the trace, or the points of the previous trace serve as the region instead. The guided
+    pass follows an ellipse only: a hyperbola (the image of a ring seen at a grazing angle, which
+    vpLaserConicPose::getImageConic() can be) is searched by the first pass in its band on every frame, as
+    when the track is lost.
     \exception vpLaserConicException::badValueError when \e C is not a finite 3x3 matrix, is zero, has no
     real point near the image, or the margin is not positive or above getMaxMargin().
   */
@@ -394,7 +403,7 @@ public:
     Ridge method: the guided pass measures a profile on every \e lines-th image row or column crossed by
     the curve; default 1 (one point per pixel of curve, as the first pass). Larger steps read less of the
     image and give fewer points (faster tracking, faster estimation).
-    \exception vpLaserConicException::badValueError on 0.
+    \exception vpLaserConicException::badValueError on 0 or above getMaxStep().
   */
   void setGuidedStep(unsigned int lines);
   //! Step of the guided pass, image lines.
@@ -409,7 +418,7 @@ public:
     cases.
     The guided pass after a first pass keeps its own step (setGuidedStep()): there it extrapolates a fit
     over the missing part of the ring, and its continuity rules are counted in profiles of one line.
-    \exception vpLaserConicException::badValueError on 0.
+    \exception vpLaserConicException::badValueError on 0 or above getMaxStep().
   */
   void setTrackingStep(unsigned int lines);
   //! Step of the guided pass along a conic search region, image lines.
