@@ -271,12 +271,6 @@ bool checkOutputsAgainstImages(const Options &options, const std::vector<std::st
   return true;
 }
 
-//! Minimum number of points of a method.
-unsigned int minimumPoints(vpLaserConicPose::vpLaserConicMethod method)
-{
-  return (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3u : 5u;
-}
-
 struct FrameResult
 {
   double altitude = 0.0, roll = 0.0, pitch = 0.0;
@@ -355,7 +349,7 @@ FrameResult processImage(const std::string &image, const Options &options, const
   result.points = points.size();
   vpMatrix conic;
   std::vector<unsigned int> inliers;
-  if (points.size() < minimumPoints(methodId(options.methodName))) {
+  if (points.size() < vpLaserConicPose::getMinimumPointCount(methodId(options.methodName))) {
     result.status = "not_enough_points";
   } else {
     vpPlane plane;

@@ -224,7 +224,10 @@ Eigen::Matrix3d constrainedCovariance(const PointList &trace, const LaserCone &c
     for (int i = 0; i < n; ++i)
       J(i, j) = focal * (signedSampson(cp, trace[i]) - signedSampson(cm, trace[i])) / (2.0 * h);
   }
-  const double sigma2 = rss / std::max(1, n - 3);
+  // No residual degree of freedom left (3 points or fewer): no noise to scale by, no covariance.
+  if (n <= 3)
+    return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const double sigma2 = rss / (n - 3);
   return sigma2 * (J.transpose() * J).inverse();
 }
 
@@ -272,7 +275,9 @@ bool freeCovariance(const PointList &trace, const LaserCone &cone, double focal,
     Eigen::Vector3d ap = attitudeOf(pp), am = attitudeOf(pm);
     G.col(k) = (ap - am) / (2.0 * h);
   }
-  const double sigma2 = rss / std::max(1, n - 5);
+  if (n <= 5) // the conic goes through the points: no residual to measure the noise by (the covariance was 0)
+    return false;
+  const double sigma2 = rss / (n - 5);
   const Eigen::Matrix<double, 5, 5> info = J.transpose() * J;
   cov = G * (sigma2 * info.inverse()) * G.transpose();
   return cov.allFinite();

@@ -24,10 +24,10 @@ namespace
 {
 using vsp::laser_estimators::PointList;
 
-//! Minimal number of points each method needs.
+//! Minimal number of points each method needs (vpLaserConicPose::getMinimumPointCount()).
 int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
 {
-  return (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3 : 5;
+  return static_cast<int>(vpLaserConicPose::getMinimumPointCount(method));
 }
 
 //! True when all points lie on one line (or one point), up to rounding.
@@ -106,13 +106,20 @@ bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &opt
 
 vpLaserConicPose::vpLaserConicPose()
   : m_cam(), m_hasCam(false), m_hasLaser(false), m_openingAngle(0.0), m_cMl(), m_threshold(2.0), m_maxTrials(1000),
-    m_probability(0.99), m_seed(0), m_localOptimisation(true), m_altitude(0.0), m_roll(0.0), m_pitch(0.0), m_inliers(),
-    m_trials(0), m_conic(3, 3, 0.0), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
+    m_probability(0.99), m_seed(0), m_localOptimisation(true), m_altitude(std::numeric_limits<double>::quiet_NaN()),
+    m_roll(std::numeric_limits<double>::quiet_NaN()), m_pitch(std::numeric_limits<double>::quiet_NaN()), m_inliers(),
+    m_trials(0), m_conic(), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
     m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_maxAltitudeDilution(5.0), m_finalFit(FINAL_FIT_DEFAULT),
     m_computeCovariance(false), m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0),
     m_sigma(0.0), m_coverage(0.0), m_constrainedChosen(false), m_points(), m_calibrationCheck(true),
     m_mistake(MISTAKE_UNKNOWN)
 {
+}
+
+unsigned int vpLaserConicPose::getMinimumPointCount(vpLaserConicMethod)
+{
+  // The free conic of the final fit (laser_robust_fit.h) needs 5 points whatever the method's sample.
+  return 5;
 }
 
 std::string vpLaserConicPose::getMethodName(vpLaserConicMethod method)
@@ -174,6 +181,8 @@ bool vpLaserConicPose::fail(vpLaserConicStatus status, const std::string &detail
 
 double vpLaserConicPose::getCalibrationHealth() const
 {
+  if (!m_fitted) // no fit to judge (not computed, or a failure before the final fit)
+    return std::numeric_limits<double>::quiet_NaN();
   if (!(m_rmsFree > 0.0))
     return m_rmsConstrained > 0.0 ? std::numeric_limits<double>::infinity() : 1.0;
   return m_rmsConstrained / m_rmsFree;
@@ -342,6 +351,10 @@ void vpLaserConicPose::resetEstimate(const std::vector<vpImagePoint> &points)
   m_covariance = vpMatrix();
   m_planeCovariance = vpMatrix();
   m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
+  // No plane yet: a failure leaves none (the getters gave the last success's, as if it were this one's).
+  m_altitude = m_roll = m_pitch = std::numeric_limits<double>::quiet_NaN();
+  m_conic = vpMatrix();
+  m_fitted = false;
   m_constrainedChosen = false;
   m_points = points;
   m_mistake = MISTAKE_UNKNOWN;
@@ -407,6 +420,7 @@ bool vpLaserConicPose::failCalibration(vpLaserConicMistake mistake, const vsp::l
   m_rmsFree = result.rmsFree;
   m_sigma = result.sigma;
   m_coverage = result.coverage;
+  m_fitted = true;
   m_mistake = mistake;
   std::ostringstream msg;
   msg << " (the constrained fit misses the trace by " << vsp::laser_calibration_check::misfit(result)
@@ -468,6 +482,7 @@ void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result
   m_rmsFree = result.rmsFree;
   m_sigma = result.sigma;
   m_coverage = result.coverage;
+  m_fitted = true;
   m_constrainedChosen = result.constrainedChosen;
   if (m_computeCovariance) {
     m_covariance.resize(3, 3);
@@ -519,16 +534,22 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   case vsp::laser_robust_fit::Outcome::OK:
     break;
   case vsp::laser_robust_fit::Outcome::SHORT_ARC: {
+    // The arc is the trace's, whatever the calibration (the free conic's inliers), and any calibration fits a
+    // short arc: no mistake is looked for.
     std::ostringstream msg;
     msg << " (" << vpMath::deg(result.coverage) << " deg, " << vpMath::deg(m_minCoverage) << " deg needed)";
-    return failOrMismatch(STATUS_SHORT_ARC, msg.str(), points, method);
+    return fail(STATUS_SHORT_ARC, msg.str());
   }
   case vsp::laser_robust_fit::Outcome::WEAK_TRACE: {
+    // A mistake only as for a plane that is returned (checkCalibration()): the calibration given must miss the
+    // trace it fitted first.
+    if (!checkCalibration(points, method, result))
+      return false;
     std::ostringstream msg;
     msg << " (" << result.inliers.size() << " points, read over " << vpMath::deg(result.coverage)
         << " deg: the altitude " << result.altitudeDilution << " times as uncertain as from the whole ring, "
         << m_maxAltitudeDilution << " allowed; setMaxAltitudeDilution())";
-    return failOrMismatch(STATUS_WEAK_TRACE, msg.str(), points, method);
+    return fail(STATUS_WEAK_TRACE, msg.str());
   }
   case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE:
     return fail(STATUS_NOT_AN_ELLIPSE);

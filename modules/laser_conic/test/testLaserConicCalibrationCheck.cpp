@@ -140,6 +140,44 @@ TEST(LaserConicCalibrationCheck, RightCalibrationIsNotRefused)
   EXPECT_LE(refused * 200, total);
 }
 
+// Right calibration, a part of the ring only (30 % of its points, as where most of the ring is out of view or
+// hidden): the estimate may be refused as a short arc or a weak trace, but a calibration that fits the trace it
+// sees is not blamed. Any calibration fits a short arc, and the alternatives tried after such a refusal were
+// taken whenever one fitted (measured before: 68 of 300 GP-3 estimates on 108 points at 0.5 px, 189 of 300 at
+// 1.5 px, refused as a calibration mismatch, each naming a mistake the rig did not have).
+TEST(LaserConicCalibrationCheck, ARightCalibrationOnAPartOfTheRingIsNotBlamed)
+{
+  std::mt19937 rng(404);
+  int blamed = 0, refused = 0, total = 0;
+  for (vpLaserConicPose::vpLaserConicMethod method : {vpLaserConicPose::GP3, vpLaserConicPose::PP3}) {
+    for (double noise : {0.5, 1.5}) {
+      for (int k = 0; k < 60; ++k) {
+        std::vector<vpImagePoint> points;
+        Scene s;
+        do
+          s = laser_test::randomScene(rng, laser_test::SceneRanges(), 360, points);
+        while (method == vpLaserConicPose::PP3 && laser_test::cameraInsideCone(laser_test::toCone(s.rig)));
+        const size_t first = static_cast<size_t>(k % 10) * 36;
+        std::vector<vpImagePoint> part;
+        for (size_t j = 0; j < 108; ++j)
+          part.push_back(points[(first + j) % points.size()]);
+        part = laser_test::addNoise(part, noise, rng);
+        vpLaserConicPose estimator = configured(s.rig, Mistake::NONE, part);
+        estimator.setRansacSeed(static_cast<unsigned int>(k));
+        vpPlane plane;
+        ++total;
+        if (!estimator.computePlane(part, method, plane)) {
+          ++refused;
+          blamed += estimator.getStatus() == vpLaserConicPose::STATUS_CALIBRATION_MISMATCH ? 1 : 0;
+        }
+      }
+    }
+  }
+  std::printf("right calibration, 30 %% of the ring: %d of %d refused, %d of them as a calibration mismatch\n", refused,
+              total, blamed);
+  EXPECT_LE(blamed * 100, total);
+}
+
 namespace
 {
 //! Reads the shipped laser.txt ('opening_angle_deg A', 'cMl', 4 rows).

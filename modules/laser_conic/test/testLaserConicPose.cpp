@@ -447,7 +447,10 @@ TEST(LaserConicPose, TooFewOrNonFinitePointsThrow)
   const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 20, points);
   vpLaserConicPose estimator = makeEstimator(s.rig);
   for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
-    const unsigned int needed = (method == vpLaserConicPose::PP3 || method == vpLaserConicPose::GP3) ? 3u : 5u;
+    // 5 for every method: PP3's and GP3's 3-point samples end in a free conic's fit too (3 or 4 points were
+    // taken, and always failed as STATUS_NOT_AN_ELLIPSE).
+    const unsigned int needed = 5u;
+    EXPECT_EQ(vpLaserConicPose::getMinimumPointCount(method), needed);
     expectThrowCode(estimator, std::vector<vpImagePoint>(), method, vpLaserConicException::notEnoughPointError);
     expectThrowCode(estimator, std::vector<vpImagePoint>(points.begin(), points.begin() + needed - 1), method,
                     vpLaserConicException::notEnoughPointError);
@@ -880,10 +883,22 @@ TEST(LaserConicPose, StatusAndRansacAccessors)
   EXPECT_THROW(estimator.getCovarianceMatrix(), vpLaserConicException); // not requested
   EXPECT_THROW(estimator.getPlaneCovarianceMatrix(), vpLaserConicException);
   // A consensus of 30 is not enough when 31 are required.
+  const double altitude = estimator.getAltitude();
+  EXPECT_TRUE(std::isfinite(altitude));
+  EXPECT_EQ(estimator.getImageConic().getRows(), 3u);
+  EXPECT_NEAR(estimator.getCalibrationHealth(), 1.0, 0.1);
   estimator.setRansacNbInliersToReachConsensus(31);
   EXPECT_FALSE(estimator.computePlane(points, vpLaserConicPose::GP3, plane));
   EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_NO_CONSENSUS);
   EXPECT_EQ(estimator.getRansacNbInliers(), 0u);
+  // A failure leaves no estimate: the getters gave the last success's altitude and conic and a health of 1.
+  EXPECT_TRUE(std::isnan(estimator.getAltitude()));
+  EXPECT_TRUE(std::isnan(estimator.getRoll()));
+  EXPECT_TRUE(std::isnan(estimator.getPitch()));
+  EXPECT_EQ(estimator.getImageConic().size(), 0u);
+  EXPECT_TRUE(std::isnan(estimator.getCalibrationHealth()));
+  EXPECT_TRUE(std::isnan(fresh.getAltitude()));
+  EXPECT_TRUE(std::isnan(fresh.getCalibrationHealth()));
 }
 
 // draw(): the overlay lands in the pixels: inliers green, outliers red, the conic yellow through the
@@ -953,6 +968,27 @@ TEST(LaserConicPose, DrawOverlay)
 }
 
 // setCovarianceInflation() scales both covariances by the same factor, nothing else.
+// Five points for PP5: the free conic goes through them, no residual is left to measure the noise by, and the
+// covariance, scaled by a residual variance of about 0, said the plane was exact (altitude standard deviation
+// 1e-15 m, against 9 mm over noisy draws). It is NaN now, as the class says of one that cannot be computed.
+TEST(LaserConicPose, FivePointsGiveNoFreeCovariance)
+{
+  std::mt19937 rng(61);
+  std::vector<vpImagePoint> all;
+  const Scene s = drawScene(rng, vpLaserConicPose::PP5, 360, all);
+  std::vector<vpImagePoint> five;
+  for (size_t k = 0; k < 5; ++k)
+    five.push_back(all[k * all.size() / 5]);
+  five = laser_test::addNoise(five, 0.5, rng);
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  estimator.setCovarianceComputation(true);
+  vpPlane plane;
+  ASSERT_TRUE(estimator.computePlane(five, vpLaserConicPose::PP5, plane)) << estimator.getFailureReason();
+  const vpMatrix C = estimator.getCovarianceMatrix();
+  for (unsigned int i = 0; i < 3; ++i)
+    EXPECT_TRUE(std::isnan(C[i][i])) << C[i][i];
+}
+
 TEST(LaserConicPose, CovarianceInflationScalesBothCovariances)
 {
   std::mt19937 rng(77);

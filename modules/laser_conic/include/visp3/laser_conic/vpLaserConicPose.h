@@ -272,11 +272,11 @@ public:
   */
   bool computePlane(const std::vector<vpImagePoint> &points, vpLaserConicMethod method, vpPlane &cPlane);
 
-  //! Altitude of the camera centre over the last plane, in metres.
+  //! Altitude of the camera centre over the last plane, in metres; NaN when the last computePlane() failed.
   double getAltitude() const { return m_altitude; }
-  //! Roll of the last estimate, in radians (see the class convention).
+  //! Roll of the last estimate, in radians (see the class convention); NaN when it failed.
   double getRoll() const { return m_roll; }
-  //! Pitch of the last estimate, in radians (see the class convention).
+  //! Pitch of the last estimate, in radians (see the class convention); NaN when it failed.
   double getPitch() const { return m_pitch; }
   //! Indices of the inliers (the points of the trace) of the last estimate (all points for PLANE_PAIR).
   std::vector<unsigned int> getRansacInlierIndex() const { return m_inliers; }
@@ -309,7 +309,9 @@ public:
     trace a plane predicts, 3 DOF) over that of a free conic fit (5 DOF) on the same inliers. Both are
     the noise level, and the ratio near 1, when the rig is well calibrated; a calibration error leaves
     the free fit at the noise level but not the constrained one (e.g. 0.5 px noise: ratio ~1.0 exact,
-    several with intrinsics off by 5 px). NaN when no constrained fit could be made.
+    several with intrinsics off by 5 px). NaN when no constrained fit could be made, and when the last
+    computePlane() failed before its final fit (refused as a calibration mismatch after that fit, it is the
+    refused estimate's).
   */
   double getCalibrationHealth() const;
   //! RMS residual (pixels) of the constrained fit on the inliers of the last estimate.
@@ -324,7 +326,8 @@ public:
   bool isConstrainedFit() const { return m_constrainedChosen; }
   /*! Image conic (pixel coordinates, x^T C x = 0 with x = (u, v, 1)) of the last estimate, for display:
       the fitted ellipse for PLANE_PAIR, PP5 and PP3, the image of the trace on the estimated plane for GP3.
-      With a distorted camera it is the conic in the undistorted pixel image (x = K x_n). */
+      With a distorted camera it is the conic in the undistorted pixel image (x = K x_n). Empty (0 x 0) when
+      the last computePlane() failed. */
   vpMatrix getImageConic() const { return m_conic; }
   //! Outcome of the last computePlane().
   vpLaserConicStatus getStatus() const { return m_status; }
@@ -335,6 +338,12 @@ public:
     a value outside the enumeration), as the error messages of computePlane() name it.
   */
   static std::string getMethodName(vpLaserConicMethod method);
+  /*!
+    The fewest points computePlane() takes for a method: 5 for every method. PP3 and GP3 draw 3 points per
+    RANSAC sample, but every method's final fit starts from the free conic of the trace (5 parameters): with 3
+    or 4 points none could succeed.
+  */
+  static unsigned int getMinimumPointCount(vpLaserConicMethod method);
   /*!
     After STATUS_CALIBRATION_MISMATCH, the standard mistake that explains the trace (MISTAKE_UNKNOWN
     when none does, or after any other status). getCalibrationHealth(), getConstrainedRms() and
@@ -415,6 +424,7 @@ private:
   bool m_computeCovariance;
   vpMatrix m_covariance, m_planeCovariance;
   double m_rmsConstrained, m_rmsFree, m_sigma, m_coverage;
+  bool m_fitted = false; //!< the last computePlane() reached its final fit (the figures above are its)
   bool m_constrainedChosen;
   std::vector<vpImagePoint> m_points;
   bool m_calibrationCheck;
