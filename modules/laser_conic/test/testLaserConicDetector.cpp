@@ -716,6 +716,33 @@ TEST(LaserConicDetector, ARingMostlyOutOfTheImageIsTrackedWhateverTheMargin)
   }
 }
 
+TEST(LaserConicDetector, ASearchRegionOfPointsReachesItsMarginPastTheirEnd)
+{
+  // The region's points mark the band one per cell of a quarter of the margin; the band reached only about 0.64
+  // of the margin around the others: a stripe 37 px past the last point of a region of margin 40 was not
+  // searched (0 points), one 34 px past it was.
+  std::vector<vpImagePoint> region;
+  for (int v = 100; v <= 309; ++v)
+    region.push_back(vpImagePoint(v, 200.0));
+  for (double past : {34.0, 37.0, 39.0}) {
+    vpImage<vpRGBa> I(480, 640, vpRGBa(60, 60, 60, 255));
+    const unsigned int row = static_cast<unsigned int>(309 + past);
+    for (unsigned int j = 0; j < I.getWidth(); ++j) // a horizontal stripe, 3 px, through the band's end
+      for (unsigned int i = row - 1; i <= row + 1; ++i)
+        I[i][j] = vpRGBa(i == row ? 180 : 120, 60, 60, 255);
+    vpLaserConicDetector detector;
+    detector.setSearchRegion(region, 40.0);
+    detector.setMinSegmentLength(20.0);
+    const std::vector<vpImagePoint> points = detector.detect(I);
+    size_t nearTheRegion = 0;
+    for (const vpImagePoint &p : points)
+      nearTheRegion += std::hypot(p.get_u() - 200.0, p.get_v() - 309.0) <= 40.0 ? 1 : 0;
+    // The stripe's pixels within the margin of the last point: 2 sqrt(40^2 - past^2), 42 down to 18.
+    const double within = 2.0 * std::sqrt(40.0 * 40.0 - past * past);
+    EXPECT_GE(static_cast<double>(nearTheRegion), within - 3.0) << "stripe " << past << " px past the region's end";
+  }
+}
+
 TEST(LaserConicDetector, SearchRegionIgnoresThePreviousFrames)
 {
   // The score buffer is kept from frame to frame and a search region scores only around the band: a frame's

@@ -342,8 +342,9 @@ public:
   static vpInstructionSet getBestInstructionSet();
 
   /*!
-    Ridge method: searches only within \e margin pixels of the given points (e.g. the trace or the inliers
-    of the previous frame; consecutive points along the curve must be closer than the margin).
+    Ridge method: searches every pixel within \e margin pixels of the given points (e.g. the trace or the
+    inliers of the previous frame; consecutive points along the curve must be closer than the margin), in
+    blocks of 16 columns by 8 rows: the band may reach up to 1.15 margin and a block beyond.
     \exception vpLaserConicException::badValueError when the margin is not positive or above getMaxMargin(),
     a point is not finite or the list is empty.
   */
