@@ -232,6 +232,29 @@ Eigen::Matrix3d constrainedCovariance(const PointList &trace, const LaserCone &c
 }
 
 /*!
+  The residual sum of squares the constrained fit's covariance is scaled by when that fit is Huber's (IRLS at
+  1.345 times the residuals' MAD scale, constrainedFit()): sum psi(r)^2 / (mean psi'(r))^2, the M-estimator's
+  sandwich (psi(r) = r clipped at the threshold, psi' = 1 inside it, 0 beyond). With Gaussian noise it is 1.053
+  times the sum of squares: the Huber fit is 95 % as efficient as least squares, and the plain sum understated
+  its variance by that much.
+*/
+double huberRss(const std::vector<double> &residuals)
+{
+  const double c = 1.345 * vpRobustMadScale(residuals);
+  if (!(c > 0.0))
+    return rms(residuals) * rms(residuals) * static_cast<double>(residuals.size());
+  double psi2 = 0.0;
+  size_t inside = 0;
+  for (double r : residuals) {
+    const double clipped = std::max(-c, std::min(c, r));
+    psi2 += clipped * clipped;
+    inside += std::fabs(r) <= c ? 1 : 0;
+  }
+  const double share = static_cast<double>(inside) / static_cast<double>(residuals.size());
+  return share > 0.0 ? psi2 / (share * share) : std::numeric_limits<double>::quiet_NaN();
+}
+
+/*!
   Covariance of (altitude, roll, pitch) of the free fit: the conic moves in the 5 directions of the
   symmetric matrices orthogonal to it; their covariance sigma^2 (J^T J)^-1 (sigma^2 = RSS / (n - 5))
   is propagated through the plane pair by its Jacobian (central differences).
@@ -457,7 +480,9 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   if (s.covariance) {
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     if (useConstrained) {
-      cov = constrainedCovariance(trace, cone, s.focal, res.plane, res.rmsConstrained * res.rmsConstrained * n);
+      const bool huber = s.adaptive && s.finalFit != FinalFit::FREE; // as constrainedFit() was called
+      cov = constrainedCovariance(trace, cone, s.focal, res.plane,
+                                  huber ? huberRss(rc) : res.rmsConstrained * res.rmsConstrained * n);
     } else if (!freeCovariance(trace, cone, s.focal, freeConic, res.rmsFree * res.rmsFree * n, cov)) {
       cov.setConstant(std::numeric_limits<double>::quiet_NaN());
     }
