@@ -413,6 +413,18 @@ double altitudeDilution(const PointList &trace, const LaserCone &cone, double fo
 }
 } // namespace
 
+namespace
+{
+//! The covariance of (altitude, roll, pitch) symmetrised into \e res, and that of the plane through its Jacobian.
+void storeCovariances(const Eigen::Matrix3d &cov, Result &res)
+{
+  res.covariance = 0.5 * (cov + cov.transpose());
+  const Eigen::Matrix<double, 4, 3> P = planeJacobian(attitudeOf(res.plane));
+  const Eigen::Matrix4d pc = P * res.covariance * P.transpose();
+  res.planeCovariance = 0.5 * (pc + pc.transpose());
+}
+} // namespace
+
 Outcome fit(const PointList &points, const std::vector<int> &inliers, const LaserCone &cone,
             const Eigen::Vector4d &startPlane, const Settings &s, Result &res)
 {
@@ -486,11 +498,7 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
     } else if (!freeCovariance(trace, cone, s.focal, freeConic, res.rmsFree * res.rmsFree * n, cov)) {
       cov.setConstant(std::numeric_limits<double>::quiet_NaN());
     }
-    res.covariance = 0.5 * (cov + cov.transpose());
-    cov = res.covariance;
-    const Eigen::Matrix<double, 4, 3> P = planeJacobian(attitudeOf(res.plane));
-    const Eigen::Matrix4d pc = P * cov * P.transpose();
-    res.planeCovariance = 0.5 * (pc + pc.transpose());
+    storeCovariances(cov, res);
   }
   return Outcome::OK;
 }

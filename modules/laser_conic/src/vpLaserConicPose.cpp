@@ -108,7 +108,7 @@ vpLaserConicPose::vpLaserConicPose()
   : m_cam(), m_hasCam(false), m_hasLaser(false), m_openingAngle(0.0), m_cMl(), m_threshold(2.0), m_maxTrials(1000),
     m_probability(0.99), m_seed(0), m_localOptimisation(true), m_altitude(std::numeric_limits<double>::quiet_NaN()),
     m_roll(std::numeric_limits<double>::quiet_NaN()), m_pitch(std::numeric_limits<double>::quiet_NaN()), m_inliers(),
-    m_trials(0), m_conic(), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
+    m_trials(0), m_conic(3, 3, 0.0), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
     m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_maxAltitudeDilution(5.0), m_finalFit(FINAL_FIT_DEFAULT),
     m_computeCovariance(false), m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0),
     m_sigma(0.0), m_coverage(0.0), m_constrainedChosen(false), m_points(), m_calibrationCheck(true),
@@ -353,7 +353,9 @@ void vpLaserConicPose::resetEstimate(const std::vector<vpImagePoint> &points)
   m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
   // No plane yet: a failure leaves none (the getters gave the last success's, as if it were this one's).
   m_altitude = m_roll = m_pitch = std::numeric_limits<double>::quiet_NaN();
-  m_conic = vpMatrix();
+  // The zero matrix, no conic (not an empty one: ViSP 3.5 copies an empty vpMatrix by a memset of its null
+  // data, which UBSan reports, and getImageConic() returns a copy).
+  m_conic = vpMatrix(3, 3, 0.0);
   m_fitted = false;
   m_constrainedChosen = false;
   m_points = points;

@@ -896,7 +896,7 @@ TEST(LaserConicPose, StatusAndRansacAccessors)
   EXPECT_TRUE(std::isnan(estimator.getAltitude()));
   EXPECT_TRUE(std::isnan(estimator.getRoll()));
   EXPECT_TRUE(std::isnan(estimator.getPitch()));
-  EXPECT_EQ(estimator.getImageConic().size(), 0u);
+  EXPECT_EQ(estimator.getImageConic().frobeniusNorm(), 0.0);
   EXPECT_TRUE(std::isnan(estimator.getCalibrationHealth()));
   EXPECT_TRUE(std::isnan(fresh.getAltitude()));
   EXPECT_TRUE(std::isnan(fresh.getCalibrationHealth()));

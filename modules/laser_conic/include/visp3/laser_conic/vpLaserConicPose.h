@@ -326,8 +326,8 @@ public:
   bool isConstrainedFit() const { return m_constrainedChosen; }
   /*! Image conic (pixel coordinates, x^T C x = 0 with x = (u, v, 1)) of the last estimate, for display:
       the fitted ellipse for PLANE_PAIR, PP5 and PP3, the image of the trace on the estimated plane for GP3.
-      With a distorted camera it is the conic in the undistorted pixel image (x = K x_n). Empty (0 x 0) when
-      the last computePlane() failed. */
+      With a distorted camera it is the conic in the undistorted pixel image (x = K x_n). The zero matrix
+      (no conic) when the last computePlane() failed or none was made. */
   vpMatrix getImageConic() const { return m_conic; }
   //! Outcome of the last computePlane().
   vpLaserConicStatus getStatus() const { return m_status; }
