@@ -82,9 +82,12 @@ inline double signedSampson(const Eigen::Matrix3d &c, const Eigen::Vector2d &p)
   const double gn = g.head<2>().norm();
   return gn > 0.0 ? x.dot(g) / (2.0 * gn) : std::numeric_limits<double>::quiet_NaN();
 }
+//! Huber's tuning constant (vpRobustLoss::HUBER): quadratic up to this many noise scales, 95 % efficient.
+constexpr double kHuberTuning = 1.345;
+
 /*!
   Iteratively reweighted refinement of a plane (d > 0) on trace points: \e rounds rounds, each of
-  Huber weights (vpRobustWeight(), k = 1.345 sigma) at the MAD scale sigma of the residuals of the
+  Huber weights (vpRobustWeight(), k = kHuberTuning sigma) at the MAD scale sigma of the residuals of the
   current plane, then refinePlaneWeighted() with those weights (\e iterations iterations at most;
   the rounds before the last stop after their first accepted step).
   \e residuals receives the signed Sampson distances (normalized units) of the points to the final

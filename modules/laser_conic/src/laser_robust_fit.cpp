@@ -233,23 +233,24 @@ Eigen::Matrix3d constrainedCovariance(const PointList &trace, const LaserCone &c
 
 /*!
   The residual sum of squares the constrained fit's covariance is scaled by when that fit is Huber's (IRLS at
-  1.345 times the residuals' MAD scale, constrainedFit()): sum psi(r)^2 / (mean psi'(r))^2, the M-estimator's
+  kHuberTuning times the residuals' MAD scale, constrainedFit()): sum psi(r)^2 / (mean psi'(r))^2, the M-estimator's
   sandwich (psi(r) = r clipped at the threshold, psi' = 1 inside it, 0 beyond). With Gaussian noise it is 1.053
   times the sum of squares: the Huber fit is 95 % as efficient as least squares, and the plain sum understated
   its variance by that much.
 */
 double huberRss(const std::vector<double> &residuals)
 {
-  const double c = 1.345 * vpRobustMadScale(residuals);
-  if (!(c > 0.0))
-    return rms(residuals) * rms(residuals) * static_cast<double>(residuals.size());
-  double psi2 = 0.0;
+  const double c = vpLaserSolvers::detail::kHuberTuning * vpRobustMadScale(residuals);
+  double psi2 = 0.0, rss = 0.0;
   size_t inside = 0;
   for (double r : residuals) {
     const double clipped = std::max(-c, std::min(c, r));
     psi2 += clipped * clipped;
+    rss += r * r;
     inside += std::fabs(r) <= c ? 1 : 0;
   }
+  if (!(c > 0.0)) // no scale to clip at: the plain sum of squares
+    return rss;
   const double share = static_cast<double>(inside) / static_cast<double>(residuals.size());
   return share > 0.0 ? psi2 / (share * share) : std::numeric_limits<double>::quiet_NaN();
 }
@@ -411,10 +412,7 @@ double altitudeDilution(const PointList &trace, const LaserCone &cone, double fo
     return 0.0; // no reference
   return std::sqrt(actual / ideal * static_cast<double>(sample.size()) / static_cast<double>(whole.size()));
 }
-} // namespace
 
-namespace
-{
 //! The covariance of (altitude, roll, pitch) symmetrised into \e res, and that of the plane through its Jacobian.
 void storeCovariances(const Eigen::Matrix3d &cov, Result &res)
 {

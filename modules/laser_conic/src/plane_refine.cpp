@@ -265,7 +265,7 @@ bool refinePlaneHuber(const Eigen::Vector2d *points, int n, const LaserCone &con
     const double sigma = vpRobustMadScale(std::move(scratch));
     // vpRobustWeight(vpRobustLoss::HUBER, r, sigma) for every residual (NaN, no gradient: zero weight).
     if (sigma > 0.0)
-      detail::huberWeights(r, n, 1.345 * sigma, w.data());
+      detail::huberWeights(r, n, detail::kHuberTuning * sigma, w.data());
     else
       for (int i = 0; i < n; ++i)
         w[static_cast<size_t>(i)] = vpRobustWeight(vpRobustLoss::HUBER, r[i], sigma);

@@ -24,12 +24,6 @@ namespace
 {
 using vsp::laser_estimators::PointList;
 
-//! Minimal number of points each method needs (vpLaserConicPose::getMinimumPointCount()).
-int requiredPoints(vpLaserConicPose::vpLaserConicMethod method)
-{
-  return static_cast<int>(vpLaserConicPose::getMinimumPointCount(method));
-}
-
 //! True when all points lie on one line (or one point), up to rounding.
 bool allCollinear(const PointList &points)
 {
@@ -331,8 +325,8 @@ void vpLaserConicPose::checkInput(const std::vector<vpImagePoint> &points, vpLas
                                 "vpLaserConicPose: call setLaser() before computePlane()");
   if (method != PLANE_PAIR && method != PP5 && method != PP3 && method != GP3)
     throw vpLaserConicException(vpLaserConicException::badValueError, "vpLaserConicPose: unknown method");
-  const int needed = requiredPoints(method);
-  if (points.size() < static_cast<size_t>(needed)) {
+  const unsigned int needed = getMinimumPointCount(method);
+  if (points.size() < needed) {
     std::ostringstream msg;
     msg << "vpLaserConicPose: method " << getMethodName(method) << " needs at least " << needed << " points, got "
         << points.size();
@@ -353,9 +347,9 @@ void vpLaserConicPose::resetEstimate(const std::vector<vpImagePoint> &points)
   m_rmsConstrained = m_rmsFree = m_sigma = m_coverage = 0.0;
   // No plane yet: a failure leaves none (the getters gave the last success's, as if it were this one's).
   m_altitude = m_roll = m_pitch = std::numeric_limits<double>::quiet_NaN();
-  // The zero matrix, no conic (not an empty one: ViSP 3.5 copies an empty vpMatrix by a memset of its null
-  // data, which UBSan reports, and getImageConic() returns a copy).
-  m_conic = vpMatrix(3, 3, 0.0);
+  // The zero matrix, no conic (in place; not an empty one: ViSP 3.5 copies an empty vpMatrix by a memset of its
+  // null data, which UBSan reports, and getImageConic() returns a copy).
+  m_conic = 0.0;
   m_fitted = false;
   m_constrainedChosen = false;
   m_points = points;
@@ -395,7 +389,7 @@ vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const s
                                                                          vpLaserConicMethod method, double *misfit,
                                                                          bool strict, size_t minTrace) const
 {
-  const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
+  const size_t needed = std::max<size_t>(getMinimumPointCount(method), m_nbInliersToReachConsensus);
   // The estimate again under each alternative calibration: its misfit when it explains the trace, else -1.
   const auto fits = [&](const vsp::laser_calibration_check::Alternative &alternative) {
     const PointList normalized = normalizedPoints(alternative.swapUV ? swappedUV(points) : points, alternative.cam);
@@ -501,8 +495,7 @@ void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result
   Kinv << 1.0 / m_cam.get_px(), 0.0, -m_cam.get_u0() / m_cam.get_px(), 0.0, 1.0 / m_cam.get_py(),
       -m_cam.get_v0() / m_cam.get_py(), 0.0, 0.0, 1.0;
   const Eigen::Matrix3d pixelConic = Kinv.transpose() * result.conic * Kinv;
-  m_conic.resize(3, 3);
-  for (unsigned int i = 0; i < 3; ++i)
+  for (unsigned int i = 0; i < 3; ++i) // m_conic is 3 x 3 from construction on
     for (unsigned int j = 0; j < 3; ++j)
       m_conic[i][j] = pixelConic(i, j);
 }
@@ -521,7 +514,7 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   if (consensus.cameraInsideCone)
     return failOrMismatch(STATUS_CAMERA_INSIDE_CONE, "", points, method);
   m_trials = consensus.report.trials;
-  const size_t needed = std::max<size_t>(static_cast<size_t>(requiredPoints(method)), m_nbInliersToReachConsensus);
+  const size_t needed = std::max<size_t>(getMinimumPointCount(method), m_nbInliersToReachConsensus);
   if (!consensus.found || consensus.inliers.size() < needed) {
     std::ostringstream msg;
     msg << " (" << getMethodName(method) << ", " << consensus.inliers.size() << " inliers at best, " << needed

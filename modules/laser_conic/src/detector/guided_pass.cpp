@@ -288,14 +288,21 @@ double walkCoverage(const std::vector<GuidedSample> &samples, const RegionSpans 
   return searched ? static_cast<double>(covered) / searched : 0.0;
 }
 
+// Whether \e p lies on a pixel of the W x H image.
+bool inTheImage(const vpImagePoint &p, int W, int H)
+{
+  const double u = p.get_u(), v = p.get_v();
+  return u >= -0.5 && v >= -0.5 && u <= W - 0.5 && v <= H - 0.5;
+}
+
 // Samples (those in \e limit) whose predicted crossing lies in the W x H image: the predicted curve's length
 // there, in samples (sampleConic() also keeps those up to the margin beyond the image's border).
 int samplesInTheImage(const std::vector<GuidedSample> &samples, const RegionSpans *limit, int W, int H)
 {
   int inside = 0;
   for (const GuidedSample &s : samples) {
-    const double u = s.alongRow ? s.pos : s.line, v = s.alongRow ? s.line : s.pos;
-    inside += u >= -0.5 && v >= -0.5 && u <= W - 0.5 && v <= H - 0.5 && inLimit(limit, H, u, v) ? 1 : 0;
+    const vpImagePoint p = samplePoint(s, s.pos);
+    inside += inTheImage(p, W, H) && inLimit(limit, H, p.get_u(), p.get_v()) ? 1 : 0;
   }
   return inside;
 }
@@ -392,12 +399,8 @@ void dropRepeatedCentres(FoundCells &found, std::vector<Crossing> &guided)
 // measured it.
 void dropOutsideTheImage(int W, int H, std::vector<Crossing> &guided)
 {
-  const double right = W - 0.5, bottom = H - 0.5;
   guided.erase(std::remove_if(guided.begin(), guided.end(),
-                              [right, bottom](const Crossing &c) {
-                                const double u = c.point.get_u(), v = c.point.get_v();
-                                return !(u >= -0.5 && v >= -0.5 && u <= right && v <= bottom);
-                              }),
+                              [W, H](const Crossing &c) { return !inTheImage(c.point, W, H); }),
                guided.end());
 }
 
