@@ -510,6 +510,60 @@ TEST(LaserConicDetector, SaturatedStripeOnWhiteGlossyTiles)
   expectQuality(q, 0.9, 0.5, 0.01);
 }
 
+namespace
+{
+//! A vertical red stripe across a dark 320 x 200 image, centred on column \e centre: a Gaussian of \e sigma px
+//! and peak \e peak grey levels over a background of 20, clipped at 255 as a sensor clips an overexposed laser
+//! (a plateau of 255 in the middle, its flanks unclipped).
+vpImage<vpRGBa> overexposedStripe(double centre, double sigma, double peak)
+{
+  vpImage<vpRGBa> I(200, 320, vpRGBa(20, 20, 20, 255));
+  for (unsigned int j = 0; j < I.getWidth(); ++j) {
+    const double x = j - centre, red = 20.0 + peak * std::exp(-x * x / (2.0 * sigma * sigma));
+    for (unsigned int i = 0; i < I.getHeight(); ++i)
+      I[i][j].R = static_cast<unsigned char>(std::min(255.0, std::round(red)));
+  }
+  return I;
+}
+
+//! The u - centre of the first pass's points on overexposedStripe() with a maximum stripe width \e maxWidth
+//! (one per row when the stripe is measured, none when it is refused as too wide).
+std::vector<double> overexposedErrors(double centre, double sigma, double peak, unsigned int maxWidth)
+{
+  vpLaserConicDetector detector;
+  detector.setGuidedSearch(false); // the first pass's centres
+  detector.setMaxStripeWidth(maxWidth);
+  std::vector<double> errors;
+  for (const vpImagePoint &p : detector.detect(overexposedStripe(centre, sigma, peak)))
+    errors.push_back(p.get_u() - centre);
+  return errors;
+}
+} // namespace
+
+TEST(LaserConicDetector, AnOverexposedCoreIsMeasuredFromTheMiddleOfItsPlateau)
+{
+  // The candidate of a saturated core is the first pixel of its plateau of 255; its background, half-maximum
+  // run and centroid were measured around that pixel. A plateau of 9 px with the default maximum width (12):
+  // the background sampled 12 px on came from the far flank, and the centroid window missed part of it
+  // (errors 0.096 px at one phase and 0.089 at the mirrored one; 0.083 both with a width limit of 20). A
+  // plateau of 12 px, whose half-maximum run is wider than 12: measured at 7 of 10 phases, up to 0.4 px off.
+  // Measured from the plateau's middle: the same centres whatever room the width limit leaves,
+  // the mirrored stripe's error mirrored, and a stripe wider than the limit refused at every phase.
+  for (int k = 0; k < 10; ++k) {
+    const double centre = 150.0 + 0.1 * k, mirrored = 151.0 - 0.1 * k;
+    const std::vector<double> tight = overexposedErrors(centre, 2.5, 1000.0, 12),
+                              roomy = overexposedErrors(centre, 2.5, 1000.0, 20),
+                              mirror = overexposedErrors(mirrored, 2.5, 1000.0, 12);
+    ASSERT_EQ(tight.size(), 200u) << centre; // every row
+    ASSERT_EQ(roomy.size(), 200u) << centre;
+    ASSERT_EQ(mirror.size(), 200u) << mirrored;
+    EXPECT_NEAR(tight.front(), roomy.front(), 1e-9) << centre;
+    EXPECT_NEAR(tight.front(), -mirror.front(), 1e-9) << centre;
+    EXPECT_LE(std::fabs(tight.front()), 0.09) << centre; // the sampling of a steep-flanked plateau
+    EXPECT_TRUE(overexposedErrors(centre, 2.5, 4000.0, 12).empty()) << centre; // 12 px of 255: too wide
+  }
+}
+
 TEST(LaserConicDetector, StripeOnBrightGreyAndColourfulFloors)
 {
   vpLaserConicDetector detector;

@@ -64,12 +64,26 @@ bool measuredAcross(const ScanLine &s, int i, int j, int width, int bg, int cont
   return across.maxScore - bg > RidgeTuning::grazingPeakRatio * contrast ||
          RidgeTuning::grazingContrastRatio * contrast < across.maxScore - acrossBg;
 }
+
+// The candidate test takes the first pixel of a saturated core's plateau of 255 for its peak: the middle of
+// the plateau (at most d pixels of it) is where the stripe is, around which its background is sampled and its
+// centroid's window is laid (from the first pixel, the window missed the far flank of a plateau 9-11 px wide).
+int plateauMiddle(const ScanLine &s, int p, int d)
+{
+  if (s.at(p) != 255)
+    return p;
+  int last = p;
+  while (last + 1 < s.length() && s.at(last + 1) == 255 && last - p < d)
+    ++last;
+  return (p + last) / 2;
+}
 } // namespace
 
-Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, bool acrossScored,
+Verdict analyse(const ScanLine &s, int candidate, const RidgeSettings &settings, int threshold, bool acrossScored,
                 Crossing &out)
 {
   const int n = s.length(), d = settings.maxWidth;
+  const int p = plateauMiddle(s, candidate, d);
   const int peak = s.at(p);
   const int bg = background(s, p, d);
   const int contrast = peak - bg;

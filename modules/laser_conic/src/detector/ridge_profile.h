@@ -112,13 +112,22 @@ template <class Profile> double stripeCentroid(const Profile &s, int p, int a, i
 }
 
 /*!
-  Checks the profile around the candidate peak \e p of the scan line \e s against \e threshold (the
-  contrast of a stripe above the background at the stripe width), and measures its sub-pixel centre and
-  half-maximum run into \e out (the run also when REJECTED). \e acrossScored: the score across the line
-  (d + 1 lines on each side) is there, and a crossing the other direction measures better is IGNORED; when
-  false (a sample of rows alone) every stripe crossing the line is measured.
+  How far along and across its scan line analyse() reads the score around a candidate, for a maximum stripe
+  width \e d: d + 1 pixels around the peak, which lies up to d / 2 pixels past the candidate (the middle of a
+  saturated plateau, whose first pixel is the candidate). The streamed rows and a search region's scored
+  blocks reach this far beyond the candidates.
 */
-Verdict analyse(const ScanLine &s, int p, const RidgeSettings &settings, int threshold, bool acrossScored,
+inline int profileReach(int d) { return d + 1 + d / 2; }
+
+/*!
+  Checks the profile around the peak \e candidate of the scan line \e s against \e threshold (the contrast of
+  a stripe above the background at the stripe width), and measures its sub-pixel centre and half-maximum run
+  into \e out (the run also when REJECTED); a saturated core is measured from the middle of its plateau.
+  \e acrossScored: the score across the line (profileReach() lines on each side) is there, and a crossing the
+  other direction measures better is IGNORED; when false (a sample of rows alone) every stripe crossing the
+  line is measured.
+*/
+Verdict analyse(const ScanLine &s, int candidate, const RidgeSettings &settings, int threshold, bool acrossScored,
                 Crossing &out);
 
 /*!

@@ -63,7 +63,7 @@ void RidgeScan::streamRows(const RegionSpans *scoreRegion, const RegionSpans *se
       keepCoarseColumns(i, step);
     if (i - m_d >= 0)
       searchColumnsAt(i - m_d);
-    measureUpTo(i - m_d - 1);
+    measureUpTo(i - profileReach(m_d));
   }
   for (int r = std::max(0, m_H - m_d); r < m_H; ++r)
     searchColumnsAt(r);

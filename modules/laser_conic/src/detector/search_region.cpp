@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ridge_profile.h"
+
 namespace vsp::laser_detector
 {
 namespace
@@ -148,11 +150,11 @@ bool sampleConicOnLines(double a, double b, double c, double d, double e, double
 void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int stripeWidth, int H, int W,
                    RegionSpans &searched, RegionSpans &scored)
 {
-  // The ridge tests of a searched pixel read the score up to the stripe width + 1 pixels away along its row
-  // and its column. The searched blocks are thus dilated by that reach rounded up to whole blocks and bands:
-  // every score read is of this frame (the score buffer is kept from frame to frame), whatever part of its
-  // block a searched pixel lies in.
-  const int nbX = (W + 15) / 16, reach = stripeWidth + 1;
+  // The ridge tests of a searched pixel read the score up to profileReach() pixels away along its row and its
+  // column. The searched blocks are thus dilated by that reach rounded up to whole blocks and bands: every
+  // score read is of this frame (the score buffer is kept from frame to frame), whatever part of its block a
+  // searched pixel lies in.
+  const int nbX = (W + 15) / 16, reach = profileReach(stripeWidth);
   std::vector<unsigned char> marked;
   markBlocks(region, margin, H, W, nbX, marked);
   blocksToSpans(marked, nbX, W, searched);

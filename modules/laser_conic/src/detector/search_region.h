@@ -36,7 +36,7 @@ bool sampleConicOnLines(double a, double b, double c, double d, double e, double
   Rasterises the band within \e margin pixels of the points \e region, for an image of H x W pixels and
   stripes up to \e stripeWidth pixels wide: \e searched receives the blocks of 16 columns by bands of
   RegionSpans::bandHeight rows that meet the band, \e scored the same dilated by the reach of the ridge tests
-  (the stripe width + 1 pixels along the rows and the columns, rounded up to whole blocks and bands).
+  (profileReach() of the stripe width along the rows and the columns, rounded up to whole blocks and bands).
 */
 void rasteriseBand(const std::vector<vpImagePoint> &region, double margin, int stripeWidth, int H, int W,
                    RegionSpans &searched, RegionSpans &scored);
