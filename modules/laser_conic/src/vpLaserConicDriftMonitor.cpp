@@ -8,6 +8,7 @@
 */
 #include <visp3/laser_conic/vpLaserConicDriftMonitor.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -43,10 +44,21 @@ double normalQuantile(double p)
 //! Upper quantile of a chi-square with k degrees of freedom at tail probability alpha (Wilson-Hilferty).
 double chiSquareQuantile(double k, double alpha)
 {
-  const double z = normalQuantile(1.0 - alpha), v = 2.0 / (9.0 * k);
+  // The normal's upper quantile from its lower tail: 1 - alpha rounds to 1 below alpha = 1.1e-16, whose
+  // quantile was then NaN (a threshold no sum exceeds: the monitor silently off).
+  const double z = -normalQuantile(alpha), v = 2.0 / (9.0 * k);
   const double t = 1.0 - v + z * std::sqrt(v);
   return k * t * t * t;
 }
+
+/*!
+  The most a frame adds to the window's running sum. A frame whose free fit is nearly exact has a statistic in
+  the 1e20s, or infinite: when it left the window, the subtraction left the sum at 0 (cancellation) or NaN
+  (inf - inf), and a drift in the frames after it went unreported until the sum was next recomputed. A share
+  this large already exceeds every threshold (that of the longest window, 2e5 degrees of freedom, is under
+  2.3e5 at the smallest rate), and a sum holding one is still exact to a millionth.
+*/
+constexpr double kLargestShare = 1e9;
 } // namespace
 
 vpLaserConicDriftMonitor::vpLaserConicDriftMonitor()
@@ -86,7 +98,10 @@ void vpLaserConicDriftMonitor::reset()
 
 vpLaserConicDriftMonitor::vpDriftStatus vpLaserConicDriftMonitor::addFrame(const vpLaserConicPose &estimator)
 {
-  if (estimator.getStatus() != vpLaserConicPose::STATUS_OK) {
+  // A frame refused as a calibration mismatch has its final fit's figures: a knock large enough to make the
+  // estimator refuse every frame is the drift to report (skipped, it left the monitor at DRIFT_OK).
+  const vpLaserConicPose::vpLaserConicStatus status = estimator.getStatus();
+  if (status != vpLaserConicPose::STATUS_OK && status != vpLaserConicPose::STATUS_CALIBRATION_MISMATCH) {
     ++m_skipped;
     m_last = std::numeric_limits<double>::quiet_NaN();
     return m_status;
@@ -105,8 +120,9 @@ vpLaserConicDriftMonitor::vpDriftStatus vpLaserConicDriftMonitor::addFrame(doubl
   }
   const double ratio = constrainedRms / freeRms;
   m_last = (nbInliers - 5.0) * (ratio * ratio - 1.0);
-  m_sum += m_last - m_values[m_next];
-  m_values[m_next] = m_last;
+  const double share = std::min(m_last, kLargestShare);
+  m_sum += share - m_values[m_next];
+  m_values[m_next] = share;
   m_next = (m_next + 1) % m_window;
   if (m_count < m_window)
     ++m_count;

@@ -412,6 +412,8 @@ vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const s
 bool vpLaserConicPose::failCalibration(vpLaserConicMistake mistake, const vsp::laser_robust_fit::Result &result,
                                        double alternativeMisfit)
 {
+  // The refused estimate's trace with its figures: the drift monitor's statistic needs their number.
+  m_inliers.assign(result.inliers.begin(), result.inliers.end());
   m_rmsConstrained = result.rmsConstrained;
   m_rmsFree = result.rmsFree;
   m_sigma = result.sigma;

@@ -115,6 +115,87 @@ TEST(LaserConicDriftMonitor, DetectsAKnockedMount)
     }
 }
 
+// A knock large enough that GP3 refuses every frame as a calibration mismatch: those frames are the drift's
+// evidence, and count with the refused estimate's figures. Skipped, as they were, a 3-10 degree knock left the
+// monitor at DRIFT_OK for good (a fresh monitor at DRIFT_WARMING_UP), its statistic on such a frame 1.8e6
+// against a threshold of 73.
+TEST(LaserConicDriftMonitor, AKnockTheEstimatorRefusesIsReported)
+{
+  for (double degrees : {5.0, 10.0}) {
+    const vpHomogeneousMatrix knocked = laserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(degrees), 0, 0);
+    vpLaserConicDriftMonitor monitor, fresh;
+    frameStatistics(laserPose(), 40, 101, nullptr, &monitor); // the flight before the knock
+    ASSERT_EQ(monitor.getStatus(), vpLaserConicDriftMonitor::DRIFT_OK);
+    FlightSettings s;
+    s.frames = 30;
+    s.points = 300;
+    s.cMl = knocked;
+    vpLaserConicPose estimator;
+    estimator.setCameraParameters(camera());
+    estimator.setLaser(kOpening, laserPose());
+    estimator.setRansacSeed(201);
+    unsigned int refused = 0, reported = 0;
+    for (const Frame &f : flight(s, 201)) {
+      vpPlane plane;
+      estimator.computePlane(f.points, vpLaserConicPose::GP3, plane);
+      refused += estimator.getStatus() == vpLaserConicPose::STATUS_CALIBRATION_MISMATCH ? 1 : 0;
+      reported += monitor.addFrame(estimator) == vpLaserConicDriftMonitor::DRIFT_SUSPECTED ? 1 : 0;
+      fresh.addFrame(estimator);
+    }
+    std::cout << "knock of " << degrees << " deg: " << refused << " of 30 frames refused, " << reported
+              << " reported as drift; a fresh monitor: "
+              << vpLaserConicDriftMonitor::getStatusMessage(fresh.getStatus()) << std::endl;
+    EXPECT_GE(refused, 25u);  // the case: the estimator refuses the knocked rig's frames
+    EXPECT_EQ(reported, 30u); // every frame after the knock
+    EXPECT_EQ(monitor.getNbSkipped(), 0u);
+    EXPECT_EQ(fresh.getStatus(), vpLaserConicDriftMonitor::DRIFT_SUSPECTED); // once its window is full
+  }
+}
+
+// The threshold at false-alarm rates down to the smallest double: finite and growing as the rate falls (at
+// 1e-17, 1 - rate rounded to 1 and the threshold was NaN, which no sum exceeds: the monitor was off).
+TEST(LaserConicDriftMonitor, ATinyFalseAlarmRateKeepsAFiniteThreshold)
+{
+  double previous = 0.0;
+  for (double rate : {1e-12, 1e-16, 1e-17, 1e-300, std::numeric_limits<double>::denorm_min()}) {
+    vpLaserConicDriftMonitor monitor;
+    monitor.setWindow(3);
+    monitor.setFalseAlarmRate(rate);
+    EXPECT_TRUE(std::isfinite(monitor.getThreshold())) << rate;
+    EXPECT_GT(monitor.getThreshold(), previous) << rate;
+    previous = monitor.getThreshold();
+    for (int i = 0; i < 3; ++i)
+      monitor.addFrame(10.0, 0.5, 300); // s = 295 x 399 a frame: a gross drift
+    EXPECT_EQ(monitor.getStatus(), vpLaserConicDriftMonitor::DRIFT_SUSPECTED) << rate;
+  }
+  // chi2_6 at 1e-12: 68.10 (exp(-x/2) (1 + x/2 + x^2/8) = 1e-12). Wilson-Hilferty's 74.61 is 10 % over in a tail
+  // this far with 6 degrees of freedom: a threshold on the safe side (fewer false alarms than the rate).
+  vpLaserConicDriftMonitor monitor;
+  monitor.setWindow(3);
+  monitor.setFalseAlarmRate(1e-12);
+  EXPECT_GE(monitor.getThreshold(), 68.10);
+  EXPECT_LE(monitor.getThreshold(), 1.1 * 68.10);
+}
+
+// A frame with a nearly exact free fit (finite, positive figures: accepted) has an enormous or infinite
+// statistic. When it left the window the running sum became NaN (inf - inf) or 0 (1e20 cancelled), and the
+// drifting frames after it read DRIFT_OK.
+TEST(LaserConicDriftMonitor, AnExtremeFrameLeavingTheWindowLeavesTheSumRight)
+{
+  for (double freeRms : {1e-200, 1e-9}) {
+    vpLaserConicDriftMonitor monitor;
+    monitor.setWindow(5);
+    for (int i = 0; i < 5; ++i)
+      monitor.addFrame(0.5, 0.5, 300);
+    monitor.addFrame(1.0, freeRms, 300);
+    EXPECT_EQ(monitor.getStatus(), vpLaserConicDriftMonitor::DRIFT_SUSPECTED) << freeRms;
+    for (int i = 0; i < 5; ++i)
+      monitor.addFrame(0.6, 0.5, 300); // s = 295 x 0.44 = 129.8 a frame; the extreme frame has left
+    EXPECT_NEAR(monitor.getStatistic(), 5 * 295 * 0.44, 1e-6) << freeRms;
+    EXPECT_EQ(monitor.getStatus(), vpLaserConicDriftMonitor::DRIFT_SUSPECTED) << freeRms;
+  }
+}
+
 TEST(LaserConicDriftMonitor, BadSettingsAndSkippedFrames)
 {
   vpLaserConicDriftMonitor monitor;

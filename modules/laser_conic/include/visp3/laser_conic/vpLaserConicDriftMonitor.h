@@ -44,15 +44,21 @@ class vpLaserConicPose;
     exceeds the window's threshold alone);
   - the monitor sees what the images see: an apex moved along its own direction is a change of scale, which
     the images show only through the small altitude dependence (see vpLaserConicSelfCalibration).
-  Frames without a health figure (failed estimate, no constrained fit: NaN) are skipped. The cost of
-  addFrame() is a few additions (a ring buffer): well under a microsecond.
+  - a knock large enough that the estimator refuses every frame (STATUS_CALIBRATION_MISMATCH; 5 degrees):
+    detected at the first frame after it. Such a frame counts with the figures of the refused estimate:
+    add every frame, whether computePlane() succeeded or not.
+  Frames without a health figure (an estimate that failed before its final fit, no constrained fit: NaN)
+  are skipped. The cost of addFrame() is a few additions (a ring buffer): well under a microsecond.
 
   \code
   vpLaserConicDriftMonitor monitor;     // 20 frames, 0.1 % false alarms
   for (;;) {
-    if (estimator.computePlane(points, vpLaserConicPose::GP3, plane) &&
-        monitor.addFrame(estimator) == vpLaserConicDriftMonitor::DRIFT_SUSPECTED)
+    const bool ok = estimator.computePlane(points, vpLaserConicPose::GP3, plane);
+    if (monitor.addFrame(estimator) == vpLaserConicDriftMonitor::DRIFT_SUSPECTED) // refused frames count too
       std::cerr << monitor.getStatusMessage(monitor.getStatus()) << std::endl; // recalibrate
+    if (ok) {
+      // use plane
+    }
   }
   \endcode
 */
@@ -75,7 +81,8 @@ public:
   */
   void setWindow(unsigned int frames);
   /*!
-    False-alarm rate per window in (0, 0.5) (default 0.001); restarts the monitor.
+    False-alarm rate per window in (0, 0.5) (default 0.001); restarts the monitor. Rates down to the smallest
+    double give a finite threshold.
     \exception vpLaserConicException::badValueError outside (0, 0.5).
   */
   void setFalseAlarmRate(double rate);
@@ -83,15 +90,18 @@ public:
   void reset();
 
   /*!
-    Adds the last estimate of \e estimator (its health figure and number of inliers).
-    \return the status after this frame; a frame whose health is not finite or with fewer than 6 inliers
-    is skipped (the status is unchanged).
+    Adds the last estimate of \e estimator (its health figure and number of inliers), a success or one refused
+    as STATUS_CALIBRATION_MISMATCH (the refused estimate's figures).
+    \return the status after this frame; a frame with any other status, whose health is not finite or with
+    fewer than 6 inliers is skipped (the status is unchanged).
   */
   vpDriftStatus addFrame(const vpLaserConicPose &estimator);
   /*!
     Adds a frame from its constrained and free RMS residuals (pixels) and number of inliers, as
     vpLaserConicPose::getConstrainedRms(), getFreeRms(), getRansacNbInliers() give them. Skipped (status
-    unchanged) when they are not finite and positive or n < 6.
+    unchanged) when they are not finite and positive or n < 6. A frame adds at most 1e9 to the window's sum
+    (getStatistic()), more than any threshold: a nearly exact free fit (s of 1e20 or infinite) does not
+    upset the running sum when it leaves the window.
   */
   vpDriftStatus addFrame(double constrainedRms, double freeRms, unsigned int nbInliers);
 

@@ -278,11 +278,14 @@ public:
   double getRoll() const { return m_roll; }
   //! Pitch of the last estimate, in radians (see the class convention); NaN when it failed.
   double getPitch() const { return m_pitch; }
-  //! Indices of the inliers (the points of the trace) of the last estimate (all points for PLANE_PAIR).
+  /*!
+    Indices of the inliers (the points of the trace) of the last estimate (all points for PLANE_PAIR); after
+    STATUS_CALIBRATION_MISMATCH, those of the refused estimate; empty after any other failure.
+  */
   std::vector<unsigned int> getRansacInlierIndex() const { return m_inliers; }
-  //! The inlier points of the last estimate (pixels, as given).
+  //! The inlier points of the last estimate (pixels, as given), as getRansacInlierIndex().
   std::vector<vpImagePoint> getRansacInliers() const;
-  //! Number of inliers of the last estimate.
+  //! Number of inliers of the last estimate, as getRansacInlierIndex().
   unsigned int getRansacNbInliers() const { return static_cast<unsigned int>(m_inliers.size()); }
   //! \deprecated Use getRansacInlierIndex().
   std::vector<unsigned int> getInliers() const { return m_inliers; }
@@ -346,8 +349,9 @@ public:
   static unsigned int getMinimumPointCount(vpLaserConicMethod method);
   /*!
     After STATUS_CALIBRATION_MISMATCH, the standard mistake that explains the trace (MISTAKE_UNKNOWN
-    when none does, or after any other status). getCalibrationHealth(), getConstrainedRms() and
-    getFreeRms() then give the figures of the refused estimate.
+    when none does, or after any other status). getCalibrationHealth(), getConstrainedRms(), getFreeRms()
+    and getRansacNbInliers() then give the figures of the refused estimate (vpLaserConicDriftMonitor reads
+    them).
   */
   vpLaserConicMistake getSuspectedMistake() const { return m_mistake; }
   //! What a suspected mistake means, in words, with the setting to check.
