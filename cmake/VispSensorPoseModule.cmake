@@ -93,6 +93,12 @@ function(_vsp_add_standalone_module name)
     # Installed modules find each other (e.g. visp_robust) next to themselves: a RUNPATH on the
     # consumer's executable does not apply to indirect dependencies.
     INSTALL_RPATH "\$ORIGIN")
+  # A symbol the library uses and nothing defines fails its link, not the first program that calls it:
+  # determinant() of Eigen without <Eigen/LU> left one that only a test's run found. Not with the sanitizers,
+  # whose runtime the programs bring.
+  if(BUILD_SHARED_LIBS AND NOT VSP_ENABLE_SANITIZERS AND CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang" AND NOT APPLE)
+    target_link_options(${target} PRIVATE "LINKER:--no-undefined")
+  endif()
   vsp_set_warnings(${target})
 
   install(TARGETS ${target} EXPORT VispSensorPoseTargets

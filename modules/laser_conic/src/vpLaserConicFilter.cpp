@@ -9,30 +9,18 @@
 
 #include <Eigen/Cholesky>
 
+#include "laser_filter_impl.h"
 #include "laser_filter_model.h"
 #include "laser_value_check.h"
 
 using namespace vpLaserFilterModel;
+using namespace vsp::laser_filter;
 using vsp::laser_value_check::require;
 using vsp::laser_value_check::requireNonNegative;
 using vsp::laser_value_check::requirePositive;
 
 namespace
 {
-//! Largest angular rate (rad/s) and specific force (m/s², about 1000 g) of a sample taken (IMU_OUT_OF_RANGE).
-constexpr double kMaxImuRate = 100.0;
-constexpr double kMaxImuForce = 1e4;
-//! Largest time (s, either sign) of a sample or a frame taken: a double still resolves 2 us there (seconds since
-//! 1970 are 1.7e9). A timestamp in nanoseconds given as seconds (1.7e18) resolves 256 s, and a frame time a unit
-//! in the last place after a sample's propagated the state over that span (found by fuzz-laser-filter: 3e94 s).
-constexpr double kMaxTime = 1e10;
-
-//! Largest noise density, initial standard deviation and gravity norm a setter takes: larger ones, squared and
-//! summed over a second of samples, leave a covariance that is not finite (found by fuzz-laser-filter: 1e300).
-constexpr double kMaxSetting = 1e3;
-//! Longest IMU gap propagated that setMaxImuGap() takes, s: beyond, nothing an IMU measured holds the state.
-constexpr double kMaxImuGap = 10.0;
-
 //! Largest and smallest standard deviation of a frame's altitude (m), roll or pitch (rad) taken (FRAME_BAD_INPUT
 //! beyond): a frame that says nothing, or claims more than any sensor, would leave a covariance whose entries
 //! span more than the 16 digits of a double, and the next update's would turn negative (found by
@@ -56,93 +44,7 @@ bool plausibleCovariance(const Eigen::Matrix3d &R)
         return false;
   return R.llt().info() == Eigen::Success;
 }
-
-//! Quantile of the chi-square distribution with 3 degrees of freedom (CDF erf(sqrt(x/2)) - sqrt(2x/pi) e^(-x/2)).
-double chi2Quantile3(double p)
-{
-  double lo = 0.0, hi = 200.0;
-  for (int it = 0; it < 200; ++it) {
-    const double x = 0.5 * (lo + hi);
-    const double cdf = std::erf(std::sqrt(0.5 * x)) - std::sqrt(2.0 * x / M_PI) * std::exp(-0.5 * x);
-    (cdf < p ? lo : hi) = x;
-  }
-  return 0.5 * (lo + hi);
-}
-
-//! One IMU sample of the history (camera frame) and the state after it.
-struct Entry
-{
-  double t = 0.0;
-  Eigen::Vector3d w = Eigen::Vector3d::Zero(), f = Eigen::Vector3d::Zero();
-  State x = State::Zero();
-  Covariance P = Covariance::Identity();
-  bool valid = false; //!< false before the first frame initialised the state
-};
 } // namespace
-
-struct vpLaserConicFilter::Impl
-{
-  Noise noise;
-  double sigmaVz0 = 0.5, sigmaBg0 = 0.01, sigmaBa0 = 0.2;
-  Eigen::Matrix3d cRimu = Eigen::Matrix3d::Identity();
-  double gravity = 9.80665, maxLatency = 0.1, maxGap = 0.05, predictionTimeout = 0.1, minStepHeight = 0.03;
-  double gateProbability = 0.99, gate = chi2Quantile3(0.99), attitudeGate = -2.0 * std::log(1.0 - 0.99);
-  unsigned int stepFrames = 2, maxRejections = 30, initFrames = 3;
-
-  std::vector<Entry> ring = std::vector<Entry>(64);
-  size_t newest = 0, count = 0;
-
-  bool initialised = false, diverged = false, stepPending = false;
-  double lastFrameTime = -std::numeric_limits<double>::infinity();
-  double lastAcceptTime = -std::numeric_limits<double>::infinity();
-  // Frames rejected in a row: with an attitude that agrees with the prediction, and (tiltedInRow) with one that
-  // does not (see waitsForAgreeingAttitude()).
-  unsigned int accepted = 0, rejectedInRow = 0, tiltedInRow = 0, stepCandidates = 0, stepCount = 0;
-  //! Frames whose attitude disagrees, in a row, that declare a divergence: this many times maxRejections.
-  static constexpr unsigned int kTiltedRejections = 5;
-  double stepOffset = 0.0, stepVariance = 0.0;
-  vpFrameStatus lastFrameStatus = FRAME_MISSING;
-  double lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
-
-  //! k-th kept sample, 0 the oldest.
-  Entry &at(size_t k) { return ring[(newest + ring.size() + 1 - count + k) % ring.size()]; }
-  const Entry &last() const { return ring[newest]; }
-
-  void clearState()
-  {
-    initialised = diverged = stepPending = false;
-    accepted = rejectedInRow = tiltedInRow = stepCandidates = 0;
-    lastFrameTime = lastAcceptTime = -std::numeric_limits<double>::infinity();
-  }
-
-  //! A frame at \e t updated the state (\e step: by a ground step): the rejection counts start again.
-  void frameUsed(double t, bool step)
-  {
-    rejectedInRow = tiltedInRow = stepCandidates = 0;
-    stepPending = step;
-    lastAcceptTime = t;
-  }
-
-  vpImuStatus addImu(double t, const Eigen::Vector3d &w, const Eigen::Vector3d &f);
-  vpFrameStatus checkFrameTime(double t) const;
-  vpFrameStatus addFrame(double t, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
-  void initialise(State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
-  vpFrameStatus gateAndUpdate(double t, State &x, Covariance &P, const Eigen::Vector3d &z, const Eigen::Matrix3d &R);
-  bool stepCandidate(const Eigen::Vector3d &y, const Eigen::Matrix3d &S, bool attitudeAgrees);
-  bool waitsForAgreeingAttitude(const Entry &before, size_t k, double t, const Eigen::Vector3d &z,
-                                const Eigen::Matrix3d &R);
-  //! Propagates (x, P), the state of the k-th sample, to \e t (not after the next sample) with the mean of the
-  //! two samples' readings.
-  void propagateFrom(size_t k, double t, State &x, Covariance &P)
-  {
-    const Entry &before = at(k);
-    if (t > before.t) {
-      const Entry &after = (k + 1 < count) ? at(k + 1) : before;
-      propagate(x, P, 0.5 * (before.w + after.w), 0.5 * (before.f + after.f), t - before.t, gravity, noise);
-    }
-  }
-  void repropagate(size_t k, double t, const State &x, const Covariance &P);
-};
 
 // --- IMU ---------------------------------------------------------------------------------------
 
@@ -158,7 +60,7 @@ vpLaserConicFilter::vpImuStatus vpLaserConicFilter::Impl::addImu(double t, const
     return IMU_OUT_OF_RANGE;
   bool restart = false;
   if (count > 0) {
-    if (!(t > last().t))
+    if (!(t >= last().t + kMinImuInterval))
       return IMU_NOT_INCREASING;
     restart = t - last().t > maxGap; // nothing can bridge the gap: start again from this sample
   }
@@ -295,14 +197,14 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::gateAndUpdate(double
   such a stretch; the frames' is taken only once kTiltedRejections times setMaxRejections() frames in a
   row have disagreed with it (the filter's own attitude is then in doubt).
 */
-bool vpLaserConicFilter::Impl::waitsForAgreeingAttitude(const Entry &before, size_t k, double t,
+bool vpLaserConicFilter::Impl::waitsForAgreeingAttitude(const FrameStart &start, size_t k, double t,
                                                         const Eigen::Vector3d &z, const Eigen::Matrix3d &R)
 {
-  if (!initialised || !diverged || !before.valid || tiltedInRow >= kTiltedRejections * maxRejections)
+  if (!initialised || !diverged || !start.valid || tiltedInRow >= kTiltedRejections * maxRejections)
     return false;
-  State x = before.x;
-  Covariance P = before.P;
-  propagateFrom(k, t, x, P);
+  State x = start.x;
+  Covariance P = start.P;
+  propagateFrom(k, start.t, t, x, P);
   Eigen::Vector3d y;
   Eigen::Matrix3d S;
   lastMahalanobis = innovation(x, P, z, R, y, S);
@@ -322,33 +224,34 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::Impl::addFrame(double t, c
   size_t k = count - 1; // the last sample at or before t
   while (k > 0 && at(k).t > t)
     --k;
-  const Entry &before = at(k);
-  if (waitsForAgreeingAttitude(before, k, t, z, R))
+  const FrameStart start = frameStart(k, t);
+  if (waitsForAgreeingAttitude(start, k, t, z, R))
     return FRAME_REJECTED;
-  State x = before.x;
-  Covariance P = before.P;
+  State x = start.x;
+  Covariance P = start.P;
   vpFrameStatus status = FRAME_INITIALISED;
   // Until setInitialisationFrames() frames agree, a frame that disagrees starts the state again: the
   // first frame may be the wrong one.
   const bool confirmed = accepted >= initFrames;
-  if (!initialised || diverged || !before.valid) {
+  if (!initialised || diverged || !start.valid) {
     initialise(x, P, z, R);
     lastAcceptTime = t;
     lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
   } else {
-    propagateFrom(k, t, x, P);
+    propagateFrom(k, start.t, t, x, P);
     status = gateAndUpdate(t, x, P, z, R);
     if (status == FRAME_REJECTED && !confirmed) {
-      x = before.x;
-      P = before.P;
       initialise(x, P, z, R);
       lastAcceptTime = t;
       status = FRAME_INITIALISED;
     }
   }
   lastFrameTime = t;
-  if (status != FRAME_REJECTED)
+  if (status != FRAME_REJECTED) {
     repropagate(k, t, x, P);
+    frameSampleTime = at(k).t;
+    afterFrame = FrameStart{x, P, t, true};
+  }
   return status;
 }
 
@@ -373,108 +276,6 @@ void vpLaserConicFilter::Impl::repropagate(size_t k, double t, const State &x, c
     e.P = Ps;
     e.valid = true;
   }
-}
-
-// --- public API --------------------------------------------------------------------------------
-
-vpLaserConicFilter::vpLaserConicFilter() : m_impl(new Impl) {}
-vpLaserConicFilter::~vpLaserConicFilter() = default;
-
-void vpLaserConicFilter::setImuNoise(double gyro, double gyroBiasWalk, double acc, double accBiasWalk)
-{
-  for (double v : {gyro, gyroBiasWalk, acc, accBiasWalk})
-    require(v > 0.0 && v <= kMaxSetting,
-            "vpLaserConicFilter::setImuNoise: noise densities must be > 0 and at most 1e3 (an IMU's are 1e-5 to 1)");
-  m_impl->noise.gyro = gyro;
-  m_impl->noise.gyroBiasWalk = gyroBiasWalk;
-  m_impl->noise.acc = acc;
-  m_impl->noise.accBiasWalk = accBiasWalk;
-}
-
-void vpLaserConicFilter::setInitialUncertainty(double verticalSpeed, double gyroBias, double accBias)
-{
-  for (double v : {verticalSpeed, gyroBias, accBias})
-    require(v > 0.0 && v <= kMaxSetting,
-            "vpLaserConicFilter::setInitialUncertainty: standard deviations must be > 0 and at most 1e3");
-  m_impl->sigmaVz0 = verticalSpeed;
-  m_impl->sigmaBg0 = gyroBias;
-  m_impl->sigmaBa0 = accBias;
-}
-
-void vpLaserConicFilter::setImuToCameraRotation(const vpRotationMatrix &cRimu)
-{
-  Eigen::Matrix3d R;
-  for (unsigned int i = 0; i < 3; ++i)
-    for (unsigned int j = 0; j < 3; ++j)
-      R(i, j) = cRimu[i][j];
-  // Checked before it replaces the mounting: a refused matrix leaves the one set before.
-  require(R.allFinite() && (R * R.transpose()).isIdentity(1e-6),
-          "vpLaserConicFilter::setImuToCameraRotation: not a rotation matrix");
-  m_impl->cRimu = R;
-}
-
-void vpLaserConicFilter::setGravityNorm(double g)
-{
-  require(g >= 0.1 && g <= kMaxSetting,
-          "vpLaserConicFilter::setGravityNorm: the gravity norm must be in [0.1, 1e3] m/s^2");
-  m_impl->gravity = g;
-}
-
-void vpLaserConicFilter::setMaxLatency(double seconds, unsigned int samples)
-{
-  require(seconds >= 0.0 && std::isfinite(seconds) && samples >= 2,
-          "vpLaserConicFilter::setMaxLatency: the latency must be finite and >= 0, the history >= 2 samples");
-  m_impl->maxLatency = seconds;
-  m_impl->ring.assign(samples, Entry());
-  m_impl->count = 0;
-  m_impl->clearState();
-}
-
-void vpLaserConicFilter::setMaxImuGap(double seconds)
-{
-  require(seconds > 0.0 && seconds <= kMaxImuGap, "vpLaserConicFilter::setMaxImuGap: the gap must be in (0, 10] s");
-  m_impl->maxGap = seconds;
-}
-
-void vpLaserConicFilter::setGateProbability(double p)
-{
-  require(p > 0.0 && p < 1.0, "vpLaserConicFilter::setGateProbability: the probability must be in (0, 1)");
-  m_impl->gateProbability = p;
-  m_impl->gate = chi2Quantile3(p);
-  m_impl->attitudeGate = -2.0 * std::log(1.0 - p); // chi-square quantile, 2 degrees of freedom
-}
-
-void vpLaserConicFilter::setStepFrames(unsigned int frames)
-{
-  require(frames > 0, "vpLaserConicFilter::setStepFrames: at least one frame");
-  m_impl->stepFrames = frames;
-}
-
-void vpLaserConicFilter::setMinStepHeight(double metres)
-{
-  requireNonNegative(metres, "vpLaserConicFilter::setMinStepHeight: the height must be finite and >= 0");
-  m_impl->minStepHeight = metres;
-}
-
-void vpLaserConicFilter::setMaxRejections(unsigned int frames)
-{
-  require(frames > 0, "vpLaserConicFilter::setMaxRejections: at least one frame");
-  m_impl->maxRejections = frames;
-}
-
-void vpLaserConicFilter::setInitialisationFrames(unsigned int frames) { m_impl->initFrames = frames; }
-
-void vpLaserConicFilter::setPredictionTimeout(double seconds)
-{
-  requirePositive(seconds, "vpLaserConicFilter::setPredictionTimeout: the timeout must be finite and > 0");
-  m_impl->predictionTimeout = seconds;
-}
-
-void vpLaserConicFilter::reset()
-{
-  m_impl->count = 0;
-  m_impl->stepCount = 0;
-  m_impl->clearState();
 }
 
 vpLaserConicFilter::vpImuStatus vpLaserConicFilter::addImu(double t, const double gyro[3], const double acc[3])

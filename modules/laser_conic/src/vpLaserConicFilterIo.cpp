@@ -123,7 +123,7 @@ std::string vpLaserConicFilter::getImuStatusMessage(vpImuStatus status)
   case IMU_OK:
     return "IMU sample used";
   case IMU_NOT_INCREASING:
-    return "IMU timestamp not after the previous one: sample ignored";
+    return "IMU timestamp not at least a microsecond after the previous one: sample ignored";
   case IMU_GAP:
     return "gap in the IMU stream longer than the limit: the filter restarts";
   case IMU_NOT_FINITE:

@@ -295,6 +295,7 @@ TEST(LaserConicFilter, BadInputHasAStatus)
   EXPECT_THROW(filter.setGateProbability(1.0), vpLaserConicException);
   EXPECT_THROW(filter.setImuNoise(0.0, 1, 1, 1), vpLaserConicException);
   EXPECT_THROW(filter.setMaxLatency(-1.0), vpLaserConicException);
+  EXPECT_THROW(filter.setMaxLatency(0.1, 1000001), vpLaserConicException); // a mistake: over 1 GB of history
   EXPECT_THROW(filter.addImu(0.0, vpColVector(2), vpColVector(3)), vpLaserConicException);
   EXPECT_THROW(vpLaserConicFilter::loadImuCsv("/nonexistent/imu.csv"), vpLaserConicException);
   EXPECT_FALSE(vpLaserConicFilter::getFrameStatusMessage(vpLaserConicFilter::FRAME_TOO_OLD).empty());
@@ -358,6 +359,11 @@ TEST(LaserConicFilter, ARefusedImuRotationLeavesTheMountingUnchanged)
     scaled[i][0] *= 2.0;
   EXPECT_THROW(refused.setImuToCameraRotation(notFinite), vpLaserConicException);
   EXPECT_THROW(refused.setImuToCameraRotation(scaled), vpLaserConicException);
+  // A mirrored axis: orthogonal, determinant -1 (taken before: a roll at +0.5 rad/s read as -0.5).
+  vpRotationMatrix mirrored = cRimu;
+  for (unsigned int i = 0; i < 3; ++i)
+    mirrored[i][2] = -mirrored[i][2];
+  EXPECT_THROW(refused.setImuToCameraRotation(mirrored), vpLaserConicException);
 
   // At rest, the camera looking straight down: the specific force, 9.81 up (-Z of the camera), read in the IMU's
   // frame.
@@ -378,6 +384,72 @@ TEST(LaserConicFilter, ARefusedImuRotationLeavesTheMountingUnchanged)
   EXPECT_EQ(refused.getRoll(), kept.getRoll());
   EXPECT_EQ(refused.getPitch(), kept.getPitch());
   EXPECT_EQ(refused.getVerticalSpeed(), kept.getVerticalSpeed());
+}
+
+namespace
+{
+//! Feeds \e filter at rest (IMU every 5 ms up to 80 ms, the camera looking down), initialised by a frame at 1 m at 0.
+void startAtRest(vpLaserConicFilter &filter)
+{
+  filter.setInitialisationFrames(1);
+  const double w[3] = {0.0, 0.0, 0.0}, f[3] = {0.0, 0.0, -9.80665};
+  vpMatrix C(3, 3);
+  C.eye();
+  C *= 1e-4;
+  filter.addImu(0.0, w, f);
+  filter.addFrame(0.0, 1.0, 0.0, 0.0, C);
+  for (int k = 1; k <= 16; ++k)
+    filter.addImu(0.005 * k, w, f);
+}
+} // namespace
+
+// Frames between the same two IMU samples (a camera faster than the IMU, an IMU dropout, a frame given twice):
+// the update of the first was kept in the samples after it but not in the one before, from which the second
+// started again: the first was lost (both returned FRAME_ACCEPTED; altitude and variance were those of the
+// second alone, to the last bit).
+TEST(LaserConicFilter, FramesBetweenTheSameTwoImuSamplesAreEachApplied)
+{
+  vpMatrix C(3, 3), half(3, 3);
+  C.eye();
+  C *= 1e-4; // 1 cm, 10 mrad
+  half = 0.5 * C;
+  // The same frame twice at 31.2 ms (between the samples at 30 and 35 ms) is one frame of half the variance: the
+  // information of a linear measurement adds up.
+  vpLaserConicFilter twice, once;
+  startAtRest(twice);
+  startAtRest(once);
+  EXPECT_EQ(twice.addFrame(0.0312, 1.02, 0.0, 0.0, C), vpLaserConicFilter::FRAME_ACCEPTED);
+  EXPECT_EQ(twice.addFrame(0.0312, 1.02, 0.0, 0.0, C), vpLaserConicFilter::FRAME_ACCEPTED);
+  EXPECT_EQ(once.addFrame(0.0312, 1.02, 0.0, 0.0, half), vpLaserConicFilter::FRAME_ACCEPTED);
+  EXPECT_NEAR(twice.getAltitude(), once.getAltitude(), 1e-12);
+  EXPECT_NEAR(twice.getCovarianceMatrix()[0][0], once.getCovarianceMatrix()[0][0], 1e-12);
+  // Two frames at 30.0 and 32.0 ms: the altitude's variance falls below what the second alone leaves.
+  vpLaserConicFilter both, second;
+  startAtRest(both);
+  startAtRest(second);
+  both.addFrame(0.0300, 1.02, 0.0, 0.0, C);
+  both.addFrame(0.0320, 1.02, 0.0, 0.0, C);
+  second.addFrame(0.0320, 1.02, 0.0, 0.0, C);
+  std::cout << "altitude variance: both frames " << both.getCovarianceMatrix()[0][0] << ", the second alone "
+            << second.getCovarianceMatrix()[0][0] << std::endl;
+  EXPECT_LT(both.getCovarianceMatrix()[0][0], 0.8 * second.getCovarianceMatrix()[0][0]);
+}
+
+// An IMU sample less than a microsecond after the previous one is a duplicate: its interval's process noise (the
+// density over the interval) overflowed, and the covariance became NaN while addImu() returned IMU_OK.
+TEST(LaserConicFilter, AnImuSampleAMicrosecondAfterTheLastIsRefused)
+{
+  vpLaserConicFilter filter;
+  startAtRest(filter);
+  const double w[3] = {0.0, 0.0, 0.0}, f[3] = {0.0, 0.0, -9.80665};
+  EXPECT_EQ(filter.addImu(0.080 + 1e-9, w, f), vpLaserConicFilter::IMU_NOT_INCREASING);
+  EXPECT_EQ(filter.addImu(0.085, w, f), vpLaserConicFilter::IMU_OK);
+  const vpMatrix P = filter.getCovarianceMatrix();
+  for (unsigned int i = 0; i < P.getRows(); ++i)
+    EXPECT_TRUE(std::isfinite(P[i][i]) && P[i][i] > 0.0) << i;
+  vpLaserConicFilter atZero;
+  atZero.addImu(0.0, w, f);
+  EXPECT_EQ(atZero.addImu(std::numeric_limits<double>::denorm_min(), w, f), vpLaserConicFilter::IMU_NOT_INCREASING);
 }
 
 // The simulated IMU refuses what would make every reading NaN or its noise imaginary.

@@ -44,7 +44,9 @@
   states of its recent samples, updates at the exposure time and re-propagates the newer samples (exact,
   no approximation of the delay). Each update is gated by the squared Mahalanobis distance of its
   innovation (setGateProbability()): a frame inconsistent with the prediction is rejected with
-  FRAME_REJECTED, never averaged in. Rejected frames whose attitude agrees with the prediction and whose
+  FRAME_REJECTED, never averaged in (until setInitialisationFrames() frames have been accepted, such a frame
+  starts the state again from itself instead, FRAME_INITIALISED: the first frame may be the wrong one).
+  Several frames between the same two IMU samples (a camera faster than the IMU) are each applied in turn. Rejected frames whose attitude agrees with the prediction and whose
   altitudes agree with each other but jump from the prediction by more than setMinStepHeight() (a box, a
   table edge: a change of ground) re-initialise the altitude after setStepFrames() of them
   (FRAME_GROUND_STEP); a long run of rejected frames declares a divergence (setMaxRejections()).
@@ -88,14 +90,15 @@ public:
     FRAME_TOO_OLD,      //!< older than setMaxLatency() or than the kept history
     FRAME_OUT_OF_ORDER, //!< older than a frame already used
     FRAME_AHEAD_OF_IMU, //!< after the last IMU sample: add the IMU samples first
-    FRAME_BAD_INPUT     //!< a non-finite value, a time beyond 1e10 s, a covariance that is not symmetric positive
-                        //!< definite, or a standard deviation outside [1e-12, 1e4] (m or rad)
+    FRAME_BAD_INPUT     //!< a non-finite value, a time beyond 1e10 s, an altitude not positive, a covariance that
+                        //!< is not symmetric positive definite, or a standard deviation outside [1e-12, 1e4] (m
+                        //!< or rad)
   } vpFrameStatus;
 
   //! Outcome of one addImu().
   typedef enum {
     IMU_OK,             //!< the sample propagated the state
-    IMU_NOT_INCREASING, //!< timestamp not after the previous one: sample ignored
+    IMU_NOT_INCREASING, //!< timestamp not at least a microsecond after the previous one: sample ignored
     IMU_GAP,            //!< more than setMaxImuGap() since the previous sample: the filter restarts here
     IMU_NOT_FINITE,     //!< a non-finite value: sample ignored
     IMU_OUT_OF_RANGE    //!< a rate over 100 rad/s or a specific force over 10000 m/s² (beyond any IMU), or a time
@@ -117,15 +120,20 @@ public:
     accelerometer bias (m/s², default 0.2). \exception vpLaserConicException::badValueError unless in (0, 1e3].
   */
   void setInitialUncertainty(double verticalSpeed, double gyroBias, double accBias);
-  //! IMU-to-camera rotation \f$ {}^c\mathbf{R}_{imu} \f$ (maps IMU vectors into the camera frame); default identity.
+  /*!
+    IMU-to-camera rotation \f$ {}^c\mathbf{R}_{imu} \f$ (maps IMU vectors into the camera frame); default
+    identity. \exception vpLaserConicException::badValueError unless orthogonal with determinant +1 (a mirrored
+    axis, determinant -1, would turn the attitude against the gyros' rotation); the mounting set before is kept.
+  */
   void setImuToCameraRotation(const vpRotationMatrix &cRimu);
   //! Gravity norm, m/s²; default 9.80665. \exception vpLaserConicException::badValueError unless in [0.1, 1e3].
   void setGravityNorm(double g);
   /*!
     Oldest frame accepted, in seconds before the last IMU sample (default 0.1), and the number of IMU
-    samples kept to re-propagate (default 64, enough for 0.1 s up to 640 Hz). Allocates the history
-    (the only allocation: none per sample). \exception vpLaserConicException::badValueError unless
-    latency >= 0 and samples >= 2.
+    samples kept to re-propagate (default 64: 63 intervals, enough for 0.1 s up to 630 Hz). Allocates the history
+    (the only allocation: none per sample) and restarts the filter (the history and the state are forgotten).
+    \exception vpLaserConicException::badValueError unless latency >= 0 and 2 <= samples <= 1e6 (over 16
+    minutes at 1 kHz, about 1 GB: more would be a mistake, not a latency).
   */
   void setMaxLatency(double seconds, unsigned int samples = 64);
   /*!
@@ -158,7 +166,10 @@ public:
     is then in doubt).
   */
   void setMaxRejections(unsigned int frames);
-  //! Frames accepted before the status leaves STATUS_INITIALISING (default 3).
+  /*!
+    Frames accepted before the status leaves STATUS_INITIALISING (default 3). Until then a frame the gate
+    refuses re-initialises the state from itself (FRAME_INITIALISED), not FRAME_REJECTED.
+  */
   void setInitialisationFrames(unsigned int frames);
   //! Time without an accepted frame after which the status is STATUS_PREDICTING, s (default 0.1).
   void setPredictionTimeout(double seconds);
@@ -179,8 +190,9 @@ public:
   */
   vpFrameStatus addFrame(double t, double altitude, double roll, double pitch, const vpMatrix &covariance);
   /*!
-    addFrame() with the last estimate of \e estimator (computed with setCovarianceComputation(true)).
-    \exception vpLaserConicException::notComputedError when it has no covariance.
+    addFrame() with the last estimate of \e estimator (computed with setCovarianceComputation(true)); a
+    failed estimate is a frame without a plane (addMissingFrame()).
+    \exception vpLaserConicException::notComputedError when a successful estimate has no covariance.
   */
   vpFrameStatus addFrame(double t, const vpLaserConicPose &estimator);
   //! Records a frame at time \e t without a plane (no trace, no consensus): the prediction runs on.
