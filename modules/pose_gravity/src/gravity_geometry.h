@@ -80,12 +80,11 @@ struct RefineOptions
   refine_gravity.cpp). Reprojection residuals in normalized coordinates divided by imageSigma.
   Both gravity sigmas 0: 4 DOF (yaw, t), both gravity vectors exact. Otherwise 6 DOF with the two
   gravity measurements as one prior of standard deviation sqrt(sigma_c^2 + sigma_o^2) per component.
-  Returns false, pose unchanged, without a usable solution or when a point ends behind the camera.
-  When \e covariance is not null it receives the 6x6 covariance of (t, theta) (see poseCovariance()).
+  Returns false, pose unchanged, without a usable solution or when a point ends behind the camera. Its
+  covariance is poseCovariance()'s, apart: a pose whose covariance is singular is still a pose.
 */
 bool refinePose(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
-                const Eigen::Vector3d *X, int n, const RefineOptions &options, Pose &pose,
-                Eigen::Matrix<double, 6, 6> *covariance = nullptr);
+                const Eigen::Vector3d *X, int n, const RefineOptions &options, Pose &pose);
 
 /*!
   Covariance of the pose estimated from n points at \e pose (first-order, Gauss-Newton: the inverse

@@ -264,8 +264,7 @@ bool poseCovariance(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, co
 }
 
 bool refinePose(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const Eigen::Vector3d *x,
-                const Eigen::Vector3d *X, int n, const RefineOptions &options, Pose &pose,
-                Eigen::Matrix<double, 6, 6> *covariance)
+                const Eigen::Vector3d *X, int n, const RefineOptions &options, Pose &pose)
 {
   if (n < 2 || !(options.imageSigma > 0.0) || !(options.cameraGravitySigma >= 0.0) ||
       !(options.objectGravitySigma >= 0.0) || !(options.lossScale > 0.0) || !pose.R.allFinite() || !pose.t.allFinite())
@@ -279,8 +278,6 @@ bool refinePose(const Eigen::Vector3d &gCam, const Eigen::Vector3d &gObj, const 
   for (int i = 0; i < n; ++i)
     if (!((refined.R * X[i] + refined.t).z() > 0.0))
       return false;
-  if (covariance && !poseCovariance(gCam, gObj, x, X, n, options, refined, *covariance))
-    return false;
   pose = refined;
   return true;
 }

@@ -5,6 +5,7 @@
   requested (offset) times, readings under acceleration are flagged, and the CSV layouts of EuRoC /
   Kalibr are read (bad files give badFileError with the line).
 */
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <visp3/core/vpMath.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/pose_gravity/vpImuGravity.h>
 #include <visp3/pose_gravity/vpPoseGravity.h>
@@ -193,6 +195,28 @@ TEST(PoseGravityImu, BadFilesAreReported)
   EXPECT_THROW(vpImuGravity::loadRotation(tempFile("bad_rotation.txt", "1 0 0\n0 2 0\n0 0 1\n")),
                vpPoseGravityException);
   EXPECT_THROW(vpImuGravity::loadRotation(tempFile("short_rotation.txt", "1 0 0\n0 1 0\n")), vpPoseGravityException);
+}
+
+// A rotation near a half turn (an IMU mounted upside down) from a file rounded to 4 decimals: the nearest
+// rotation is within the rounding of the truth. Through the theta-u vector, whose axis comes from the
+// antisymmetric part (of size sin theta, 0.0125 here), it loaded 7.9e-3 rad off, gravity 0.45 degree off.
+TEST(PoseGravityImu, ARotationNearAHalfTurnLoadsWithinItsRounding)
+{
+  const vpRotationMatrix truth(vpThetaUVector(3.129099 * -0.393447, 3.129099 * -0.405048, 3.129099 * 0.825309));
+  std::ostringstream rounded;
+  rounded.setf(std::ios::fixed);
+  rounded.precision(4);
+  for (unsigned int i = 0; i < 3; ++i)
+    rounded << truth[i][0] << " " << truth[i][1] << " " << truth[i][2] << "\n";
+  const vpRotationMatrix read = vpImuGravity::loadRotation(tempFile("half_turn.txt", rounded.str()));
+  const double off = vpThetaUVector(read * truth.inverse()).getTheta();
+  const vpColVector g = vpImuGravity::gravityFromSpecificForce(vec(0, 0, kG), read),
+                    expected = vpImuGravity::gravityFromSpecificForce(vec(0, 0, kG), truth);
+  const double gravityOff = std::acos(std::min(1.0, vpColVector::dotProd(g, expected)));
+  std::cout << "half turn from 4 decimals: " << off << " rad off, gravity " << vpMath::deg(gravityOff) << " deg off"
+            << std::endl;
+  EXPECT_LT(off, 1e-4); // rounding of 5e-5 per coefficient
+  EXPECT_LT(vpMath::deg(gravityOff), 0.01);
 }
 
 // A file refused part way leaves the stream as it was: the rows before the bad one are not kept, so that

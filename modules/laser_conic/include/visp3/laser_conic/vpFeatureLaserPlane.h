@@ -25,8 +25,11 @@
       L_{g_x} = \begin{pmatrix} 0 & 0 & 0 & 0 & -g_z & g_y \end{pmatrix}, \quad
       L_{g_y} = \begin{pmatrix} 0 & 0 & 0 & g_z & 0 & -g_x \end{pmatrix}. \f]
   The three rows fix the altitude, the roll and the pitch (\f$ g_x = \sin \mathrm{pitch} \f$,
-  \f$ g_y = -\sin \mathrm{roll} \cos \mathrm{pitch} \f$); the horizontal translation and the yaw are
-  left to other features, e.g. a vpFeaturePoint on a landing pad:
+  \f$ g_y = -\sin \mathrm{roll} \cos \mathrm{pitch} \f$) of a camera that faces the ground (\f$ g_z > 0 \f$,
+  roll and pitch within 90 degrees, as the laser's estimates are): the feature does not see the sign of
+  \f$ g_z \f$, so a camera turned over (roll 180 degrees) has the feature of a level one, and at
+  \f$ g_z = 0 \f$ the rows of \f$ g_x, g_y \f$ lose a rank. The horizontal translation and the yaw are left to
+  other features, e.g. a vpFeaturePoint on a landing pad:
 
   \code
   vpFeatureLaserPlane s, sd;

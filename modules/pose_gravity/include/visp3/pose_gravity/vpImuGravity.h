@@ -80,7 +80,8 @@ public:
   /*!
     Reads a 3x3 rotation from a text file: 9 numbers (row-major) or 16 (a 4x4 homogeneous matrix,
     as Kalibr's T_cam_imu; its rotation block is taken), separated by spaces, commas or new lines;
-    a line starting with '#' is a comment. The rows are re-orthonormalised if off by less than 1e-3.
+    a line starting with '#' is a comment. A matrix within 1e-3 of a rotation (a file's rounding) gives the
+    rotation nearest to it (singular value decomposition), whatever its angle.
     \exception vpPoseGravityException::badFileError if unreadable, malformed or not a rotation.
   */
   static vpRotationMatrix loadRotation(const std::string &file);

@@ -215,7 +215,9 @@ public:
     and the translation, both gravity vectors held exact. Otherwise all 6 DOF are refined and the two
     gravity measurements enter as a soft prior \f$ ({}^c\mathbf{R}_o \mathbf{g}_o - \mathbf{g}_c) /
     \sqrt{\sigma_c^2 + \sigma_o^2} \f$ (see setCameraGravityStdDev(), setObjectGravityStdDev()).
-    The covariance is computed at the result when setCovarianceComputation(true).
+    The covariance is computed at the result when setCovarianceComputation(true); when it is singular (every
+    used point on one vertical line: the yaw is unobservable) the refined pose is still returned, without a
+    covariance (getCovarianceMatrix() throws).
     \param cMo : initial pose (any method), replaced by the refined pose on success.
     \return true if Ceres returned a usable solution with every used point in front of the camera
     (cMo updated), false otherwise (cMo unchanged, status STATUS_REFINEMENT_FAILED), e.g. for a
@@ -312,7 +314,8 @@ public:
   void setCovarianceComputation(bool flag) { m_computeCovariance = flag; }
   /*!
     Covariance of the last pose computed with setCovarianceComputation(true), as
-    vpPose::getCovarianceMatrix(): 6x6, parameter order \f$ (t_x, t_y, t_z, \theta_x, \theta_y,
+    vpPose::getCovarianceMatrix(), from the points the pose was computed on (P3P: the first three; RANSAC:
+    its inliers): 6x6, parameter order \f$ (t_x, t_y, t_z, \theta_x, \theta_y,
     \theta_z) \f$ with \f$ \mathbf{t} \f$ in the unit of the object points and \f$ \theta \f$ in rad, a
     rotation perturbation on the left in the camera frame: \f$ {}^c\mathbf{R}_o = \exp([\theta]_\times)
     {}^c\hat{\mathbf{R}}_o \f$. First order, from the image standard deviation (setImageStdDev()) and,
