@@ -77,6 +77,10 @@ bool Steps::initialPlanes(const std::vector<InputFrame> &inputs, StepsOutcome &o
 {
   vpLaserConicPose estimator;
   estimator.setCameraParameters(m_cam);
+  // The initial laser is the calibration to be repaired (a knocked mount) or a drawing: the check that the
+  // calibration explains each trace refused every frame of a mount knocked by 2 degrees or more, and the
+  // self-calibration ran out of frames. Here a plane near the trace is all that is asked.
+  estimator.setCalibrationCheck(false);
   vpHomogeneousMatrix cMl;
   for (unsigned int i = 0; i < 3; ++i) {
     for (unsigned int j = 0; j < 3; ++j)
@@ -326,9 +330,10 @@ void Steps::analyse(StepsOutcome &out) const
   }
   const LaserMatrix cov = J * C * J.transpose();
   out.covariance.resize(6, 6);
+  // Frames that do not determine every parameter: no covariance (NaN), not the zeros of C, which read as known.
   for (int a = 0; a < 6; ++a)
     for (int b = 0; b < 6; ++b)
-      out.covariance[a][b] = cov(a, b);
+      out.covariance[a][b] = singular ? std::numeric_limits<double>::quiet_NaN() : cov(a, b);
   const double inf = std::numeric_limits<double>::infinity();
   const double uv = 1.0 + m_L(2) * m_L(2) + m_L(3) * m_L(3);
   out.axisStd = singular ? inf : std::sqrt(vpMath::sqr(std::cos(m_L(1))) * C(0, 0) + C(1, 1));

@@ -118,7 +118,8 @@ struct StepsOutcome;
   \code
   vpLaserConicSelfCalibration selfcal;
   selfcal.setCameraParameters(cam);                    // with distortion if the camera has it
-  selfcal.setLaser(vpMath::rad(34), cMlPrevious);      // initial guess: previous calibration or a drawing
+  selfcal.setLaser(vpMath::rad(34), cMlPrevious);      // initial guess: previous calibration (knocked by
+                                                       // degrees: its planes are taken unchecked) or a drawing
   selfcal.setApexDistance(0.1);                        // a length: ruler, or the previous baseline
   for (const std::vector<vpImagePoint> &trace : traces) // laser points of ordinary frames of the ground
     selfcal.addFrame(trace);
@@ -249,7 +250,8 @@ public:
     and units as vpLaserConicCalibration::getCovarianceMatrix(); rows of held quantities are zero (the
     apex distance with setApexDistance(), A unless estimated). First order, the residual variance
     RSS / (N - p) times the inverse of the normal matrix with the planes eliminated. Also computed when the
-    frames were refused as degenerate (then possibly huge).
+    frames were refused as degenerate: huge when they nearly fix every parameter, NaN when they leave one free
+    (the normal matrix singular; getAxisStdDeviation() is then infinite).
   */
   vpMatrix getCovarianceMatrix() const { return m_fig.covariance; }
   //! Square roots of the diagonal of getCovarianceMatrix().
