@@ -313,7 +313,48 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
   if (!checkViewSet(cMg))
     return false;
   ConeProblem cone(cMg, m_measured, m_cam, guess, m_openingAngle, m_maxIterations);
-  if (!fitCone(cone) || !computeCovariance(cone))
+  if (!fitCone(cone))
+    return false;
+  // A cone's two nappes fit the same points: from a guess whose axis points away from the grids (turned by
+  // 150-180 degrees) the fit took the nappe behind the laser, a cone no laser projects (apex 0.1 mm off, axis
+  // 180 degrees off), and ended STATUS_OK. The same cone with its axis turned over is fitted again from there:
+  // its forward nappe is the same set of rays, so the refit starts at its minimum.
+  if (gridsBehind(cone.pose(), cMg)) {
+    ConeProblem turned(cMg, m_measured, m_cam, cone.pose() * vpHomogeneousMatrix(0, 0, 0, M_PI, 0, 0), m_openingAngle,
+                       m_maxIterations);
+    const double initialRms = m_initialRms; // the figures of the caller's guess, not of the turned cone
+    const auto initialPredicted = m_initialPredicted;
+    const bool fitted = fitCone(turned);
+    m_initialRms = initialRms;
+    m_initialPredicted = initialPredicted;
+    if (!fitted)
+      return false;
+    if (gridsBehind(turned.pose(), cMg))
+      return fail(STATUS_SOLVER_FAILURE, "the fitted cone's axis points away from the grids");
+    return finishCone(turned, cMl);
+  }
+  return finishCone(cone, cMl);
+}
+
+bool vpLaserConicCalibration::gridsBehind(const vpHomogeneousMatrix &cMl, const std::vector<vpHomogeneousMatrix> &cMg)
+{
+  // The laser points of the grids along the laser's axis, from its apex: most ahead for the cone that lights them.
+  const vpHomogeneousMatrix lMc = cMl.inverse();
+  size_t behind = 0, all = 0;
+  for (size_t v = 0; v < cMg.size() && v < m_measured.size(); ++v) {
+    const vpHomogeneousMatrix lMg = lMc * cMg[v];
+    for (const std::pair<double, double> &p : m_measured[v]) {
+      const double z = lMg[2][0] * p.first + lMg[2][1] * p.second + lMg[2][3];
+      behind += z < 0.0 ? 1 : 0;
+      ++all;
+    }
+  }
+  return 2 * behind > all;
+}
+
+bool vpLaserConicCalibration::finishCone(ConeProblem &cone, vpHomogeneousMatrix &cMl)
+{
+  if (!computeCovariance(cone))
     return false;
   // The inliers' residuals must look like detection noise: a cone fitted to mostly outliers (whose
   // median then sets the loss scale), to a wrong camera model or to wrong grid poses does not.

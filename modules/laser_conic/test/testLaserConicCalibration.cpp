@@ -183,6 +183,25 @@ TEST(LaserConicCalibration, ConvergesFromARoughGuess)
   EXPECT_LT(apexErrorMm(cMl, trueLaserPose()), 0.5);
 }
 
+// A guess whose axis points away from the grids (a cMl given for lMc, a laser mounted the other way round in a
+// drawing): a cone's two nappes fit the same points, and the fit took the one behind the laser, STATUS_OK with
+// the axis 180 degrees off (apex within 0.1 mm). The cone turned over is fitted again: its forward nappe.
+TEST(LaserConicCalibration, AnAxisGuessedBackwardsEndsForward)
+{
+  const std::vector<vpHomogeneousMatrix> poses = gridPoses(8, 1);
+  const std::vector<std::vector<vpImagePoint> > points = laserPoints(poses, 0.5);
+  for (double turnedDeg : {150.0, 180.0}) {
+    vpLaserConicCalibration calib = makeCalibration(poses, points);
+    calib.setInitialGuess(trueLaserPose() * vpHomogeneousMatrix(0, 0, 0, vpMath::rad(turnedDeg), 0, 0));
+    vpHomogeneousMatrix cMl;
+    ASSERT_TRUE(calib.compute(cMl)) << turnedDeg << ": " << calib.getStatusDetails();
+    std::cout << "guess turned by " << turnedDeg << " deg: axis error " << axisErrorDeg(cMl, trueLaserPose())
+              << " deg, apex error " << apexErrorMm(cMl, trueLaserPose()) << " mm" << std::endl;
+    EXPECT_LT(axisErrorDeg(cMl, trueLaserPose()), 0.05) << turnedDeg;
+    EXPECT_LT(apexErrorMm(cMl, trueLaserPose()), 0.5) << turnedDeg;
+  }
+}
+
 TEST(LaserConicCalibration, CalibratesFromRenderedAndDetectedImages)
 {
   // The whole chain: rendered images (stripe 3 px, sensor noise 2 grey levels), HSV detection, calibration.

@@ -287,6 +287,10 @@ private:
   bool fitCone(vsp::laser_calibration::ConeProblem &cone);
   //! Condition number (STATUS_DEGENERATE_VIEWS beyond the limit), RMS and covariance of the fitted cone.
   bool computeCovariance(vsp::laser_calibration::ConeProblem &cone);
+  //! Whether most laser points of the grids (posed by \e cMg) lie behind the laser \e cMl: its other nappe.
+  bool gridsBehind(const vpHomogeneousMatrix &cMl, const std::vector<vpHomogeneousMatrix> &cMg);
+  //! The fitted cone's covariance, residual check and results, into \e cMl on success.
+  bool finishCone(vsp::laser_calibration::ConeProblem &cone, vpHomogeneousMatrix &cMl);
   void computeJackknife(const vpHomogeneousMatrix &cMl);
   bool fail(vpLaserConicCalibrationStatus status, const std::string &details);
 
