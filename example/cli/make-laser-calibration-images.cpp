@@ -36,6 +36,7 @@
 
 #include "vpCommandLine.h"
 #include "vpLaserRigIo.h"
+#include "vpOutputFile.h"
 
 namespace
 {
@@ -153,7 +154,11 @@ int render(const Options &options)
     sim.render(I, settings);
     char name[64];
     std::snprintf(name, sizeof(name), "/images/view_%02u.png", static_cast<unsigned int>(k));
-    vpImageIo::write(I, options.output + name);
+    // Checked: on a full disk libpng reports its error on the console only, and "written" followed.
+    if (!vpOutputFile::writeImage(options.output + name, I, error)) {
+      std::cerr << error << std::endl;
+      return EXIT_FAILURE;
+    }
   }
   std::cout << poses.size() << " views written to " << options.output << "/images" << std::endl;
   return EXIT_SUCCESS;

@@ -112,6 +112,15 @@ bool vpLaserFlightFusion::readFrameTimes(size_t frames, std::string &error)
   return true;
 }
 
+std::vector<std::string> vpLaserFlightFusion::inputs() const
+{
+  std::vector<std::string> files;
+  for (const std::string &file : {m_imuFile, m_timesFile, m_rotationFile})
+    if (!file.empty())
+      files.push_back(file);
+  return files;
+}
+
 bool vpLaserFlightFusion::prepare(size_t frames, std::string &error)
 {
   if (m_imuFile.empty() || m_timesFile.empty()) {

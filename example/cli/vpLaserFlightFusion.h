@@ -38,6 +38,10 @@ public:
   void addOptions(vpCommandLine &cli);
   //! True when `--filtered` was given.
   bool enabled() const { return !m_output.empty(); }
+  //! The input files its options name (`--imu`, `--frame-times`, `--imu-rotation`), those given.
+  std::vector<std::string> inputs() const;
+  //! The `--filtered` output (empty when not given).
+  const std::string &output() const { return m_output; }
   /*!
     Checks the options and reads the IMU stream and the frame times (\e frames images).
     \return false with \e error naming the file and line otherwise.

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -29,7 +30,9 @@
 
 #include "vpCommandLine.h"
 #include "vpCsvTools.h"
+#include "vpImageFileCheck.h"
 #include "vpLaserRigIo.h"
+#include "vpOutputFile.h"
 
 namespace vspLaserSequenceCalibration
 {
@@ -114,9 +117,12 @@ bool readPoints(const std::string &file, std::map<unsigned int, std::vector<vpIm
   return true;
 }
 
-//! Frames detected in images (one frame per image, numbered in order).
-bool detectPoints(const Options &o, std::map<unsigned int, std::vector<vpImagePoint> > &frames, std::ostream &report,
-                  std::string &error)
+/*!
+  Frames detected in images (one frame per image, numbered in order). An image of another size than the camera
+  file's \e width x \e height (when it gives one) is an error: the intrinsics are not its.
+*/
+bool detectPoints(const Options &o, unsigned int width, unsigned int height,
+                  std::map<unsigned int, std::vector<vpImagePoint> > &frames, std::ostream &report, std::string &error)
 {
   std::vector<std::string> images;
   if (!vpLaserRigIo::listImages(o.imagesDir.empty() ? o.listFile : o.imagesDir, o.imagesDir.empty(), images, error))
@@ -124,11 +130,15 @@ bool detectPoints(const Options &o, std::map<unsigned int, std::vector<vpImagePo
   vpLaserConicDetector detector;
   for (size_t k = 0; k < images.size(); ++k) {
     vpImage<vpRGBa> I;
-    try {
-      vpImageIo::read(I, images[k]);
-    } catch (const vpException &e) {
-      report << "frame " << k << " (" << images[k] << "): unreadable image, left out\n";
+    std::string why;
+    if (!vpImageFileCheck::read(images[k], I, why)) { // a truncated JPEG too, which vpImageIo::read() took
+      report << "frame " << k << " (" << images[k] << "): unreadable image (" << why << "), left out\n";
       continue;
+    }
+    if (width > 0 && (I.getWidth() != width || I.getHeight() != height)) {
+      error = images[k] + ": " + std::to_string(I.getWidth()) + "x" + std::to_string(I.getHeight()) +
+              " image, the camera file's are " + std::to_string(width) + "x" + std::to_string(height);
+      return false;
     }
     frames[static_cast<unsigned int>(k)] = detector.detect(I);
   }
@@ -171,8 +181,10 @@ bool parseKnownAltitudes(const std::string &text, std::map<unsigned int, double>
   while (std::getline(in, item, ',')) {
     const std::string::size_type colon = item.find(':');
     double f = -1.0, h = 0.0;
+    // A frame number beyond an unsigned int's range wrapped (2^32 became frame 0).
     if (colon == std::string::npos || !vpCsvTools::toDouble(item.substr(0, colon), f) || f < 0.0 ||
-        f != std::floor(f) || !vpCsvTools::toDouble(item.substr(colon + 1), h) || !(h > 0.0))
+        f > std::numeric_limits<unsigned int>::max() || f != std::floor(f) ||
+        !vpCsvTools::toDouble(item.substr(colon + 1), h) || !(h > 0.0))
       return false;
     known[static_cast<unsigned int>(f)] = h;
   }
@@ -208,15 +220,20 @@ int run(int argc, char **argv)
     inputs.push_back(o.points);
   if (!o.listFile.empty())
     inputs.push_back(o.listFile);
-  if (!vpLaserRigIo::readCamera(o.camera, o.cameraName, cam, width, height, error) ||
+  // Every output is checked before the work (the report's folder was found missing after the calibration had
+  // run and its YAML been written), and against every input and the other output.
+  if (!vpOutputFile::checkWritable(o.output, error) ||
+      (!o.report.empty() && !vpOutputFile::checkWritable(o.report, error)) ||
+      !vpLaserRigIo::readCamera(o.camera, o.cameraName, cam, width, height, error) ||
       !vpLaserRigIo::readLaserCalibration(o.laser, previous, error) ||
-      !vpCsvTools::checkOutputIsNotInput(o.output, inputs, error)) {
+      !vpCsvTools::checkOutputs({o.output, o.report}, inputs, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
   std::ostringstream report;
   std::map<unsigned int, std::vector<vpImagePoint> > frames;
-  if (!(o.points.empty() ? detectPoints(o, frames, report, error) : readPoints(o.points, frames, error))) {
+  if (!(o.points.empty() ? detectPoints(o, width, height, frames, report, error)
+                         : readPoints(o.points, frames, error))) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
@@ -271,10 +288,15 @@ int run(int argc, char **argv)
     report << "written to " << o.output << "\n";
   }
   std::cout << report.str();
-  if (!o.report.empty()) {
-    std::ofstream out(o.report.c_str());
-    if (!(out << report.str())) {
-      std::cerr << argv[0] << ": " << o.report << ": cannot be written" << std::endl;
+  if (!o.report.empty()) { // written completely or not at all; a full disk is an error (it ended with 0)
+    vpOutputFile out(o.report);
+    bool written = out.open(error);
+    if (written) {
+      out.stream() << report.str();
+      written = out.commit(error);
+    }
+    if (!written) {
+      std::cerr << argv[0] << ": " << error << std::endl;
       return EXIT_FAILURE;
     }
   }

@@ -84,12 +84,20 @@ int run(int argc, char **argv)
     return EXIT_FAILURE;
   }
   std::map<unsigned int, vpHomogeneousMatrix> truthByFrame;
-  for (const vpPoseRow &row : truth)
+  for (const vpPoseRow &row : truth) {
+    // A truth row with a status word has no pose (its cMo is the identity): compared, it made an error of
+    // metres out of a frame without a ground truth.
+    if (row.status != "ok") {
+      std::cerr << argv[0] << ": " << truthFile << ": frame " << row.frame << " has no pose ('" << row.status
+                << "'): every ground-truth row needs one" << std::endl;
+      return EXIT_FAILURE;
+    }
     if (!truthByFrame.emplace(row.frame, row.cMo).second) {
       std::cerr << argv[0] << ": " << truthFile << ": frame " << row.frame << " appears twice in the ground truth"
                 << std::endl;
       return EXIT_FAILURE;
     }
+  }
 
   // Counted against the truth: every truth frame once in the estimate, nothing else.
   std::vector<double> translationErrors, rotationErrors;

@@ -247,13 +247,24 @@ bool listImages(const Options &options, std::vector<std::string> &images, std::s
   return true;
 }
 
-//! Refuses a results CSV that would overwrite one of the files named on the command line.
-bool checkOutputIsNotNamedInput(const Options &options, std::string &error)
+/*!
+  Refuses an output (the results CSV, the --filtered CSV) that would overwrite one of the files named on the
+  command line (--truth, --frame-times and --camera were overwritten), or the other output, and fusion
+  inputs without its output (they were ignored without a word).
+*/
+bool checkOutputIsNotNamedInput(const Options &options, const vpLaserFlightFusion &fusion, std::string &error)
 {
   std::vector<std::string> inputs = {options.camera, options.laser};
-  if (!options.listFile.empty())
-    inputs.push_back(options.listFile);
-  return vpCsvTools::checkOutputIsNotInput(options.output, inputs, error);
+  for (const std::string &file : {options.listFile, options.truth})
+    if (!file.empty())
+      inputs.push_back(file);
+  for (const std::string &file : fusion.inputs())
+    inputs.push_back(file);
+  if (!fusion.enabled() && !fusion.inputs().empty()) {
+    error = "--imu, --frame-times and --imu-rotation are used by --filtered only: give --filtered FILE";
+    return false;
+  }
+  return vpCsvTools::checkOutputs({options.output, fusion.output()}, inputs, error);
 }
 
 //! Refuses outputs that would overwrite an image (results CSV, or overlays in the image folder).
@@ -282,6 +293,7 @@ struct FrameResult
   std::vector<vpImagePoint> inlierPoints; //!< for the search region of the next frame (--track)
   std::string status = "ok";
   vpLaserConicPose::vpLaserConicMistake mistake = vpLaserConicPose::MISTAKE_UNKNOWN; //!< calibration_mismatch only
+  bool overlayFailed = false; //!< --overlays: its overlay could not be written (the error is on stderr)
 };
 
 //! The camera file's image size (0 when it gives none), which every image must have.
@@ -386,7 +398,14 @@ FrameResult processImage(const std::string &image, const Options &options, const
       std::snprintf(caption, sizeof(caption), "%s %s: %s (%zu points)", fs::path(image).filename().string().c_str(),
                     options.methodName.c_str(), result.status.c_str(), points.size());
     vpLaserOverlay::draw(I, points, inliers, conic, cam, caption);
-    vpImageIo::write(I, (fs::path(options.overlays) / (fs::path(image).stem().string() + "_overlay.png")).string());
+    // Checked: on a full disk libpng reported its error on the console only, and the run ended as written.
+    std::string error;
+    const std::string overlay =
+        (fs::path(options.overlays) / (fs::path(image).stem().string() + "_overlay.png")).string();
+    if (!vpOutputFile::writeImage(overlay, I, error)) {
+      std::cerr << error << std::endl;
+      result.overlayFailed = true;
+    }
   }
   return result;
 }
@@ -394,15 +413,15 @@ FrameResult processImage(const std::string &image, const Options &options, const
   Reads the camera, the laser calibration and the image list, and checks that no output names an
   input. \return false with \e error naming the file at fault.
 */
-bool readInputs(const Options &options, vpCameraParameters &cam, ImageSize &size, double &openingAngle,
-                vpHomogeneousMatrix &cMl, std::vector<std::string> &images, std::string &error)
+bool readInputs(const Options &options, const vpLaserFlightFusion &fusion, vpCameraParameters &cam, ImageSize &size,
+                double &openingAngle, vpHomogeneousMatrix &cMl, std::vector<std::string> &images, std::string &error)
 {
   // The output is checked against the named files first, so that a wrong command line is refused
   // before the image list is read; then against the images.
   return vpOutputFile::checkWritable(options.output, error) &&
          vpLaserRigIo::readCamera(options.camera, options.cameraName, cam, size.width, size.height, error) &&
          vpLaserRigIo::readLaserCalibration(options.laser, openingAngle, cMl, error) &&
-         checkOutputIsNotNamedInput(options, error) && listImages(options, images, error) &&
+         checkOutputIsNotNamedInput(options, fusion, error) && listImages(options, images, error) &&
          checkOutputsAgainstImages(options, images, error);
 }
 
@@ -474,7 +493,7 @@ int run(int argc, char **argv)
               << " needs --truth (the ground truth the errors are measured against)" << std::endl;
     return EXIT_FAILURE;
   }
-  if (!readInputs(options, cam, size, openingAngle, cMl, images, error)) {
+  if (!readInputs(options, fusion, cam, size, openingAngle, cMl, images, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
@@ -526,7 +545,7 @@ int run(int argc, char **argv)
   fusion.configure(estimator);
   vpCovarianceCheck covarianceCheck;
   out << "frame,image,points,altitude_m,roll_rad,pitch_rad,inliers,status,sd_altitude_m,sd_roll_rad,sd_pitch_rad\n";
-  unsigned int found = 0, compared = 0;
+  unsigned int found = 0, compared = 0, overlayFailures = 0;
   double worstAltitude = 0.0, worstRoll = 0.0, worstPitch = 0.0;
   std::vector<FrameResult> results;
   for (size_t k = 0; k < images.size(); ++k) {
@@ -540,6 +559,7 @@ int run(int argc, char **argv)
       return EXIT_FAILURE;
     }
     writeRow(out, k, images[k], r);
+    overlayFailures += r.overlayFailed ? 1 : 0;
     fusion.addFrame(k, r.status == "ok", estimator);
     found += r.status == "ok" ? 1 : 0;
     // Next frame: search near this frame's inliers, or in the whole image after a failure.
@@ -576,7 +596,14 @@ int run(int argc, char **argv)
   if (fusion.enabled())
     std::cout << summary << std::endl;
   std::cout << options.methodName << ": " << found << "/" << images.size() << " images with a plane, written to "
-            << options.output << (options.overlays.empty() ? "" : ", overlays in " + options.overlays) << std::endl;
+            << options.output
+            << (options.overlays.empty() || overlayFailures > 0 ? "" : ", overlays in " + options.overlays)
+            << std::endl;
+  if (overlayFailures > 0) {
+    std::cerr << argv[0] << ": " << overlayFailures << " of " << images.size() << " overlays could not be written to "
+              << options.overlays << std::endl;
+    return EXIT_FAILURE;
+  }
   if (!truth.empty() && compared == 0) {
     // Nothing compared is not an error of 0 mm: a bound given cannot pass on it.
     std::cout << "against " << options.truth << ": no frame with a plane and a ground truth" << std::endl;

@@ -169,8 +169,9 @@ void writeFigure(const vpLaserConicCalibration &calib, size_t v, const std::stri
     throw vpException(vpException::ioError, error);
 }
 
-//! Per view: image, points, inliers and RMS distance (mm) of the inliers to the calibrated trace on the grid.
-void reportViews(std::ostream &os, const vpLaserConicGridCalibration &grid, const std::vector<std::string> &images)
+//! Per view: image, points, inliers and RMS distance (mm) of the inliers to the calibrated trace on the grid;
+//! \e added: the images given to addImage(), in order.
+void reportViews(std::ostream &os, const vpLaserConicGridCalibration &grid, const std::vector<std::string> &added)
 {
   const vpLaserConicCalibration &calib = grid.getCalibration();
   const std::vector<std::vector<std::pair<double, double> > > measured = calib.getMeasuredGridPoints(),
@@ -186,7 +187,7 @@ void reportViews(std::ostream &os, const vpLaserConicGridCalibration &grid, cons
                 vpMath::sqr(measured[v][i].second - predicted[v][i].second);
         ++n;
       }
-    os << v << "," << images[grid.getViewImageIndex()[v]] << "," << measured[v].size() << "," << n << ","
+    os << v << "," << added[grid.getViewImageIndex()[v]] << "," << measured[v].size() << "," << n << ","
        << (n ? 1000.0 * std::sqrt(sum2 / n) : 0.0) << "\n";
   }
 }
@@ -248,8 +249,14 @@ int run(int argc, char **argv)
       (!o.report.empty() && !vpOutputFile::checkWritable(o.report, error)) ||
       (!o.figure.empty() && !vpOutputFile::checkWritable(o.figure, error)) ||
       !vpLaserRigIo::readCamera(o.camera, o.cameraName, cam, width, height, error) ||
-      !vpLaserRigIo::listImages(o.imagesDir.empty() ? o.listFile : o.imagesDir, o.imagesDir.empty(), images, error) ||
-      !vpCsvTools::checkOutputIsNotInput(o.output, inputs, error)) {
+      !vpLaserRigIo::listImages(o.imagesDir.empty() ? o.listFile : o.imagesDir, o.imagesDir.empty(), images, error)) {
+    std::cerr << argv[0] << ": " << error << std::endl;
+    return EXIT_FAILURE;
+  }
+  // No output over an input (the camera file, the list, an image: each was overwritten by --report or
+  // --output) or over another output.
+  inputs.insert(inputs.end(), images.begin(), images.end());
+  if (!vpCsvTools::checkOutputs({o.output, o.report, o.figure}, inputs, error)) {
     std::cerr << argv[0] << ": " << error << std::endl;
     return EXIT_FAILURE;
   }
@@ -268,6 +275,9 @@ int run(int argc, char **argv)
 
   std::ostringstream report;
   report << "image,status,corner_rms_px,laser_points\n";
+  // The images given to the calibration, in order: a view's image index counts these, not the images listed
+  // (an unreadable image before a view shifted every later view's name in the report and the figure).
+  std::vector<std::string> added;
   vpProgress progress("vsp-laser-calibrate: images", images.size());
   for (size_t k = 0; k < images.size(); ++k) {
     progress.update(k);
@@ -281,6 +291,7 @@ int run(int argc, char **argv)
                " differs from the camera's " + std::to_string(width) + "x" + std::to_string(height);
     if (status.empty()) {
       const vpLaserConicGridCalibration::vpGridViewStatus s = grid.addImage(I);
+      added.push_back(file);
       status = vpLaserConicGridCalibration::getViewStatusMessage(s);
       report << file << "," << status << "," << grid.getReprojectionErrors().back() << ","
              << grid.getLaserPoints().back().size() << "\n";
@@ -307,7 +318,7 @@ int run(int argc, char **argv)
   if (!ok) {
     report << "calibration failed: " << failure << "\n";
   } else {
-    reportViews(report, grid, images);
+    reportViews(report, grid, added);
     reportCalibration(report, calib, cMl);
     vpLaserCalibrationData data;
     data.openingAngle = calib.getOpeningAngle();
@@ -327,7 +338,7 @@ int run(int argc, char **argv)
       for (size_t v = 1; v < calib.getNbViews(); ++v)
         if (calib.getMeasuredGridPoints()[v].size() > calib.getMeasuredGridPoints()[best].size())
           best = v;
-      const std::string name = images[grid.getViewImageIndex()[best]];
+      const std::string name = added[grid.getViewImageIndex()[best]];
       try {
         writeFigure(calib, best, "Laser trace on the grid: " + name.substr(name.find_last_of('/') + 1), o.figure);
       } catch (const vpException &e) {
@@ -341,7 +352,12 @@ int run(int argc, char **argv)
   std::cout << report.str();
   if (!o.report.empty()) {
     vpOutputFile out(o.report);
-    if (!out.open(error) || !(out.stream() << report.str()) || !out.commit(error)) {
+    bool written = out.open(error);
+    if (written) { // commit() reports a failed write (a bare stream check left the message empty)
+      out.stream() << report.str();
+      written = out.commit(error);
+    }
+    if (!written) {
       std::cerr << argv[0] << ": " << error << std::endl;
       return EXIT_FAILURE;
     }

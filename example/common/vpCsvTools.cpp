@@ -115,6 +115,29 @@ bool checkOutputIsNotInput(const std::string &output, const std::vector<std::str
   return true;
 }
 
+bool checkOutputs(const std::vector<std::string> &outputs, const std::vector<std::string> &inputs, std::string &error)
+{
+  std::vector<std::string> earlier;
+  for (const std::string &output : outputs) {
+    if (output.empty())
+      continue;
+    if (!checkOutputIsNotInput(output, inputs, error))
+      return false;
+    for (const std::string &other : earlier) {
+      // By name as well: neither may exist yet.
+      std::error_code ec1, ec2;
+      const bool sameName = std::filesystem::weakly_canonical(output, ec1) ==
+                            std::filesystem::weakly_canonical(other, ec2);
+      if ((sameName && !ec1 && !ec2) || samePath(output, other)) {
+        error = "two outputs name the same file '" + output + "': choose one file for each";
+        return false;
+      }
+    }
+    earlier.push_back(output);
+  }
+  return true;
+}
+
 std::string formatDouble(double value)
 {
   if (std::isnan(value))

@@ -54,6 +54,12 @@ bool samePath(const std::string &a, const std::string &b);
 */
 bool checkOutputIsNotInput(const std::string &output, const std::vector<std::string> &inputs, std::string &error);
 
+/*!
+  Refuses outputs (the empty ones left out) of which one names an input, or two name the same file.
+  \return false with \e error naming them.
+*/
+bool checkOutputs(const std::vector<std::string> &outputs, const std::vector<std::string> &inputs, std::string &error);
+
 //! Shortest decimal text (15 to 17 significant digits) that reads back as exactly \e value; "nan" for NaN.
 std::string formatDouble(double value);
 } // namespace vpCsvTools

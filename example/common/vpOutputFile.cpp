@@ -12,6 +12,7 @@
 #include <random>
 
 #include <visp3/core/vpException.h>
+#include <visp3/io/vpImageIo.h>
 
 #include <unistd.h>
 
@@ -127,6 +128,17 @@ bool vpOutputFile::commit(std::string &error)
   }
   m_committed = true;
   return true;
+}
+
+bool vpOutputFile::writeImage(const std::string &path, const vpImage<vpRGBa> &I, std::string &error)
+{
+  return writeThrough(
+      path,
+      [&I](const std::string &scratch) {
+        vpImageIo::write(I, scratch);
+        return true;
+      },
+      error);
 }
 
 bool vpOutputFile::writeThrough(const std::string &path, const std::function<bool(const std::string &file)> &writer,

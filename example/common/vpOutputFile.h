@@ -13,6 +13,9 @@
 #include <functional>
 #include <string>
 
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpRGBa.h>
+
 /*!
   An output file that is never left half written. The content goes to a temporary file in the
   folder of the target, which commit() flushes, closes and renames over the target once complete:
@@ -54,6 +57,12 @@ public:
   */
   static bool writeThrough(const std::string &path, const std::function<bool(const std::string &file)> &writer,
                            std::string &error);
+
+  /*!
+    vpImageIo::write() of \e I to \e path through writeThrough(): a write that fails (libpng's "Write Error" on a
+    full disk, which vpImageIo::write() reports on the console only) returns false with \e error set.
+  */
+  static bool writeImage(const std::string &path, const vpImage<vpRGBa> &I, std::string &error);
 
   //! Creates the temporary file (or opens the special file). \return false with \e error set.
   bool open(std::string &error);
