@@ -122,8 +122,10 @@ unsigned int vpLaserConicCalibration::getNbPoints() const
 vpColVector vpLaserConicCalibration::getStdDeviations() const
 {
   vpColVector sigma(kNbConeParams, 0.0);
-  for (unsigned int k = 0; k < kNbConeParams; ++k)
-    sigma[k] = std::sqrt(std::max(0.0, m_covariance[k][k]));
+  for (unsigned int k = 0; k < kNbConeParams; ++k) { // NaN stays NaN (std::max(0, NaN) is 0)
+    const double v = m_covariance[k][k];
+    sigma[k] = std::isnan(v) ? v : std::sqrt(std::max(0.0, v));
+  }
   return sigma;
 }
 
@@ -154,6 +156,8 @@ std::string vpLaserConicCalibration::getStatusMessage(vpLaserConicCalibrationSta
 
 bool vpLaserConicCalibration::fail(vpLaserConicCalibrationStatus status, const std::string &details)
 {
+  // No covariance of a failed run: a run refused for its residuals had filled it, and read as a result.
+  m_covariance = vpMatrix(kNbConeParams, kNbConeParams, std::numeric_limits<double>::quiet_NaN());
   m_status = status;
   m_statusDetails = details;
   return false;
@@ -214,6 +218,7 @@ void vpLaserConicCalibration::resetResults()
   m_condition = 0.0;
   m_nbInliers = 0;
   m_rms = m_rmsPixels = 0.0;
+  m_initialRms = 0.0; // an earlier run's stayed readable after a run that failed before its first stage
   m_lossScale = 0.0;
   m_predicted.clear();
   m_initialPredicted.clear();

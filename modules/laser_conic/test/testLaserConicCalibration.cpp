@@ -202,6 +202,30 @@ TEST(LaserConicCalibration, AnAxisGuessedBackwardsEndsForward)
   }
 }
 
+// A run refused for its residuals had filled the covariance: its standard deviations (6e-5 rad) stayed
+// readable as a result. And the initial RMS of an earlier run stayed after a run that failed before its first
+// stage. A failed run leaves none of its own or of an earlier run's.
+TEST(LaserConicCalibration, AFailedRunLeavesNoResultsToRead)
+{
+  const std::vector<vpHomogeneousMatrix> poses = gridPoses(8, 1);
+  vpLaserConicCalibration calib = makeCalibration(poses, laserPoints(poses, 0.5));
+  calib.setInitialGuess(perturbedGuess());
+  vpHomogeneousMatrix cMl;
+  ASSERT_TRUE(calib.compute(cMl));
+  EXPECT_GT(calib.getInitialRms(), 0.0);
+  calib.setMaxRmsPixels(0.1); // the points have 0.5 px of noise
+  EXPECT_FALSE(calib.compute(cMl));
+  EXPECT_EQ(calib.getStatus(), vpLaserConicCalibration::STATUS_LARGE_RESIDUALS);
+  const vpColVector sd = calib.getStdDeviations();
+  for (unsigned int k = 0; k < sd.size(); ++k)
+    EXPECT_TRUE(std::isnan(sd[k])) << k;
+  calib.clearViews();
+  calib.addView(poses[0], laserPoints(poses, 0.5)[0]);
+  EXPECT_FALSE(calib.compute(cMl));
+  EXPECT_EQ(calib.getStatus(), vpLaserConicCalibration::STATUS_NOT_ENOUGH_VIEWS);
+  EXPECT_EQ(calib.getInitialRms(), 0.0);
+}
+
 TEST(LaserConicCalibration, CalibratesFromRenderedAndDetectedImages)
 {
   // The whole chain: rendered images (stripe 3 px, sensor noise 2 grey levels), HSV detection, calibration.

@@ -236,7 +236,8 @@ public:
   */
   double getConditionNumber() const { return m_condition; }
   /*!
-    Covariance matrix of the last successful compute(): 6x6, parameter order (alpha, beta, vx, vy, vz, A),
+    Covariance matrix of the last compute() when it succeeded (NaN when it failed): 6x6, parameter order
+    (alpha, beta, vx, vy, vz, A),
     units rad and metres; alpha and beta are the angles of the axis (see the class description), v the
     apex, A the full opening angle (its row and column are zero when it is not estimated). It is the
     inverse of the normal matrix with the gamma_i eliminated, times the residual variance
