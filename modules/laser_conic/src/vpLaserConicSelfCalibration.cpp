@@ -209,6 +209,21 @@ bool vpLaserConicSelfCalibration::solve(vpHomogeneousMatrix &cMl, double &openin
   settings.maxStd = m_maxStd;
   const StepsOutcome out = steps.run(inputs, settings);
   m_fig = out; // the figures as a whole (the outcome's base)
+  // Known altitudes as the only length, none of their frames used (no plane with the initial laser): the scale
+  // was free, and the refusal blamed the attitudes' spread.
+  std::ostringstream dropped;
+  bool knownUsed = false;
+  for (size_t i = 0; i < m_frames.size(); ++i)
+    if (m_frames[i].knownAltitude > 0.0) {
+      const bool used = i < out.used.size() && out.used[i];
+      knownUsed = knownUsed || used;
+      if (!used)
+        dropped << (dropped.tellp() > 0 ? ", " : "") << i;
+    }
+  if (!(m_apexDistance > 0.0) && !m_holdApex && !knownUsed)
+    return fail(STATUS_DEGENERATE_FRAMES, "no length: the frames given a known altitude (" + dropped.str() +
+                                              ") were left out (no plane with the initial laser); give "
+                                              "setApexDistance() or the altitude of a frame used");
   if (out.status != STATUS_OK)
     return fail(static_cast<vpSelfCalibrationStatus>(out.status), out.details);
   if (m_fig.rms > m_maxRms) {

@@ -18,6 +18,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpTime.h>
+#include <visp3/core/vpUniRand.h>
 #include <visp3/laser_conic/vpLaserConicCalibration.h>
 #include <visp3/laser_conic/vpLaserConicPose.h>
 #include <visp3/laser_conic/vpLaserConicSelfCalibration.h>
@@ -481,6 +482,31 @@ TEST(LaserConicSelfCalibration, KnownAltitudeGivesTheScale)
 }
 
 // Frames at one attitude (a hover, altitudes within +-5 %) do not determine the laser: refused, with the spread.
+// The only length is the altitude of a frame that GP-3 finds no plane in (its points are no trace): the frame
+// is left out, and with it the scale. Refused for that reason, named, not for the attitudes (which it blamed:
+// a spread of 6.6 / 9.2 degrees, enough).
+TEST(LaserConicSelfCalibration, ALengthOnAFrameLeftOutIsNamed)
+{
+  FlightSettings s;
+  s.points = 300;
+  s.frames = 20;
+  std::vector<Frame> frames = flight(s, 115);
+  vpUniRand random(7);
+  Frame noise = frames.front();
+  for (vpImagePoint &p : noise.points)
+    p = vpImagePoint(random.uniform(0.0, 600.0), random.uniform(0.0, 800.0));
+  frames.insert(frames.begin(), noise);
+  vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, 0.0);
+  selfcal.setKnownAltitude(0, 1.0);
+  vpHomogeneousMatrix cMl;
+  double A = 0.0;
+  EXPECT_FALSE(selfcal.compute(cMl, A));
+  EXPECT_FALSE(selfcal.getFrameUsed()[0]);
+  EXPECT_EQ(selfcal.getStatus(), vpLaserConicSelfCalibration::STATUS_DEGENERATE_FRAMES);
+  std::cout << selfcal.getStatusDetails() << std::endl;
+  EXPECT_NE(selfcal.getStatusDetails().find("no length: the frames given a known altitude (0)"), std::string::npos);
+}
+
 TEST(LaserConicSelfCalibration, OneAttitudeIsRefused)
 {
   FlightSettings s;

@@ -175,7 +175,8 @@ public:
   /*!
     The scale constraint of a known altitude (metres, camera centre above the ground) of frame \e frame
     (index returned by addFrame()); may be given for several frames. A frame with a known altitude is
-    always used.
+    always used when it has a plane (one given, or GP-3's with the initial laser); left out, its length goes
+    with it, and compute() refuses (STATUS_DEGENERATE_FRAMES, "no length") when no other length is left.
     \exception vpLaserConicException::badValueError on an unknown frame or an altitude not positive and finite.
   */
   void setKnownAltitude(unsigned int frame, double altitude);
