@@ -158,8 +158,8 @@ ConeProblem::ConeProblem(const std::vector<vpHomogeneousMatrix> &cMg, const Grid
 {
   initialState(cMg, measured, guess, openingAngle);
   addBlocks(cMg, measured, cam);
-  m_problem.SetParameterLowerBound(&m_s.opening, 0, 1e-3);
-  m_problem.SetParameterUpperBound(&m_s.opening, 0, M_PI - 1e-3);
+  m_problem.SetParameterLowerBound(&m_s.opening, 0, kMinOpening);
+  m_problem.SetParameterUpperBound(&m_s.opening, 0, M_PI - kMinOpening);
 }
 
 void ConeProblem::initialState(const std::vector<vpHomogeneousMatrix> &cMg, const GridPoints &measured,

@@ -28,6 +28,10 @@ namespace vsp::laser_calibration
 //! Parameter vector of the cone, in the order of the covariance matrix.
 enum { kAlpha = 0, kBeta, kVx, kVy, kVz, kOpening, kNbConeParams };
 
+//! The full opening angle stays within [kMinOpening, pi - kMinOpening] rad in the solver (its bounds), and a
+//! given one must lie there too (an angle outside made Ceres fail on an infeasible start).
+constexpr double kMinOpening = 1e-3;
+
 //! Grid XY of the laser points of each view.
 typedef std::vector<std::vector<std::pair<double, double> > > GridPoints;
 

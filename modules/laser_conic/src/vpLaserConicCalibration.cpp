@@ -40,6 +40,11 @@ void vpLaserConicCalibration::setCameraParameters(const vpCameraParameters &cam)
 void vpLaserConicCalibration::setOpeningAngle(double openingAngle)
 {
   vsp::laser_value_check::requireOpeningAngle(openingAngle, "vpLaserConicCalibration");
+  const double lowest = vsp::laser_calibration::kMinOpening;
+  if (!(openingAngle >= lowest && openingAngle <= M_PI - lowest))
+    throw vpLaserConicException(vpLaserConicException::badLaserError,
+                                "vpLaserConicCalibration: the laser's full opening angle must be in [1e-3, pi - 1e-3] "
+                                "rad (the solver's bounds)");
   m_openingAngle = openingAngle;
   m_openingAngleEstimate = openingAngle;
 }

@@ -29,9 +29,12 @@ void checkPoints(const std::vector<vpImagePoint> &points)
   require(points.size() >= 5,
           "vpLaserConicSelfCalibration: a frame needs at least 5 laser points, got " + std::to_string(points.size()),
           vpLaserConicException::notEnoughPointError);
+  // Beyond a million pixels a point is no image point, and at 1e200 the residual overflowed to 0: such points
+  // counted as perfect inliers (45 % of each frame: STATUS_OK, RMS 0.07 px for 0.5 px of noise).
   for (const vpImagePoint &p : points)
-    require(std::isfinite(p.get_u()) && std::isfinite(p.get_v()),
-            "vpLaserConicSelfCalibration: a laser point is not finite", vpLaserConicException::badPointError);
+    require(std::fabs(p.get_u()) <= 1e6 && std::fabs(p.get_v()) <= 1e6,
+            "vpLaserConicSelfCalibration: a laser point is not finite or beyond 1e6 px",
+            vpLaserConicException::badPointError);
 }
 } // namespace
 

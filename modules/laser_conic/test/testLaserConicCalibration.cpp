@@ -283,6 +283,9 @@ TEST(LaserConicCalibration, BadInputThrows)
   vpLaserConicCalibration calib;
   EXPECT_THROW(calib.setCameraParameters(vpCameraParameters(-1.0, 1500, 800, 600)), vpLaserConicException);
   EXPECT_THROW(calib.setOpeningAngle(0.0), vpLaserConicException);
+  // Beyond the solver's bounds: refused here (Ceres failed on them, "infeasible value", STATUS_SOLVER_FAILURE).
+  EXPECT_THROW(calib.setOpeningAngle(5e-4), vpLaserConicException);
+  EXPECT_THROW(calib.setOpeningAngle(M_PI - 5e-4), vpLaserConicException);
   EXPECT_THROW(calib.setOpeningAngle(M_PI), vpLaserConicException);
   EXPECT_THROW(calib.setOpeningAngle(std::numeric_limits<double>::infinity()), vpLaserConicException);
   const std::vector<vpImagePoint> four(points[0].begin(), points[0].begin() + 4);

@@ -781,6 +781,9 @@ TEST(LaserConicSelfCalibration, BadInput)
   std::vector<vpImagePoint> nan = frames[0].points;
   nan[3].set_u(std::numeric_limits<double>::quiet_NaN());
   EXPECT_THROW(selfcal.addFrame(nan), vpLaserConicException);
+  std::vector<vpImagePoint> huge = frames[0].points; // counted as perfect inliers (the residual overflowed)
+  huge[3] = vpImagePoint(1e200, 1e200);
+  EXPECT_THROW(selfcal.addFrame(huge), vpLaserConicException);
   EXPECT_THROW(selfcal.addFrame(std::vector<vpImagePoint>()), vpLaserConicException);
   EXPECT_THROW(selfcal.addFrame(std::vector<vpImagePoint>(frames[0].points.begin(), frames[0].points.begin() + 4)),
                vpLaserConicException);

@@ -124,7 +124,7 @@ public:
   /*!
     Full opening angle of the laser (rad), known from the manufacturer; the initial value when
     setOpeningAngleEstimation(true).
-    \exception vpLaserConicException::badLaserError when it is outside (0, pi).
+    \exception vpLaserConicException::badLaserError when it is outside [1e-3, pi - 1e-3] (the solver's bounds).
   */
   void setOpeningAngle(double openingAngle);
   /*!

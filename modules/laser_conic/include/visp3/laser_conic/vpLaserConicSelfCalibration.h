@@ -213,7 +213,8 @@ public:
   /*!
     Adds a frame: the laser trace points (pixels) detected in it, outliers allowed.
     \return the frame index (for setKnownAltitude()).
-    \exception vpLaserConicException::badPointError on a non-finite point, notEnoughPointError with fewer
+    \exception vpLaserConicException::badPointError on a point not finite or beyond 1e6 px (at 1e200 px the
+    residuals overflowed and such points counted as perfect inliers), notEnoughPointError with fewer
     than 5 points (a frame without laser is not a frame of the calibration: leave it out).
   */
   unsigned int addFrame(const std::vector<vpImagePoint> &points);
