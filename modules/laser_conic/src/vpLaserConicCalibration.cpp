@@ -341,9 +341,29 @@ bool vpLaserConicCalibration::compute(vpHomogeneousMatrix &cMl)
       return false;
     if (gridsBehind(turned.pose(), cMg))
       return fail(STATUS_SOLVER_FAILURE, "the fitted cone's axis points away from the grids");
-    return finishCone(turned, cMl);
+    return checkInlierViews(turned, cMg) && finishCone(turned, cMl);
   }
-  return finishCone(cone, cMl);
+  return checkInlierViews(cone, cMg) && finishCone(cone, cMl);
+}
+
+bool vpLaserConicCalibration::checkInlierViews(const ConeProblem &cone, const std::vector<vpHomogeneousMatrix> &cMg)
+{
+  // The one-plane refusal again, on the views the fit kept: a view counts when more than half of its points are
+  // inliers. Four views of one plane and a fifth of clutter on another, whose points the robust stage set
+  // aside but for a few it passed the cone through, ended STATUS_OK with the axis 11.7 degrees off.
+  const std::vector<std::vector<bool> > flags = cone.inlierFlags(cMg.size());
+  std::vector<vpHomogeneousMatrix> kept;
+  for (size_t v = 0; v < cMg.size() && v < flags.size(); ++v) {
+    const size_t inliers = static_cast<size_t>(std::count(flags[v].begin(), flags[v].end(), true));
+    if (2 * inliers > flags[v].size())
+      kept.push_back(cMg[v]);
+  }
+  if (kept.size() >= 2 && hasTwoGridPlanes(kept))
+    return true;
+  std::ostringstream os;
+  os << "the " << kept.size() << " views that keep more than half of their points as inliers do not show two grid "
+     << "planes; the other " << cMg.size() - kept.size() << " view(s) are mostly outliers";
+  return fail(STATUS_DEGENERATE_VIEWS, os.str());
 }
 
 bool vpLaserConicCalibration::gridsBehind(const vpHomogeneousMatrix &cMl, const std::vector<vpHomogeneousMatrix> &cMg)

@@ -63,7 +63,9 @@ class ConeProblem;
   lie in one plane (one grid shown several times, fronto-parallel views at one depth: normals within 2
   degrees and distances within 2 %), the view set cannot determine the cone and compute() refuses with
   STATUS_DEGENERATE_VIEWS rather than return a cone that fits the points but is wrong (one plane is cut
-  by several cones along the same conic). Fewer than 2 views give STATUS_NOT_ENOUGH_VIEWS. Tilted grids
+  by several cones along the same conic). The one-plane test runs on all the views, then again on those
+  that keep more than half of their points as inliers after the robust stage. Fewer than 2 views give
+  STATUS_NOT_ENOUGH_VIEWS. Tilted grids
   at one distance, or parallel grids at several distances, do determine the cone (opening angle included).
   A fit whose inliers' RMS exceeds setMaxRmsPixels() (cone fitted to mostly outliers, wrong camera model
   or grid poses) ends with STATUS_LARGE_RESIDUALS. The formal standard deviations ignore the errors of
@@ -288,6 +290,8 @@ private:
   bool fitCone(vsp::laser_calibration::ConeProblem &cone);
   //! Condition number (STATUS_DEGENERATE_VIEWS beyond the limit), RMS and covariance of the fitted cone.
   bool computeCovariance(vsp::laser_calibration::ConeProblem &cone);
+  //! STATUS_DEGENERATE_VIEWS unless the views keeping more than half of their points show two grid planes.
+  bool checkInlierViews(const vsp::laser_calibration::ConeProblem &cone, const std::vector<vpHomogeneousMatrix> &cMg);
   //! Whether most laser points of the grids (posed by \e cMg) lie behind the laser \e cMl: its other nappe.
   bool gridsBehind(const vpHomogeneousMatrix &cMl, const std::vector<vpHomogeneousMatrix> &cMg);
   //! The fitted cone's covariance, residual check and results, into \e cMl on success.
