@@ -299,6 +299,7 @@ SolveResult solveJoint(std::vector<Frame> &frames, LaserVector &L, const ApexCha
   ceres::Solve(options, &problem, &summary);
   SolveResult result;
   result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.failed = summary.termination_type == ceres::FAILURE;
   result.iterations = static_cast<int>(summary.iterations.size());
   result.message = summary.message;
   result.finite = L.allFinite();

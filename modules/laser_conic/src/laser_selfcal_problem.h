@@ -90,6 +90,7 @@ struct SolveSettings
 struct SolveResult
 {
   bool converged = false; //!< Ceres reported convergence (not the iteration limit, not a failure)
+  bool failed = false;    //!< Ceres failed (an evaluation of the residuals failed), rather than stopping at the limit
   bool finite = false;    //!< every parameter finite
   int iterations = 0;     //!< iterations run
   std::string message;    //!< Ceres' message

@@ -218,9 +218,11 @@ bool Steps::robustRounds(StepsOutcome &out)
 {
   for (int round = 0; round <= kRobustRounds; ++round) {
     const SolveResult result = solveJoint(m_frames, m_L, m_chart, m_solve);
-    if (!result.finite) {
+    // A failure of Ceres (its residuals could not be evaluated: lengths of 1e200 m) was reported as the
+    // iteration limit, after "0 iterations".
+    if (!result.finite || result.failed) {
       out.status = Facade::STATUS_SOLVER_FAILURE;
-      out.details = "non-finite parameters (" + result.message + ")";
+      out.details = (result.finite ? "Ceres failed (" : "non-finite parameters (") + result.message + ")";
       return false;
     }
     std::vector<std::vector<double> > r(m_frames.size());

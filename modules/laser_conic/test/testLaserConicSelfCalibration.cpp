@@ -806,6 +806,12 @@ TEST(LaserConicSelfCalibration, BadInput)
   EXPECT_FALSE(two.compute(kept, A));
   EXPECT_EQ(two.getStatus(), vpLaserConicSelfCalibration::STATUS_NOT_ENOUGH_FRAMES);
   EXPECT_EQ(kept[0][3], roughGuess()[0][3]);
+
+  // A length of 1e200 m: Ceres cannot evaluate the residuals. A solver failure, not the iteration limit
+  // (STATUS_NO_CONVERGENCE after "0 iterations" before).
+  vpLaserConicSelfCalibration farApex = makeSelfCal(frames, 1e200);
+  EXPECT_FALSE(farApex.compute(kept, A));
+  EXPECT_EQ(farApex.getStatus(), vpLaserConicSelfCalibration::STATUS_SOLVER_FAILURE) << farApex.getStatusDetails();
 }
 
 namespace
