@@ -289,13 +289,7 @@ int run(int argc, char **argv)
   }
   std::cout << report.str();
   if (!o.report.empty()) { // written completely or not at all; a full disk is an error (it ended with 0)
-    vpOutputFile out(o.report);
-    bool written = out.open(error);
-    if (written) {
-      out.stream() << report.str();
-      written = out.commit(error);
-    }
-    if (!written) {
+    if (!vpOutputFile::writeText(o.report, report.str(), error)) {
       std::cerr << argv[0] << ": " << error << std::endl;
       return EXIT_FAILURE;
     }

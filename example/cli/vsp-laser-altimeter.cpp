@@ -254,16 +254,15 @@ bool listImages(const Options &options, std::vector<std::string> &images, std::s
 */
 bool checkOutputIsNotNamedInput(const Options &options, const vpLaserFlightFusion &fusion, std::string &error)
 {
-  std::vector<std::string> inputs = {options.camera, options.laser};
-  for (const std::string &file : {options.listFile, options.truth})
-    if (!file.empty())
-      inputs.push_back(file);
-  for (const std::string &file : fusion.inputs())
-    inputs.push_back(file);
-  if (!fusion.enabled() && !fusion.inputs().empty()) {
+  std::vector<std::string> inputs = fusion.inputs();
+  if (!fusion.enabled() && !inputs.empty()) {
     error = "--imu, --frame-times and --imu-rotation are used by --filtered only: give --filtered FILE";
     return false;
   }
+  inputs.insert(inputs.end(), {options.camera, options.laser});
+  for (const std::string &file : {options.listFile, options.truth})
+    if (!file.empty())
+      inputs.push_back(file);
   return vpCsvTools::checkOutputs({options.output, fusion.output()}, inputs, error);
 }
 

@@ -351,13 +351,7 @@ int run(int argc, char **argv)
   }
   std::cout << report.str();
   if (!o.report.empty()) {
-    vpOutputFile out(o.report);
-    bool written = out.open(error);
-    if (written) { // commit() reports a failed write (a bare stream check left the message empty)
-      out.stream() << report.str();
-      written = out.commit(error);
-    }
-    if (!written) {
+    if (!vpOutputFile::writeText(o.report, report.str(), error)) {
       std::cerr << argv[0] << ": " << error << std::endl;
       return EXIT_FAILURE;
     }

@@ -94,16 +94,29 @@ bool samePath(const std::string &a, const std::string &b)
   return std::filesystem::equivalent(a, b, ec);
 }
 
+namespace
+{
+//! The weakly canonical form of \e path, empty when it cannot be made.
+std::filesystem::path canonicalName(const std::string &path)
+{
+  std::error_code ec;
+  const std::filesystem::path name = std::filesystem::weakly_canonical(path, ec);
+  return ec ? std::filesystem::path() : name;
+}
+
+//! Whether \e b names the file \e a (of canonical name \e aName) does: by name first, as an output may not exist
+//! yet while naming an input (or another output) the same way, else as the same existing file.
+bool sameFile(const std::string &a, const std::filesystem::path &aName, const std::string &b)
+{
+  return (!aName.empty() && aName == canonicalName(b)) || samePath(a, b);
+}
+} // namespace
+
 bool checkOutputIsNotInput(const std::string &output, const std::vector<std::string> &inputs, std::string &error)
 {
-  // Lexical comparison first: the output may not exist yet while naming an input the same way.
-  std::error_code ec1;
-  const std::filesystem::path out = std::filesystem::weakly_canonical(output, ec1);
+  const std::filesystem::path out = canonicalName(output);
   for (const std::string &input : inputs) {
-    std::error_code ec2;
-    const std::filesystem::path in = std::filesystem::weakly_canonical(input, ec2);
-    const bool sameName = !ec1 && !ec2 && out == in;
-    if (sameName || samePath(output, input)) {
+    if (sameFile(output, out, input)) {
       error = "refusing to overwrite input file '";
       error += input;
       error += "' with the output '";
@@ -123,16 +136,12 @@ bool checkOutputs(const std::vector<std::string> &outputs, const std::vector<std
       continue;
     if (!checkOutputIsNotInput(output, inputs, error))
       return false;
-    for (const std::string &other : earlier) {
-      // By name as well: neither may exist yet.
-      std::error_code ec1, ec2;
-      const bool sameName = std::filesystem::weakly_canonical(output, ec1) ==
-                            std::filesystem::weakly_canonical(other, ec2);
-      if ((sameName && !ec1 && !ec2) || samePath(output, other)) {
+    const std::filesystem::path name = canonicalName(output);
+    for (const std::string &other : earlier)
+      if (sameFile(output, name, other)) {
         error = "two outputs name the same file '" + output + "': choose one file for each";
         return false;
       }
-    }
     earlier.push_back(output);
   }
   return true;

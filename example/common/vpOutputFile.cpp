@@ -141,6 +141,15 @@ bool vpOutputFile::writeImage(const std::string &path, const vpImage<vpRGBa> &I,
       error);
 }
 
+bool vpOutputFile::writeText(const std::string &path, const std::string &text, std::string &error)
+{
+  vpOutputFile out(path);
+  if (!out.open(error))
+    return false;
+  out.stream() << text; // a failed write is commit()'s to report, with its message
+  return out.commit(error);
+}
+
 bool vpOutputFile::writeThrough(const std::string &path, const std::function<bool(const std::string &file)> &writer,
                                 std::string &error)
 {

@@ -64,6 +64,12 @@ public:
   */
   static bool writeImage(const std::string &path, const vpImage<vpRGBa> &I, std::string &error);
 
+  /*!
+    Writes \e text to \e path as open(), the stream and commit() do. \return false with \e error set when any of
+    them failed (a full disk: commit() names it).
+  */
+  static bool writeText(const std::string &path, const std::string &text, std::string &error);
+
   //! Creates the temporary file (or opens the special file). \return false with \e error set.
   bool open(std::string &error);
   //! The stream to write to (valid after a successful open()).

@@ -4,7 +4,8 @@
  */
 /*!
   \file laser_value_check.h
-  \brief Private checks of the values the laser_conic setters take: a vpLaserConicException
+  \brief Private checks of the values the laser_conic setters take, and the standard deviations the
+  calibrations report (stdDeviationsOf()): a vpLaserConicException
   (badValueError unless said otherwise) with the caller's message when the value is refused. The
   laser_conic setters check their values through these (the detector through its check(), which names the
   class), so that a check, the camera's and the opening angle's among them, is written once.
@@ -12,17 +13,35 @@
 #ifndef VP_LASER_VALUE_CHECK_H
 #define VP_LASER_VALUE_CHECK_H
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
 
 #include <visp3/core/vpCameraParameters.h>
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpMatrix.h>
 #include <visp3/laser_conic/vpLaserConicException.h>
 
 #include "laser_pose_check.h"
 
 namespace vsp::laser_value_check
 {
+/*!
+  The standard deviations of the \e n first parameters of \e covariance: the square roots of its diagonal,
+  a NaN kept as NaN (a failed or singular estimate's covariance; std::max(0, NaN) would read it as 0, known
+  exactly).
+*/
+inline vpColVector stdDeviationsOf(const vpMatrix &covariance, unsigned int n)
+{
+  vpColVector sigma(n, 0.0);
+  for (unsigned int k = 0; k < n; ++k) {
+    const double v = covariance[k][k];
+    sigma[k] = std::isnan(v) ? v : std::sqrt(std::max(0.0, v));
+  }
+  return sigma;
+}
+
 //! Throws vpLaserConicException with \e code and \e message unless \e ok (the checks that are not ranges).
 inline void require(bool ok, const std::string &message,
                     vpLaserConicException::errorCodeEnum code = vpLaserConicException::badValueError)

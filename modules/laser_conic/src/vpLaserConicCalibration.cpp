@@ -126,12 +126,7 @@ unsigned int vpLaserConicCalibration::getNbPoints() const
 
 vpColVector vpLaserConicCalibration::getStdDeviations() const
 {
-  vpColVector sigma(kNbConeParams, 0.0);
-  for (unsigned int k = 0; k < kNbConeParams; ++k) { // NaN stays NaN (std::max(0, NaN) is 0)
-    const double v = m_covariance[k][k];
-    sigma[k] = std::isnan(v) ? v : std::sqrt(std::max(0.0, v));
-  }
-  return sigma;
+  return vsp::laser_value_check::stdDeviationsOf(m_covariance, kNbConeParams);
 }
 
 std::string vpLaserConicCalibration::getStatusMessage(vpLaserConicCalibrationStatus status)

@@ -154,12 +154,7 @@ std::string vpLaserConicSelfCalibration::getStatusMessage(vpSelfCalibrationStatu
 
 vpColVector vpLaserConicSelfCalibration::getStdDeviations() const
 {
-  vpColVector s(6, 0.0);
-  for (unsigned int i = 0; i < 6; ++i) { // NaN stays NaN (std::max(0, NaN) is 0)
-    const double v = m_fig.covariance[i][i];
-    s[i] = std::isnan(v) ? v : std::sqrt(std::max(0.0, v));
-  }
-  return s;
+  return vsp::laser_value_check::stdDeviationsOf(m_fig.covariance, 6);
 }
 
 bool vpLaserConicSelfCalibration::fail(vpSelfCalibrationStatus status, const std::string &details)

@@ -65,8 +65,8 @@ class ConeProblem;
   STATUS_DEGENERATE_VIEWS rather than return a cone that fits the points but is wrong (one plane is cut
   by several cones along the same conic). The one-plane test runs on all the views, then again on those
   that keep more than half of their points as inliers after the robust stage. Fewer than 2 views give
-  STATUS_NOT_ENOUGH_VIEWS. Tilted grids
-  at one distance, or parallel grids at several distances, do determine the cone (opening angle included).
+  STATUS_NOT_ENOUGH_VIEWS. Tilted grids at one distance, or parallel grids at several distances, do
+  determine the cone (opening angle included).
   A fit whose inliers' RMS exceeds setMaxRmsPixels() (cone fitted to mostly outliers, wrong camera model
   or grid poses) ends with STATUS_LARGE_RESIDUALS. The formal standard deviations ignore the errors of
   the grid poses; setViewJackknife(true) adds leave-one-view-out standard deviations that include them.
@@ -239,8 +239,7 @@ public:
   double getConditionNumber() const { return m_condition; }
   /*!
     Covariance matrix of the last compute() when it succeeded (NaN when it failed): 6x6, parameter order
-    (alpha, beta, vx, vy, vz, A),
-    units rad and metres; alpha and beta are the angles of the axis (see the class description), v the
+    (alpha, beta, vx, vy, vz, A), units rad and metres; alpha and beta are the angles of the axis (see the class description), v the
     apex, A the full opening angle (its row and column are zero when it is not estimated). It is the
     inverse of the normal matrix with the gamma_i eliminated, times the residual variance
     RSS / (N - p) (RSS in pixels, N inlier points, p = 5 or 6 parameters).

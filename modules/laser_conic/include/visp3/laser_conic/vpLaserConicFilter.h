@@ -46,9 +46,10 @@
   innovation (setGateProbability()): a frame inconsistent with the prediction is rejected with
   FRAME_REJECTED, never averaged in (until setInitialisationFrames() frames have been accepted, such a frame
   starts the state again from itself instead, FRAME_INITIALISED: the first frame may be the wrong one).
-  Several frames between the same two IMU samples (a camera faster than the IMU) are each applied in turn. Rejected frames whose attitude agrees with the prediction and whose
-  altitudes agree with each other but jump from the prediction by more than setMinStepHeight() (a box, a
-  table edge: a change of ground) re-initialise the altitude after setStepFrames() of them
+  Several frames between the same two IMU samples (a camera faster than the IMU) are each applied in turn.
+  Rejected frames whose attitude agrees with the prediction and whose altitudes agree with each other but
+  jump from the prediction by more than setMinStepHeight() (a box, a table edge: a change of ground)
+  re-initialise the altitude after setStepFrames() of them
   (FRAME_GROUND_STEP); a long run of rejected frames declares a divergence (setMaxRejections()).
   addMissingFrame() records
   a frame without a plane: the prediction runs on with its growing covariance.
