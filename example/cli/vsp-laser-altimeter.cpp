@@ -266,17 +266,33 @@ bool checkOutputIsNotNamedInput(const Options &options, const vpLaserFlightFusio
   return vpCsvTools::checkOutputs({options.output, fusion.output()}, inputs, error);
 }
 
-//! Refuses outputs that would overwrite an image (results CSV, or overlays in the image folder).
+//! The overlay file of \e image in the folder \e overlays: <image stem>_overlay.png.
+std::string overlayFile(const std::string &overlays, const std::string &image)
+{
+  return (fs::path(overlays) / (fs::path(image).stem().string() + "_overlay.png")).string();
+}
+
+//! Refuses outputs that would overwrite an image (results CSV, or overlays in the image folder), and images whose
+//! overlays would share a name (a.png and a.jpg, or a.png in two folders of a list: one would overwrite the other).
 bool checkOutputsAgainstImages(const Options &options, const std::vector<std::string> &images, std::string &error)
 {
   if (!vpCsvTools::checkOutputIsNotInput(options.output, images, error))
     return false;
-  if (!options.overlays.empty()) {
-    for (const std::string &image : images)
-      if (vpCsvTools::samePath(options.overlays, fs::path(image).parent_path().string())) {
-        error = "--overlays '" + options.overlays + "' is a folder of input images: choose another folder";
-        return false;
-      }
+  if (options.overlays.empty())
+    return true;
+  std::map<std::string, std::string> imageOfOverlay;
+  for (const std::string &image : images) {
+    if (vpCsvTools::samePath(options.overlays, fs::path(image).parent_path().string())) {
+      error = "--overlays '" + options.overlays + "' is a folder of input images: choose another folder";
+      return false;
+    }
+    const std::string overlay = overlayFile(options.overlays, image);
+    const auto [it, added] = imageOfOverlay.emplace(overlay, image);
+    if (!added && !vpCsvTools::samePath(it->second, image)) {
+      error = "--overlays: images '" + it->second + "' and '" + image + "' would both be drawn in '" + overlay +
+              "': rename one of them";
+      return false;
+    }
   }
   return true;
 }
@@ -399,9 +415,7 @@ FrameResult processImage(const std::string &image, const Options &options, const
     vpLaserOverlay::draw(I, points, inliers, conic, cam, caption);
     // Checked: on a full disk libpng reported its error on the console only, and the run ended as written.
     std::string error;
-    const std::string overlay =
-        (fs::path(options.overlays) / (fs::path(image).stem().string() + "_overlay.png")).string();
-    if (!vpOutputFile::writeImage(overlay, I, error)) {
+    if (!vpOutputFile::writeImage(overlayFile(options.overlays, image), I, error)) {
       std::cerr << error << std::endl;
       result.overlayFailed = true;
     }
@@ -480,6 +494,10 @@ int run(int argc, char **argv)
     return cli.exitStatus();
   if (cli.given("--images") == cli.given("--list"))
     return cli.fail("give exactly one of --images DIR and --list FILE");
+  // Checked here, not at the first frame with a plane, where the detector would refuse it after work done.
+  if (options.track > vpLaserConicDetector::getMaxMargin())
+    return cli.fail("--track must be at most " +
+                    std::to_string(static_cast<long>(vpLaserConicDetector::getMaxMargin())) + " pixels");
   std::string error;
   vpCameraParameters cam;
   double openingAngle = 0.0;

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -53,6 +54,52 @@ bool parseNumbers(const std::string &line, unsigned int count, double *values)
   }
   std::string rest;
   return !(ss >> rest);
+}
+
+//! The text of the next \e tag element of \e text at or after \e from, trimmed; \e from moves past its closing
+//! tag. False when there is none.
+bool nextElement(const std::string &text, const std::string &tag, std::string::size_type &from, std::string &value)
+{
+  const std::string open = "<" + tag + ">", close = "</" + tag + ">";
+  const std::string::size_type start = text.find(open, from);
+  if (start == std::string::npos)
+    return false;
+  const std::string::size_type end = text.find(close, start + open.size());
+  if (end == std::string::npos)
+    return false;
+  value = text.substr(start + open.size(), end - start - open.size());
+  const std::string::size_type first = value.find_first_not_of(" \t\r\n"), last = value.find_last_not_of(" \t\r\n");
+  value = first == std::string::npos ? std::string() : value.substr(first, last - first + 1);
+  from = end + close.size();
+  return true;
+}
+
+/*!
+  The first number of the camera \e name in the vpXmlParserCamera file's \e text that is not one (e.g. "800px",
+  "abc", empty), as "tag 'value'"; empty when all are numbers. ViSP's parser reads such a value as 0 (or as its
+  leading digits) without a word: a principal point or a distortion of 0 then gives poses off by metres.
+*/
+std::string firstValueNotANumber(const std::string &text, const std::string &name)
+{
+  std::string::size_type from = 0;
+  std::string camera;
+  while (nextElement(text, "camera", from, camera)) {
+    std::string::size_type inCamera = 0;
+    std::string cameraName;
+    if (!nextElement(camera, "name", inCamera, cameraName) || cameraName != name)
+      continue;
+    for (const char *tag : {"image_width", "image_height", "px", "py", "u0", "v0", "kud", "kdu"}) {
+      std::string::size_type at = 0;
+      std::string value;
+      while (nextElement(camera, tag, at, value)) {
+        char *end = nullptr;
+        const double number = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0' || !std::isfinite(number))
+          return std::string(tag) + " '" + value + "'";
+      }
+    }
+  }
+  return std::string();
 }
 
 //! Sends std::cout to nowhere while it lives.
@@ -474,6 +521,13 @@ bool vpLaserRigIo::readCamera(const std::string &file, const std::string &name, 
   }
   if (status != vpXmlParserCamera::SEQUENCE_OK) {
     error = file + ": no camera named '" + name + "' with a perspective model (vpXmlParserCamera format)";
+    return false;
+  }
+  std::ifstream in(file.c_str());
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string notANumber = firstValueNotANumber(text, name);
+  if (!notANumber.empty()) {
+    error = file + ": camera '" + name + "': " + notANumber + " is not a number";
     return false;
   }
   if (!std::isfinite(parsed.get_kud()) || !std::isfinite(parsed.get_kdu())) {

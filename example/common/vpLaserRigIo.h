@@ -168,7 +168,8 @@ public:
     (kud, kdu) when the file has it, else the one without; \e width and \e height are 0 when the file
     gives no image size.
     \return false with \e error (naming the file) when the file is missing or not a vpXmlParserCamera
-    file, the camera is not in it, or its focal lengths are not positive.
+    file, the camera is not in it, one of its values (image size, px, py, u0, v0, kud, kdu) is not a number
+    (ViSP's parser would read it as 0), or its focal lengths are not positive.
   */
   static bool readCamera(const std::string &file, const std::string &name, vpCameraParameters &cam, unsigned int &width,
                          unsigned int &height, std::string &error);

@@ -42,6 +42,16 @@ inline vpColVector stdDeviationsOf(const vpMatrix &covariance, unsigned int n)
   return sigma;
 }
 
+/*!
+  Whether \e roll and \e pitch (rad, vpLaserConicPose's convention) describe a ground the camera looks at: both
+  within (-pi/2, pi/2), as every estimate gives them (the downward normal's z component cos(roll) cos(pitch) is
+  positive). Angles outside are no attitude over the ground; most often degrees passed as radians.
+*/
+inline bool isGroundAttitude(double roll, double pitch)
+{
+  return std::fabs(roll) < M_PI_2 && std::fabs(pitch) < M_PI_2;
+}
+
 //! Throws vpLaserConicException with \e code and \e message unless \e ok (the checks that are not ranges).
 inline void require(bool ok, const std::string &message,
                     vpLaserConicException::errorCodeEnum code = vpLaserConicException::badValueError)

@@ -39,8 +39,10 @@ void vpFeatureLaserPlane::set(double h, double gx, double gy, double gz)
 
 void vpFeatureLaserPlane::buildFrom(double altitude, double roll, double pitch)
 {
-  require(std::isfinite(altitude) && std::isfinite(roll) && std::isfinite(pitch) && altitude > 0.0,
-          "vpFeatureLaserPlane::buildFrom: altitude must be finite and > 0, angles finite");
+  require(std::isfinite(altitude) && altitude > 0.0, "vpFeatureLaserPlane::buildFrom: altitude must be finite and > 0");
+  require(vsp::laser_value_check::isGroundAttitude(roll, pitch),
+          "vpFeatureLaserPlane::buildFrom: roll and pitch must be radians within (-pi/2, pi/2), a ground in front of "
+          "the camera (degrees given?)");
   const double cp = std::cos(pitch);
   set(altitude, std::sin(pitch), -std::sin(roll) * cp, std::cos(roll) * cp);
 }

@@ -297,7 +297,7 @@ vpLaserConicFilter::vpFrameStatus vpLaserConicFilter::addFrame(double t, double 
   d.lastMahalanobis = std::numeric_limits<double>::quiet_NaN();
   Eigen::Matrix3d R;
   bool ok = covariance.getRows() == 3 && covariance.getCols() == 3 && std::fabs(t) <= kMaxTime &&
-            std::isfinite(altitude) && std::isfinite(roll) && std::isfinite(pitch) && altitude > 0.0;
+            std::isfinite(altitude) && altitude > 0.0 && vsp::laser_value_check::isGroundAttitude(roll, pitch);
   for (unsigned int i = 0; ok && i < 3; ++i)
     for (unsigned int j = 0; j < 3; ++j)
       R(i, j) = covariance[i][j];

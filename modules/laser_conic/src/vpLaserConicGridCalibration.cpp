@@ -72,6 +72,8 @@ std::string vpLaserConicGridCalibration::getViewStatusMessage(vpGridViewStatus s
     return "chessboard corners inconsistent with a planar grid (reprojection error too large)";
   case VIEW_FEW_LASER_POINTS:
     return "fewer than 5 laser points on the chessboard";
+  case VIEW_FEW_GRID_CORNERS:
+    return "chessboard found, but fewer than 6 corners clear of the laser trace (see setCornerClearance())";
   }
   return "unknown view status";
 }
@@ -91,6 +93,14 @@ void vpLaserConicGridCalibration::checkReady(const vpImage<vpRGBa> &I) const
 bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogeneousMatrix &cMg,
                                              std::vector<vpImagePoint> &corners, double &rmsPixels)
 {
+  return findGrid(I, cMg, corners, rmsPixels) == VIEW_OK;
+}
+
+vpLaserConicGridCalibration::vpGridViewStatus vpLaserConicGridCalibration::findGrid(const vpImage<vpRGBa> &I,
+                                                                                    vpHomogeneousMatrix &cMg,
+                                                                                    std::vector<vpImagePoint> &corners,
+                                                                                    double &rmsPixels)
+{
   checkReady(I);
   // Green channel: the red stripe adds little to it (except where it saturates to white).
   cv::Mat green(static_cast<int>(I.getHeight()), static_cast<int>(I.getWidth()), CV_8UC1);
@@ -107,7 +117,7 @@ bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogen
            found.size() == static_cast<size_t>(pattern.area());
   };
   if (!wholeBoard(0) && !wholeBoard(cv::CALIB_CB_EXHAUSTIVE))
-    return false;
+    return VIEW_NO_GRID;
 
   // Undistorted normalized coordinates with ViSP's model, then a pinhole PnP with identity intrinsics.
   // Corners next to the laser trace are left out of the pose: a stripe crossing a corner, above all
@@ -135,11 +145,11 @@ bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogen
       object.push_back(cv::Point3d((k + 1) * m_squareSize, (l + 1) * m_squareSize, 0.0));
     }
   if (object.size() < 6)
-    return false; // the trace hides nearly the whole board
+    return VIEW_FEW_GRID_CORNERS; // the trace hides nearly the whole board
   const cv::Mat K = cv::Mat::eye(3, 3, CV_64F), noDistortion;
   cv::Mat rvec, tvec;
   if (!cv::solvePnP(object, normalized, K, noDistortion, rvec, tvec, false, cv::SOLVEPNP_IPPE))
-    return false;
+    return VIEW_BAD_GRID_POSE;
   cv::solvePnPRefineLM(object, normalized, K, noDistortion, rvec, tvec);
   std::vector<cv::Point2d> projected;
   cv::projectPoints(object, rvec, tvec, K, noDistortion, projected);
@@ -152,7 +162,7 @@ bool vpLaserConicGridCalibration::detectGrid(const vpImage<vpRGBa> &I, vpHomogen
   rmsPixels = std::sqrt(sum2 / static_cast<double>(projected.size()));
   cMg.buildFrom(vpTranslationVector(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2)),
                 vpThetaUVector(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2)));
-  return true;
+  return VIEW_OK;
 }
 
 std::vector<vpImagePoint> vpLaserConicGridCalibration::pointsOnGrid(const vpHomogeneousMatrix &cMg,
@@ -189,10 +199,9 @@ vpLaserConicGridCalibration::vpGridViewStatus vpLaserConicGridCalibration::addIm
   vpGridViewStatus status = VIEW_OK;
   const std::vector<vpImagePoint> laserPoints = m_detector.detect(I);
   m_laserClearancePoints = &laserPoints;
-  const bool found = detectGrid(I, cMg, corners, rms);
+  status = findGrid(I, cMg, corners, rms);
   m_laserClearancePoints = nullptr;
-  if (!found) {
-    status = VIEW_NO_GRID;
+  if (status != VIEW_OK) {
     cMg = vpHomogeneousMatrix();
   } else if (!(rms <= m_maxReprojection)) {
     status = VIEW_BAD_GRID_POSE;

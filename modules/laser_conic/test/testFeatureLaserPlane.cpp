@@ -93,6 +93,10 @@ TEST(LaserConicFeatureLaserPlane, BuildFromAltitudeRollPitchMatchesPlane)
   vpFeatureLaserPlane f;
   EXPECT_THROW(f.buildFrom(0.0, 0.0, 0.0), vpLaserConicException);
   EXPECT_THROW(f.buildFrom(1.0, NAN, 0.0), vpLaserConicException);
+  // Beyond a quarter turn the ground is behind the camera: degrees given as radians, most often.
+  EXPECT_THROW(f.buildFrom(1.0, 0.0, 10.0), vpLaserConicException);
+  EXPECT_THROW(f.buildFrom(1.0, -M_PI_2, 0.0), vpLaserConicException);
+  EXPECT_NO_THROW(f.buildFrom(1.0, 1.5, -1.5));
   EXPECT_THROW(f.buildFrom(vpPlane(0, 0, 0, 1)), vpLaserConicException);
   EXPECT_THROW(f.buildFrom(vpPlane(0, 0, 1, 0)), vpLaserConicException);
 }

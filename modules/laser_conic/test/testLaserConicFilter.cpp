@@ -301,6 +301,27 @@ TEST(LaserConicFilter, BadInputHasAStatus)
   EXPECT_FALSE(vpLaserConicFilter::getFrameStatusMessage(vpLaserConicFilter::FRAME_TOO_OLD).empty());
 }
 
+// A roll or pitch outside (-pi/2, pi/2) is no ground in front of the camera (an estimate never gives one): most often
+// degrees given as radians. It initialised the filter (pitch 10 rad: a state 573 degrees off) and updated it.
+TEST(LaserConicFilter, AnAttitudeOutsideAQuarterTurnIsBadInput)
+{
+  vpLaserConicFilter filter;
+  const double w[3] = {0, 0, 0}, f[3] = {0, 0, -9.80665};
+  vpMatrix C(3, 3);
+  C.eye();
+  C *= 1e-6;
+  EXPECT_EQ(filter.addImu(0.0, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addImu(0.005, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addFrame(0.001, 1.0, 0.0, 10.0, C), vpLaserConicFilter::FRAME_BAD_INPUT); // 10 degrees?
+  EXPECT_EQ(filter.addFrame(0.002, 1.0, -2.0, 0.0, C), vpLaserConicFilter::FRAME_BAD_INPUT);
+  EXPECT_EQ(filter.addFrame(0.003, 1.0, 0.0, M_PI_2, C), vpLaserConicFilter::FRAME_BAD_INPUT);
+  EXPECT_FALSE(filter.isInitialised());
+  EXPECT_EQ(filter.addFrame(0.004, 1.0, 0.2, -0.3, C), vpLaserConicFilter::FRAME_INITIALISED);
+  EXPECT_NEAR(filter.getPitch(), -0.3, 1e-3);
+  EXPECT_EQ(filter.addFrame(0.005, 1.0, 0.2, 1.6, C), vpLaserConicFilter::FRAME_BAD_INPUT);
+  EXPECT_NEAR(filter.getPitch(), -0.3, 1e-3);
+}
+
 // Finite values that no sensor gives, each found by the fuzz target fuzz-laser-filter to leave a state or a
 // covariance that is not finite (or a negative variance): a gyro rate of 2e217 rad/s, times in nanoseconds given
 // as seconds (a frame a unit in the last place after a sample propagated the state over 256 s and more), a

@@ -149,7 +149,11 @@ TEST(LaserConicGridCalibration, ReportsEachImage)
   EXPECT_EQ(grid.addImage(renderBoard(cam, cMg, false)), vpLaserConicGridCalibration::VIEW_FEW_LASER_POINTS);
   grid.setMaxReprojectionError(1e-3);
   EXPECT_EQ(grid.addImage(renderBoard(cam, cMg, true)), vpLaserConicGridCalibration::VIEW_BAD_GRID_POSE);
-  ASSERT_EQ(grid.getViewStatus().size(), 4u);
+  // Found, but every corner within the clearance of the trace: not "chessboard not found".
+  grid.setCornerClearance(5000.0);
+  EXPECT_EQ(grid.addImage(renderBoard(cam, cMg, true)), vpLaserConicGridCalibration::VIEW_FEW_GRID_CORNERS);
+  EXPECT_EQ(grid.getCorners().back().size(), (kSquaresX - 1u) * (kSquaresY - 1u));
+  ASSERT_EQ(grid.getViewStatus().size(), 5u);
   EXPECT_EQ(grid.getCalibration().getNbViews(), 1u); // only the first image was usable
   ASSERT_EQ(grid.getViewImageIndex().size(), 1u);
   EXPECT_EQ(grid.getViewImageIndex()[0], 0u);

@@ -53,8 +53,10 @@ public:
   //! Resets to level ground at 1 m.
   void init() override;
   /*!
-    From the altitude (m, > 0), roll and pitch (rad, vpLaserConicPose's convention).
-    \exception vpLaserConicException::badValueError on a non-finite value or an altitude <= 0.
+    From the altitude (m, > 0), roll and pitch (rad, vpLaserConicPose's convention, each within (-pi/2, pi/2):
+    the ground in front of the camera).
+    \exception vpLaserConicException::badValueError on a non-finite value, an altitude <= 0, or a roll or pitch
+    outside (-pi/2, pi/2) (degrees passed as radians, say).
   */
   void buildFrom(double altitude, double roll, double pitch);
   /*!

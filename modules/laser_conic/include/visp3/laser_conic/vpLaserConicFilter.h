@@ -91,9 +91,9 @@ public:
     FRAME_TOO_OLD,      //!< older than setMaxLatency() or than the kept history
     FRAME_OUT_OF_ORDER, //!< older than a frame already used
     FRAME_AHEAD_OF_IMU, //!< after the last IMU sample: add the IMU samples first
-    FRAME_BAD_INPUT     //!< a non-finite value, a time beyond 1e10 s, an altitude not positive, a covariance that
-                        //!< is not symmetric positive definite, or a standard deviation outside [1e-12, 1e4] (m
-                        //!< or rad)
+    FRAME_BAD_INPUT     //!< a non-finite value, a time beyond 1e10 s, an altitude not positive, a roll or pitch
+                        //!< outside (-pi/2, pi/2) (degrees given as radians, say), a covariance that is not
+                        //!< symmetric positive definite, or a standard deviation outside [1e-12, 1e4] (m or rad)
   } vpFrameStatus;
 
   //! Outcome of one addImu().

@@ -66,10 +66,13 @@ class VISP_EXPORT vpLaserConicGridCalibration
 public:
   //! Outcome of addImage() for one image.
   typedef enum {
-    VIEW_OK,              //!< grid found, pose computed, laser points added to the calibration
-    VIEW_NO_GRID,         //!< the chessboard was not found
-    VIEW_BAD_GRID_POSE,   //!< the corner reprojection error exceeds setMaxReprojectionError()
-    VIEW_FEW_LASER_POINTS //!< fewer than 5 laser points on the board
+    VIEW_OK,               //!< grid found, pose computed, laser points added to the calibration
+    VIEW_NO_GRID,          //!< the chessboard was not found
+    VIEW_BAD_GRID_POSE,    //!< the corner reprojection error exceeds setMaxReprojectionError()
+    VIEW_FEW_LASER_POINTS, //!< fewer than 5 laser points on the board
+    //! the chessboard was found, but fewer than 6 of its corners lie farther than setCornerClearance() from the
+    //! laser trace: too few for its pose (a trace over most of the board, or a clearance too wide)
+    VIEW_FEW_GRID_CORNERS
   } vpGridViewStatus;
 
   //! No camera, no chessboard; margin 0.5 square, reprojection error limit 1 px, corner clearance 8 px,
@@ -129,7 +132,7 @@ public:
     \param cMg : grid pose (grid frame of the class description).
     \param corners : the inner corners found (pixels), row after row.
     \param rmsPixels : RMS reprojection error of the corners used.
-    \return false when the chessboard is not found (or fewer than 6 corners are usable).
+    \return false when the chessboard is not found or no pose comes from its corners.
     \exception vpLaserConicException when the camera or the chessboard is unset, or the image is empty.
   */
   bool detectGrid(const vpImage<vpRGBa> &I, vpHomogeneousMatrix &cMg, std::vector<vpImagePoint> &corners,
@@ -158,6 +161,10 @@ public:
 
 private:
   void checkReady(const vpImage<vpRGBa> &I) const;
+  // detectGrid() with why it failed: VIEW_NO_GRID, VIEW_FEW_GRID_CORNERS (with the corners found) or
+  // VIEW_BAD_GRID_POSE (no pose from them); VIEW_OK with the pose.
+  vpGridViewStatus findGrid(const vpImage<vpRGBa> &I, vpHomogeneousMatrix &cMg, std::vector<vpImagePoint> &corners,
+                            double &rmsPixels);
 
   vpCameraParameters m_cam;
   bool m_hasCam;
