@@ -60,9 +60,13 @@ vpLaserConicFilter::vpImuStatus vpLaserConicFilter::Impl::addImu(double t, const
     return IMU_OUT_OF_RANGE;
   bool restart = false;
   if (count > 0) {
-    if (!(t >= last().t + kMinImuInterval))
+    // Nothing can bridge a gap: start again from this sample. A sample more than a gap before the last one
+    // restarts too: the last was stamped far ahead (a corrupt stamp, which ignoring every later sample as not
+    // increasing would follow by a blocked filter until the clock reached it), or the clock was reset.
+    const double dt = t - last().t;
+    if (!(dt >= kMinImuInterval) && !(dt < -maxGap))
       return IMU_NOT_INCREASING;
-    restart = t - last().t > maxGap; // nothing can bridge the gap: start again from this sample
+    restart = std::fabs(dt) > maxGap;
   }
   if (restart) {
     count = 0;

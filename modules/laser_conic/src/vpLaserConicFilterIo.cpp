@@ -125,7 +125,8 @@ std::string vpLaserConicFilter::getImuStatusMessage(vpImuStatus status)
   case IMU_NOT_INCREASING:
     return "IMU timestamp not at least a microsecond after the previous one: sample ignored";
   case IMU_GAP:
-    return "gap in the IMU stream longer than the limit: the filter restarts";
+    return "IMU timestamp more than the largest gap after the previous one, or before it (a stamp far ahead, a clock "
+           "reset): the filter restarts";
   case IMU_NOT_FINITE:
     return "IMU sample with a non-finite value: ignored";
   case IMU_OUT_OF_RANGE:

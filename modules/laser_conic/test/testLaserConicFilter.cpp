@@ -473,6 +473,28 @@ TEST(LaserConicFilter, AnImuSampleAMicrosecondAfterTheLastIsRefused)
   EXPECT_EQ(atZero.addImu(std::numeric_limits<double>::denorm_min(), w, f), vpLaserConicFilter::IMU_NOT_INCREASING);
 }
 
+// One IMU sample stamped far ahead (a corrupt timestamp, a clock that jumped) restarted the filter there, and every
+// sample after it, back on the true clock, was IMU_NOT_INCREASING: the filter stayed blocked until the true clock
+// reached the bad stamp (here 1000 s). A sample more than the largest gap before the last one restarts it too.
+TEST(LaserConicFilter, AnImuSampleStampedFarAheadDoesNotBlockTheFilter)
+{
+  vpLaserConicFilter filter;
+  startAtRest(filter);
+  const double w[3] = {0.0, 0.0, 0.0}, f[3] = {0.0, 0.0, -9.80665};
+  vpMatrix C(3, 3);
+  C.eye();
+  C *= 1e-4;
+  EXPECT_EQ(filter.addImu(1000.0, w, f), vpLaserConicFilter::IMU_GAP);
+  EXPECT_EQ(filter.addImu(0.085, w, f), vpLaserConicFilter::IMU_GAP); // the stream again: restarted from it
+  EXPECT_EQ(filter.addImu(0.090, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_EQ(filter.addFrame(0.090, 1.2, 0.0, 0.0, C), vpLaserConicFilter::FRAME_INITIALISED);
+  EXPECT_EQ(filter.addImu(0.095, w, f), vpLaserConicFilter::IMU_OK);
+  EXPECT_NEAR(filter.getAltitude(), 1.2, 1e-6);
+  // A sample a little late (within the largest gap) is still ignored, the state kept.
+  EXPECT_EQ(filter.addImu(0.060, w, f), vpLaserConicFilter::IMU_NOT_INCREASING);
+  EXPECT_TRUE(filter.isInitialised());
+}
+
 // The simulated IMU refuses what would make every reading NaN or its noise imaginary.
 TEST(LaserConicFilter, ImuSimulatorRefusesBadNoiseAndTimeSteps)
 {

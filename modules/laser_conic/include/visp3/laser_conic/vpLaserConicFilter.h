@@ -99,8 +99,10 @@ public:
   //! Outcome of one addImu().
   typedef enum {
     IMU_OK,             //!< the sample propagated the state
-    IMU_NOT_INCREASING, //!< timestamp not at least a microsecond after the previous one: sample ignored
-    IMU_GAP,            //!< more than setMaxImuGap() since the previous sample: the filter restarts here
+    IMU_NOT_INCREASING, //!< timestamp not at least a microsecond after the previous one (and not more than
+                        //!< setMaxImuGap() before it): sample ignored
+    IMU_GAP,            //!< more than setMaxImuGap() after the previous sample, or before it (the previous one
+                        //!< stamped far ahead, or the clock reset): the filter restarts here
     IMU_NOT_FINITE,     //!< a non-finite value: sample ignored
     IMU_OUT_OF_RANGE    //!< a rate over 100 rad/s or a specific force over 10000 m/s² (beyond any IMU), or a time
                         //!< beyond 1e10 s (nanoseconds given as seconds?): sample ignored
