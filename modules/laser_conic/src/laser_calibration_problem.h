@@ -97,8 +97,9 @@ public:
   void releaseCone(bool estimateAngle);
   /*!
     Stage 2: everything under the robust \e loss whose scale (pixels) shrinks from the initial
-    residuals to the noise level, 1.5 vpRobustMadScale() of the residual norms (or \e userScale when
-    > 0), by at most a factor of 4 per run; \e scale is the last one. Then the points farther than 3
+    residuals to the noise level, 1.5 vpRobustMadScale() of the residual norms, times sqrt(N / (N - p)) for the
+    p cone parameters fitted to N points (or \e userScale when > 0), by at most a factor of 4 per run; \e scale
+    is the last one. Then the points farther than 3
     scales from the cone leave the problem (they keep their gamma).
   */
   bool fitRobust(vpRobustLoss loss, double userScale, double &scale, std::string &error);
@@ -147,6 +148,7 @@ private:
   std::vector<std::unique_ptr<ceres::CostFunction> > m_costs;
   std::vector<PointBlock> m_blocks;
   std::vector<double> m_norms;
+  int m_freeConeParameters = 0; //!< the cone's parameters the fit estimates (releaseCone())
   ceres::Solver::Options m_options;
   ceres::Solver::Summary m_summary;
 };
