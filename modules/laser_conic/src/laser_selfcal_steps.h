@@ -64,6 +64,8 @@ private:
   void applyScale(const std::vector<InputFrame> &inputs, const StepsSettings &settings);
   std::vector<size_t> selectFrames(const std::vector<InputFrame> &inputs, unsigned int maxFrames) const;
   bool robustRounds(StepsOutcome &out);
+  //! The planes of the frames out of the joint problem: GP-3's with the calibrated laser (out.cMl), zero without.
+  void planesOfFramesLeftOut(const std::vector<InputFrame> &inputs, StepsOutcome &out) const;
   void analyse(StepsOutcome &out) const;
   void attitudeSpread(StepsOutcome &out) const;
   std::string degeneracyDetails(const StepsOutcome &out, const LaserVector &weakest) const;

@@ -660,13 +660,11 @@ TEST(LaserConicSelfCalibration, OpeningAngleNeedsTwoLengths)
   EXPECT_LT(std::abs(vpMath::deg(A - kOpening)), 0.05);
 }
 
-// 10 % outliers in every frame: rejected.
-TEST(LaserConicSelfCalibration, RejectsOutlierPoints)
+namespace
 {
-  FlightSettings s;
-  s.outliers = 0.1;
-  const std::vector<Frame> frames = flight(s, 71);
-  vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, trueApexDistance());
+//! The self-calibration of frames with 10 % of outliers each: the laser within 4 standard deviations, 85-93 % inliers.
+void expectTenPercentOfOutliersRejected(vpLaserConicSelfCalibration &selfcal)
+{
   vpHomogeneousMatrix cMl;
   double A = 0.0;
   ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
@@ -675,6 +673,17 @@ TEST(LaserConicSelfCalibration, RejectsOutlierPoints)
             4.0 * vpMath::deg(selfcal.getApexDirectionStdDeviation()));
   EXPECT_LT(selfcal.getNbInliers(), 0.93 * selfcal.getNbPoints());
   EXPECT_GT(selfcal.getNbInliers(), 0.85 * selfcal.getNbPoints());
+}
+} // namespace
+
+// 10 % outliers in every frame: rejected.
+TEST(LaserConicSelfCalibration, RejectsOutlierPoints)
+{
+  FlightSettings s;
+  s.outliers = 0.1;
+  const std::vector<Frame> frames = flight(s, 71);
+  vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, trueApexDistance());
+  expectTenPercentOfOutliersRejected(selfcal);
 }
 
 //! Axis standard deviation of the self-calibration on \e frames (those of \e pick), no limit on it.
@@ -731,12 +740,40 @@ TEST(LaserConicSelfCalibration, ChoosesInformativeFrames)
   EXPECT_LT(vpMath::deg(axisAngle(cMl, laserPose())), 4.0 * vpMath::deg(selfcal.getAxisStdDeviation()));
 }
 
-// Frames given with their rough planes (e.g. the estimates made in flight): no plane search, same result.
-TEST(LaserConicSelfCalibration, FramesWithRoughPlanes)
+// The frames left out of the joint problem (setMaxFrames()) had their planes at the scale of the initial laser, the
+// guess: their altitudes off by the guess's error on the apex distance while the frames used had theirs right.
+TEST(LaserConicSelfCalibration, FramesLeftOutHavePlanesOfTheCalibratedLaser)
 {
   FlightSettings s;
-  s.points = 300;
-  const std::vector<Frame> frames = flight(s, 121);
+  s.frames = 30;
+  const std::vector<Frame> frames = flight(s, 131);
+  vpLaserConicSelfCalibration selfcal = makeSelfCal(frames, trueApexDistance());
+  selfcal.setMaxFrames(12);
+  vpHomogeneousMatrix cMl;
+  double A = 0.0;
+  ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
+  double worstUsed = 0.0, worstLeftOut = 0.0;
+  unsigned int leftOut = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const double error = std::abs(selfcal.getFramePlanes()[k].getD() / frames[k].truth.getD() - 1.0);
+    if (selfcal.getFrameUsed()[k])
+      worstUsed = std::max(worstUsed, error);
+    else {
+      worstLeftOut = std::max(worstLeftOut, error);
+      ++leftOut;
+    }
+  }
+  std::cout << leftOut << " frames left out; altitude error " << 100.0 * worstLeftOut << " % at worst (frames used "
+            << 100.0 * worstUsed << " %)" << std::endl;
+  EXPECT_EQ(leftOut, 18u);
+  EXPECT_LT(worstLeftOut, 2.0 * worstUsed + 0.005);
+}
+
+namespace
+{
+//! A self-calibration of \e frames each given its true plane 5 % off in distance (a rough plane), the true ruler.
+vpLaserConicSelfCalibration withRoughPlanes(const std::vector<Frame> &frames)
+{
   vpLaserConicSelfCalibration selfcal;
   selfcal.setCameraParameters(camera());
   selfcal.setLaser(kOpening, roughGuess());
@@ -744,9 +781,20 @@ TEST(LaserConicSelfCalibration, FramesWithRoughPlanes)
   selfcal.setMaxAngularStdDeviation(vpMath::rad(0.3));
   for (const Frame &f : frames) {
     vpPlane rough = f.truth;
-    rough.setD(1.05 * rough.getD()); // 5 % off
+    rough.setD(1.05 * rough.getD());
     selfcal.addFrame(f.points, rough);
   }
+  return selfcal;
+}
+} // namespace
+
+// Frames given with their rough planes (e.g. the estimates made in flight): no plane search, same result.
+TEST(LaserConicSelfCalibration, FramesWithRoughPlanes)
+{
+  FlightSettings s;
+  s.points = 300;
+  const std::vector<Frame> frames = flight(s, 121);
+  vpLaserConicSelfCalibration selfcal = withRoughPlanes(frames);
   vpHomogeneousMatrix cMl;
   double A = 0.0;
   ASSERT_TRUE(selfcal.compute(cMl, A)) << selfcal.getStatusDetails();
@@ -767,6 +815,19 @@ TEST(LaserConicSelfCalibration, FramesWithRoughPlanes)
   EXPECT_THROW(selfcal.addFrame(frames[0].points, vpPlane(0, 0, -1, std::numeric_limits<double>::quiet_NaN())),
                vpLaserConicException);
   EXPECT_THROW(selfcal.addFrame(frames[0].points, vpPlane(0, 0, 1, 1)), vpLaserConicException); // behind
+}
+
+// Frames given with rough planes and 10 % outliers each (a plane from the flight's own estimates, the trace as
+// detected): the first solve, its weights all 1, took the outliers at full weight, and the self-calibration
+// stopped at the iteration limit.
+TEST(LaserConicSelfCalibration, RoughPlanesWithOutliers)
+{
+  FlightSettings s;
+  s.points = 300;
+  s.outliers = 0.1;
+  const std::vector<Frame> frames = flight(s, 122);
+  vpLaserConicSelfCalibration selfcal = withRoughPlanes(frames);
+  expectTenPercentOfOutliersRejected(selfcal);
 }
 
 TEST(LaserConicSelfCalibration, BadInput)

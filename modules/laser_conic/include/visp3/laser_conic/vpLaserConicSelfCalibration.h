@@ -283,7 +283,8 @@ public:
   std::vector<bool> getFrameUsed() const { return m_fig.used; }
   /*!
     Ground plane of each frame added (camera frame, normal towards the camera) after the last compute():
-    the jointly fitted plane for the frames used, the initial one for the others (zero when none).
+    the jointly fitted plane for the frames used; for the others, after a success, the plane GP-3 finds with the
+    calibrated laser (zero when it finds none), after a failure the initial one (zero when none).
   */
   std::vector<vpPlane> getFramePlanes() const { return m_fig.planes; }
   //! Condition number of the laser normal matrix (parameters scaled to radians) of the last compute().
