@@ -19,25 +19,11 @@
 #include "laser_calibration_check.h"
 #include "laser_estimators.h"
 #include "laser_robust_fit.h"
+#include "laser_trace_significance.h"
 
 namespace
 {
 using vsp::laser_estimators::PointList;
-
-//! True when all points lie on one line (or one point), up to rounding.
-bool allCollinear(const PointList &points)
-{
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d &p : points)
-    mean += p;
-  mean /= double(points.size());
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Eigen::Vector2d &p : points)
-    scatter += (p - mean) * (p - mean).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
-  const double largest = eig.eigenvalues()(1);
-  return !(largest > 0.0) || !(eig.eigenvalues()(0) > 1e-20 * largest);
-}
 
 /*!
   Fraction of the points whose ray meets the plane in front of the camera, on the lit (forward)
@@ -504,10 +490,11 @@ void vpLaserConicPose::storeEstimate(const vsp::laser_robust_fit::Result &result
 
 bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpLaserConicMethod method, vpPlane &cPlane)
 {
+  resetEstimate(std::vector<vpImagePoint>()); // a refused input leaves no earlier estimate to read
   checkInput(points, method);
   const PointList normalized = normalizedPoints(points, m_cam);
-  resetEstimate(points);
-  if (allCollinear(normalized))
+  m_points = points;
+  if (vsp::laser_trace_significance::allCollinear(normalized))
     return fail(STATUS_COLLINEAR_POINTS);
 
   const vpLaserSolvers::LaserCone cone = laserCone(m_cMl, m_openingAngle);
@@ -526,8 +513,8 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
 
   // Final stage: the trace at its own residual scale, the arc test and the final fit (laser_robust_fit.h).
   vsp::laser_robust_fit::Result result;
-  switch (vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
-                                     finalFitSettings(method, focal), result)) {
+  const vsp::laser_robust_fit::Settings settings = finalFitSettings(method, focal);
+  switch (vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane, settings, result)) {
   case vsp::laser_robust_fit::Outcome::OK:
     break;
   case vsp::laser_robust_fit::Outcome::SHORT_ARC: {
@@ -553,6 +540,13 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   case vsp::laser_robust_fit::Outcome::NO_PLANE:
     return failOrMismatch(STATUS_NO_PLANE_PAIR, "", points, method);
   }
+  // No more points on the conic than clutter would leave: no trace (PLANE_PAIR fits every point, no consensus).
+  const std::string clutter =
+      method == PLANE_PAIR
+          ? std::string()
+          : vsp::laser_trace_significance::clutterReason(normalized, result, settings, method == PP5 ? 5 : 3);
+  if (!clutter.empty())
+    return fail(STATUS_NO_CONSENSUS, clutter);
   if (!result.plane.allFinite())
     return fail(STATUS_PLANE_NOT_FINITE);
   if (fractionInFront(normalized, result.inliers, result.plane, cone) < 0.5)

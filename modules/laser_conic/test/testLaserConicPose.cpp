@@ -567,6 +567,72 @@ TEST(LaserConicPose, PureOutliersGiveNoConsensus)
   }
 }
 
+// Points at random over the image, no trace among them: RANSAC always finds a conic that a few lie on (7-10 of
+// 150 within 0.2-0.9 px, 94-136 of 2000 within 7-10 px), and GP-3 returned STATUS_OK on 27 of 40 such sets of
+// 150 points and 33 of 40 of 2000 (altitudes of 0.04-0.75 m, rolls of 80-98 degrees). No plane now, with a
+// status that says why; a ring of 360 points among 1000 or 3000 random ones is still found.
+TEST(LaserConicPose, ClutterWithoutATraceGivesNoPlane)
+{
+  std::mt19937 rng(23);
+  laser_test::Rig rig;
+  rig.cam.initPersProjWithoutDistortion(1600.0, 1600.0, 800.0, 600.0);
+  rig.cMl.buildFrom(0.15, 0.0, 0.0, 0.0, vpMath::rad(-3.0), 0.0);
+  std::uniform_real_distribution<double> u(0.0, 1599.0), v(0.0, 1199.0);
+  vpLaserConicPose estimator = makeEstimator(rig);
+  for (size_t n : {150u, 2000u})
+    for (int set = 0; set < 10; ++set) {
+      std::vector<vpImagePoint> points;
+      for (size_t i = 0; i < n; ++i)
+        points.emplace_back(v(rng), u(rng));
+      for (vpLaserConicPose::vpLaserConicMethod method :
+           {vpLaserConicPose::PP5, vpLaserConicPose::PP3, vpLaserConicPose::GP3}) { // not PLANE_PAIR: no consensus
+        vpPlane plane;
+        EXPECT_FALSE(estimator.computePlane(points, method, plane))
+            << n << " points, set " << set << ", " << vpLaserConicPose::getMethodName(method) << ": altitude "
+            << estimator.getAltitude() << " m with " << estimator.getRansacNbInliers() << " inliers";
+        EXPECT_NE(estimator.getStatus(), vpLaserConicPose::STATUS_OK);
+      }
+    }
+  vpLaserConicSimulator sim;
+  sim.setCamera(rig.cam, 1600, 1200);
+  sim.setLaser(rig.openingAngle, rig.cMl);
+  sim.setGroundPose(vpHomogeneousMatrix(0.0, 0.0, 1.2, vpMath::rad(10.0), vpMath::rad(-5.0), 0.0));
+  sim.setSeed(3);
+  double h = 0.0, roll = 0.0, pitch = 0.0;
+  vpLaserConicPose::computeAltitudeRollPitch(sim.getGroundPlane(), h, roll, pitch);
+  for (size_t clutter : {1000u, 3000u}) {
+    std::vector<vpImagePoint> points = sim.addNoise(sim.tracePoints(360), 0.5);
+    for (size_t i = 0; i < clutter; ++i)
+      points.emplace_back(v(rng), u(rng));
+    vpPlane plane;
+    ASSERT_TRUE(estimator.computePlane(points, vpLaserConicPose::GP3, plane))
+        << clutter << ": " << estimator.getFailureReason();
+    EXPECT_NEAR(estimator.getAltitude(), h, 0.01) << clutter;
+  }
+}
+
+// A call refused for its input (a point that is not finite) left the last success's estimate readable: its
+// status STATUS_OK and its altitude, as if they were this call's.
+TEST(LaserConicPose, ARefusedInputLeavesNoEarlierEstimate)
+{
+  std::mt19937 rng(24);
+  std::vector<vpImagePoint> points;
+  const Scene s = laser_test::randomScene(rng, laser_test::SceneRanges(), 100, points);
+  vpLaserConicPose estimator = makeEstimator(s.rig);
+  vpPlane plane;
+  ASSERT_TRUE(estimator.computePlane(points, vpLaserConicPose::GP3, plane));
+  std::vector<vpImagePoint> bad = points;
+  bad[7].set_u(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_THROW(estimator.computePlane(bad, vpLaserConicPose::GP3, plane), vpLaserConicException);
+  EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_NOT_COMPUTED);
+  EXPECT_TRUE(std::isnan(estimator.getAltitude()));
+  EXPECT_EQ(estimator.getRansacNbInliers(), 0u);
+  EXPECT_THROW(estimator.computePlane(std::vector<vpImagePoint>(points.begin(), points.begin() + 4),
+                                      vpLaserConicPose::GP3, plane),
+               vpLaserConicException);
+  EXPECT_TRUE(std::isnan(estimator.getAltitude()));
+}
+
 // Arbitrary point sets (random sizes, duplicates, points far outside the image, near-collinear sets):
 // every call returns true with a finite unit-normal plane, or false with a reason; nothing else.
 TEST(LaserConicPose, ArbitraryPointSetsNeverMisbehave)

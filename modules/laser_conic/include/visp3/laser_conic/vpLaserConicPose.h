@@ -68,7 +68,7 @@ public:
     STATUS_OK,                 //!< a plane was found
     STATUS_COLLINEAR_POINTS,   //!< all points lie on one line
     STATUS_NOT_AN_ELLIPSE,     //!< the least-squares conic of the points (or of the trace) is not an ellipse
-    STATUS_NO_CONSENSUS,       //!< no hypothesis gathers enough inliers
+    STATUS_NO_CONSENSUS,       //!< no hypothesis gathers enough inliers, or no more than clutter would
     STATUS_CAMERA_INSIDE_CONE, //!< PP3 only: no epipolar tangent, the camera centre lies inside the laser cone
     STATUS_NO_PLANE_PAIR,      //!< the plane pair of the conic has no ground plane
     STATUS_PLANE_NOT_FINITE,   //!< the estimated plane is not finite
@@ -148,8 +148,10 @@ public:
   //! Seed of the RANSAC sampler; default 0.
   void setRansacSeed(unsigned int seed);
   /*!
-    Smallest number of inliers a consensus needs (default 0: the method's minimal sample size);
-    fewer gives STATUS_NO_CONSENSUS.
+    Smallest number of inliers a consensus needs (default 0: getMinimumPointCount(), 5 for every method);
+    fewer gives STATUS_NO_CONSENSUS. Whatever this number, a consensus among points off it that holds no more of
+    them than points spread at random over the same area would (the expected number of such conics over 0.01)
+    is no trace: STATUS_NO_CONSENSUS, the details giving that number (PP5, PP3, GP3; PLANE_PAIR has no consensus).
   */
   void setRansacNbInliersToReachConsensus(unsigned int n) { m_nbInliersToReachConsensus = n; }
   /*!
