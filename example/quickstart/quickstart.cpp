@@ -111,18 +111,24 @@ bool laserQuickStart()
   // --- README snippet: vpLaserConicPose ---
   vpLaserConicDetector detector;                         // red stripe: ridge of R - max(G, B), sub-pixel centres
   std::vector<vpImagePoint> points = detector.detect(I); // I: vpImage<vpRGBa>
+  detector.setSearchRegion(points, 20.0);                // optional: next frame within 20 px of this trace
 
   vpLaserConicPose estimator;
-  estimator.setCameraParameters(cam);
+  estimator.setCameraParameters(cam);       // with or without distortion (vpPixelMeterConversion, kdu)
   estimator.setLaser(vpMath::rad(34), cMl); // full opening angle; cone apex at the origin of l, axis +Z
-  estimator.setRansacThreshold(2.0);        // pixels
+  estimator.setRansacThreshold(2.0);        // pixels: separates gross outliers; the final fit adapts its scale
+  estimator.setCovarianceComputation(true); // 3x3 covariance of (altitude, roll, pitch)
   vpPlane cPlane;                           // ground plane in the camera frame, normal towards the camera
-  if (estimator.computePlane(points, vpLaserConicPose::GP3, cPlane)) // or PLANE_PAIR, PP5, PP3
+  if (estimator.computePlane(points, vpLaserConicPose::GP3, cPlane)) { // or PLANE_PAIR, PP5, PP3
     std::cout << estimator.getAltitude() << " m, roll " << vpMath::deg(estimator.getRoll()) << ", pitch "
-              << vpMath::deg(estimator.getPitch()) << " deg, " << estimator.getInliers().size() << " inliers"
+              << vpMath::deg(estimator.getPitch()) << " deg, " << estimator.getRansacNbInliers() << " inliers, "
+              << "calibration health " << estimator.getCalibrationHealth() // ~1 when the rig calibration fits
               << std::endl;
-  else
-    std::cout << estimator.getFailureReason() << std::endl;
+    vpMatrix C = estimator.getCovarianceMatrix(); // e.g. for a Kalman filter update
+    vpLaserConicPose::draw(I, estimator, points); // overlay: inliers green, outliers red, conic, caption
+  } else {
+    std::cout << vpLaserConicPose::getStatusMessage(estimator.getStatus()) << std::endl;
+  }
   // --- end of snippet ---
 
   // The truth from the simulated ground pose, with the estimator's own convention.
