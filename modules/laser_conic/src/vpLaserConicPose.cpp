@@ -25,6 +25,9 @@ namespace
 {
 using vsp::laser_estimators::PointList;
 
+//! Points in a minimal sample of the method's RANSAC (a conic's five, or three for a plane of the known cone).
+int minimalSample(vpLaserConicPose::vpLaserConicMethod method) { return method == vpLaserConicPose::PP5 ? 5 : 3; }
+
 /*!
   Fraction of the points whose ray meets the plane in front of the camera, on the lit (forward)
   nappe of the laser cone: a plane found only through the mirrored nappes of the cone quadrics
@@ -387,7 +390,11 @@ vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const s
         vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
                                    finalFitSettings(method, focal), fit) != vsp::laser_robust_fit::Outcome::OK ||
         !fit.plane.allFinite() || fractionInFront(normalized, fit.inliers, fit.plane, cone) < 0.5 ||
-        !vsp::laser_calibration_check::explained(fit) ||
+        passesThroughTheRig(fit.plane, cone) || !vsp::laser_calibration_check::explained(fit) ||
+        (method != PLANE_PAIR &&
+         !vsp::laser_trace_significance::clutterReason(normalized, fit, finalFitSettings(method, focal),
+                                                       minimalSample(method))
+              .empty()) ||
         (strict && (fit.inliers.size() < minTrace || vsp::laser_calibration_check::suspect(fit))))
       return -1.0;
     return vsp::laser_calibration_check::misfit(fit);
@@ -544,15 +551,15 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   const std::string clutter =
       method == PLANE_PAIR
           ? std::string()
-          : vsp::laser_trace_significance::clutterReason(normalized, result, settings, method == PP5 ? 5 : 3);
+          : vsp::laser_trace_significance::clutterReason(normalized, result, settings, minimalSample(method));
   if (!clutter.empty())
     return fail(STATUS_NO_CONSENSUS, clutter);
   if (!result.plane.allFinite())
     return fail(STATUS_PLANE_NOT_FINITE);
   if (fractionInFront(normalized, result.inliers, result.plane, cone) < 0.5)
     return failOrMismatch(STATUS_PLANE_BEHIND, "", points, method);
-  if (passesThroughTheRig(result.plane, cone))
-    return failOrMismatch(STATUS_PLANE_BEHIND, " (the plane passes through the camera and laser)", points, method);
+  if (passesThroughTheRig(result.plane, cone)) // a ground at the rig: no calibration mistake to look for
+    return fail(STATUS_PLANE_BEHIND, " (the plane passes through the camera and laser)");
   if (!checkCalibration(points, method, result))
     return false;
 

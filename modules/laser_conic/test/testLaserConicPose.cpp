@@ -611,6 +611,50 @@ TEST(LaserConicPose, ClutterWithoutATraceGivesNoPlane)
   }
 }
 
+// Data that have nothing to do with a calibration were refused as STATUS_CALIBRATION_MISMATCH naming a mistake
+// (the half angle, lMc, another resolution): straight noisy strokes (13-16 of 40 per method), and a ground 1 cm
+// from the camera, whose plane passes through the rig. A mistake is looked for only where an alternative
+// calibration finds a trace that stands out from the rest of the points and a plane the rig can see.
+TEST(LaserConicPose, NoCalibrationMistakeIsNamedForDataUnrelatedToIt)
+{
+  std::mt19937 rng(25);
+  laser_test::Rig rig;
+  rig.cam.initPersProjWithoutDistortion(1600.0, 1600.0, 800.0, 600.0);
+  rig.cMl.buildFrom(0.15, 0.0, 0.0, 0.0, vpMath::rad(-3.0), 0.0);
+  vpLaserConicPose estimator = makeEstimator(rig);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int stroke = 0; stroke < 40; ++stroke) {
+    const double u0 = 200 + 1200 * unit(rng), v0 = 200 + 800 * unit(rng), angle = 2 * M_PI * unit(rng),
+                 length = 300 + 500 * unit(rng);
+    std::vector<vpImagePoint> points;
+    for (int i = 0; i < 150; ++i) {
+      const double s = length * i / 150.0;
+      points.emplace_back(v0 + s * std::sin(angle) + noise(rng), u0 + s * std::cos(angle) + noise(rng));
+    }
+    for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+      vpPlane plane;
+      EXPECT_FALSE(estimator.computePlane(points, method, plane));
+      EXPECT_NE(estimator.getStatus(), vpLaserConicPose::STATUS_CALIBRATION_MISMATCH)
+          << stroke << " " << vpLaserConicPose::getMethodName(method) << ": " << estimator.getFailureReason();
+    }
+  }
+  vpLaserConicSimulator sim;
+  sim.setCamera(rig.cam, 1600, 1200);
+  sim.setLaser(rig.openingAngle, rig.cMl);
+  const vpRotationMatrix R(vpRxyzVector(vpMath::rad(-80.0), 0.0, 0.0));
+  const double h = 0.01; // the ground 1 cm from the camera, looked at along it
+  sim.setGroundPose(vpHomogeneousMatrix(vpTranslationVector(h * R[0][2], h * R[1][2], h * R[2][2]), R));
+  const std::vector<vpImagePoint> trace = sim.tracePoints(360);
+  ASSERT_GE(trace.size(), 5u);
+  for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods) {
+    vpPlane plane;
+    EXPECT_FALSE(estimator.computePlane(trace, method, plane));
+    EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_PLANE_BEHIND)
+        << vpLaserConicPose::getMethodName(method) << ": " << estimator.getFailureReason();
+  }
+}
+
 // A call refused for its input (a point that is not finite) left the last success's estimate readable: its
 // status STATUS_OK and its altitude, as if they were this call's.
 TEST(LaserConicPose, ARefusedInputLeavesNoEarlierEstimate)
