@@ -384,10 +384,10 @@ bool runMbtTutorial(int frames, const std::string &outputDir, bool display)
   viewer.waitClick();
 
   // Bounds. The P3P uses 3 corners with 0.5 px of noise, 15-25 cm apart at 0.55-0.65 m (f = 800 px),
-  // and IMU tilts of 0.2 deg: measured 1.8-3.8 mm / 0.3-0.6 deg; bound 10 mm / 1.5 deg, i.e. well within
+  // and IMU tilts of 0.2 deg: measured 0.5-1.0 mm / 0.3-0.4 deg; bound 10 mm / 1.5 deg, i.e. well within
   // what the moving edges (8 px search range) pull in. The tracker then fits ~380 moving edges on grey
-  // steps of 35 levels or more under 2 levels of noise: measured mean 0.4 mm / 0.07 deg, worst frame
-  // 1.2 mm / 0.16 deg; bounds mean 1.5 mm, worst 3 mm / 0.5 deg. The push moves the box image by ~100 px:
+  // steps of 35 levels or more under 2 levels of noise: measured mean 0.3-0.4 mm / 0.07 deg, worst frame
+  // 1.0 mm / 0.15 deg; bounds mean 1.5 mm, worst 3 mm / 0.5 deg. The push moves the box image by ~100 px:
   // the loss must be seen at once (projection error or too few edges), and the tracker left alone stays
   // off by more than 3 cm (measured 7 cm).
   const bool lossOk = lossFrames.size() == 1 && lossFrames[0] >= pushFrame && lossFrames[0] <= pushFrame + 1;
