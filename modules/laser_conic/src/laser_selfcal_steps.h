@@ -60,7 +60,17 @@ public:
   StepsOutcome run(const std::vector<InputFrame> &inputs, const StepsSettings &settings);
 
 private:
+  //! One run of the steps from the initial laser (m_cone0).
+  StepsOutcome attempt(const std::vector<InputFrame> &inputs, const StepsSettings &settings);
   bool initialPlanes(const std::vector<InputFrame> &inputs, StepsOutcome &out);
+  //! initialPlanes(), applyScale(), selectFrames() and robustRounds(): false, with out's status, on a failure.
+  bool solveFromTheInitialLaser(const std::vector<InputFrame> &inputs, const StepsSettings &settings,
+                                StepsOutcome &out);
+  /*!
+    Replaces the initial laser by its axis tilted by up to 12 degrees on a grid, the one under which GP-3 explains
+    the most points of a few frames within its RANSAC threshold; false when the initial axis does best.
+  */
+  bool searchInitialAxis(const std::vector<InputFrame> &inputs);
   void applyScale(const std::vector<InputFrame> &inputs, const StepsSettings &settings);
   std::vector<size_t> selectFrames(const std::vector<InputFrame> &inputs, unsigned int maxFrames) const;
   bool robustRounds(StepsOutcome &out);

@@ -111,7 +111,11 @@ struct StepsOutcome;
   -# the joint Levenberg-Marquardt problem (Ceres, DENSE_SCHUR: the planes are eliminated) is solved
      under Cauchy weights at the MAD scale of the residuals (rounds of reweighting); points farther
      than 3 scales from their conic are outliers; a final plain least-squares fit on the inliers gives
-     the result and the covariance.
+     the result and the covariance;
+  -# when that ends at the iteration limit, degenerate or with too many outliers, the whole is run once more
+     from the initial laser's axis tilted on a grid (up to 12 degrees in steps of 4, about both axes of the laser
+     frame), the tilt under which GP-3 explains the most points of 10 frames, and kept when it succeeds: a mount
+     knocked by 8 or 12 degrees otherwise started the joint problem in another valley.
 
   The previous calibration is never replaced by a failed one: compute() writes its outputs only on success.
 
