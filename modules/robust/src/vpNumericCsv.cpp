@@ -4,12 +4,31 @@
  */
 #include <visp3/robust/vpNumericCsv.h>
 
+#include <cstdlib>
+
 namespace
 {
 bool blankOrComment(const std::string &line)
 {
   const size_t first = line.find_first_not_of(" \t\r");
   return first == std::string::npos || line[first] == '#';
+}
+
+// Whether the line starts with a number (nan and inf included): then it is a row, never a header, whatever parse
+// says of it (a typo in the first sample was taken for a header and the sample dropped).
+bool startsWithANumber(const std::string &line)
+{
+  const char *begin = line.c_str();
+  char *end = nullptr;
+  std::strtod(begin, &end);
+  return end != begin;
+}
+
+// The line without a leading UTF-8 byte-order mark (spreadsheets write one; it made a first data row a header).
+void dropByteOrderMark(std::string &line)
+{
+  if (line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+    line.erase(0, 3);
 }
 } // namespace
 
@@ -23,11 +42,12 @@ void vpReadNumericCsv(std::istream &in, size_t columns, const std::string &colum
   size_t lineNo = 0;
   bool first = true;
   while (std::getline(in, line)) {
-    ++lineNo;
+    if (++lineNo == 1)
+      dropByteOrderMark(line);
     if (blankOrComment(line))
       continue;
     const bool numeric = parse(line, values);
-    if (!numeric && first) { // a header line
+    if (!numeric && first && !startsWithANumber(line)) { // a header line
       first = false;
       continue;
     }

@@ -90,6 +90,28 @@ TEST(RobustNumericCsv, FailsAtTheLineOfABadRow)
   EXPECT_EQ(r.failure, "expected 2 columns (a, b), got 3");
 }
 
+// The first line was a header whenever parse refused it: a data row with a typo ("0.0.1") or behind the UTF-8
+// byte-order mark that spreadsheets write was dropped without a word, the file read from its second sample. A
+// first line that starts with a number is a row; the mark is skipped.
+TEST(RobustNumericCsv, AFirstRowThatIsNoHeaderIsReadOrRefused)
+{
+  Rows r = read("\xEF\xBB\xBF"
+                "0,1\n2,3\n",
+                2);
+  EXPECT_EQ(r.lines, (std::vector<size_t>{1, 2}));
+  EXPECT_EQ(r.values[0], (std::vector<double>{0.0, 1.0}));
+  r = read("\xEF\xBB\xBF"
+           "t,x\n2,3\n",
+           2); // a header after the mark is still one
+  EXPECT_EQ(r.lines, (std::vector<size_t>{2}));
+  r = read("0.0.1,1\n2,3\n", 2);
+  EXPECT_TRUE(r.lines.empty());
+  EXPECT_EQ(r.failLine, 1u);
+  EXPECT_EQ(r.failure, "a field is not a number: '0.0.1,1'");
+  r = read("nan,1\n2,3\n", 2); // parseCommas takes nan: the caller's rules judge it, not the header test
+  EXPECT_EQ(r.lines, (std::vector<size_t>{1, 2}));
+}
+
 // A fail callback that returns (does not throw) stops the reading: no row after the bad one.
 TEST(RobustNumericCsv, StopsWhenFailReturns)
 {

@@ -20,8 +20,8 @@
   Each reading is the true value plus the current bias plus white noise of standard deviation
   density / sqrt(dt); the biases walk by density * sqrt(dt) per sample (the continuous-time model of an
   IMU's noise densities, as in Kalibr's and EuRoC's IMU parameters). The defaults are those of the ADIS16448
-  of the EuRoC dataset. Readings are in the IMU frame, whatever frame the caller gives the truth in
-  (gyro rad/s, specific force m/s², 9.81 up at rest).
+  of the EuRoC dataset. No rotation is applied: give the true rate and specific force in the IMU frame, and the
+  readings are in that frame (gyro rad/s, specific force m/s², 9.81 up at rest).
 
   \code
   vpLaserConicImuSimulator imu;

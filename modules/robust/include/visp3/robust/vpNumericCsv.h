@@ -25,9 +25,10 @@
 /*!
   Reads the data rows of a numeric CSV stream (an opened file), in order.
 
-  Blank lines and lines whose first non-blank character is `#` are skipped. The first other line is a
-  header when \e parse refuses it; every line after it must be accepted by \e parse and hold
-  \e columns numbers.
+  Blank lines and lines whose first non-blank character is `#` are skipped, and a UTF-8 byte-order mark before
+  the first line. The first other line is a header when \e parse refuses it and it does not start with a number
+  (a first data row with a typo is an error, not a header); every line after it must be accepted by \e parse
+  and hold \e columns numbers.
 
   \param in : the stream, read to its end (the caller opens the file and reports when it cannot).
   \param columns : the number of values of every data row.
