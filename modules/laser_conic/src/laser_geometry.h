@@ -13,10 +13,13 @@
 #define VP_LASER_GEOMETRY_H
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <visp3/laser_conic/vpLaserConicSolvers.h>
 
@@ -24,6 +27,35 @@ namespace vpLaserSolvers
 {
 namespace detail
 {
+/*!
+  The ellipse C (its symmetric part, any scale) as centre + axes diag(a, b) (cos t, sin t): its centre, unit axes
+  (columns) and semi-axes. False when C is no real ellipse.
+*/
+inline bool ellipseAxes(const Eigen::Matrix3d &C, Eigen::Vector2d &centre, Eigen::Matrix2d &axes, double &a, double &b)
+{
+  const Eigen::Matrix3d S = 0.5 * (C + C.transpose());
+  const Eigen::Matrix2d A = S.topLeftCorner<2, 2>();
+  if (!(std::fabs(A.determinant()) > 0.0))
+    return false;
+  centre = -A.inverse() * S.topRightCorner<2, 1>();
+  const double level = -(centre.dot(S.topRightCorner<2, 1>()) + S(2, 2)); // (x - c)^T A (x - c) = level
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(A);
+  const Eigen::Vector2d l = eig.eigenvalues() / level;
+  if (!(l(0) > 0.0 && l(1) > 0.0) || !centre.allFinite())
+    return false;
+  axes = eig.eigenvectors();
+  a = 1.0 / std::sqrt(l(0));
+  b = 1.0 / std::sqrt(l(1));
+  return std::isfinite(a) && std::isfinite(b);
+}
+
+//! Perimeter of an ellipse of semi-axes a and b (Ramanujan's second approximation).
+inline double ellipsePerimeter(double a, double b)
+{
+  const double h = (a - b) * (a - b) / ((a + b) * (a + b));
+  return M_PI * (a + b) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
+}
+
 //! 3x3 form M of the laser cone: (X - apex)^T M (X - apex) = 0 in the camera frame (defined in cones.cpp).
 Eigen::Matrix3d laserConeForm(const LaserCone &cone);
 

@@ -11,6 +11,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "laser_geometry.h"
+
 namespace vsp::laser_trace_significance
 {
 namespace
@@ -18,21 +20,14 @@ namespace
 // log C(n, k)
 double logChoose(double n, double k) { return std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0); }
 
-// Perimeter of the ellipse \e conic (its symmetric part, any scale), +infinity when it is no ellipse.
+// Perimeter of the ellipse \e conic, +infinity when it is no ellipse.
 double ellipsePerimeter(const Eigen::Matrix3d &conic)
 {
-  const Eigen::Matrix3d S = 0.5 * (conic + conic.transpose());
-  const Eigen::Matrix2d A = S.topLeftCorner<2, 2>();
-  const double det = A.determinant();
-  if (!(std::fabs(det) > 0.0))
-    return std::numeric_limits<double>::infinity();
-  const Eigen::Vector2d centre = -A.inverse() * S.topRightCorner<2, 1>();
-  const double level = -(centre.dot(S.topRightCorner<2, 1>()) + S(2, 2)); // (x - c)^T A (x - c) = level
-  const Eigen::Vector2d l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(A).eigenvalues() / level;
-  if (!(l(0) > 0.0 && l(1) > 0.0))
-    return std::numeric_limits<double>::infinity();
-  const double a = 1.0 / std::sqrt(l(0)), b = 1.0 / std::sqrt(l(1)), h = (a - b) * (a - b) / ((a + b) * (a + b));
-  return M_PI * (a + b) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h))); // Ramanujan
+  Eigen::Vector2d centre;
+  Eigen::Matrix2d axes;
+  double a = 0.0, b = 0.0;
+  return vpLaserSolvers::detail::ellipseAxes(conic, centre, axes, a, b) ? vpLaserSolvers::detail::ellipsePerimeter(a, b)
+                                                                        : std::numeric_limits<double>::infinity();
 }
 } // namespace
 

@@ -55,20 +55,7 @@ struct EllipseFrame
 
 bool ellipseFrame(const Eigen::Matrix3d &C, EllipseFrame &e)
 {
-  const Eigen::Matrix3d S = 0.5 * (C + C.transpose());
-  const Eigen::Matrix2d A = S.topLeftCorner<2, 2>();
-  if (!(std::fabs(A.determinant()) > 0.0))
-    return false;
-  e.centre = -A.inverse() * S.topRightCorner<2, 1>();
-  const double level = -(e.centre.dot(S.topRightCorner<2, 1>()) + S(2, 2)); // (x - c)^T A (x - c) = level
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(A);
-  const Eigen::Vector2d l = eig.eigenvalues() / level;
-  if (!(l(0) > 0.0 && l(1) > 0.0) || !e.centre.allFinite())
-    return false;
-  e.axes = eig.eigenvectors();
-  e.ra = 1.0 / std::sqrt(l(0));
-  e.rb = 1.0 / std::sqrt(l(1));
-  return std::isfinite(e.ra) && std::isfinite(e.rb);
+  return vpLaserSolvers::detail::ellipseAxes(C, e.centre, e.axes, e.ra, e.rb);
 }
 
 //! R + G + B at (u, v), bilinear between the pixel centres.
@@ -101,8 +88,7 @@ std::vector<ArcPixel> profilesAlong(const vpImage<vpRGBa> &I, const EllipseFrame
   const int W = static_cast<int>(I.getWidth()), H = static_cast<int>(I.getHeight());
   // An ellipse whose perimeter (Ramanujan's approximation) is many times the image's: no ring of this image (its
   // arc, mostly outside, would be millions of pixels).
-  const double h = (e.ra - e.rb) * (e.ra - e.rb) / ((e.ra + e.rb) * (e.ra + e.rb));
-  const double perimeter = M_PI * (e.ra + e.rb) * (1.0 + 3.0 * h / (10.0 + std::sqrt(4.0 - 3.0 * h)));
+  const double perimeter = vpLaserSolvers::detail::ellipsePerimeter(e.ra, e.rb);
   if (!(perimeter <= RidgeTuning::stretchMaxPerimeter * (W + H)))
     return arc;
   arc.reserve(static_cast<size_t>(perimeter) + 1);
