@@ -7,9 +7,7 @@
 #include <visp3/laser_conic/vpLaserConicFilter.h>
 #include <visp3/robust/vpNumericCsv.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 
 namespace
@@ -23,30 +21,6 @@ void badFile(const std::string &file, size_t line, const std::string &what)
                               "vpLaserConicFilter::loadImuCsv: " + where + ": " + what);
 }
 
-//! Splits a line on commas (spaces around fields allowed); false when a field is not a finite number.
-bool parseNumbers(const std::string &line, std::vector<double> &values)
-{
-  values.clear();
-  size_t start = 0;
-  while (start <= line.size()) {
-    size_t end = line.find(',', start);
-    if (end == std::string::npos)
-      end = line.size();
-    const std::string field = line.substr(start, end - start);
-    const char *begin = field.c_str();
-    char *stop = nullptr;
-    errno = 0;
-    const double v = std::strtod(begin, &stop);
-    if (stop == begin || errno != 0 || !std::isfinite(v))
-      return false;
-    for (; *stop != '\0'; ++stop)
-      if (*stop != ' ' && *stop != '\t' && *stop != '\r')
-        return false;
-    values.push_back(v);
-    start = end + 1;
-  }
-  return true;
-}
 } // namespace
 
 std::vector<vpLaserConicFilter::vpImuSample> vpLaserConicFilter::loadImuCsv(const std::string &file, double timeScale)
@@ -58,8 +32,11 @@ std::vector<vpLaserConicFilter::vpImuSample> vpLaserConicFilter::loadImuCsv(cons
     badFile(file, 0, "cannot open the IMU file");
   std::vector<vpImuSample> samples;
   vpReadNumericCsv(
-      in, 7, "timestamp, wx, wy, wz, ax, ay, az", parseNumbers,
-      [&](size_t, const std::vector<double> &values) {
+      in, 7, "timestamp, wx, wy, wz, ax, ay, az", vpParseCsvNumbers,
+      [&](size_t lineNo, const std::vector<double> &values) {
+        for (double v : values)
+          if (!std::isfinite(v))
+            badFile(file, lineNo, "non-finite time or reading");
         vpImuSample s;
         s.t = values[0] * timeScale;
         for (int i = 0; i < 3; ++i) {

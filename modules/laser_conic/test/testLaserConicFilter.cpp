@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 
 #include <visp3/laser_conic/vpLaserConicFilter.h>
@@ -298,6 +300,18 @@ TEST(LaserConicFilter, BadInputHasAStatus)
   EXPECT_THROW(filter.setMaxLatency(0.1, 1000001), vpLaserConicException); // a mistake: over 1 GB of history
   EXPECT_THROW(filter.addImu(0.0, vpColVector(2), vpColVector(3)), vpLaserConicException);
   EXPECT_THROW(vpLaserConicFilter::loadImuCsv("/nonexistent/imu.csv"), vpLaserConicException);
+  // A non-finite reading is refused at its line as one (it was "a field is not a number").
+  const std::string nanFile = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/vsp_imu_nan.csv";
+  {
+    std::ofstream out(nanFile.c_str());
+    out << "1,0,0,0,0,0,9.8\n2,0,0,nan,0,0,9.8\n";
+  }
+  try {
+    vpLaserConicFilter::loadImuCsv(nanFile, 1.0);
+    ADD_FAILURE() << "a NaN reading was read";
+  } catch (const vpLaserConicException &e) {
+    EXPECT_NE(e.getStringMessage().find("vsp_imu_nan.csv:2: non-finite"), std::string::npos) << e.getStringMessage();
+  }
   EXPECT_FALSE(vpLaserConicFilter::getFrameStatusMessage(vpLaserConicFilter::FRAME_TOO_OLD).empty());
 }
 

@@ -34,7 +34,7 @@ void badFile(const std::string &file, size_t line, const std::string &what)
   throw vpPoseGravityException(vpPoseGravityException::badFileError, msg.str());
 }
 
-// Splits a line on commas, spaces and tabs into numbers; false if a field is not a number.
+// Splits a line of a rotation file on commas, spaces and tabs into numbers; false if a field is not a number.
 bool parseNumbers(const std::string &line, std::vector<double> &values)
 {
   values.clear();
@@ -246,7 +246,7 @@ void vpImuGravity::readCsvRows(std::istream &in, const std::string &file, double
 {
   vpColVector w(3), a(3);
   vpReadNumericCsv(
-      in, 7, "timestamp, wx, wy, wz, ax, ay, az", parseNumbers,
+      in, 7, "timestamp, wx, wy, wz, ax, ay, az", vpParseCsvNumbers,
       [&](size_t lineNo, const std::vector<double> &values) {
         for (unsigned int i = 0; i < 3; ++i) {
           w[i] = values[1 + i];

@@ -235,6 +235,21 @@ TEST(PoseGravityImu, ARefusedFileLeavesTheStreamUnchanged)
   EXPECT_EQ(imu.size(), 4u);
 }
 
+// An empty field was skipped (the line split on blanks too): in a file of 8 columns, "2,0,,0,0,0,9.8,25" read as
+// the 7 numbers of a row, every column after the gap shifted, and the file was refused at the next line.
+TEST(PoseGravityImu, AnEmptyFieldIsRefusedAtItsLine)
+{
+  vpImuGravity imu;
+  const std::string gap = tempFile("imu_gap.csv", "1,0,0,0,0,0,9.8\n2,0,,0,0,0,9.8,25\n3,0,0,0,0,0,9.8,25\n");
+  try {
+    imu.loadCsv(gap, 1.0);
+    ADD_FAILURE() << "an empty field was read";
+  } catch (const vpPoseGravityException &e) {
+    EXPECT_NE(e.getStringMessage().find("imu_gap.csv:2:"), std::string::npos) << e.getStringMessage();
+  }
+  EXPECT_EQ(imu.size(), 0u);
+}
+
 // A matrix that is not a rotation is refused where a rotation is taken, as loadRotation() refuses it in a file:
 // a sheared matrix turned gravity by 27 deg without a word.
 TEST(PoseGravityImu, ANonRotationIsRefused)

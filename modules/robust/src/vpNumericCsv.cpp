@@ -4,6 +4,7 @@
  */
 #include <visp3/robust/vpNumericCsv.h>
 
+#include <cerrno>
 #include <cstdlib>
 
 namespace
@@ -31,6 +32,30 @@ void dropByteOrderMark(std::string &line)
     line.erase(0, 3);
 }
 } // namespace
+
+bool vpParseCsvNumbers(const std::string &line, std::vector<double> &values)
+{
+  values.clear();
+  size_t start = 0;
+  while (start <= line.size()) {
+    size_t end = line.find(',', start);
+    if (end == std::string::npos)
+      end = line.size();
+    const std::string field = line.substr(start, end - start);
+    const char *begin = field.c_str();
+    char *stop = nullptr;
+    errno = 0;
+    const double v = std::strtod(begin, &stop);
+    if (stop == begin || errno == ERANGE)
+      return false;
+    for (; *stop != '\0'; ++stop)
+      if (*stop != ' ' && *stop != '\t' && *stop != '\r')
+        return false;
+    values.push_back(v);
+    start = end + 1;
+  }
+  return true;
+}
 
 void vpReadNumericCsv(std::istream &in, size_t columns, const std::string &columnNames,
                       const std::function<bool(const std::string &, std::vector<double> &)> &parse,

@@ -5,6 +5,7 @@
 // Tests of vpReadNumericCsv(): which lines are rows, their line numbers, and where reading fails.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -110,6 +111,22 @@ TEST(RobustNumericCsv, AFirstRowThatIsNoHeaderIsReadOrRefused)
   EXPECT_EQ(r.failure, "a field is not a number: '0.0.1,1'");
   r = read("nan,1\n2,3\n", 2); // parseCommas takes nan: the caller's rules judge it, not the header test
   EXPECT_EQ(r.lines, (std::vector<size_t>{1, 2}));
+}
+
+// The parser both IMU readers share: an empty field is refused, not skipped (a reader that split on blanks too read
+// "0,0,,0,0,0,9.8,25" as seven numbers, every column after the gap shifted); blanks around a field are allowed;
+// nan and inf are numbers, left to the caller to judge.
+TEST(RobustNumericCsv, ParseCsvNumbersKeepsTheColumns)
+{
+  std::vector<double> v;
+  EXPECT_FALSE(vpParseCsvNumbers("0,0,,0,0,0,9.8,25", v));
+  EXPECT_FALSE(vpParseCsvNumbers("1,2,", v));
+  EXPECT_FALSE(vpParseCsvNumbers("1 2,3", v));
+  EXPECT_FALSE(vpParseCsvNumbers("1,1e999", v)); // out of range
+  ASSERT_TRUE(vpParseCsvNumbers(" 1.5 ,\t-2,3e2\r", v));
+  EXPECT_EQ(v, (std::vector<double>{1.5, -2.0, 300.0}));
+  ASSERT_TRUE(vpParseCsvNumbers("nan,inf", v));
+  EXPECT_TRUE(std::isnan(v[0]) && std::isinf(v[1]));
 }
 
 // A fail callback that returns (does not throw) stops the reading: no row after the bad one.

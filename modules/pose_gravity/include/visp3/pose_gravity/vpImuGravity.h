@@ -39,7 +39,8 @@
   CSV stream (loadCsv()): one sample per line, `timestamp, wx, wy, wz, ax, ay, az` (gyro in rad/s,
   accelerometer in m/s², in the IMU frame): the layout of EuRoC `mav0/imu0/data.csv` and of Kalibr's
   `imu.csv`, timestamps in nanoseconds for both (loadCsv()'s default time scale 1e-9 gives seconds).
-  Lines starting with '#' and a first line that is not numeric (a header) are skipped.
+  Fields are separated by commas (an empty field is an error, not a skipped column). Lines starting with '#', a
+  UTF-8 byte-order mark and a first line that does not start with a number (a header) are skipped.
   \code
   #timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]
   1403636579758555392,-0.0991,0.1473,0.0272,9.7318,0.2004,-1.2507
