@@ -23,6 +23,13 @@
 #include <visp3/core/vpConfig.h>
 
 /*!
+  Splits a CSV line into numbers: fields separated by commas, each a number (strtod's syntax, nan and inf
+  included: the caller judges the values) with optional blanks around it. False when a field is empty or not a
+  number: an empty field is not skipped, so that the columns after it do not shift.
+*/
+VISP_EXPORT bool vpParseCsvNumbers(const std::string &line, std::vector<double> &values);
+
+/*!
   Reads the data rows of a numeric CSV stream (an opened file), in order.
 
   Blank lines and lines whose first non-blank character is `#` are skipped, and a UTF-8 byte-order mark before
@@ -39,13 +46,6 @@
   another number of columns; it is expected to throw the caller's exception, and reading stops there
   when it does not.
 */
-/*!
-  Splits a CSV line into numbers: fields separated by commas, each a number (strtod's syntax, nan and inf
-  included: the caller judges the values) with optional blanks around it. False when a field is empty or not a
-  number: an empty field is not skipped, so that the columns after it do not shift.
-*/
-VISP_EXPORT bool vpParseCsvNumbers(const std::string &line, std::vector<double> &values);
-
 VISP_EXPORT void vpReadNumericCsv(std::istream &in, size_t columns, const std::string &columnNames,
                                   const std::function<bool(const std::string &, std::vector<double> &)> &parse,
                                   const std::function<void(size_t, const std::vector<double> &)> &row,
