@@ -25,8 +25,19 @@ namespace
 {
 using vsp::laser_estimators::PointList;
 
-//! Points in a minimal sample of the method's RANSAC (a conic's five, or three for a plane of the known cone).
-int minimalSample(vpLaserConicPose::vpLaserConicMethod method) { return method == vpLaserConicPose::PP5 ? 5 : 3; }
+/*!
+  Why the trace of \e result (fitted with \e settings) is no better than clutter, empty when it is (see
+  laser_trace_significance.h); always empty for PLANE_PAIR, which fits every point without a consensus. The
+  minimal sample of the method's RANSAC is a conic's five points (PP5) or three for a plane of the known cone.
+*/
+std::string clutterOf(vpLaserConicPose::vpLaserConicMethod method, const PointList &normalized,
+                      const vsp::laser_robust_fit::Result &result, const vsp::laser_robust_fit::Settings &settings)
+{
+  if (method == vpLaserConicPose::PLANE_PAIR)
+    return std::string();
+  return vsp::laser_trace_significance::clutterReason(normalized, result, settings,
+                                                      method == vpLaserConicPose::PP5 ? 5 : 3);
+}
 
 /*!
   Fraction of the points whose ray meets the plane in front of the camera, on the lit (forward)
@@ -385,16 +396,14 @@ vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const s
     const vpLaserSolvers::LaserCone cone = laserCone(alternative.cMl, alternative.openingAngle);
     const double focal = 0.5 * (alternative.cam.get_px() + alternative.cam.get_py());
     const Consensus consensus = findConsensus(normalized, method, cone, ransacOptions(focal), !m_scaleAdaptive);
+    const vsp::laser_robust_fit::Settings settings = finalFitSettings(method, focal);
     vsp::laser_robust_fit::Result fit;
     if (!consensus.found || consensus.inliers.size() < needed ||
-        vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane,
-                                   finalFitSettings(method, focal), fit) != vsp::laser_robust_fit::Outcome::OK ||
+        vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane, settings, fit) !=
+            vsp::laser_robust_fit::Outcome::OK ||
         !fit.plane.allFinite() || fractionInFront(normalized, fit.inliers, fit.plane, cone) < 0.5 ||
         passesThroughTheRig(fit.plane, cone) || !vsp::laser_calibration_check::explained(fit) ||
-        (method != PLANE_PAIR &&
-         !vsp::laser_trace_significance::clutterReason(normalized, fit, finalFitSettings(method, focal),
-                                                       minimalSample(method))
-              .empty()) ||
+        !clutterOf(method, normalized, fit, settings).empty() ||
         (strict && (fit.inliers.size() < minTrace || vsp::laser_calibration_check::suspect(fit))))
       return -1.0;
     return vsp::laser_calibration_check::misfit(fit);
@@ -547,11 +556,7 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
   case vsp::laser_robust_fit::Outcome::NO_PLANE:
     return failOrMismatch(STATUS_NO_PLANE_PAIR, "", points, method);
   }
-  // No more points on the conic than clutter would leave: no trace (PLANE_PAIR fits every point, no consensus).
-  const std::string clutter =
-      method == PLANE_PAIR
-          ? std::string()
-          : vsp::laser_trace_significance::clutterReason(normalized, result, settings, minimalSample(method));
+  const std::string clutter = clutterOf(method, normalized, result, settings); // no trace: no more than clutter
   if (!clutter.empty())
     return fail(STATUS_NO_CONSENSUS, clutter);
   if (!result.plane.allFinite())
