@@ -88,8 +88,9 @@ std::string vpLaserConicFilter::getFrameStatusMessage(vpFrameStatus status)
   case FRAME_AHEAD_OF_IMU:
     return "frame after the last IMU sample: add the IMU samples up to its time first";
   case FRAME_BAD_INPUT:
-    return "bad frame: non-finite value, time beyond 1e10 s, non-positive altitude, covariance not symmetric positive "
-           "definite or a standard deviation outside [1e-12, 1e4]";
+    return "bad frame: non-finite value, time beyond 1e10 s, non-positive altitude, roll or pitch outside (-pi/2, "
+           "pi/2) (degrees given as radians?), covariance not symmetric positive definite or a standard deviation "
+           "outside [1e-12, 1e4]";
   }
   return "unknown frame status";
 }

@@ -334,6 +334,10 @@ TEST(LaserConicFilter, AnAttitudeOutsideAQuarterTurnIsBadInput)
   EXPECT_NEAR(filter.getPitch(), -0.3, 1e-3);
   EXPECT_EQ(filter.addFrame(0.005, 1.0, 0.2, 1.6, C), vpLaserConicFilter::FRAME_BAD_INPUT);
   EXPECT_NEAR(filter.getPitch(), -0.3, 1e-3);
+  // The status's message names the likely mistake.
+  EXPECT_NE(
+      vpLaserConicFilter::getFrameStatusMessage(vpLaserConicFilter::FRAME_BAD_INPUT).find("degrees given as radians"),
+      std::string::npos);
 }
 
 // Finite values that no sensor gives, each found by the fuzz target fuzz-laser-filter to leave a state or a
