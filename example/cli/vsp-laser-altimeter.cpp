@@ -12,7 +12,7 @@
   vsp-laser-altimeter --camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt
                       (--images DIR | --list images.txt) --output results.csv
                       [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]
-                      [--max-altitude-dilution K]
+                      [--max-altitude-dilution K] [--max-attitude-sd DEG]
                       [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]
                       [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]
                       [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]
@@ -68,6 +68,7 @@ struct Options
   std::string methodName = "GP3", detectorName = "ridge", instructions = "best";
   double threshold = 2.0;
   double maxAltitudeDilution = 5.0;
+  double maxAttitudeSdDeg = 5.0;
   unsigned int seed = 0;
   // Detector settings (defaults of vpLaserConicDetector).
   double minContrast = 10.0, noiseFactor = 5.0, minSegment = 50.0, track = 0.0, maxAltitudeError = 0.0, maxNees = 0.0;
@@ -93,7 +94,7 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
       "--camera camera.xml [--camera-name Camera] --laser laser.yaml|laser.txt\n"
       "          (--images DIR | --list images.txt) --output results.csv\n"
       "          [--method GP3|PP3|PP5|PLANE_PAIR] [--overlays DIR] [--threshold PX] [--seed N]\n"
-      "          [--max-altitude-dilution K]\n"
+      "          [--max-altitude-dilution K] [--max-attitude-sd DEG]\n"
       "          [--detector ridge|hsv] [--min-contrast GREY] [--noise-factor K] [--max-stripe-width PX]\n"
       "          [--saturation-level LEVEL] [--min-segment PX] [--sampling-step N] [--track PX]\n"
       "          [--no-guided] [--guided-margin PX] [--guided-step N] [--guided-factor K]\n"
@@ -124,6 +125,11 @@ vpCommandLine commandLine(Options &options, vpLaserFlightFusion &fusion)
   cli.addDouble("--max-altitude-dilution", options.maxAltitudeDilution, "K",
                 "refuse (weak_trace) a trace that fixes the altitude over K times less than the whole ring would "
                 "(vpLaserConicPose::setMaxAltitudeDilution(); default 5, 0 disables)",
+                vpCommandLine::NON_NEGATIVE);
+  cli.addDouble("--max-attitude-sd", options.maxAttitudeSdDeg, "DEG",
+                "refuse (no_parallax) an estimate whose attitude's standard deviation exceeds DEG degrees: a "
+                "baseline too short for the distance of the ground (vpLaserConicPose::setMaxAttitudeUncertainty(); "
+                "default 5, 0 disables)",
                 vpCommandLine::NON_NEGATIVE);
   cli.addChoice("--detector", options.detectorName, {"ridge", "hsv"}, "METHOD",
                 "trace detector: ridge of R - max(G, B) with a threshold from the image's noise (default), or the "
@@ -394,7 +400,11 @@ FrameResult processImage(const std::string &image, const Options &options, const
       } else {
         const bool mismatch = estimator.getStatus() == vpLaserConicPose::STATUS_CALIBRATION_MISMATCH;
         const bool weak = estimator.getStatus() == vpLaserConicPose::STATUS_WEAK_TRACE;
-        result.status = mismatch ? "calibration_mismatch" : weak ? "weak_trace" : "no_plane";
+        const bool noParallax = estimator.getStatus() == vpLaserConicPose::STATUS_NO_PARALLAX;
+        result.status = mismatch     ? "calibration_mismatch"
+                        : weak       ? "weak_trace"
+                        : noParallax ? "no_parallax"
+                                     : "no_plane";
         result.mistake = estimator.getSuspectedMistake();
         std::cerr << image << ": no plane (" << estimator.getFailureReason() << ")" << std::endl;
       }
@@ -541,6 +551,7 @@ int run(int argc, char **argv)
     estimator.setLaser(openingAngle, cMl);
     estimator.setRansacThreshold(options.threshold);
     estimator.setMaxAltitudeDilution(options.maxAltitudeDilution);
+    estimator.setMaxAttitudeUncertainty(vpMath::rad(options.maxAttitudeSdDeg));
     estimator.setRansacSeed(options.seed);
   } catch (const vpException &e) {
     std::cerr << argv[0] << ": " << options.camera << " / " << options.laser << ": " << e.getStringMessage()

@@ -382,35 +382,63 @@ PointList wholeTrace(const Eigen::Vector4d &plane, const LaserCone &cone, size_t
   return trace;
 }
 
-//! Variance of the altitude of \e plane fitted to \e trace by the constrained fit, at unit residual scale.
-double altitudeVariance(const PointList &trace, const LaserCone &cone, double focal, const Eigen::Vector4d &plane)
+//! What the trace's geometry fixes of the plane of \e res (traceGeometry()).
+struct TraceGeometry
 {
-  return constrainedCovariance(trace, cone, focal, plane, static_cast<double>(trace.size()))(0, 0);
-}
+  double altitudeDilution = 0.0;  //!< see Result::altitudeDilution (0: no reference ring)
+  double attitudeDeviation = 0.0; //!< see Result::attitudeDeviation
+};
 
 /*!
-  How many times the altitude's standard deviation from \e trace exceeds that from as many points spread over
-  the whole trace of the same plane, at the same noise: the trace's geometry alone (a short arc, a piece of
-  curve), whatever the noise and the number of points. At most kDilutionPoints points of each are used (the
-  ratio does not depend on their number).
+  The trace's geometry (at most kGeometryPoints of its points, the ratios and the scaled deviation do not
+  depend on their number), from the constrained fit's covariance at unit residual scale:
+  - the altitude's dilution: how many times its standard deviation from \e trace exceeds that from as many
+    points spread over the whole trace of the same plane, at the same noise: the trace's geometry alone (a
+    short arc, a piece of curve), whatever the noise and the number of points;
+  - the attitude's standard deviation (radians, the worst direction of tilt) from all the points of \e trace
+    at its residual scale: with the laser's apex too close to the camera for the distance of the ground,
+    the trace hardly moves with the plane and any tilt fits it.
 */
-double altitudeDilution(const PointList &trace, const LaserCone &cone, double focal, const Result &res)
+TraceGeometry traceGeometry(const PointList &trace, const LaserCone &cone, double focal, const Result &res)
 {
-  constexpr size_t kDilutionPoints = 48;
-  const size_t n = trace.size(), step = (n + kDilutionPoints - 1) / kDilutionPoints;
+  constexpr size_t kGeometryPoints = 48;
+  const size_t n = trace.size(), step = (n + kGeometryPoints - 1) / kGeometryPoints;
   PointList sample;
   sample.reserve(n / step + 1);
   for (size_t i = 0; i < n; i += step)
     sample.push_back(trace[i]);
+  const double unitRss = static_cast<double>(sample.size());
+  const Eigen::Matrix3d actual = constrainedCovariance(sample, cone, focal, res.plane, unitRss);
+  TraceGeometry geometry;
+  // The largest eigenvalue of the attitude's 2 x 2 block, for all the points at their residual scale.
+  const Eigen::Matrix2d tilt = actual.bottomRightCorner<2, 2>();
+  const double half = 0.5 * tilt.trace(), gap = std::hypot(0.5 * (tilt(0, 0) - tilt(1, 1)), tilt(0, 1));
+  geometry.attitudeDeviation =
+      res.sigma * std::sqrt((half + gap) * static_cast<double>(sample.size()) / static_cast<double>(n));
   const PointList whole = wholeTrace(res.plane, cone, sample.size());
   // Most of the plane's trace behind the camera: no ring to compare with (the plane's own checks refuse it).
   if (whole.size() < sample.size() / 2)
-    return 0.0;
-  const double actual = altitudeVariance(sample, cone, focal, res.plane),
-               ideal = altitudeVariance(whole, cone, focal, res.plane);
-  if (!(ideal > 0.0) || !std::isfinite(ideal))
-    return 0.0; // no reference
-  return std::sqrt(actual / ideal * static_cast<double>(sample.size()) / static_cast<double>(whole.size()));
+    return geometry;
+  const double ideal = constrainedCovariance(whole, cone, focal, res.plane, static_cast<double>(whole.size()))(0, 0);
+  if (ideal > 0.0 && std::isfinite(ideal)) // else no reference
+    geometry.altitudeDilution =
+        std::sqrt(actual(0, 0) / ideal * static_cast<double>(sample.size()) / static_cast<double>(whole.size()));
+  return geometry;
+}
+
+//! The tests of the trace's geometry (traceGeometry()) that \e s enables, on the final plane of \e res.
+Outcome checkTraceGeometry(const PointList &trace, const LaserCone &cone, const Settings &s, Result &res)
+{
+  if (!(s.maxAltitudeDilution > 0.0 || s.maxAttitudeDeviation > 0.0))
+    return Outcome::OK;
+  const TraceGeometry geometry = traceGeometry(trace, cone, s.focal, res);
+  res.altitudeDilution = geometry.altitudeDilution;
+  res.attitudeDeviation = geometry.attitudeDeviation;
+  if (s.maxAltitudeDilution > 0.0 && !(res.altitudeDilution <= s.maxAltitudeDilution))
+    return Outcome::WEAK_TRACE;
+  if (s.maxAttitudeDeviation > 0.0 && !(res.attitudeDeviation <= s.maxAttitudeDeviation))
+    return Outcome::NO_PARALLAX;
+  return Outcome::OK;
 }
 
 //! The covariance of (altitude, roll, pitch) symmetrised into \e res, and that of the plane through its Jacobian.
@@ -482,11 +510,9 @@ Outcome fit(const PointList &points, const std::vector<int> &inliers, const Lase
   res.plane = useConstrained ? constrainedPlane : freePlane;
   res.conic = useConstrained ? constrainedConic : freeConic;
 
-  if (s.maxAltitudeDilution > 0.0) {
-    res.altitudeDilution = altitudeDilution(trace, cone, s.focal, res);
-    if (!(res.altitudeDilution <= s.maxAltitudeDilution))
-      return Outcome::WEAK_TRACE;
-  }
+  const Outcome geometry = checkTraceGeometry(trace, cone, s, res);
+  if (geometry != Outcome::OK)
+    return geometry;
   if (s.covariance) {
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     if (useConstrained) {

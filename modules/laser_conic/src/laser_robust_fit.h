@@ -42,11 +42,13 @@ struct Settings
   bool covariance = false;  //!< compute the covariances
   //! Largest dilution of the altitude (see altitudeDilution in the .cpp; 0 disables the test)
   double maxAltitudeDilution = 0.0;
+  //! Largest standard deviation of the attitude (radians, see Result::attitudeDeviation; 0 disables the test)
+  double maxAttitudeDeviation = 0.0;
   FinalFit finalFit = FinalFit::FREE;
 };
 
 //! Outcome of fit().
-enum class Outcome { OK, SHORT_ARC, NOT_AN_ELLIPSE, NO_PLANE, WEAK_TRACE };
+enum class Outcome { OK, SHORT_ARC, NOT_AN_ELLIPSE, NO_PLANE, WEAK_TRACE, NO_PARALLAX };
 
 //! Result of fit().
 struct Result
@@ -58,8 +60,11 @@ struct Result
   double rmsConstrained = 0.0;                     //!< RMS residual (pixels) of the constrained fit on the trace
   double rmsFree = 0.0;                            //!< RMS residual (pixels) of the free fit on the trace
   double coverage = 0.0;                           //!< angular coverage of the trace around the ellipse (rad)
-  double altitudeDilution = 0.0;  //!< of the final fit, when the test ran (see Settings::maxAltitudeDilution)
-  bool constrainedChosen = false; //!< the final plane is the constrained fit
+  double altitudeDilution = 0.0; //!< of the final fit, when the test ran (see Settings::maxAltitudeDilution)
+  //! First-order standard deviation (radians) of the final plane's attitude in its worst direction, from the
+  //! trace at its residual scale, when the tests ran (see Settings::maxAttitudeDeviation)
+  double attitudeDeviation = 0.0;
+  bool constrainedChosen = false;                            //!< the final plane is the constrained fit
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();      //!< of (altitude, roll, pitch)
   Eigen::Matrix4d planeCovariance = Eigen::Matrix4d::Zero(); //!< of (a, b, c, d)
 };

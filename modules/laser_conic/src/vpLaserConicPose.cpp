@@ -103,10 +103,10 @@ vpLaserConicPose::vpLaserConicPose()
     m_probability(0.99), m_seed(0), m_localOptimisation(true), m_altitude(std::numeric_limits<double>::quiet_NaN()),
     m_roll(std::numeric_limits<double>::quiet_NaN()), m_pitch(std::numeric_limits<double>::quiet_NaN()), m_inliers(),
     m_trials(0), m_conic(3, 3, 0.0), m_failure(), m_status(STATUS_NOT_COMPUTED), m_nbInliersToReachConsensus(0),
-    m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_maxAltitudeDilution(5.0), m_finalFit(FINAL_FIT_DEFAULT),
-    m_computeCovariance(false), m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0),
-    m_sigma(0.0), m_coverage(0.0), m_constrainedChosen(false), m_points(), m_calibrationCheck(true),
-    m_mistake(MISTAKE_UNKNOWN)
+    m_scaleAdaptive(true), m_minCoverage(0.5 * M_PI), m_maxAltitudeDilution(5.0),
+    m_maxAttitudeUncertainty(vpMath::rad(5.0)), m_finalFit(FINAL_FIT_DEFAULT), m_computeCovariance(false),
+    m_covariance(), m_planeCovariance(), m_rmsConstrained(0.0), m_rmsFree(0.0), m_sigma(0.0), m_coverage(0.0),
+    m_constrainedChosen(false), m_points(), m_calibrationCheck(true), m_mistake(MISTAKE_UNKNOWN)
 {
 }
 
@@ -114,56 +114,6 @@ unsigned int vpLaserConicPose::getMinimumPointCount(vpLaserConicMethod)
 {
   // The free conic of the final fit (laser_robust_fit.h) needs 5 points whatever the method's sample.
   return 5;
-}
-
-std::string vpLaserConicPose::getMethodName(vpLaserConicMethod method)
-{
-  switch (method) {
-  case PLANE_PAIR:
-    return "PLANE_PAIR";
-  case PP5:
-    return "PP5";
-  case PP3:
-    return "PP3";
-  case GP3:
-    return "GP3";
-  }
-  return "unknown";
-}
-
-std::string vpLaserConicPose::getStatusMessage(vpLaserConicStatus status)
-{
-  switch (status) {
-  case STATUS_NOT_COMPUTED:
-    return "no estimate computed yet";
-  case STATUS_OK:
-    return "plane found";
-  case STATUS_COLLINEAR_POINTS:
-    return "all points are collinear: they cannot lie on the image of the laser ellipse";
-  case STATUS_NOT_AN_ELLIPSE:
-    return "the least-squares conic of the points is not an ellipse";
-  case STATUS_NO_CONSENSUS:
-    return "no consensus: no hypothesis is supported by enough points";
-  case STATUS_CAMERA_INSIDE_CONE:
-    return "no epipolar tangent to the laser cone: the camera centre lies inside the laser cone";
-  case STATUS_NO_PLANE_PAIR:
-    return "no ground plane in the plane pair of the image conic: the conic does not match the laser cone "
-           "(no real plane pair, or no plane with both optical centres on its side)";
-  case STATUS_PLANE_NOT_FINITE:
-    return "the estimated plane is not finite";
-  case STATUS_PLANE_BEHIND:
-    return "the plane is behind the system: the laser or the camera cannot see its trace there";
-  case STATUS_SHORT_ARC:
-    return "the trace found covers too short an arc of the laser cone: its tilt is weakly constrained";
-  case STATUS_CALIBRATION_MISMATCH:
-    return "the calibration does not explain the trace: the plane it constrains misses the points far beyond their "
-           "noise (usual causes: the half opening angle given for the full one, lMc given for cMl, u and v swapped, "
-           "intrinsics of another camera or resolution)";
-  case STATUS_WEAK_TRACE:
-    return "the trace found fixes the plane far less than the whole ring would: a short arc whose conic follows "
-           "the noise, or a piece of a curve of the scene taken for the trace";
-  }
-  return "unknown status";
 }
 
 bool vpLaserConicPose::fail(vpLaserConicStatus status, const std::string &details)
@@ -376,6 +326,7 @@ vsp::laser_robust_fit::Settings vpLaserConicPose::finalFitSettings(vpLaserConicM
   settings.minCoverage = method == PLANE_PAIR ? 0.0 : m_minCoverage;
   settings.covariance = m_computeCovariance;
   settings.maxAltitudeDilution = m_maxAltitudeDilution;
+  settings.maxAttitudeDeviation = m_maxAttitudeUncertainty;
   vpLaserConicFinalFit fit = m_finalFit;
   if (fit == FINAL_FIT_DEFAULT)
     fit = (method == PP3 || method == GP3) ? FINAL_FIT_SELECT : FINAL_FIT_FREE;
@@ -551,6 +502,11 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
         << m_maxAltitudeDilution << " allowed; setMaxAltitudeDilution())";
     return fail(STATUS_WEAK_TRACE, msg.str());
   }
+  case vsp::laser_robust_fit::Outcome::NO_PARALLAX:
+    // As for a weak trace: a calibration that misses the trace it fitted is named first.
+    if (!checkCalibration(points, method, result))
+      return false;
+    return fail(STATUS_NO_PARALLAX, parallaxDetails(result));
   case vsp::laser_robust_fit::Outcome::NOT_AN_ELLIPSE:
     return fail(STATUS_NOT_AN_ELLIPSE);
   case vsp::laser_robust_fit::Outcome::NO_PLANE:

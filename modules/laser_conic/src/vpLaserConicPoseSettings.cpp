@@ -27,6 +27,13 @@ void vpLaserConicPose::setMaxAltitudeDilution(double factor)
   m_maxAltitudeDilution = factor;
 }
 
+void vpLaserConicPose::setMaxAttitudeUncertainty(double radians)
+{
+  require(std::isfinite(radians) && !(radians < 0.0),
+          "vpLaserConicPose: the largest attitude uncertainty must be finite and >= 0");
+  m_maxAttitudeUncertainty = radians;
+}
+
 void vpLaserConicPose::setCameraParameters(const vpCameraParameters &cam)
 {
   requireUsableCamera(cam, "vpLaserConicPose");

@@ -963,12 +963,65 @@ TEST(LaserConicPose, AShortNoisyArcGivesNoConfidentWrongPlane)
   EXPECT_GE(weak, 30);
 }
 
+// A laser apex too close to the camera for the distance of the ground: the ring then hardly moves with the
+// plane (its parallax, focal x baseline / altitude, under a few pixels), and the points fit planes tilted by
+// tens of degrees as well as the true one. Measured at 0.5 px on 500 points of the whole ring, 20 grounds
+// tilted up to 10 deg: a 1 mm baseline at 1 m (0.8 px of parallax) gave attitudes up to 34 deg off, a 2 mm
+// one 17 deg, as STATUS_OK; 3 cm (24 px) 1 deg at most. The estimate's own uncertainty says it: its attitude's
+// standard deviation was 11-15 deg at 1 mm, 0.4-0.5 deg at 3 cm.
+TEST(LaserConicPose, ABaselineTooShortForTheDistanceGivesNoAttitude)
+{
+  const vpCameraParameters cam(800.0, 800.0, 320.0, 240.0);
+  const auto run = [&cam](double baseline, double distance, vpLaserConicPose::vpLaserConicMethod method,
+                          unsigned int seed, double &attitudeError) {
+    vpLaserConicSimulator sim;
+    sim.setCamera(cam, 640, 480);
+    const vpHomogeneousMatrix cMl(baseline, 0.0, 0.0, 0.0, 0.0, 0.0);
+    sim.setLaser(vpMath::rad(40.0), cMl);
+    sim.setGroundPose(vpHomogeneousMatrix(0.0, 0.0, distance, vpMath::rad(10.0 * std::sin(seed)),
+                                          vpMath::rad(10.0 * std::cos(1.7 * seed)), 0.0));
+    sim.setSeed(seed);
+    laser_test::Rig rig;
+    rig.cam = cam;
+    rig.cMl = cMl;
+    rig.openingAngle = vpMath::rad(40.0);
+    vpLaserConicPose estimator = makeEstimator(rig);
+    vpPlane plane;
+    const bool found = estimator.computePlane(sim.addNoise(sim.tracePoints(500), 0.5), method, plane);
+    const vpPlane truth = sim.getGroundPlane();
+    attitudeError = found ? laser_test::normalError(toEigen(plane), toEigen(truth)) : 0.0;
+    return estimator;
+  };
+  for (vpLaserConicPose::vpLaserConicMethod method : kAllMethods)
+    for (unsigned int seed = 1; seed <= 10; ++seed) {
+      double error = 0.0;
+      const vpLaserConicPose shortBaseline = run(0.001, 1.0, method, seed, error);
+      EXPECT_EQ(shortBaseline.getStatus(), vpLaserConicPose::STATUS_NO_PARALLAX)
+          << vpLaserConicPose::getMethodName(method) << " seed " << seed << ": " << vpMath::deg(error) << " deg off; "
+          << shortBaseline.getFailureReason();
+      EXPECT_NE(shortBaseline.getFailureReason().find("a baseline of 1 mm at "), std::string::npos)
+          << shortBaseline.getFailureReason();
+      // The rig's 15 cm far beyond its range: 1.2 px of parallax at 100 m.
+      const vpLaserConicPose farGround = run(0.15, 100.0, method, seed, error);
+      EXPECT_EQ(farGround.getStatus(), vpLaserConicPose::STATUS_NO_PARALLAX)
+          << vpLaserConicPose::getMethodName(method) << " seed " << seed << ": " << vpMath::deg(error) << " deg off";
+      const vpLaserConicPose longBaseline = run(0.03, 1.0, method, seed, error);
+      EXPECT_EQ(longBaseline.getStatus(), vpLaserConicPose::STATUS_OK)
+          << vpLaserConicPose::getMethodName(method) << " seed " << seed << ": " << longBaseline.getFailureReason();
+      EXPECT_LT(error, vpMath::rad(1.5)) << vpLaserConicPose::getMethodName(method) << " seed " << seed;
+    }
+  vpLaserConicPose estimator;
+  EXPECT_THROW(estimator.setMaxAttitudeUncertainty(-0.1), vpLaserConicException);
+  EXPECT_THROW(estimator.setMaxAttitudeUncertainty(std::nan("")), vpLaserConicException);
+  EXPECT_DOUBLE_EQ(estimator.getMaxAttitudeUncertainty(), vpMath::rad(5.0));
+}
+
 // Status, messages and the RANSAC accessors of the twin-facade conventions.
 TEST(LaserConicPose, StatusAndRansacAccessors)
 {
   vpLaserConicPose fresh;
   EXPECT_EQ(fresh.getStatus(), vpLaserConicPose::STATUS_NOT_COMPUTED);
-  for (int st = vpLaserConicPose::STATUS_NOT_COMPUTED; st <= vpLaserConicPose::STATUS_WEAK_TRACE; ++st)
+  for (int st = vpLaserConicPose::STATUS_NOT_COMPUTED; st <= vpLaserConicPose::STATUS_NO_PARALLAX; ++st)
     EXPECT_NE(vpLaserConicPose::getStatusMessage(static_cast<vpLaserConicPose::vpLaserConicStatus>(st)),
               "unknown status")
         << "status " << st << " has no message of its own";
