@@ -4,6 +4,7 @@
  */
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -17,12 +18,15 @@
 #include <visp3/robust/vpRansac.h>
 
 #include "laser_calibration_check.h"
+#include "laser_consensus.h"
 #include "laser_estimators.h"
 #include "laser_robust_fit.h"
 #include "laser_trace_significance.h"
 
 namespace
 {
+using vsp::laser_consensus::Consensus;
+using vsp::laser_consensus::findConsensus;
 using vsp::laser_estimators::PointList;
 
 /*!
@@ -60,41 +64,6 @@ double fractionInFront(const PointList &points, const std::vector<int> &indices,
       ++front;
   }
   return double(front) / double(indices.size());
-}
-/*!
-  vpRansacLoop() followed by a final refit of the best model on all its inliers (refineFinal()). The
-  loop only keeps a local refit when it scores better on the truncated Sampson cost, which a
-  least-squares fit need not do even when it is closer to the truth under noise; the final refit is
-  kept unless it loses more than a tenth of the inliers (a sign of a bad consensus). Skipped when
-  \e finalRefit is false: the scale-adaptive final stage (laser_robust_fit.h) replaces it. A refit that
-  gathers more inliers is refitted again on them (a few rounds): a consensus set found by a poor
-  hypothesis misses points on one side of the trace, which biases a refit on that set alone.
-*/
-template <class Estimator>
-bool ransacWithFinalRefit(const Estimator &estimator, const vpRansacOptions &options, bool finalRefit,
-                          typename Estimator::Model &best, vpRansacReport &report)
-{
-  if (!vpRansacLoop(estimator, options, best, report))
-    return false;
-  if (!options.localOptimisation || !finalRefit)
-    return true;
-  const int kRounds = 3;
-  std::vector<int> inliers;
-  for (int round = 0; round < kRounds; ++round) {
-    typename Estimator::Model refit = best;
-    if (!estimator.refineFinal(report.inliers, refit))
-      return true;
-    vpRansacInliers(estimator, refit, options.threshold * options.threshold, inliers);
-    const size_t before = report.inliers.size();
-    if (10 * inliers.size() < 9 * before || static_cast<int>(inliers.size()) < Estimator::kSampleSize)
-      return true;
-    best = refit;
-    report.inliers.swap(inliers);
-    report.inlierCount = static_cast<int>(report.inliers.size());
-    if (report.inliers.size() <= before)
-      return true;
-  }
-  return true;
 }
 } // namespace
 
@@ -194,58 +163,6 @@ vpLaserSolvers::LaserCone laserCone(const vpHomogeneousMatrix &cMl, double openi
   return cone;
 }
 
-//! What the robust stage of computePlane() found: the consensus set and, for GP-3, its plane.
-struct Consensus
-{
-  bool found = false;
-  bool cameraInsideCone = false; //!< PP3 only: no epipolar tangent, no sample was drawn
-  std::vector<int> inliers;
-  Eigen::Vector4d startPlane = Eigen::Vector4d::Zero();
-  vpRansacReport report;
-};
-
-/*!
-  The consensus set of \e method on the normalized points: every point for PLANE_PAIR, the RANSAC
-  loop of the method's estimator otherwise (ransacWithFinalRefit(), the final refit when \e finalRefit).
-*/
-Consensus findConsensus(const PointList &normalized, vpLaserConicPose::vpLaserConicMethod method,
-                        const vpLaserSolvers::LaserCone &cone, vpRansacOptions options, bool finalRefit)
-{
-  Consensus consensus;
-  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
-  switch (method) {
-  case vpLaserConicPose::PLANE_PAIR:
-    for (int i = 0; i < static_cast<int>(normalized.size()); ++i)
-      consensus.inliers.push_back(i);
-    consensus.found = true;
-    return consensus;
-  case vpLaserConicPose::PP5:
-    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Pp5Estimator(normalized), options, finalRefit, conic,
-                                           consensus.report);
-    break;
-  case vpLaserConicPose::PP3: {
-    vpLaserSolvers::EpipolarTangents tangents;
-    if (!vpLaserSolvers::epipolarTangents(cone, tangents)) {
-      consensus.cameraInsideCone = true;
-      return consensus;
-    }
-    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Pp3Estimator(normalized, tangents), options,
-                                           finalRefit, conic, consensus.report);
-    break;
-  }
-  case vpLaserConicPose::GP3: {
-    vsp::laser_estimators::PlaneModel model;
-    vsp::laser_estimators::Gp3Estimator::tuneRansac(options);
-    consensus.found = ransacWithFinalRefit(vsp::laser_estimators::Gp3Estimator(normalized, cone), options, finalRefit,
-                                           model, consensus.report);
-    consensus.startPlane = model.plane;
-    break;
-  }
-  }
-  consensus.inliers = consensus.report.inliers;
-  return consensus;
-}
-
 // A ground plane closer to the camera centre than a tenth of the baseline leaves the camera and the
 // laser apex on the ground: no ring could be imaged there. A wrong calibration (e.g. the half opening
 // angle) can make the fit collapse onto such a plane, which must not be returned as an altitude.
@@ -253,6 +170,69 @@ bool passesThroughTheRig(const Eigen::Vector4d &plane, const vpLaserSolvers::Las
 {
   const double normal = plane.head<3>().norm();
   return std::fabs(plane(3)) < 0.1 * cone.apex.norm() * normal;
+}
+
+//! PP-5's conic runs along a trace when 90 % of its points lie within this many times their distance to their
+//! own conic (plus kConicAlongTraceFloor pixels, for exact points).
+constexpr double kConicAlongTrace = 2.0;
+constexpr double kConicAlongTraceFloor = 0.05; //!< see kConicAlongTrace (pixels)
+
+//! The \e share quantile of the distances (pixels) of the points \e indices of \e points to the conic \e C.
+double distancePercentile(const Eigen::Matrix3d &C, const PointList &points, const std::vector<int> &indices,
+                          double focal, double share)
+{
+  std::vector<double> distances;
+  distances.reserve(indices.size());
+  for (int i : indices)
+    distances.push_back(focal * vpLaserSolvers::sampsonDistance(C, points[static_cast<size_t>(i)]));
+  if (distances.empty())
+    return 0.0;
+  const auto at = distances.begin() + static_cast<std::ptrdiff_t>(share * static_cast<double>(distances.size() - 1));
+  std::nth_element(distances.begin(), at, distances.end());
+  return *at;
+}
+
+/*!
+  Why PP-5's consensus, fitted into \e result, is no trace (empty when it may be one). Among many outliers each
+  five-point sample is likely to hold clutter, and the best conic of a thousand may run through part of the
+  trace and clutter besides: its plane pair then lies metres off (AFivePointConsensusInHeavyClutterIsCheckedAgainstTheCone).
+  When the RANSAC (\e report) drew fewer samples than the consensus's own inlier ratio needs at its confidence,
+  the calibrated cone's three-point consensus (GP-3, fitted with \e gp3Settings) is sought: a trace that the
+  calibration explains, stands out from clutter and lies off PP-5's conic (kConicAlongTrace) shows PP-5's
+  consensus to be no trace.
+*/
+std::string unconfirmedFivePointConsensus(const PointList &normalized, const vpLaserSolvers::LaserCone &cone,
+                                          const vpRansacOptions &options, const vpRansacReport &report,
+                                          const vsp::laser_robust_fit::Settings &gp3Settings,
+                                          const vsp::laser_robust_fit::Result &result)
+{
+  namespace check = vsp::laser_calibration_check;
+  const double outlierRatio = 1.0 - static_cast<double>(result.inliers.size()) / static_cast<double>(normalized.size());
+  const int needed = vpRansacTrialCount(options.probability, outlierRatio, 5, std::numeric_limits<int>::max());
+  if (needed <= report.trials)
+    return std::string(); // searched for long enough
+  const Consensus byCone = findConsensus(normalized, vpLaserConicPose::GP3, cone, options, false);
+  vsp::laser_robust_fit::Result trace;
+  if (!byCone.found || byCone.inliers.size() < vpLaserConicPose::getMinimumPointCount(vpLaserConicPose::GP3) ||
+      vsp::laser_robust_fit::fit(normalized, byCone.inliers, cone, byCone.startPlane, gp3Settings, trace) !=
+          vsp::laser_robust_fit::Outcome::OK ||
+      !trace.plane.allFinite() || !check::explained(trace) || check::suspect(trace) ||
+      !clutterOf(vpLaserConicPose::GP3, normalized, trace, gp3Settings).empty())
+    return std::string(); // no trace of the calibrated cone to compare with
+  // PP-5's conic must run along that trace as closely as the trace's own conic: its points' 90th percentile
+  // distance to it was 0.8-1.0 times theirs where PP-5 had found the ring, 4-1500 times where it had not.
+  const double own = distancePercentile(trace.conic, normalized, trace.inliers, gp3Settings.focal, 0.9),
+               pp5 = distancePercentile(result.conic, normalized, trace.inliers, gp3Settings.focal, 0.9);
+  if (!(pp5 > kConicAlongTrace * own + kConicAlongTraceFloor))
+    return std::string(); // PP-5's conic runs along that trace
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << " (PP5: a consensus of " << result.inliers.size() << " of " << normalized.size() << " points after "
+      << report.trials << " samples, where " << needed << " are needed at that ratio; the calibrated cone's "
+      << "three-point consensus (GP3) finds a trace of " << trace.inliers.size() << " points, 90 % of them within "
+      << pp5 << " px of PP5's conic against " << own << " px of their own: the five-point conic mixes part of "
+      << "the trace with clutter; GP3 and PP3 hold among more outliers)";
+  return msg.str();
 }
 
 //! \e points with u and v exchanged.
@@ -523,6 +503,13 @@ bool vpLaserConicPose::computePlane(const std::vector<vpImagePoint> &points, vpL
     return fail(STATUS_PLANE_BEHIND, " (the plane passes through the camera and laser)");
   if (!checkCalibration(points, method, result))
     return false;
+  if (method == PP5) {
+    const std::string unconfirmed = unconfirmedFivePointConsensus(normalized, cone, ransacOptions(focal),
+                                                                  consensus.report, finalFitSettings(GP3, focal),
+                                                                  result);
+    if (!unconfirmed.empty())
+      return fail(STATUS_NO_CONSENSUS, unconfirmed);
+  }
 
   storeEstimate(result, cPlane);
   m_status = STATUS_OK;

@@ -567,6 +567,18 @@ TEST(LaserConicPose, PureOutliersGiveNoConsensus)
   }
 }
 
+namespace
+{
+//! The rig of the cluttered scenes below: 1600 x 1200 pixels, a 15 cm baseline.
+laser_test::Rig clutteredRig()
+{
+  laser_test::Rig rig;
+  rig.cam.initPersProjWithoutDistortion(1600.0, 1600.0, 800.0, 600.0);
+  rig.cMl.buildFrom(0.15, 0.0, 0.0, 0.0, vpMath::rad(-3.0), 0.0);
+  return rig;
+}
+} // namespace
+
 // Points at random over the image, no trace among them: RANSAC always finds a conic that a few lie on (7-10 of
 // 150 within 0.2-0.9 px, 94-136 of 2000 within 7-10 px), and GP-3 returned STATUS_OK on 27 of 40 such sets of
 // 150 points and 33 of 40 of 2000 (altitudes of 0.04-0.75 m, rolls of 80-98 degrees). No plane now, with a
@@ -574,9 +586,7 @@ TEST(LaserConicPose, PureOutliersGiveNoConsensus)
 TEST(LaserConicPose, ClutterWithoutATraceGivesNoPlane)
 {
   std::mt19937 rng(23);
-  laser_test::Rig rig;
-  rig.cam.initPersProjWithoutDistortion(1600.0, 1600.0, 800.0, 600.0);
-  rig.cMl.buildFrom(0.15, 0.0, 0.0, 0.0, vpMath::rad(-3.0), 0.0);
+  const laser_test::Rig rig = clutteredRig();
   std::uniform_real_distribution<double> u(0.0, 1599.0), v(0.0, 1199.0);
   vpLaserConicPose estimator = makeEstimator(rig);
   for (size_t n : {150u, 2000u})
@@ -608,6 +618,48 @@ TEST(LaserConicPose, ClutterWithoutATraceGivesNoPlane)
     ASSERT_TRUE(estimator.computePlane(points, vpLaserConicPose::GP3, plane))
         << clutter << ": " << estimator.getFailureReason();
     EXPECT_NEAR(estimator.getAltitude(), h, 0.01) << clutter;
+  }
+}
+
+// A ring of 360 points among 2000 random ones (15 % of the points): PP-5's five-point samples all hold clutter
+// (1000 samples where 99 % confidence needs tens of thousands at that ratio), and its consensus was a conic
+// through part of the trace and clutter besides, whose plane pair gave STATUS_OK 19 mm to 1.4 m off (18 of 30
+// scenes, 3 to 970 of its own standard deviations). The calibrated cone's three-point consensus (GP-3) finds
+// the ring there: an unconfirmed five-point consensus whose conic misses that ring is no trace. Among 1000
+// random points (26 %) every PP-5 estimate was within 1.3 mm and stays accepted.
+TEST(LaserConicPose, AFivePointConsensusInHeavyClutterIsCheckedAgainstTheCone)
+{
+  std::mt19937 rng(7);
+  const laser_test::Rig rig = clutteredRig();
+  std::uniform_real_distribution<double> u(0.0, 1599.0), v(0.0, 1199.0);
+  for (size_t clutter : {1000u, 2000u}) {
+    int accepted = 0, refused = 0;
+    for (unsigned int seed = 1; seed <= 30; ++seed) {
+      vpLaserConicSimulator sim;
+      sim.setCamera(rig.cam, 1600, 1200);
+      sim.setLaser(rig.openingAngle, rig.cMl);
+      sim.setGroundPose(vpHomogeneousMatrix(0.0, 0.0, 0.8 + 0.05 * seed, vpMath::rad(10.0 * std::sin(seed)),
+                                            vpMath::rad(-5.0 * std::cos(seed)), 0.0));
+      sim.setSeed(seed);
+      double h = 0.0, roll = 0.0, pitch = 0.0;
+      vpLaserConicPose::computeAltitudeRollPitch(sim.getGroundPlane(), h, roll, pitch);
+      std::vector<vpImagePoint> points = sim.addNoise(sim.tracePoints(360), 0.5);
+      for (size_t i = 0; i < clutter; ++i)
+        points.emplace_back(v(rng), u(rng));
+      vpLaserConicPose estimator = makeEstimator(rig);
+      vpPlane plane;
+      if (estimator.computePlane(points, vpLaserConicPose::PP5, plane)) {
+        ++accepted;
+        EXPECT_NEAR(estimator.getAltitude(), h, 0.005) << clutter << " random points, seed " << seed;
+      } else {
+        ++refused;
+        EXPECT_EQ(estimator.getStatus(), vpLaserConicPose::STATUS_NO_CONSENSUS) << estimator.getFailureReason();
+      }
+    }
+    std::printf("PP5, a ring among %zu random points: %d accepted, %d refused\n", clutter, accepted, refused);
+    if (clutter == 1000u) {
+      EXPECT_EQ(accepted, 30);
+    }
   }
 }
 
