@@ -382,12 +382,32 @@ PointList wholeTrace(const Eigen::Vector4d &plane, const LaserCone &cone, size_t
   return trace;
 }
 
+/*!
+  Smallest error (pixels) the attitude's deviation assumes of a trace point. The detector regularises its
+  centres along the curve: on rendered frames they scatter by 0.003-0.03 px about the final fit while they lie
+  0.05-0.4 px from the true line (second-pass RMS), and through JPEG the colour blocks move whole stretches of
+  the ring the same way, which a first-order deviation (independent errors) does not see. A 1 mm baseline at
+  1 m through JPEG 60 (10-15 deg off) read as 0.4 deg uncertain at the points' own scatter, 4.3 deg at 0.25 px,
+  8.6 deg at 0.5 px; a 3 cm one 0.28 deg at 0.5 px. Exact points (scatter 0) would read as certain whatever the
+  baseline.
+*/
+constexpr double kMinTraceError = 0.5;
+
 //! What the trace's geometry fixes of the plane of \e res (traceGeometry()).
 struct TraceGeometry
 {
   double altitudeDilution = 0.0;  //!< see Result::altitudeDilution (0: no reference ring)
   double attitudeDeviation = 0.0; //!< see Result::attitudeDeviation
+  //! see Result::wholeAttitudeDeviation (NaN: no reference ring)
+  double wholeAttitudeDeviation = std::numeric_limits<double>::quiet_NaN();
 };
+
+//! The largest eigenvalue of the attitude's 2 x 2 block of a covariance of (altitude, roll, pitch).
+double worstTiltVariance(const Eigen::Matrix3d &covariance)
+{
+  const Eigen::Matrix2d tilt = covariance.bottomRightCorner<2, 2>();
+  return 0.5 * tilt.trace() + std::hypot(0.5 * (tilt(0, 0) - tilt(1, 1)), tilt(0, 1));
+}
 
 /*!
   The trace's geometry (at most kGeometryPoints of its points, the ratios and the scaled deviation do not
@@ -410,16 +430,19 @@ TraceGeometry traceGeometry(const PointList &trace, const LaserCone &cone, doubl
   const double unitRss = static_cast<double>(sample.size());
   const Eigen::Matrix3d actual = constrainedCovariance(sample, cone, focal, res.plane, unitRss);
   TraceGeometry geometry;
-  // The largest eigenvalue of the attitude's 2 x 2 block, for all the points at their residual scale.
-  const Eigen::Matrix2d tilt = actual.bottomRightCorner<2, 2>();
-  const double half = 0.5 * tilt.trace(), gap = std::hypot(0.5 * (tilt(0, 0) - tilt(1, 1)), tilt(0, 1));
+  // For all the points, each as uncertain as their scatter says but no less than kMinTraceError.
+  const double error = std::max(res.sigma, kMinTraceError);
   geometry.attitudeDeviation =
-      res.sigma * std::sqrt((half + gap) * static_cast<double>(sample.size()) / static_cast<double>(n));
+      error * std::sqrt(worstTiltVariance(actual) * static_cast<double>(sample.size()) / static_cast<double>(n));
   const PointList whole = wholeTrace(res.plane, cone, sample.size());
   // Most of the plane's trace behind the camera: no ring to compare with (the plane's own checks refuse it).
   if (whole.size() < sample.size() / 2)
     return geometry;
-  const double ideal = constrainedCovariance(whole, cone, focal, res.plane, static_cast<double>(whole.size()))(0, 0);
+  const Eigen::Matrix3d wholeCovariance =
+      constrainedCovariance(whole, cone, focal, res.plane, static_cast<double>(whole.size()));
+  geometry.wholeAttitudeDeviation = error * std::sqrt(worstTiltVariance(wholeCovariance) *
+                                                      static_cast<double>(whole.size()) / static_cast<double>(n));
+  const double ideal = wholeCovariance(0, 0);
   if (ideal > 0.0 && std::isfinite(ideal)) // else no reference
     geometry.altitudeDilution =
         std::sqrt(actual(0, 0) / ideal * static_cast<double>(sample.size()) / static_cast<double>(whole.size()));
@@ -434,10 +457,12 @@ Outcome checkTraceGeometry(const PointList &trace, const LaserCone &cone, const 
   const TraceGeometry geometry = traceGeometry(trace, cone, s.focal, res);
   res.altitudeDilution = geometry.altitudeDilution;
   res.attitudeDeviation = geometry.attitudeDeviation;
+  res.wholeAttitudeDeviation = geometry.wholeAttitudeDeviation;
   if (s.maxAltitudeDilution > 0.0 && !(res.altitudeDilution <= s.maxAltitudeDilution))
     return Outcome::WEAK_TRACE;
   if (s.maxAttitudeDeviation > 0.0 && !(res.attitudeDeviation <= s.maxAttitudeDeviation))
-    return Outcome::NO_PARALLAX;
+    // The whole ring would fix the attitude: the trace's geometry is at fault (a short arc), not the parallax.
+    return res.wholeAttitudeDeviation <= s.maxAttitudeDeviation ? Outcome::WEAK_TRACE : Outcome::NO_PARALLAX;
   return Outcome::OK;
 }
 

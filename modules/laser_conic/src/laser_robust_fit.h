@@ -12,6 +12,7 @@
 #ifndef VP_LASER_ROBUST_FIT_H
 #define VP_LASER_ROBUST_FIT_H
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -64,6 +65,9 @@ struct Result
   //! First-order standard deviation (radians) of the final plane's attitude in its worst direction, from the
   //! trace at its residual scale, when the tests ran (see Settings::maxAttitudeDeviation)
   double attitudeDeviation = 0.0;
+  //! attitudeDeviation as many points spread over the whole ring of the final plane would give (NaN when the
+  //! tests did not run or most of that ring lies behind the camera)
+  double wholeAttitudeDeviation = std::numeric_limits<double>::quiet_NaN();
   bool constrainedChosen = false;                            //!< the final plane is the constrained fit
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();      //!< of (altitude, roll, pitch)
   Eigen::Matrix4d planeCovariance = Eigen::Matrix4d::Zero(); //!< of (a, b, c, d)

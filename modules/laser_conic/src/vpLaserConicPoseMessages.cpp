@@ -79,3 +79,18 @@ std::string vpLaserConicPose::parallaxDetails(const vsp::laser_robust_fit::Resul
       << " m moves the ring by about " << focal * baseline / altitude << " px)";
   return msg.str();
 }
+
+std::string vpLaserConicPose::weakTraceDetails(const vsp::laser_robust_fit::Result &result) const
+{
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << " (" << result.inliers.size() << " points, read over " << vpMath::deg(result.coverage) << " deg: ";
+  if (m_maxAltitudeDilution > 0.0 && !(result.altitudeDilution <= m_maxAltitudeDilution))
+    msg << "the altitude " << result.altitudeDilution << " times as uncertain as from the whole ring, "
+        << m_maxAltitudeDilution << " allowed; setMaxAltitudeDilution())";
+  else
+    msg << "the attitude " << vpMath::deg(result.attitudeDeviation) << " deg uncertain, "
+        << vpMath::deg(result.wholeAttitudeDeviation) << " deg from the whole ring, "
+        << vpMath::deg(m_maxAttitudeUncertainty) << " deg allowed; setMaxAttitudeUncertainty())";
+  return msg.str();
+}

@@ -75,7 +75,7 @@ public:
     STATUS_PLANE_BEHIND, //!< the plane is behind the system, or within a tenth of the baseline of the camera (its trace cannot be seen there)
     STATUS_SHORT_ARC,            //!< the trace found covers too short an arc (setArcCoverageThreshold())
     STATUS_CALIBRATION_MISMATCH, //!< the calibration cannot explain the trace (setCalibrationCheck(), getSuspectedMistake())
-    STATUS_WEAK_TRACE, //!< the trace fixes the altitude far less than the whole ring would (setMaxAltitudeDilution())
+    STATUS_WEAK_TRACE, //!< the trace fixes the plane far less than the whole ring would (setMaxAltitudeDilution(), setMaxAttitudeUncertainty())
     STATUS_NO_PARALLAX //!< the trace hardly moves with the plane: its attitude is too uncertain (setMaxAttitudeUncertainty())
   } vpLaserConicStatus;
 
@@ -202,15 +202,22 @@ public:
   double getMaxAltitudeDilution() const { return m_maxAltitudeDilution; }
   /*!
     Largest standard deviation of the attitude an estimate may have, in radians (default 5 degrees; 0
-    disables the test): first order, in the worst direction of tilt, from the trace's points at their scatter
-    about the final fit. Beyond it the status is STATUS_NO_PARALLAX. The plane is seen through the parallax
+    disables the test): first order, in the worst direction of tilt, of the rig-constrained plane (3
+    parameters) through the trace's points, each taken as uncertain by its scatter about the free conic but
+    by no less than half a pixel (the detector's regularised centres scatter by hundredths of a pixel while
+    they lie tenths from the true line, and through JPEG whole stretches of the ring move together). The
+    free conic of PP5 and PLANE_PAIR is less certain than that (getCovarianceMatrix() gives its own).
+    Beyond it the status is STATUS_NO_PARALLAX, or STATUS_WEAK_TRACE when as many points spread over the whole
+    ring would stay within it (a short arc, not the parallax, leaves the attitude uncertain). The plane is seen through the parallax
     between the camera and the laser's apex: the ring moves by about focal x baseline / altitude pixels
     between this ground and one at infinity. When that is a few pixels (an apex next to the lens, a baseline
     given in the wrong unit, a ground far beyond the rig's range), the trace hardly moves with the plane and
     planes tilted by tens of degrees fit it as well as the true one. Measured at 0.5 px on 500 points of the
     whole ring (focal 800 px, 20 grounds tilted up to 10 degrees): a 1 mm baseline at 1 m gave attitudes up to
     34 degrees off with a standard deviation of 11-15 degrees, 2 mm 17 degrees off (6-8), 1 cm at 3 m
-    10 degrees off (3.8-4.7), 3 cm at 1 m 1 degree off (0.4-0.5). Computed with the altitude's dilution
+    10 degrees off (3.8-4.7), 3 cm at 1 m 1 degree off (0.4-0.5). Through the detector (640 x 480 frames,
+    JPEG 60): 1 mm at 1 m 10-15 degrees off, read as 8.6 degrees uncertain (rms over 20 frames); 2 mm 3.6
+    degrees off, 4.4 uncertain; 3 cm 0.56 off, 0.28 uncertain. Computed with the altitude's dilution
     (setMaxAltitudeDilution()), which is tested first.
     \exception vpLaserConicException::badValueError when negative or not finite.
   */
@@ -289,7 +296,10 @@ public:
     \param cPlane : the ground plane in the camera frame, unit normal pointing from the plane towards the camera.
     \return false, with getStatus() telling why, when no plane was found; cPlane is then untouched.
     The reasons: all points collinear; the least-squares conic is not an ellipse; no consensus (no
-    hypothesis with enough inliers); a trace covering too short an arc (setArcCoverageThreshold());
+    hypothesis with enough inliers, no more than clutter would give, or for PP5 one the calibrated cone's
+    refutes, see setRansacMaxTrials()); a trace covering too short an arc (setArcCoverageThreshold());
+    one that fixes the plane too weakly (setMaxAltitudeDilution(), setMaxAttitudeUncertainty()); a
+    calibration that cannot explain the trace (setCalibrationCheck());
     the camera centre inside the laser cone, where no
     epipolar tangent exists (PP3 only); no plane of the plane pair has both optical centres on its side;
     the plane is behind the system (the inliers' rays do not meet it ahead of the camera on the lit
@@ -467,6 +477,8 @@ private:
   bool fail(vpLaserConicStatus status, const std::string &details = std::string());
   //! The details of STATUS_NO_PARALLAX: the attitude's uncertainty, and the baseline, altitude and parallax.
   std::string parallaxDetails(const vsp::laser_robust_fit::Result &result) const;
+  //! The details of STATUS_WEAK_TRACE: the altitude's dilution, or the attitude's uncertainty against the whole ring's.
+  std::string weakTraceDetails(const vsp::laser_robust_fit::Result &result) const;
   //! The exceptions of computePlane(): estimator not configured, unknown method, too few points.
   void checkInput(const std::vector<vpImagePoint> &points, vpLaserConicMethod method) const;
   //! Clears the previous estimate; \e points become those of the new one.
