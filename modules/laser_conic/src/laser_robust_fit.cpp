@@ -393,15 +393,6 @@ PointList wholeTrace(const Eigen::Vector4d &plane, const LaserCone &cone, size_t
 */
 constexpr double kMinTraceError = 0.5;
 
-//! What the trace's geometry fixes of the plane of \e res (traceGeometry()).
-struct TraceGeometry
-{
-  double altitudeDilution = 0.0;  //!< see Result::altitudeDilution (0: no reference ring)
-  double attitudeDeviation = 0.0; //!< see Result::attitudeDeviation
-  //! see Result::wholeAttitudeDeviation (NaN: no reference ring)
-  double wholeAttitudeDeviation = std::numeric_limits<double>::quiet_NaN();
-};
-
 //! The largest eigenvalue of the attitude's 2 x 2 block of a covariance of (altitude, roll, pitch).
 double worstTiltVariance(const Eigen::Matrix3d &covariance)
 {
@@ -410,8 +401,9 @@ double worstTiltVariance(const Eigen::Matrix3d &covariance)
 }
 
 /*!
-  The trace's geometry (at most kGeometryPoints of its points, the ratios and the scaled deviation do not
-  depend on their number), from the constrained fit's covariance at unit residual scale:
+  The trace's geometry, into res.altitudeDilution, res.attitudeDeviation and res.wholeAttitudeDeviation (from
+  at most kGeometryPoints of its points: the ratios and the scaled deviations do not depend on their number),
+  from the constrained fit's covariance at unit residual scale:
   - the altitude's dilution: how many times its standard deviation from \e trace exceeds that from as many
     points spread over the whole trace of the same plane, at the same noise: the trace's geometry alone (a
     short arc, a piece of curve), whatever the noise and the number of points;
@@ -419,7 +411,7 @@ double worstTiltVariance(const Eigen::Matrix3d &covariance)
     at its residual scale: with the laser's apex too close to the camera for the distance of the ground,
     the trace hardly moves with the plane and any tilt fits it.
 */
-TraceGeometry traceGeometry(const PointList &trace, const LaserCone &cone, double focal, const Result &res)
+void measureTraceGeometry(const PointList &trace, const LaserCone &cone, double focal, Result &res)
 {
   constexpr size_t kGeometryPoints = 48;
   const size_t n = trace.size(), step = (n + kGeometryPoints - 1) / kGeometryPoints;
@@ -429,35 +421,30 @@ TraceGeometry traceGeometry(const PointList &trace, const LaserCone &cone, doubl
     sample.push_back(trace[i]);
   const double unitRss = static_cast<double>(sample.size());
   const Eigen::Matrix3d actual = constrainedCovariance(sample, cone, focal, res.plane, unitRss);
-  TraceGeometry geometry;
   // For all the points, each as uncertain as their scatter says but no less than kMinTraceError.
   const double error = std::max(res.sigma, kMinTraceError);
-  geometry.attitudeDeviation =
+  res.attitudeDeviation =
       error * std::sqrt(worstTiltVariance(actual) * static_cast<double>(sample.size()) / static_cast<double>(n));
   const PointList whole = wholeTrace(res.plane, cone, sample.size());
   // Most of the plane's trace behind the camera: no ring to compare with (the plane's own checks refuse it).
   if (whole.size() < sample.size() / 2)
-    return geometry;
+    return;
   const Eigen::Matrix3d wholeCovariance =
       constrainedCovariance(whole, cone, focal, res.plane, static_cast<double>(whole.size()));
-  geometry.wholeAttitudeDeviation = error * std::sqrt(worstTiltVariance(wholeCovariance) *
-                                                      static_cast<double>(whole.size()) / static_cast<double>(n));
+  res.wholeAttitudeDeviation = error * std::sqrt(worstTiltVariance(wholeCovariance) *
+                                                 static_cast<double>(whole.size()) / static_cast<double>(n));
   const double ideal = wholeCovariance(0, 0);
   if (ideal > 0.0 && std::isfinite(ideal)) // else no reference
-    geometry.altitudeDilution =
+    res.altitudeDilution =
         std::sqrt(actual(0, 0) / ideal * static_cast<double>(sample.size()) / static_cast<double>(whole.size()));
-  return geometry;
 }
 
-//! The tests of the trace's geometry (traceGeometry()) that \e s enables, on the final plane of \e res.
+//! The tests of the trace's geometry (measureTraceGeometry()) that \e s enables, on the final plane of \e res.
 Outcome checkTraceGeometry(const PointList &trace, const LaserCone &cone, const Settings &s, Result &res)
 {
   if (!(s.maxAltitudeDilution > 0.0 || s.maxAttitudeDeviation > 0.0))
     return Outcome::OK;
-  const TraceGeometry geometry = traceGeometry(trace, cone, s.focal, res);
-  res.altitudeDilution = geometry.altitudeDilution;
-  res.attitudeDeviation = geometry.attitudeDeviation;
-  res.wholeAttitudeDeviation = geometry.wholeAttitudeDeviation;
+  measureTraceGeometry(trace, cone, s.focal, res);
   if (s.maxAltitudeDilution > 0.0 && !(res.altitudeDilution <= s.maxAltitudeDilution))
     return Outcome::WEAK_TRACE;
   if (s.maxAttitudeDeviation > 0.0 && !(res.attitudeDeviation <= s.maxAttitudeDeviation))

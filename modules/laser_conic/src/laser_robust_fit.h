@@ -41,7 +41,7 @@ struct Settings
   double minCoverage = 0.0; //!< smallest accepted arc coverage of the trace (rad, 0 disables the test)
   bool adaptive = true;     //!< false: keep the RANSAC inliers and a plain least-squares final fit
   bool covariance = false;  //!< compute the covariances
-  //! Largest dilution of the altitude (see altitudeDilution in the .cpp; 0 disables the test)
+  //! Largest dilution of the altitude (see Result::altitudeDilution; 0 disables the test)
   double maxAltitudeDilution = 0.0;
   //! Largest standard deviation of the attitude (radians, see Result::attitudeDeviation; 0 disables the test)
   double maxAttitudeDeviation = 0.0;
@@ -61,7 +61,9 @@ struct Result
   double rmsConstrained = 0.0;                     //!< RMS residual (pixels) of the constrained fit on the trace
   double rmsFree = 0.0;                            //!< RMS residual (pixels) of the free fit on the trace
   double coverage = 0.0;                           //!< angular coverage of the trace around the ellipse (rad)
-  double altitudeDilution = 0.0; //!< of the final fit, when the test ran (see Settings::maxAltitudeDilution)
+  //! How many times the final plane's altitude is less certain from the trace than from as many points over its
+  //! whole ring (measureTraceGeometry() in the .cpp), when the tests ran (see Settings::maxAltitudeDilution)
+  double altitudeDilution = 0.0;
   //! First-order standard deviation (radians) of the final plane's attitude in its worst direction, from the
   //! trace at its residual scale, when the tests ran (see Settings::maxAttitudeDeviation)
   double attitudeDeviation = 0.0;

@@ -172,6 +172,22 @@ bool passesThroughTheRig(const Eigen::Vector4d &plane, const vpLaserSolvers::Las
   return std::fabs(plane(3)) < 0.1 * cone.apex.norm() * normal;
 }
 
+/*!
+  Fits \e consensus (of \e method on \e normalized, with \e settings) into \e fit and tells whether it is a trace
+  of the calibration of \e cone: at least \e needed points, a finite plane whose constrained fit the calibration
+  explains (laser_calibration_check::explained()), more points than clutter would give (clutterOf()).
+*/
+bool explainedTrace(const PointList &normalized, vpLaserConicPose::vpLaserConicMethod method,
+                    const Consensus &consensus, size_t needed, const vpLaserSolvers::LaserCone &cone,
+                    const vsp::laser_robust_fit::Settings &settings, vsp::laser_robust_fit::Result &fit)
+{
+  return consensus.found && consensus.inliers.size() >= needed &&
+         vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane, settings, fit) ==
+             vsp::laser_robust_fit::Outcome::OK &&
+         fit.plane.allFinite() && vsp::laser_calibration_check::explained(fit) &&
+         clutterOf(method, normalized, fit, settings).empty();
+}
+
 //! PP-5's conic runs along a trace when 90 % of its points lie within this many times their distance to their
 //! own conic, plus kConicAlongTraceFloor times the RANSAC threshold.
 constexpr double kConicAlongTrace = 2.0;
@@ -221,11 +237,9 @@ std::string unconfirmedFivePointConsensus(const PointList &normalized, const vpL
   vsp::laser_robust_fit::Settings settings = gp3Settings;
   settings.maxAltitudeDilution = settings.maxAttitudeDeviation = 0.0;
   vsp::laser_robust_fit::Result trace;
-  if (!byCone.found || byCone.inliers.size() < vpLaserConicPose::getMinimumPointCount(vpLaserConicPose::GP3) ||
-      vsp::laser_robust_fit::fit(normalized, byCone.inliers, cone, byCone.startPlane, settings, trace) !=
-          vsp::laser_robust_fit::Outcome::OK ||
-      !trace.plane.allFinite() || !check::explained(trace) || check::suspect(trace) ||
-      !clutterOf(vpLaserConicPose::GP3, normalized, trace, settings).empty())
+  if (!explainedTrace(normalized, vpLaserConicPose::GP3, byCone,
+                      vpLaserConicPose::getMinimumPointCount(vpLaserConicPose::GP3), cone, settings, trace) ||
+      check::suspect(trace))
     return std::string(); // no trace of the calibrated cone to compare with
   // PP-5's conic must run along that trace as closely as the trace's own conic: its points' 90th percentile
   // distance to it was 0.8-1.0 times theirs where PP-5 had found the ring, 4-1500 times where it had not.
@@ -337,12 +351,8 @@ vpLaserConicPose::vpLaserConicMistake vpLaserConicPose::suspectedMistake(const s
     const Consensus consensus = findConsensus(normalized, method, cone, ransacOptions(focal), !m_scaleAdaptive);
     const vsp::laser_robust_fit::Settings settings = finalFitSettings(method, focal);
     vsp::laser_robust_fit::Result fit;
-    if (!consensus.found || consensus.inliers.size() < needed ||
-        vsp::laser_robust_fit::fit(normalized, consensus.inliers, cone, consensus.startPlane, settings, fit) !=
-            vsp::laser_robust_fit::Outcome::OK ||
-        !fit.plane.allFinite() || fractionInFront(normalized, fit.inliers, fit.plane, cone) < 0.5 ||
-        passesThroughTheRig(fit.plane, cone) || !vsp::laser_calibration_check::explained(fit) ||
-        !clutterOf(method, normalized, fit, settings).empty() ||
+    if (!explainedTrace(normalized, method, consensus, needed, cone, settings, fit) ||
+        fractionInFront(normalized, fit.inliers, fit.plane, cone) < 0.5 || passesThroughTheRig(fit.plane, cone) ||
         (strict && (fit.inliers.size() < minTrace || vsp::laser_calibration_check::suspect(fit))))
       return -1.0;
     return vsp::laser_calibration_check::misfit(fit);
