@@ -382,17 +382,6 @@ PointList wholeTrace(const Eigen::Vector4d &plane, const LaserCone &cone, size_t
   return trace;
 }
 
-/*!
-  Smallest error (pixels) the attitude's deviation assumes of a trace point. The detector regularises its
-  centres along the curve: on rendered frames they scatter by 0.003-0.03 px about the final fit while they lie
-  0.05-0.4 px from the true line (second-pass RMS), and through JPEG the colour blocks move whole stretches of
-  the ring the same way, which a first-order deviation (independent errors) does not see. A 1 mm baseline at
-  1 m through JPEG 60 (10-15 deg off) read as 0.4 deg uncertain at the points' own scatter, 4.3 deg at 0.25 px,
-  8.6 deg at 0.5 px; a 3 cm one 0.28 deg at 0.5 px. Exact points (scatter 0) would read as certain whatever the
-  baseline.
-*/
-constexpr double kMinTraceError = 0.5;
-
 //! The largest eigenvalue of the attitude's 2 x 2 block of a covariance of (altitude, roll, pitch).
 double worstTiltVariance(const Eigen::Matrix3d &covariance)
 {

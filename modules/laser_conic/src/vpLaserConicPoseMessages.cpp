@@ -5,6 +5,7 @@
 // vpLaserConicPose: the names of the methods and the messages of the statuses.
 #include <visp3/laser_conic/vpLaserConicPose.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -73,10 +74,12 @@ std::string vpLaserConicPose::parallaxDetails(const vsp::laser_robust_fit::Resul
   const double focal = 0.5 * (m_cam.get_px() + m_cam.get_py());
   std::ostringstream msg;
   msg.precision(3);
-  msg << " (attitude " << vpMath::deg(result.attitudeDeviation) << " deg uncertain at the trace's " << result.sigma
-      << " px over " << result.inliers.size() << " points, " << vpMath::deg(m_maxAttitudeUncertainty)
-      << " deg allowed, setMaxAttitudeUncertainty(); a baseline of " << 1000.0 * baseline << " mm at " << altitude
-      << " m moves the ring by about " << focal * baseline / altitude << " px)";
+  msg << " (attitude " << vpMath::deg(result.attitudeDeviation) << " deg uncertain over " << result.inliers.size()
+      << " points, each taken as " << std::max(result.sigma, vsp::laser_robust_fit::kMinTraceError)
+      << " px uncertain (the trace's scatter, " << vsp::laser_robust_fit::kMinTraceError << " px at least), "
+      << vpMath::deg(m_maxAttitudeUncertainty) << " deg allowed, setMaxAttitudeUncertainty(); a baseline of "
+      << 1000.0 * baseline << " mm at " << altitude << " m moves the ring by about " << focal * baseline / altitude
+      << " px)";
   return msg.str();
 }
 
